@@ -1,0 +1,693 @@
+// subdiv shim: the only C++ of the project. A plain C ABI (cpp/shim.h) over
+// OpenSubdiv's Far layer. Every entry point catches every exception, and every
+// index of a descriptor is checked before OpenSubdiv sees it.
+
+#include "shim.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#include <opensubdiv/version.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace OpenSubdiv;
+
+namespace {
+
+// Messages OpenSubdiv reports through Far::Error / Far::Warning on this thread.
+thread_local std::string t_osd_errors;
+thread_local std::string t_osd_warnings;
+
+void on_error(Far::ErrorType, const char *message) {
+    if (!t_osd_errors.empty()) t_osd_errors += "; ";
+    t_osd_errors += message ? message : "(no message)";
+}
+
+void on_warning(const char *message) {
+    if (!t_osd_warnings.empty()) t_osd_warnings += "\n";
+    t_osd_warnings += message ? message : "(no message)";
+}
+
+void install_callbacks() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        Far::SetErrorCallback(on_error);
+        Far::SetWarningCallback(on_warning);
+    });
+}
+
+// An error with a status, thrown inside the shim and turned into a return code.
+struct ShimError : std::runtime_error {
+    int status;
+    ShimError(int s, const std::string &m) : std::runtime_error(m), status(s) {}
+};
+
+[[noreturn]] void fail(const std::string &msg) { throw ShimError(SDV_ERR_INVALID, msg); }
+
+void write_err(char *err, size_t err_len, const char *msg) {
+    if (!err || err_len == 0) return;
+    size_t n = std::strlen(msg);
+    if (n >= err_len) n = err_len - 1;
+    std::memcpy(err, msg, n);
+    err[n] = '\0';
+}
+
+template <class F>
+int guarded(char *err, size_t err_len, F &&body) {
+    if (err && err_len) err[0] = '\0';
+    try {
+        body();
+        return SDV_OK;
+    } catch (const ShimError &e) {
+        write_err(err, err_len, e.what());
+        return e.status;
+    } catch (const std::bad_alloc &) {
+        write_err(err, err_len, "out of memory");
+        return SDV_ERR_INTERNAL;
+    } catch (const std::exception &e) {
+        write_err(err, err_len, (std::string("C++ exception: ") + e.what()).c_str());
+        return SDV_ERR_INTERNAL;
+    } catch (...) {
+        write_err(err, err_len, "unknown C++ exception");
+        return SDV_ERR_INTERNAL;
+    }
+}
+
+std::string str(long long v) { return std::to_string(v); }
+
+}  // namespace
+
+struct sdv_refiner {
+    Far::TopologyRefiner *refiner = nullptr;
+    std::string warnings;
+    bool full_topology_last_level = true;  // level 0 always has full topology
+    ~sdv_refiner() { delete refiner; }
+};
+
+struct sdv_stencils {
+    std::vector<int32_t> sizes, offsets, indices;
+    std::vector<double> weights;
+};
+
+namespace {
+
+const sdv_refiner &need(const sdv_refiner *r) {
+    if (!r || !r->refiner) fail("null refiner");
+    return *r;
+}
+
+Far::TopologyLevel const &level_of(const sdv_refiner *r, int32_t level) {
+    const sdv_refiner &rr = need(r);
+    int max = rr.refiner->GetMaxLevel();
+    if (level < 0 || level > max)
+        fail("level " + str(level) + " does not exist (refined levels are 0.." + str(max) + ")");
+    return rr.refiner->GetLevel(level);
+}
+
+bool has_full_topology(const sdv_refiner *r, int32_t level) {
+    return level < r->refiner->GetMaxLevel() || r->full_topology_last_level;
+}
+
+// The last level of a default uniform refinement holds only the relations
+// interpolation needs (face-vertices, vertex-faces): edge-vertices are absent.
+void need_full_topology(const sdv_refiner *r, int32_t level, const char *what) {
+    if (!has_full_topology(r, level))
+        fail(std::string(what) + " of level " + str(level) +
+             " are not available: the last level was refined without full topology");
+}
+
+void check_cap(size_t cap, long long need_n, const char *what) {
+    if (need_n < 0 || cap < (size_t)need_n)
+        throw ShimError(SDV_ERR_CAPACITY, std::string(what) + ": buffer holds " + str((long long)cap) +
+                                              " elements but " + str(need_n) + " are needed");
+}
+
+void check_len(size_t len, long long need_n, const char *what) {
+    if (len != (size_t)need_n)
+        fail(std::string(what) + " has " + str((long long)len) + " elements, expected " + str(need_n));
+}
+
+void check_channel(const sdv_refiner *r, int32_t channel) {
+    int n = need(r).refiner->GetNumFVarChannels();
+    if (channel < 0 || channel >= n)
+        fail("face-varying channel " + str(channel) + " does not exist (the refiner has " + str(n) + ")");
+}
+
+void validate(const sdv_mesh_desc &d, const sdv_options &o) {
+    if (o.scheme < 0 || o.scheme > 2) fail("scheme " + str(o.scheme) + " is not 0..2");
+    if (o.boundary < 0 || o.boundary > 2) fail("boundary interpolation " + str(o.boundary) + " is not 0..2");
+    if (o.fvar < 0 || o.fvar > 5) fail("face-varying interpolation " + str(o.fvar) + " is not 0..5");
+    if (o.creasing < 0 || o.creasing > 1) fail("creasing method " + str(o.creasing) + " is not 0..1");
+    if (o.triangles < 0 || o.triangles > 1) fail("triangle subdivision " + str(o.triangles) + " is not 0..1");
+    if (d.num_vertices < 0 || d.num_faces < 0 || d.num_creases < 0 || d.num_corners < 0 ||
+        d.num_holes < 0 || d.num_fvar_channels < 0)
+        fail("negative count in mesh descriptor");
+    if (d.num_faces > 0 && (!d.face_sizes || !d.face_vertices)) fail("null face arrays");
+    if (d.num_creases > 0 && (!d.crease_vertex_pairs || !d.crease_sharpness)) fail("null crease arrays");
+    if (d.num_corners > 0 && (!d.corner_vertices || !d.corner_sharpness)) fail("null corner arrays");
+    if (d.num_holes > 0 && !d.holes) fail("null hole array");
+    if (d.num_fvar_channels > 0 && !d.fvar_channels) fail("null face-varying channel array");
+
+    long long total = 0;
+    for (int f = 0; f < d.num_faces; ++f) {
+        int n = d.face_sizes[f];
+        if (n < 3) fail("face " + str(f) + " has " + str(n) + " vertices; at least 3 are needed");
+        if (n > 65535) fail("face " + str(f) + " has " + str(n) + " vertices; at most 65535 are supported");
+        if (o.scheme == 2 && n != 3)
+            fail("face " + str(f) + " has " + str(n) + " vertices; the Loop scheme needs triangles");
+        for (int j = 0; j < n; ++j) {
+            int v = d.face_vertices[total + j];
+            if (v < 0 || v >= d.num_vertices)
+                fail("face " + str(f) + " corner " + str(j) + ": vertex index " + str(v) +
+                     " is out of range (" + str(d.num_vertices) + " vertices)");
+        }
+        total += n;
+        if (total > 0x7fffffffLL) fail("more than 2^31-1 face vertices");
+    }
+    for (int i = 0; i < d.num_creases; ++i) {
+        for (int k = 0; k < 2; ++k) {
+            int v = d.crease_vertex_pairs[2 * i + k];
+            if (v < 0 || v >= d.num_vertices)
+                fail("crease " + str(i) + ": vertex " + str(v) + " is out of range (" + str(d.num_vertices) +
+                     " vertices)");
+        }
+        if (!std::isfinite(d.crease_sharpness[i])) fail("crease " + str(i) + ": sharpness is not finite");
+    }
+    for (int i = 0; i < d.num_corners; ++i) {
+        int v = d.corner_vertices[i];
+        if (v < 0 || v >= d.num_vertices)
+            fail("corner " + str(i) + ": vertex " + str(v) + " is out of range (" + str(d.num_vertices) +
+                 " vertices)");
+        if (!std::isfinite(d.corner_sharpness[i])) fail("corner " + str(i) + ": sharpness is not finite");
+    }
+    for (int i = 0; i < d.num_holes; ++i) {
+        int f = d.holes[i];
+        if (f < 0 || f >= d.num_faces)
+            fail("hole " + str(i) + ": face " + str(f) + " is out of range (" + str(d.num_faces) + " faces)");
+    }
+    for (int c = 0; c < d.num_fvar_channels; ++c) {
+        const sdv_fvar_channel &ch = d.fvar_channels[c];
+        if (ch.num_values < 0) fail("face-varying channel " + str(c) + ": negative value count");
+        if (total > 0 && !ch.value_indices) fail("face-varying channel " + str(c) + ": null value indices");
+        for (long long i = 0; i < total; ++i) {
+            int v = ch.value_indices[i];
+            if (v < 0 || v >= ch.num_values)
+                fail("face-varying channel " + str(c) + ": value index " + str(v) + " at face corner " +
+                     str(i) + " is out of range (" + str(ch.num_values) + " values)");
+        }
+    }
+}
+
+// A row of `width` reals inside a caller's buffer, as PrimvarRefiner wants it.
+template <class T>
+struct Elem {
+    T *p;
+    int w;
+    void Clear(void * = nullptr) {
+        for (int i = 0; i < w; ++i) p[i] = 0;
+    }
+    template <class S, class W>
+    void AddWithWeight(S const &src, W weight) {
+        for (int i = 0; i < w; ++i) p[i] += src.p[i] * weight;
+    }
+};
+
+template <class T>
+struct Buf {
+    T *base;
+    int w;
+    Elem<T> operator[](int i) const { return Elem<T>{base + (size_t)i * (size_t)w, w}; }
+};
+
+template <class T>
+void interpolate(const sdv_refiner *r, int32_t kind, int32_t channel, int32_t level, int32_t width,
+                 const T *src, size_t src_len, T *dst, size_t dst_len) {
+    const sdv_refiner &rr = need(r);
+    int max = rr.refiner->GetMaxLevel();
+    if (level < 1 || level > max)
+        fail("cannot interpolate to level " + str(level) + " (refined levels are 1.." + str(max) + ")");
+    if (width < 1) fail("primvar width must be at least 1");
+    if (!src || !dst) fail("null primvar buffer");
+    long long n_src, n_dst;
+    if (kind == SDV_FACE_VARYING) {
+        check_channel(r, channel);
+        n_src = rr.refiner->GetLevel(level - 1).GetNumFVarValues(channel);
+        n_dst = rr.refiner->GetLevel(level).GetNumFVarValues(channel);
+    } else if (kind == SDV_VERTEX || kind == SDV_VARYING) {
+        n_src = rr.refiner->GetLevel(level - 1).GetNumVertices();
+        n_dst = rr.refiner->GetLevel(level).GetNumVertices();
+    } else {
+        fail("unknown primvar kind " + str(kind));
+    }
+    check_len(src_len, n_src * width, "source primvar buffer");
+    check_len(dst_len, n_dst * width, "destination primvar buffer");
+    Far::PrimvarRefinerReal<T> pr(*rr.refiner);
+    Buf<T> s{const_cast<T *>(src), width};
+    Buf<T> d{dst, width};
+    if (kind == SDV_VERTEX)
+        pr.Interpolate(level, s, d);
+    else if (kind == SDV_VARYING)
+        pr.InterpolateVarying(level, s, d);
+    else
+        pr.InterpolateFaceVarying(level, s, d, channel);
+}
+
+void need_limit_topology(const sdv_refiner &rr) {
+    if (rr.refiner->GetMaxLevel() > 0 && !rr.full_topology_last_level)
+        fail("limit evaluation needs full topology in the last level "
+             "(refine with full_topology_in_last_level)");
+}
+
+template <class T>
+void limit(const sdv_refiner *r, int32_t width, const T *src, size_t src_len, T *pos, T *tan1, T *tan2,
+           size_t dst_len) {
+    const sdv_refiner &rr = need(r);
+    need_limit_topology(rr);
+    if (width < 1) fail("primvar width must be at least 1");
+    if (!src || !pos) fail("null primvar buffer");
+    if ((tan1 == nullptr) != (tan2 == nullptr)) fail("give both tangent buffers or neither");
+    long long n = rr.refiner->GetLevel(rr.refiner->GetMaxLevel()).GetNumVertices();
+    check_len(src_len, n * width, "source primvar buffer");
+    check_len(dst_len, n * width, "limit buffer");
+    Far::PrimvarRefinerReal<T> pr(*rr.refiner);
+    Buf<T> s{const_cast<T *>(src), width};
+    Buf<T> p{pos, width};
+    if (tan1) {
+        Buf<T> t1{tan1, width}, t2{tan2, width};
+        pr.Limit(s, p, t1, t2);
+    } else {
+        pr.Limit(s, p);
+    }
+}
+
+template <class T>
+void limit_fvar(const sdv_refiner *r, int32_t channel, int32_t width, const T *src, size_t src_len, T *dst,
+                size_t dst_len) {
+    const sdv_refiner &rr = need(r);
+    need_limit_topology(rr);
+    check_channel(r, channel);
+    if (width < 1) fail("primvar width must be at least 1");
+    if (!src || !dst) fail("null primvar buffer");
+    long long n = rr.refiner->GetLevel(rr.refiner->GetMaxLevel()).GetNumFVarValues(channel);
+    check_len(src_len, n * width, "source face-varying buffer");
+    check_len(dst_len, n * width, "limit buffer");
+    Far::PrimvarRefinerReal<T> pr(*rr.refiner);
+    Buf<T> s{const_cast<T *>(src), width};
+    Buf<T> d{dst, width};
+    pr.LimitFaceVarying(s, d, channel);
+}
+
+// A sparse combination of base vertices, accumulated in insertion order: the
+// primvar type that turns PrimvarRefiner into a stencil builder.
+struct SparseRow {
+    std::vector<std::pair<int32_t, double>> terms;
+};
+
+struct SparseElem {
+    SparseRow *row;
+    void Clear(void * = nullptr) { row->terms.clear(); }
+    void AddWithWeight(SparseElem const &src, double weight) {
+        for (auto const &t : src.row->terms) {
+            bool found = false;
+            for (auto &mine : row->terms) {
+                if (mine.first == t.first) {
+                    mine.second += t.second * weight;
+                    found = true;
+                    break;
+                }
+            }
+            if (!found) row->terms.emplace_back(t.first, t.second * weight);
+        }
+    }
+};
+
+struct SparseBuf {
+    SparseRow *base;
+    SparseElem operator[](int i) const { return SparseElem{base + i}; }
+};
+
+void append_rows(sdv_stencils &s, std::vector<SparseRow> const &rows) {
+    for (auto const &row : rows) {
+        s.offsets.push_back((int32_t)s.indices.size());
+        s.sizes.push_back((int32_t)row.terms.size());
+        for (auto const &t : row.terms) {
+            s.indices.push_back(t.first);
+            s.weights.push_back(t.second);
+        }
+    }
+}
+
+sdv_stencils *limit_stencils(const sdv_refiner &rr) {
+    need_limit_topology(rr);
+    Far::TopologyRefiner const &tr = *rr.refiner;
+    Far::PrimvarRefinerReal<double> pr(tr);
+    std::vector<SparseRow> cur(tr.GetLevel(0).GetNumVertices());
+    for (size_t i = 0; i < cur.size(); ++i) cur[i].terms.emplace_back((int32_t)i, 1.0);
+    for (int level = 1; level <= tr.GetMaxLevel(); ++level) {
+        std::vector<SparseRow> next(tr.GetLevel(level).GetNumVertices());
+        SparseBuf s{cur.data()}, d{next.data()};
+        pr.Interpolate(level, s, d);
+        cur.swap(next);
+    }
+    std::vector<SparseRow> pos(cur.size()), du(cur.size()), dv(cur.size());
+    SparseBuf s{cur.data()}, p{pos.data()}, t1{du.data()}, t2{dv.data()};
+    pr.Limit(s, p, t1, t2);
+    auto *out = new sdv_stencils();
+    append_rows(*out, pos);
+    append_rows(*out, du);
+    append_rows(*out, dv);
+    return out;
+}
+
+sdv_stencils *refined_stencils(const sdv_refiner &rr) {
+    Far::TopologyRefiner const &tr = *rr.refiner;
+    typedef Far::StencilTableFactoryReal<double> Factory;
+    Factory::Options o;
+    o.interpolationMode = Factory::INTERPOLATE_VERTEX;
+    o.generateOffsets = true;
+    o.generateIntermediateLevels = false;
+    // With no refinement the table is the identity over the base vertices.
+    o.generateControlVerts = tr.GetMaxLevel() == 0;
+    o.maxLevel = tr.GetMaxLevel();
+    Far::StencilTableReal<double> const *table = Factory::Create(tr, o);
+    if (!table) fail("StencilTableFactory::Create failed");
+    auto *out = new sdv_stencils();
+    try {
+        out->sizes.assign(table->GetSizes().begin(), table->GetSizes().end());
+        out->offsets.assign(table->GetOffsets().begin(), table->GetOffsets().end());
+        out->indices.assign(table->GetControlIndices().begin(), table->GetControlIndices().end());
+        out->weights.assign(table->GetWeights().begin(), table->GetWeights().end());
+    } catch (...) {
+        delete table;
+        delete out;
+        throw;
+    }
+    delete table;
+    // OpenSubdiv's weight and index arrays may be allocated longer than the
+    // stencils use: keep exactly the used prefix, and check it is there.
+    size_t used = 0;
+    for (size_t i = 0; i < out->sizes.size(); ++i) {
+        size_t end = (size_t)out->offsets[i] + (size_t)out->sizes[i];
+        if (out->offsets[i] < 0 || out->sizes[i] < 0 || end > out->indices.size() || end > out->weights.size()) {
+            delete out;
+            throw ShimError(SDV_ERR_INTERNAL, "inconsistent stencil table from OpenSubdiv");
+        }
+        if (end > used) used = end;
+    }
+    out->indices.resize(used);
+    out->weights.resize(used);
+    return out;
+}
+
+}  // namespace
+
+extern "C" {
+
+const char *sdv_osd_version(void) {
+    static const std::string v = std::to_string(OPENSUBDIV_VERSION_MAJOR) + "." +
+                                 std::to_string(OPENSUBDIV_VERSION_MINOR) + "." +
+                                 std::to_string(OPENSUBDIV_VERSION_PATCH);
+    return v.c_str();
+}
+
+int32_t sdv_osd_version_number(void) { return OPENSUBDIV_VERSION_NUMBER; }
+
+int sdv_refiner_create(const sdv_mesh_desc *desc, const sdv_options *opts, sdv_refiner **out, char *err,
+                       size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!desc || !opts || !out) fail("null argument");
+        *out = nullptr;
+        validate(*desc, *opts);
+        install_callbacks();
+
+        Far::TopologyDescriptor d;
+        d.numVertices = desc->num_vertices;
+        d.numFaces = desc->num_faces;
+        d.numVertsPerFace = desc->face_sizes;
+        d.vertIndicesPerFace = desc->face_vertices;
+        d.numCreases = desc->num_creases;
+        d.creaseVertexIndexPairs = desc->crease_vertex_pairs;
+        d.creaseWeights = desc->crease_sharpness;
+        d.numCorners = desc->num_corners;
+        d.cornerVertexIndices = desc->corner_vertices;
+        d.cornerWeights = desc->corner_sharpness;
+        d.numHoles = desc->num_holes;
+        d.holeIndices = desc->holes;
+        std::vector<Far::TopologyDescriptor::FVarChannel> channels(desc->num_fvar_channels);
+        for (int c = 0; c < desc->num_fvar_channels; ++c) {
+            channels[c].numValues = desc->fvar_channels[c].num_values;
+            channels[c].valueIndices = desc->fvar_channels[c].value_indices;
+        }
+        d.numFVarChannels = desc->num_fvar_channels;
+        d.fvarChannels = channels.empty() ? nullptr : channels.data();
+
+        Sdc::Options so;
+        so.SetVtxBoundaryInterpolation((Sdc::Options::VtxBoundaryInterpolation)opts->boundary);
+        so.SetFVarLinearInterpolation((Sdc::Options::FVarLinearInterpolation)opts->fvar);
+        so.SetCreasingMethod((Sdc::Options::CreasingMethod)opts->creasing);
+        so.SetTriangleSubdivision((Sdc::Options::TriangleSubdivision)opts->triangles);
+        Sdc::SchemeType scheme = opts->scheme == 0   ? Sdc::SCHEME_BILINEAR
+                                 : opts->scheme == 1 ? Sdc::SCHEME_CATMARK
+                                                     : Sdc::SCHEME_LOOP;
+        typedef Far::TopologyRefinerFactory<Far::TopologyDescriptor> Factory;
+
+        t_osd_errors.clear();
+        t_osd_warnings.clear();
+        Far::TopologyRefiner *tr = Factory::Create(d, Factory::Options(scheme, so));
+        if (!tr) {
+            throw ShimError(SDV_ERR_OSD, "OpenSubdiv could not create the refiner: " +
+                                             (t_osd_errors.empty() ? std::string("no reason given") : t_osd_errors));
+        }
+        auto *r = new (std::nothrow) sdv_refiner();
+        if (!r) {
+            delete tr;
+            throw std::bad_alloc();
+        }
+        r->refiner = tr;
+        r->warnings = t_osd_warnings;
+        if (!t_osd_errors.empty()) {
+            if (!r->warnings.empty()) r->warnings += "\n";
+            r->warnings += t_osd_errors;
+        }
+        *out = r;
+    });
+}
+
+void sdv_refiner_destroy(sdv_refiner *r) { delete r; }
+
+int sdv_refiner_warnings(const sdv_refiner *r, char *buf, size_t buf_len, size_t *needed) {
+    return guarded(nullptr, 0, [&] {
+        const sdv_refiner &rr = need(r);
+        if (needed) *needed = rr.warnings.size() + 1;
+        if (buf && buf_len) write_err(buf, buf_len, rr.warnings.c_str());
+    });
+}
+
+int sdv_refiner_refine_uniform(sdv_refiner *r, int32_t level, int32_t faces_first, int32_t full_topology,
+                               char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!r || !r->refiner) fail("null refiner");
+        // The level is a 4-bit field in OpenSubdiv: check it here, never let it wrap.
+        if (level < 0 || level > 10) fail("refinement level " + str(level) + " is not in 0..10");
+        t_osd_errors.clear();
+        if (r->refiner->GetMaxLevel() > 0) r->refiner->Unrefine();
+        r->full_topology_last_level = true;
+        if (level == 0) return;
+        Far::TopologyRefiner::UniformOptions uo(level);
+        uo.orderVerticesFromFacesFirst = faces_first != 0;
+        uo.fullTopologyInLastLevel = full_topology != 0;
+        r->refiner->RefineUniform(uo);
+        if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, "OpenSubdiv: " + t_osd_errors);
+        r->full_topology_last_level = full_topology != 0;
+    });
+}
+
+int32_t sdv_refiner_max_level(const sdv_refiner *r) {
+    return (r && r->refiner) ? r->refiner->GetMaxLevel() : -1;
+}
+
+int32_t sdv_refiner_num_fvar_channels(const sdv_refiner *r) {
+    return (r && r->refiner) ? r->refiner->GetNumFVarChannels() : -1;
+}
+
+int sdv_level_counts_get(const sdv_refiner *r, int32_t level, sdv_level_counts *out, char *err,
+                         size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        Far::TopologyLevel const &l = level_of(r, level);
+        out->vertices = l.GetNumVertices();
+        out->edges = l.GetNumEdges();
+        out->faces = l.GetNumFaces();
+        out->face_vertices = l.GetNumFaceVertices();
+        out->full_topology = has_full_topology(r, level) ? 1 : 0;
+    });
+}
+
+int sdv_level_faces(const sdv_refiner *r, int32_t level, int32_t *sizes, size_t sizes_cap, int32_t *verts,
+                    size_t verts_cap, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_cap(sizes_cap, l.GetNumFaces(), "face sizes");
+        check_cap(verts_cap, l.GetNumFaceVertices(), "face vertices");
+        if ((l.GetNumFaces() && !sizes) || (l.GetNumFaceVertices() && !verts)) fail("null output");
+        size_t k = 0;
+        for (int f = 0; f < l.GetNumFaces(); ++f) {
+            Far::ConstIndexArray fv = l.GetFaceVertices(f);
+            sizes[f] = fv.size();
+            if (k + (size_t)fv.size() > verts_cap) throw ShimError(SDV_ERR_CAPACITY, "face vertices overflow");
+            for (int j = 0; j < fv.size(); ++j) verts[k++] = fv[j];
+        }
+    });
+}
+
+int sdv_level_edge_vertices(const sdv_refiner *r, int32_t level, int32_t *out, size_t cap, char *err,
+                            size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        need_full_topology(r, level, "edge vertices");
+        check_cap(cap, 2LL * l.GetNumEdges(), "edge vertices");
+        for (int e = 0; e < l.GetNumEdges(); ++e) {
+            Far::ConstIndexArray ev = l.GetEdgeVertices(e);
+            out[2 * e] = ev[0];
+            out[2 * e + 1] = ev[1];
+        }
+    });
+}
+
+int sdv_level_edge_sharpness(const sdv_refiner *r, int32_t level, float *out, size_t cap, char *err,
+                             size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_cap(cap, l.GetNumEdges(), "edge sharpness");
+        for (int e = 0; e < l.GetNumEdges(); ++e) out[e] = l.GetEdgeSharpness(e);
+    });
+}
+
+int sdv_level_vertex_sharpness(const sdv_refiner *r, int32_t level, float *out, size_t cap, char *err,
+                               size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_cap(cap, l.GetNumVertices(), "vertex sharpness");
+        for (int v = 0; v < l.GetNumVertices(); ++v) out[v] = l.GetVertexSharpness(v);
+    });
+}
+
+int sdv_level_face_holes(const sdv_refiner *r, int32_t level, uint8_t *out, size_t cap, char *err,
+                         size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_cap(cap, l.GetNumFaces(), "face holes");
+        for (int f = 0; f < l.GetNumFaces(); ++f) out[f] = l.IsFaceHole(f) ? 1 : 0;
+    });
+}
+
+int sdv_level_fvar_value_count(const sdv_refiner *r, int32_t level, int32_t channel, int32_t *out, char *err,
+                               size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_channel(r, channel);
+        if (!out) fail("null output");
+        *out = l.GetNumFVarValues(channel);
+    });
+}
+
+int sdv_level_fvar_face_values(const sdv_refiner *r, int32_t level, int32_t channel, int32_t *out, size_t cap,
+                               char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::TopologyLevel const &l = level_of(r, level);
+        check_channel(r, channel);
+        check_cap(cap, l.GetNumFaceVertices(), "face-varying values");
+        size_t k = 0;
+        for (int f = 0; f < l.GetNumFaces(); ++f) {
+            Far::ConstIndexArray fv = l.GetFaceFVarValues(f, channel);
+            if (k + (size_t)fv.size() > cap) throw ShimError(SDV_ERR_CAPACITY, "face-varying values overflow");
+            for (int j = 0; j < fv.size(); ++j) out[k++] = fv[j];
+        }
+    });
+}
+
+int sdv_interpolate_f32(const sdv_refiner *r, int32_t kind, int32_t channel, int32_t level, int32_t width,
+                        const float *src, size_t src_len, float *dst, size_t dst_len, char *err,
+                        size_t err_len) {
+    return guarded(err, err_len, [&] { interpolate<float>(r, kind, channel, level, width, src, src_len, dst, dst_len); });
+}
+
+int sdv_interpolate_f64(const sdv_refiner *r, int32_t kind, int32_t channel, int32_t level, int32_t width,
+                        const double *src, size_t src_len, double *dst, size_t dst_len, char *err,
+                        size_t err_len) {
+    return guarded(err, err_len, [&] { interpolate<double>(r, kind, channel, level, width, src, src_len, dst, dst_len); });
+}
+
+int sdv_limit_f32(const sdv_refiner *r, int32_t width, const float *src, size_t src_len, float *pos, float *tan1,
+                  float *tan2, size_t dst_len, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] { limit<float>(r, width, src, src_len, pos, tan1, tan2, dst_len); });
+}
+
+int sdv_limit_f64(const sdv_refiner *r, int32_t width, const double *src, size_t src_len, double *pos,
+                  double *tan1, double *tan2, size_t dst_len, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] { limit<double>(r, width, src, src_len, pos, tan1, tan2, dst_len); });
+}
+
+int sdv_limit_fvar_f32(const sdv_refiner *r, int32_t channel, int32_t width, const float *src, size_t src_len,
+                       float *dst, size_t dst_len, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] { limit_fvar<float>(r, channel, width, src, src_len, dst, dst_len); });
+}
+
+int sdv_limit_fvar_f64(const sdv_refiner *r, int32_t channel, int32_t width, const double *src, size_t src_len,
+                       double *dst, size_t dst_len, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] { limit_fvar<double>(r, channel, width, src, src_len, dst, dst_len); });
+}
+
+int sdv_stencils_create(const sdv_refiner *r, int32_t kind, sdv_stencils **out, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        *out = nullptr;
+        const sdv_refiner &rr = need(r);
+        if (kind == SDV_STENCIL_REFINED)
+            *out = refined_stencils(rr);
+        else if (kind == SDV_STENCIL_LIMIT)
+            *out = limit_stencils(rr);
+        else
+            fail("unknown stencil kind " + str(kind));
+    });
+}
+
+void sdv_stencils_destroy(sdv_stencils *s) { delete s; }
+
+void sdv_stencils_size(const sdv_stencils *s, size_t *rows, size_t *nnz) {
+    if (rows) *rows = s ? s->sizes.size() : 0;
+    if (nnz) *nnz = s ? s->indices.size() : 0;
+}
+
+int sdv_stencils_export(const sdv_stencils *s, int32_t *sizes, int32_t *offsets, int32_t *indices,
+                        double *weights, size_t rows_cap, size_t nnz_cap, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!s) fail("null stencil table");
+        check_cap(rows_cap, (long long)s->sizes.size(), "stencil rows");
+        check_cap(nnz_cap, (long long)s->indices.size(), "stencil weights");
+        if (s->weights.size() != s->indices.size() || s->offsets.size() != s->sizes.size())
+            throw ShimError(SDV_ERR_INTERNAL, "inconsistent stencil table");
+        if (!s->sizes.empty() && (!sizes || !offsets)) fail("null output");
+        if (!s->indices.empty() && (!indices || !weights)) fail("null output");
+        std::copy(s->sizes.begin(), s->sizes.end(), sizes);
+        std::copy(s->offsets.begin(), s->offsets.end(), offsets);
+        std::copy(s->indices.begin(), s->indices.end(), indices);
+        std::copy(s->weights.begin(), s->weights.begin() + s->indices.size(), weights);
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,608 @@
+//! The base mesh: positions, polygon faces, sharpness tags, holes and
+//! face-varying channels, with validation that names every problem precisely.
+
+use glam::DVec3;
+use std::collections::HashSet;
+use thiserror::Error;
+
+/// Sharpness at or above which OpenSubdiv treats an edge or vertex as
+/// infinitely sharp (`Sdc::Crease::SHARPNESS_INFINITE`).
+pub const SHARPNESS_INFINITE: f32 = 10.0;
+
+/// The largest number of vertices in one face (and the largest valence)
+/// OpenSubdiv supports.
+pub const MAX_VALENCE: usize = 65535;
+
+/// A sharpened edge between two vertices.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crease {
+    /// The two end vertices of the edge (order does not matter).
+    pub vertices: [u32; 2],
+    /// Sharpness: `<= 0` smooth, `>= 10` infinitely sharp.
+    pub sharpness: f32,
+}
+
+/// A sharpened vertex.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Corner {
+    /// The vertex index.
+    pub vertex: u32,
+    /// Sharpness: `<= 0` smooth, `>= 10` infinitely sharp.
+    pub sharpness: f32,
+}
+
+/// One face-varying channel (such as UVs): its own values and, for every face
+/// corner of the mesh, the index of the value that corner uses.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FVarChannel {
+    /// Number of `f64` components per value (2 for UVs).
+    pub width: usize,
+    /// The values, `width` components each, flattened.
+    pub values: Vec<f64>,
+    /// One value index per face corner, parallel to [`Mesh::face_vertices`].
+    pub indices: Vec<u32>,
+}
+
+impl FVarChannel {
+    /// Number of values in the channel.
+    pub fn value_count(&self) -> usize {
+        self.values.len().checked_div(self.width).unwrap_or(0)
+    }
+}
+
+/// A polygon mesh with OpenSubdiv's tags.
+///
+/// Faces are stored flat: face `f` uses `face_vertices[face_offsets[f]..face_offsets[f + 1]]`,
+/// in counter-clockwise order.
+///
+/// ```
+/// use subdiv::Mesh;
+/// use glam::DVec3;
+/// let mut mesh = Mesh::from_faces(
+///     vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+///     &[&[0, 1, 2, 3]],
+/// );
+/// mesh.add_crease(0, 1, 2.5);
+/// assert_eq!(mesh.face_count(), 1);
+/// assert!(mesh.validate().unwrap().warnings.is_empty());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Start of each face in `face_vertices`, plus one final entry: `face_count() + 1` values.
+    pub face_offsets: Vec<u32>,
+    /// Vertex indices of all faces, concatenated.
+    pub face_vertices: Vec<u32>,
+    /// Sharpened edges.
+    pub creases: Vec<Crease>,
+    /// Sharpened vertices.
+    pub corners: Vec<Corner>,
+    /// Indices of faces that are holes.
+    pub holes: Vec<u32>,
+    /// Face-varying channels; channel 0 is the UV set read from `vt`.
+    pub fvar_channels: Vec<FVarChannel>,
+}
+
+impl Default for Mesh {
+    fn default() -> Self {
+        Mesh {
+            positions: Vec::new(),
+            face_offsets: vec![0],
+            face_vertices: Vec::new(),
+            creases: Vec::new(),
+            corners: Vec::new(),
+            holes: Vec::new(),
+            fvar_channels: Vec::new(),
+        }
+    }
+}
+
+/// A problem that makes a mesh unusable.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// `face_offsets` is empty, does not start at 0, decreases, or does not end at `face_vertices.len()`.
+    #[error("face offsets are malformed: {0}")]
+    BadOffsets(String),
+    /// A face refers to a vertex that does not exist.
+    #[error(
+        "face {face} corner {corner}: vertex index {index} is out of range (the mesh has {count} vertices)"
+    )]
+    VertexOutOfRange {
+        /// Face index.
+        face: usize,
+        /// Corner within the face.
+        corner: usize,
+        /// The offending vertex index.
+        index: u32,
+        /// Number of vertices.
+        count: usize,
+    },
+    /// A face has fewer than 3 vertices.
+    #[error("face {face} has {size} vertices; a face needs at least 3")]
+    FaceTooSmall {
+        /// Face index.
+        face: usize,
+        /// Its vertex count.
+        size: usize,
+    },
+    /// A face has more vertices than OpenSubdiv supports.
+    #[error("face {face} has {size} vertices; at most {MAX_VALENCE} are supported")]
+    FaceTooLarge {
+        /// Face index.
+        face: usize,
+        /// Its vertex count.
+        size: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate ({value})")]
+    NonFiniteCoordinate {
+        /// Vertex index.
+        vertex: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A crease names a vertex that does not exist.
+    #[error("crease {crease}: vertex {vertex} does not exist (the mesh has {count} vertices)")]
+    CreaseVertexOutOfRange {
+        /// Crease index.
+        crease: usize,
+        /// The offending vertex index.
+        vertex: u32,
+        /// Number of vertices.
+        count: usize,
+    },
+    /// A corner names a vertex that does not exist.
+    #[error("corner {corner}: vertex {vertex} does not exist (the mesh has {count} vertices)")]
+    CornerVertexOutOfRange {
+        /// Corner index.
+        corner: usize,
+        /// The offending vertex index.
+        vertex: u32,
+        /// Number of vertices.
+        count: usize,
+    },
+    /// A hole names a face that does not exist.
+    #[error("hole {hole}: face {face} does not exist (the mesh has {count} faces)")]
+    HoleOutOfRange {
+        /// Hole index.
+        hole: usize,
+        /// The offending face index.
+        face: u32,
+        /// Number of faces.
+        count: usize,
+    },
+    /// A sharpness is NaN or infinite.
+    #[error("{what}: sharpness {value} is not a finite number")]
+    BadSharpness {
+        /// Which tag ("crease 3", "corner 0").
+        what: String,
+        /// The offending value.
+        value: f32,
+    },
+    /// A face-varying channel is inconsistent with the mesh.
+    #[error("face-varying channel {channel}: {problem}")]
+    BadFVarChannel {
+        /// Channel index.
+        channel: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A crease joins two vertices that share no edge (an error only in strict mode).
+    #[error("crease {crease}: vertices {v0} and {v1} share no edge")]
+    CreaseWithoutEdge {
+        /// Crease index.
+        crease: usize,
+        /// First vertex.
+        v0: u32,
+        /// Second vertex.
+        v1: u32,
+    },
+    /// The mesh is larger than 32-bit indices can address.
+    #[error("the mesh is too large: {0}")]
+    TooLarge(String),
+}
+
+/// A questionable but accepted feature of a mesh, reported by [`Mesh::validate`].
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum MeshWarning {
+    /// A crease between two vertices that share no edge; OpenSubdiv ignores it.
+    CreaseWithoutEdge {
+        /// Crease index.
+        crease: usize,
+        /// First vertex.
+        v0: u32,
+        /// Second vertex.
+        v1: u32,
+    },
+}
+
+impl std::fmt::Display for MeshWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MeshWarning::CreaseWithoutEdge { crease, v0, v1 } => write!(
+                f,
+                "crease {crease}: vertices {v0} and {v1} share no edge; the crease is ignored"
+            ),
+        }
+    }
+}
+
+impl MeshWarning {
+    /// The error this warning becomes in strict mode.
+    pub fn into_error(self) -> MeshError {
+        match self {
+            MeshWarning::CreaseWithoutEdge { crease, v0, v1 } => {
+                MeshError::CreaseWithoutEdge { crease, v0, v1 }
+            }
+        }
+    }
+}
+
+/// The outcome of a successful validation.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Validation {
+    /// Accepted oddities, in the order found.
+    pub warnings: Vec<MeshWarning>,
+}
+
+impl Mesh {
+    /// A mesh from positions and a list of faces, with no tags.
+    pub fn from_faces(positions: Vec<DVec3>, faces: &[&[u32]]) -> Mesh {
+        let mut mesh = Mesh {
+            positions,
+            ..Mesh::default()
+        };
+        for face in faces {
+            mesh.add_face(face);
+        }
+        mesh
+    }
+
+    /// Appends a face.
+    pub fn add_face(&mut self, vertices: &[u32]) {
+        self.face_vertices.extend_from_slice(vertices);
+        self.face_offsets.push(self.face_vertices.len() as u32);
+    }
+
+    /// Adds a crease on the edge `v0`-`v1`.
+    pub fn add_crease(&mut self, v0: u32, v1: u32, sharpness: f32) {
+        self.creases.push(Crease {
+            vertices: [v0, v1],
+            sharpness,
+        });
+    }
+
+    /// Adds a sharp vertex.
+    pub fn add_corner(&mut self, vertex: u32, sharpness: f32) {
+        self.corners.push(Corner { vertex, sharpness });
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+
+    /// The vertex indices of face `f`.
+    ///
+    /// # Panics
+    /// If `f >= face_count()` or the offsets are malformed (see [`Mesh::validate`]).
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_vertices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+
+    /// Iterates over the faces' vertex lists (stops early if the offsets are malformed).
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.face_offsets.windows(2).map_while(move |w| {
+            let (a, b) = (w[0] as usize, w[1] as usize);
+            self.face_vertices.get(a..b)
+        })
+    }
+
+    /// Number of vertices of every face, in face order.
+    pub fn face_sizes(&self) -> Vec<u32> {
+        self.face_offsets
+            .windows(2)
+            .map(|w| w[1].wrapping_sub(w[0]))
+            .collect()
+    }
+
+    /// The axis-aligned bounding box `(min, max)` of the positions, or `None` when empty.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let first = *self.positions.first()?;
+        Some(
+            self.positions
+                .iter()
+                .fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))),
+        )
+    }
+
+    /// Checks every index, size and number; returns the warnings of an acceptable mesh.
+    pub fn validate(&self) -> Result<Validation, MeshError> {
+        let nv = self.positions.len();
+        if nv > i32::MAX as usize || self.face_vertices.len() > i32::MAX as usize {
+            return Err(MeshError::TooLarge(format!(
+                "{} vertices and {} face corners; OpenSubdiv indexes with 32-bit signed integers",
+                nv,
+                self.face_vertices.len()
+            )));
+        }
+        for (vertex, p) in self.positions.iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
+                return Err(MeshError::NonFiniteCoordinate { vertex, value });
+            }
+        }
+        self.validate_offsets()?;
+        for (face, verts) in self.faces().enumerate() {
+            if verts.len() < 3 {
+                return Err(MeshError::FaceTooSmall {
+                    face,
+                    size: verts.len(),
+                });
+            }
+            if verts.len() > MAX_VALENCE {
+                return Err(MeshError::FaceTooLarge {
+                    face,
+                    size: verts.len(),
+                });
+            }
+            if let Some((corner, &index)) =
+                verts.iter().enumerate().find(|&(_, &v)| v as usize >= nv)
+            {
+                return Err(MeshError::VertexOutOfRange {
+                    face,
+                    corner,
+                    index,
+                    count: nv,
+                });
+            }
+        }
+        for (i, c) in self.creases.iter().enumerate() {
+            if let Some(&vertex) = c.vertices.iter().find(|&&v| v as usize >= nv) {
+                return Err(MeshError::CreaseVertexOutOfRange {
+                    crease: i,
+                    vertex,
+                    count: nv,
+                });
+            }
+            if !c.sharpness.is_finite() {
+                return Err(MeshError::BadSharpness {
+                    what: format!("crease {i}"),
+                    value: c.sharpness,
+                });
+            }
+        }
+        for (i, c) in self.corners.iter().enumerate() {
+            if c.vertex as usize >= nv {
+                return Err(MeshError::CornerVertexOutOfRange {
+                    corner: i,
+                    vertex: c.vertex,
+                    count: nv,
+                });
+            }
+            if !c.sharpness.is_finite() {
+                return Err(MeshError::BadSharpness {
+                    what: format!("corner {i}"),
+                    value: c.sharpness,
+                });
+            }
+        }
+        let nf = self.face_count();
+        for (hole, &face) in self.holes.iter().enumerate() {
+            if face as usize >= nf {
+                return Err(MeshError::HoleOutOfRange {
+                    hole,
+                    face,
+                    count: nf,
+                });
+            }
+        }
+        for (channel, ch) in self.fvar_channels.iter().enumerate() {
+            self.validate_channel(channel, ch)?;
+        }
+        Ok(Validation {
+            warnings: self.crease_warnings(),
+        })
+    }
+
+    /// Validates, turning every warning into an error.
+    pub fn validate_strict(&self) -> Result<Validation, MeshError> {
+        let v = self.validate()?;
+        match v.warnings.into_iter().next() {
+            Some(w) => Err(w.into_error()),
+            None => Ok(Validation::default()),
+        }
+    }
+
+    fn validate_offsets(&self) -> Result<(), MeshError> {
+        let off = &self.face_offsets;
+        if off.first() != Some(&0) {
+            return Err(MeshError::BadOffsets("the first offset must be 0".into()));
+        }
+        if let Some(i) = off.windows(2).position(|w| w[1] < w[0]) {
+            return Err(MeshError::BadOffsets(format!(
+                "offset {} ({}) is smaller than offset {} ({})",
+                i + 1,
+                off[i + 1],
+                i,
+                off[i]
+            )));
+        }
+        let last = *off.last().unwrap_or(&0) as usize;
+        if last != self.face_vertices.len() {
+            return Err(MeshError::BadOffsets(format!(
+                "the last offset is {last} but there are {} face vertices",
+                self.face_vertices.len()
+            )));
+        }
+        Ok(())
+    }
+
+    fn validate_channel(&self, channel: usize, ch: &FVarChannel) -> Result<(), MeshError> {
+        let bad = |problem: String| MeshError::BadFVarChannel { channel, problem };
+        if ch.width == 0 {
+            return Err(bad("width is 0".into()));
+        }
+        if ch.values.len() % ch.width != 0 {
+            return Err(bad(format!(
+                "{} components is not a multiple of the width {}",
+                ch.values.len(),
+                ch.width
+            )));
+        }
+        if ch.indices.len() != self.face_vertices.len() {
+            return Err(bad(format!(
+                "{} value indices for {} face corners",
+                ch.indices.len(),
+                self.face_vertices.len()
+            )));
+        }
+        if let Some(i) = ch.values.iter().position(|v| !v.is_finite()) {
+            return Err(bad(format!(
+                "value {} has a non-finite component ({})",
+                i / ch.width,
+                ch.values[i]
+            )));
+        }
+        let count = ch.value_count();
+        for (face, w) in self.face_offsets.windows(2).enumerate() {
+            for corner in 0..(w[1] - w[0]) as usize {
+                let index = ch.indices[w[0] as usize + corner];
+                if index as usize >= count {
+                    return Err(bad(format!(
+                        "face {face} corner {corner}: value index {index} is out of range (the channel has {count} values)"
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn crease_warnings(&self) -> Vec<MeshWarning> {
+        if self.creases.is_empty() {
+            return Vec::new();
+        }
+        let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
+        let edges: HashSet<(u32, u32)> = self
+            .faces()
+            .flat_map(|f| (0..f.len()).map(move |j| key(f[j], f[(j + 1) % f.len()])))
+            .collect();
+        self.creases
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| !edges.contains(&key(c.vertices[0], c.vertices[1])))
+            .map(|(crease, c)| MeshWarning::CreaseWithoutEdge {
+                crease,
+                v0: c.vertices[0],
+                v1: c.vertices[1],
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> Mesh {
+        Mesh::from_faces(
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            &[&[0, 1, 2, 3]],
+        )
+    }
+
+    #[test]
+    fn valid_quad() {
+        assert_eq!(quad().validate(), Ok(Validation::default()));
+    }
+
+    #[test]
+    fn errors_are_precise() {
+        let mut m = quad();
+        m.face_vertices[2] = 7;
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::VertexOutOfRange {
+                face: 0,
+                corner: 2,
+                index: 7,
+                count: 4
+            })
+        );
+        let mut m = quad();
+        m.add_face(&[0, 1]);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::FaceTooSmall { face: 1, size: 2 })
+        );
+        let mut m = quad();
+        m.positions[3].y = f64::NAN;
+        assert!(matches!(
+            m.validate(),
+            Err(MeshError::NonFiniteCoordinate { vertex: 3, .. })
+        ));
+        let mut m = quad();
+        m.add_corner(9, 1.0);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::CornerVertexOutOfRange {
+                corner: 0,
+                vertex: 9,
+                count: 4
+            })
+        );
+        let mut m = quad();
+        m.holes.push(1);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::HoleOutOfRange {
+                hole: 0,
+                face: 1,
+                count: 1
+            })
+        );
+        let mut m = quad();
+        m.add_crease(0, 1, f32::INFINITY);
+        assert!(matches!(m.validate(), Err(MeshError::BadSharpness { .. })));
+        let mut m = quad();
+        m.fvar_channels.push(FVarChannel {
+            width: 2,
+            values: vec![0.0; 4],
+            indices: vec![0, 1, 2, 1],
+        });
+        assert!(matches!(
+            m.validate(),
+            Err(MeshError::BadFVarChannel { channel: 0, .. })
+        ));
+    }
+
+    #[test]
+    fn crease_without_edge_is_a_warning_or_strict_error() {
+        let mut m = quad();
+        m.add_crease(0, 2, 1.0); // a diagonal, not an edge
+        let v = m.validate().unwrap();
+        assert_eq!(
+            v.warnings,
+            vec![MeshWarning::CreaseWithoutEdge {
+                crease: 0,
+                v0: 0,
+                v1: 2
+            }]
+        );
+        assert_eq!(
+            m.validate_strict(),
+            Err(MeshError::CreaseWithoutEdge {
+                crease: 0,
+                v0: 0,
+                v1: 2
+            })
+        );
+    }
+}

@@ -1,0 +1,95 @@
+//! Stencil tables: each refined (or limit) value as a weighted sum of base values.
+
+use crate::error::{Error, Result};
+
+/// A stencil table in compressed-sparse-row form: row `i` is
+/// `sum(weights[k] * base[indices[k]])` for `k` in `offsets[i]..offsets[i] + sizes[i]`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StencilTable {
+    /// Number of weights of each stencil.
+    pub sizes: Vec<u32>,
+    /// Start of each stencil in `indices` and `weights`.
+    pub offsets: Vec<u32>,
+    /// Base-vertex index of each weight.
+    pub indices: Vec<u32>,
+    /// The weights.
+    pub weights: Vec<f64>,
+}
+
+impl StencilTable {
+    /// Number of stencils (rows).
+    pub fn len(&self) -> usize {
+        self.sizes.len()
+    }
+
+    /// Whether the table has no stencil.
+    pub fn is_empty(&self) -> bool {
+        self.sizes.is_empty()
+    }
+
+    /// The indices and weights of stencil `i`.
+    ///
+    /// # Panics
+    /// If `i >= len()`.
+    pub fn row(&self, i: usize) -> (&[u32], &[f64]) {
+        let a = self.offsets[i] as usize;
+        let b = a + self.sizes[i] as usize;
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+
+    /// Applies the table to base data of `width` components per vertex.
+    pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
+        if width == 0 || base.len() % width != 0 {
+            return Err(Error::InvalidArgument(format!(
+                "base data of {} values is not a whole number of {width}-wide elements",
+                base.len()
+            )));
+        }
+        let count = base.len() / width;
+        let mut out = vec![0.0; self.len() * width];
+        for (i, dst) in out.chunks_exact_mut(width).enumerate() {
+            let (idx, w) = self.row(i);
+            for (&v, &w) in idx.iter().zip(w) {
+                let v = v as usize;
+                if v >= count {
+                    return Err(Error::InvalidArgument(format!(
+                        "stencil {i} refers to base vertex {v}, but only {count} were given"
+                    )));
+                }
+                for (d, s) in dst.iter_mut().zip(&base[v * width..(v + 1) * width]) {
+                    *d += w * s;
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Stencils for limit positions and both tangents at the vertices of one level.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LimitStencilTable {
+    /// Limit position stencils.
+    pub positions: StencilTable,
+    /// First-tangent stencils.
+    pub du: StencilTable,
+    /// Second-tangent stencils.
+    pub dv: StencilTable,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn apply_weights() {
+        let t = StencilTable {
+            sizes: vec![2, 1],
+            offsets: vec![0, 2],
+            indices: vec![0, 1, 1],
+            weights: vec![0.25, 0.75, 1.0],
+        };
+        let out = t.apply(2, &[0.0, 4.0, 8.0, 0.0]).unwrap();
+        assert_eq!(out, vec![6.0, 1.0, 8.0, 0.0]);
+        assert!(t.apply(2, &[0.0, 1.0]).is_err());
+    }
+}
