@@ -1,0 +1,883 @@
+//! Conformance of `subdiv refine --engine osd` with an independent OpenSubdiv
+//! driver (`tests/osd_driver/osd_driver.cpp`), index by index.
+//!
+//! The driver is a from-scratch C++ program over OpenSubdiv's Far layer: its
+//! own OBJ parser, a `Far::TopologyDescriptor`, `RefineUniform` and
+//! `PrimvarRefinerReal<double>`. Both programs print the last level with
+//! `%.17g`, so for every shape below the two output files must be
+//! byte-identical: same vertex order, same face-varying values, same faces,
+//! same doubles.
+//!
+//! The shapes are generated here, in code, after OpenSubdiv's regression
+//! shapes: creases, corners, holes, boundaries, n-gons, UV seams, non-manifold
+//! topology, Loop and bilinear meshes, and the less common `Sdc::Options`.
+
+#![cfg(feature = "osd")]
+
+use std::fmt::Write as _;
+use std::fs;
+use std::ops::RangeInclusive;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+// ---------------------------------------------------------------------------
+// Harness
+
+const DRIVER_SOURCE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/osd_driver/osd_driver.cpp"
+);
+
+/// Directory for inputs and outputs of this test binary.
+fn work_dir() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("osd_conformance");
+        fs::create_dir_all(&dir).expect("create the work directory");
+        dir
+    })
+}
+
+/// The reference driver, compiled once per test run.
+fn driver() -> &'static Path {
+    static DRIVER: OnceLock<PathBuf> = OnceLock::new();
+    DRIVER.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        fs::create_dir_all(dir).expect("create CARGO_TARGET_TMPDIR");
+        let exe = dir.join("osd_driver");
+        // Build under a per-process name, then rename: another test process
+        // running at the same time never sees a half-written executable.
+        let tmp = dir.join(format!("osd_driver.{}.tmp", std::process::id()));
+        let out = Command::new("g++")
+            .args(["-std=c++14", "-O2", DRIVER_SOURCE, "-losdCPU", "-o"])
+            .arg(&tmp)
+            .output()
+            .expect("run g++ (is it installed?)");
+        if !out.status.success() {
+            let _ = fs::remove_file(&tmp);
+            panic!(
+                "compiling the reference driver failed ({}):\n{}",
+                out.status,
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        fs::rename(&tmp, &exe).expect("install the reference driver");
+        exe
+    })
+}
+
+fn subdiv_bin() -> &'static str {
+    env!("CARGO_BIN_EXE_subdiv")
+}
+
+fn show(cmd: &Command) -> String {
+    let mut s = cmd.get_program().to_string_lossy().into_owned();
+    for a in cmd.get_args() {
+        s.push(' ');
+        s.push_str(&a.to_string_lossy());
+    }
+    s
+}
+
+fn run(cmd: &mut Command) -> Output {
+    cmd.output()
+        .unwrap_or_else(|e| panic!("cannot start `{}`: {e}", show(cmd)))
+}
+
+fn expect_success(what: &str, cmd: &mut Command) {
+    let out = run(cmd);
+    if !out.status.success() {
+        panic!(
+            "{what} failed ({}): `{}`\nstderr:\n{}",
+            out.status,
+            show(cmd),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+/// Counts of the lines of an output OBJ.
+#[derive(Debug, Default, PartialEq, Eq)]
+struct Counts {
+    vertices: usize,
+    uvs: usize,
+    faces: usize,
+    face_corners: usize,
+    other: usize,
+}
+
+fn counts(text: &str) -> Counts {
+    let mut c = Counts::default();
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => c.vertices += 1,
+            Some("vt") => c.uvs += 1,
+            Some("f") => {
+                c.faces += 1;
+                c.face_corners += it.count();
+            }
+            _ => c.other += 1,
+        }
+    }
+    c
+}
+
+/// Compares the driver's and the crate's outputs; panics with the first
+/// differing line when they are not byte-identical.
+fn compare(case: &str, level: u32, reference: &[u8], ours: &[u8]) {
+    let ref_text = String::from_utf8_lossy(reference);
+    let our_text = String::from_utf8_lossy(ours);
+    let ref_counts = counts(&ref_text);
+    let our_counts = counts(&our_text);
+    if reference == ours {
+        assert_eq!(ref_counts, our_counts);
+        // Faces may legitimately all be holes (boundary `none` on a mesh whose
+        // every face touches the boundary); vertices are always written.
+        assert!(
+            ref_counts.vertices > 0,
+            "{case} level {level}: no vertices in the output"
+        );
+        return;
+    }
+    let mut msg = format!(
+        "{case} level {level}: `subdiv refine --engine osd` differs from the reference driver\n"
+    );
+    let _ = writeln!(msg, "  driver counts: {ref_counts:?}");
+    let _ = writeln!(msg, "  crate  counts: {our_counts:?}");
+    if ref_counts != our_counts {
+        let _ = writeln!(msg, "  COUNTS DIFFER");
+    }
+    let mut a = reference.split(|&b| b == b'\n');
+    let mut b = ours.split(|&b| b == b'\n');
+    let mut line_no = 0usize;
+    loop {
+        line_no += 1;
+        match (a.next(), b.next()) {
+            (Some(x), Some(y)) if x == y => continue,
+            (x, y) => {
+                let fmt = |l: Option<&[u8]>| match l {
+                    Some(l) => format!("{:?}", String::from_utf8_lossy(l)),
+                    None => "<end of file>".to_string(),
+                };
+                let _ = writeln!(msg, "  first difference at line {line_no}:");
+                let _ = writeln!(msg, "    driver: {}", fmt(x));
+                let _ = writeln!(msg, "    crate:  {}", fmt(y));
+                break;
+            }
+        }
+    }
+    panic!("{msg}");
+}
+
+/// Refines `obj` with both programs at every level of `levels` and compares.
+fn check(case: &str, obj: &str, flags: &[&str], levels: RangeInclusive<u32>) {
+    let dir = work_dir();
+    let input = dir.join(format!("{case}.obj"));
+    fs::write(&input, obj).expect("write the input OBJ");
+    for level in levels {
+        let lv = level.to_string();
+        let ref_out = dir.join(format!("{case}.L{level}.driver.obj"));
+        let our_out = dir.join(format!("{case}.L{level}.crate.obj"));
+        let _ = fs::remove_file(&ref_out);
+        let _ = fs::remove_file(&our_out);
+
+        expect_success(
+            &format!("{case} level {level}: reference driver"),
+            Command::new(driver())
+                .arg(&input)
+                .arg(&ref_out)
+                .args(["--level", &lv])
+                .args(flags),
+        );
+        expect_success(
+            &format!("{case} level {level}: subdiv refine --engine osd"),
+            Command::new(subdiv_bin())
+                .arg("refine")
+                .arg(&input)
+                .arg("-o")
+                .arg(&our_out)
+                .args(["--engine", "osd", "--level", &lv])
+                .args(flags),
+        );
+        let reference = fs::read(&ref_out).expect("read the driver's output");
+        let ours = fs::read(&our_out)
+            .unwrap_or_else(|e| panic!("{case} level {level}: subdiv wrote no output file: {e}"));
+        compare(case, level, &reference, &ours);
+    }
+}
+
+macro_rules! conformance {
+    ($( $(#[$meta:meta])* $name:ident: $shape:expr, [$($flag:expr),* $(,)?], $levels:expr; )+) => {
+        $(
+            $(#[$meta])*
+            #[test]
+            fn $name() {
+                let obj: String = $shape;
+                check(stringify!($name), &obj, &[$($flag),*], $levels);
+            }
+        )+
+    };
+}
+
+// ---------------------------------------------------------------------------
+// Shapes
+
+/// Builds OBJ text from positions, faces (0-based) and optional per-corner
+/// UVs (`uvs`, and 0-based uv indices parallel to `faces`), plus raw tag lines.
+/// UV values and, per face, the indices of its corners' values.
+type Uvs<'a> = (&'a [[f64; 2]], &'a [Vec<usize>]);
+
+fn obj(
+    positions: &[[f64; 3]],
+    faces: &[Vec<usize>],
+    uvs: Option<Uvs<'_>>,
+    tags: &[&str],
+) -> String {
+    let mut s = String::new();
+    for p in positions {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    if let Some((values, _)) = uvs {
+        for t in values {
+            let _ = writeln!(s, "vt {} {}", t[0], t[1]);
+        }
+    }
+    for (i, f) in faces.iter().enumerate() {
+        s.push('f');
+        for (k, &v) in f.iter().enumerate() {
+            match uvs {
+                Some((_, fuv)) => {
+                    let _ = write!(s, " {}/{}", v + 1, fuv[i][k] + 1);
+                }
+                None => {
+                    let _ = write!(s, " {}", v + 1);
+                }
+            }
+        }
+        s.push('\n');
+    }
+    for t in tags {
+        s.push_str(t);
+        s.push('\n');
+    }
+    s
+}
+
+const CUBE_V: [[f64; 3]; 8] = [
+    [-0.5, -0.5, 0.5],
+    [0.5, -0.5, 0.5],
+    [-0.5, 0.5, 0.5],
+    [0.5, 0.5, 0.5],
+    [-0.5, 0.5, -0.5],
+    [0.5, 0.5, -0.5],
+    [-0.5, -0.5, -0.5],
+    [0.5, -0.5, -0.5],
+];
+
+fn cube_faces() -> Vec<Vec<usize>> {
+    vec![
+        vec![0, 1, 3, 2], // z+
+        vec![2, 3, 5, 4], // y+
+        vec![4, 5, 7, 6], // z-
+        vec![6, 7, 1, 0], // y-
+        vec![1, 7, 5, 3], // x+
+        vec![6, 0, 2, 4], // x-
+    ]
+}
+
+fn cube(tags: &[&str]) -> String {
+    obj(&CUBE_V, &cube_faces(), None, tags)
+}
+
+/// A cube whose UVs are cut. The four faces around the x axis are a strip
+/// whose two ends do not meet (a seam along the edge 0-1); the x+ cap hangs
+/// off the strip (sharing the UVs of the edge 3-5, as in a cross unwrap) and
+/// the x- cap is a separate island. UV regions around a vertex thus have one,
+/// two or three faces, and the strip's UVs are jittered so that its borders
+/// are not straight lines (linear and smooth face-varying boundaries differ).
+fn cube_uv_seam(tags: &[&str]) -> String {
+    // Ring position of each vertex around the x axis, and its side (x- = 0).
+    let ring = |v: usize| v / 2;
+    let side = |v: usize| v % 2;
+    let mut uvs: Vec<[f64; 2]> = Vec::new();
+    for i in 0..=4 {
+        for s in 0..2 {
+            let jitter = [0.0, 0.04, -0.03, 0.05, 0.02][i];
+            uvs.push([
+                i as f64 * 0.25 + 0.03 * s as f64,
+                0.3 + 0.35 * s as f64 + jitter,
+            ]);
+        }
+    }
+    let faces = cube_faces();
+    let mut face_uvs = Vec::new();
+    for (k, f) in faces.iter().enumerate().take(4) {
+        face_uvs.push(
+            f.iter()
+                .map(|&v| {
+                    // Face k spans ring positions k and k+1 (the last face wraps
+                    // to position 4, a distinct UV on the seam).
+                    let i = if ring(v) == k { k } else { k + 1 };
+                    i * 2 + side(v)
+                })
+                .collect::<Vec<_>>(),
+        );
+    }
+    // x+ cap [1, 7, 5, 3]: vertices 3 and 5 reuse the strip's UVs of face 1
+    // (ring positions 1 and 2, side 1); vertices 1 and 7 get new UVs.
+    let (uv1, uv7) = (uvs.len(), uvs.len() + 1);
+    uvs.push([0.27, 0.97]);
+    uvs.push([0.55, 1.0]);
+    let strip_uv = |ring: usize, side: usize| ring * 2 + side;
+    face_uvs.push(vec![uv1, uv7, strip_uv(2, 1), strip_uv(1, 1)]);
+    // x- cap [6, 0, 2, 4]: an island of its own.
+    let base = uvs.len();
+    for c in [[0.6, 0.02], [0.9, 0.0], [0.95, 0.25], [0.62, 0.22]] {
+        uvs.push(c);
+    }
+    face_uvs.push((base..base + 4).collect());
+    obj(&CUBE_V, &faces, Some((&uvs, &face_uvs)), tags)
+}
+
+/// An open `n` x `n` grid of quads in the xy plane, with a gentle bump in z.
+fn grid(n: usize, tags: &[&str]) -> String {
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let z = if (i + j) % 3 == 0 { 0.25 } else { 0.0 };
+            pos.push([i as f64, j as f64, z]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
+        }
+    }
+    obj(&pos, &faces, None, tags)
+}
+
+/// A grid with per-vertex UVs (no seams), for face-varying boundary modes.
+fn grid_uv(n: usize, tags: &[&str]) -> String {
+    let mut pos = Vec::new();
+    let mut uvs = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            pos.push([i as f64, j as f64, ((i * j) % 2) as f64 * 0.3]);
+            uvs.push([i as f64 / n as f64, j as f64 / n as f64]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
+        }
+    }
+    obj(&pos, &faces, Some((&uvs, &faces)), tags)
+}
+
+/// A 4 x 4 grid whose UVs are cut into four regions: the left half (A), the
+/// bottom-right block (B), the top-right block without its corner face (C)
+/// and that corner face (D). Vertex (2,2) is a junction of three regions,
+/// vertex (3,3) a concave corner of C, so each face-varying linear mode
+/// gives a different result.
+fn grid_uv_regions(tags: &[&str]) -> String {
+    let n = 4;
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            pos.push([
+                i as f64,
+                j as f64,
+                if (i + 2 * j) % 4 == 1 { 0.3 } else { 0.0 },
+            ]);
+        }
+    }
+    let region = |i: usize, j: usize| match (i >= 2, j >= 2) {
+        (false, _) => 0,
+        (true, false) => 1,
+        (true, true) if i == 3 && j == 3 => 3,
+        (true, true) => 2,
+    };
+    let mut uvs: Vec<[f64; 2]> = Vec::new();
+    let mut uv_of = std::collections::BTreeMap::new();
+    let mut faces = Vec::new();
+    let mut face_uvs = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let r = region(i, j);
+            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            faces.push(
+                corners
+                    .iter()
+                    .map(|&(x, y)| y * (n + 1) + x)
+                    .collect::<Vec<_>>(),
+            );
+            face_uvs.push(
+                corners
+                    .iter()
+                    .map(|&(x, y)| {
+                        *uv_of.entry((r, x, y)).or_insert_with(|| {
+                            let jitter = ((x * 7 + y * 3 + r) % 5) as f64 * 0.01;
+                            uvs.push([
+                                x as f64 * 0.2 + r as f64 * 0.05 + jitter,
+                                y as f64 * 0.2 - r as f64 * 0.03 + 0.5 * jitter,
+                            ]);
+                            uvs.len() - 1
+                        })
+                    })
+                    .collect::<Vec<_>>(),
+            );
+        }
+    }
+    obj(&pos, &faces, Some((&uvs, &face_uvs)), tags)
+}
+
+/// A pyramid on a regular pentagon: one 5-gon and five triangles.
+fn pyramid_pentagon(tags: &[&str]) -> String {
+    let mut pos = Vec::new();
+    for k in 0..5 {
+        let a = std::f64::consts::TAU * k as f64 / 5.0;
+        pos.push([a.cos(), a.sin(), 0.0]);
+    }
+    pos.push([0.0, 0.0, 1.25]);
+    let mut faces = vec![vec![4, 3, 2, 1, 0]];
+    for k in 0..5 {
+        faces.push(vec![k, (k + 1) % 5, 5]);
+    }
+    obj(&pos, &faces, None, tags)
+}
+
+/// Three quads sharing the edge 0-1 (a non-manifold fin), on a base quad.
+fn fin() -> String {
+    let pos = [
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let faces = vec![vec![0, 2, 3, 1], vec![1, 5, 4, 0], vec![0, 1, 7, 6]];
+    obj(&pos, &faces, None, &[])
+}
+
+/// Two quads touching at one vertex only (a bowtie).
+fn bowtie() -> String {
+    let pos = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 1.0, 0.5],
+        [2.0, 2.0, 0.0],
+        [1.0, 2.0, 0.5],
+    ];
+    let faces = vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]];
+    obj(&pos, &faces, None, &[])
+}
+
+fn tetrahedron(tags: &[&str]) -> String {
+    let pos = [
+        [1.0, 1.0, 1.0],
+        [-1.0, -1.0, 1.0],
+        [-1.0, 1.0, -1.0],
+        [1.0, -1.0, -1.0],
+    ];
+    let faces = vec![vec![0, 1, 3], vec![0, 2, 1], vec![0, 3, 2], vec![1, 2, 3]];
+    obj(&pos, &faces, None, tags)
+}
+
+fn octahedron(tags: &[&str]) -> String {
+    let pos = [
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let faces = vec![
+        vec![0, 2, 4],
+        vec![2, 1, 4],
+        vec![1, 3, 4],
+        vec![3, 0, 4],
+        vec![2, 0, 5],
+        vec![1, 2, 5],
+        vec![3, 1, 5],
+        vec![0, 3, 5],
+    ];
+    obj(&pos, &faces, None, tags)
+}
+
+fn icosahedron(tags: &[&str]) -> String {
+    let p = (1.0 + 5f64.sqrt()) / 2.0;
+    let pos = [
+        [-1.0, p, 0.0],
+        [1.0, p, 0.0],
+        [-1.0, -p, 0.0],
+        [1.0, -p, 0.0],
+        [0.0, -1.0, p],
+        [0.0, 1.0, p],
+        [0.0, -1.0, -p],
+        [0.0, 1.0, -p],
+        [p, 0.0, -1.0],
+        [p, 0.0, 1.0],
+        [-p, 0.0, -1.0],
+        [-p, 0.0, 1.0],
+    ];
+    let faces: Vec<Vec<usize>> = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ]
+    .iter()
+    .map(|f| f.to_vec())
+    .collect();
+    obj(&pos, &faces, None, tags)
+}
+
+/// An open fan of five triangles around vertex 0 (the centre is on the
+/// boundary too: the sixth triangle is missing).
+fn triangle_fan(tags: &[&str]) -> String {
+    let mut pos = vec![[0.0, 0.0, 0.3]];
+    for k in 0..6 {
+        let a = std::f64::consts::TAU * k as f64 / 6.0;
+        pos.push([a.cos(), a.sin(), 0.0]);
+    }
+    let faces: Vec<Vec<usize>> = (1..6).map(|k| vec![0, k, k + 1]).collect();
+    obj(&pos, &faces, None, tags)
+}
+
+/// An open `n` x `n` grid of quads, each split into two triangles, with a bump.
+fn triangle_grid(n: usize, tags: &[&str]) -> String {
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let z = if i > 0 && j > 0 && i < n && j < n {
+                0.5
+            } else {
+                0.0
+            };
+            pos.push([i as f64, j as f64 + 0.1 * i as f64, z]);
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            faces.push(vec![a, a + 1, a + n + 2]);
+            faces.push(vec![a, a + n + 2, a + n + 1]);
+        }
+    }
+    obj(&pos, &faces, None, tags)
+}
+
+/// The open fan with UVs cut between its first two and last three faces.
+fn triangle_fan_uv() -> String {
+    let text = triangle_fan(&[]);
+    let mut uvs: Vec<[f64; 2]> = Vec::new();
+    let mut face_uvs = Vec::new();
+    let mut pos = Vec::new();
+    let mut faces = Vec::new();
+    for line in text.lines() {
+        let t: Vec<&str> = line.split_whitespace().collect();
+        match t[0] {
+            "v" => pos.push([
+                t[1].parse().unwrap(),
+                t[2].parse().unwrap(),
+                t[3].parse().unwrap(),
+            ]),
+            "f" => faces.push(
+                t[1..]
+                    .iter()
+                    .map(|x| x.parse::<usize>().unwrap() - 1)
+                    .collect::<Vec<_>>(),
+            ),
+            _ => {}
+        }
+    }
+    let mut uv_of = std::collections::BTreeMap::new();
+    for (k, f) in faces.iter().enumerate() {
+        let region = usize::from(k >= 2);
+        face_uvs.push(
+            f.iter()
+                .map(|&v| {
+                    *uv_of.entry((region, v)).or_insert_with(|| {
+                        let p: [f64; 3] = pos[v];
+                        uvs.push([0.5 + 0.4 * p[0] + 0.1 * region as f64, 0.5 + 0.45 * p[1]]);
+                        uvs.len() - 1
+                    })
+                })
+                .collect::<Vec<_>>(),
+        );
+    }
+    obj(&pos, &faces, Some((&uvs, &face_uvs)), &[])
+}
+
+/// Quads, triangles and a pentagon with UVs, for the bilinear scheme.
+fn mixed_uv() -> String {
+    let pos = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.1],
+        [2.0, 0.0, 0.0],
+        [0.0, 1.0, 0.2],
+        [1.0, 1.0, 0.0],
+        [2.0, 1.0, 0.3],
+        [3.0, 0.5, 0.0],
+        [1.5, 2.0, 0.4],
+    ];
+    let faces = vec![
+        vec![0, 1, 4, 3],
+        vec![1, 2, 5, 4],
+        vec![2, 6, 5],
+        vec![3, 4, 5, 7],
+    ];
+    let uvs: Vec<[f64; 2]> = pos.iter().map(|p| [p[0] / 3.0, p[1] / 2.0]).collect();
+    obj(&pos, &faces, Some((&uvs, &faces)), &[])
+}
+
+/// The cube written with every corner syntax: `v//vn`, `v/vt/vn` and
+/// negative (relative) indices, with comments, groups and smoothing lines.
+fn cube_obj_syntax() -> String {
+    let mut s = String::from("# cube, exotic syntax\no cube\n");
+    for p in CUBE_V {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    for t in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+        let _ = writeln!(s, "vt {} {}", t[0], t[1]);
+    }
+    s.push_str("vn 0 0 1\ng all\ns off\n");
+    for f in cube_faces() {
+        s.push('f');
+        for (k, v) in f.iter().enumerate() {
+            // Negative indices: -8 is the first vertex, -4 the first vt, -1 the normal.
+            let vi = *v as i64 - 8;
+            let ti = k as i64 - 4;
+            let _ = write!(s, " {vi}/{ti}/-1");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn cube_vn_only() -> String {
+    let mut s = String::new();
+    for p in CUBE_V {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    s.push_str("vn 0 0 1\n");
+    for f in cube_faces() {
+        s.push('f');
+        for v in f {
+            let _ = write!(s, " {}//1", v + 1);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+const SEMI_SHARP_CHAIN: &str = "t crease 4/3/0 0 1 3 5 0.5 1.3 2.7";
+const SEMI_SHARP_CORNER: &str = "t corner 1/1/0 6 2.0";
+// A loop of six edges around the cube (not a face boundary): it cuts the cube
+// into two halves.
+const SHARP_LOOP: &str = "t crease 7/1/0 0 1 3 5 4 6 0 10";
+
+// ---------------------------------------------------------------------------
+// Cases
+
+conformance! {
+    // Catmull-Clark basics.
+    catmark_cube: cube(&[]), [], 1..=4;
+    catmark_cube_semisharp: cube(&[SEMI_SHARP_CHAIN, SEMI_SHARP_CORNER]), [], 1..=3;
+    catmark_cube_sharp_loop: cube(&[SHARP_LOOP]), [], 1..=3;
+    catmark_cube_mixed_tags: cube(&["t crease 2/1/0 0 1 0.8", "t crease 3/2/0 4 5 7 3.0 10", "t corner 2/2/0 2 7 0.7 10"]), [], 1..=3;
+    catmark_pyramid_pentagon: pyramid_pentagon(&[]), [], 1..=3;
+    catmark_pyramid_pentagon_crease: pyramid_pentagon(&["t crease 6/1/0 0 1 2 3 4 0 1.7"]), [], 1..=3;
+
+    // Open grids and boundary interpolation.
+    catmark_grid_boundary_none: grid(4, &[]), ["--boundary", "none"], 1..=3;
+    catmark_grid_boundary_edge_only: grid(4, &[]), ["--boundary", "edge-only"], 1..=3;
+    catmark_grid_boundary_edge_and_corner: grid(4, &[]), ["--boundary", "edge-and-corner"], 1..=3;
+    catmark_grid_default_boundary: grid(4, &[]), [], 1..=3;
+    catmark_grid_tag_interpolateboundary_0: grid(4, &["t interpolateboundary 1/0/0 0"]), [], 1..=3;
+    catmark_grid_tag_interpolateboundary_1: grid(4, &["t interpolateboundary 1/0/0 1"]), [], 1..=3;
+    catmark_grid_tag_interpolateboundary_2: grid(4, &["t interpolateboundary 1/0/0 2"]), [], 1..=3;
+    catmark_grid_flag_overrides_tag: grid(4, &["t interpolateboundary 1/0/0 0"]), ["--boundary", "edge-and-corner"], 1..=2;
+    catmark_grid_boundary_none_creased_border: grid(4, &["t crease 5/1/0 0 1 2 3 4 10"]), ["--boundary", "none"], 1..=3;
+
+    // Holes.
+    catmark_grid_holes: grid(4, &["t hole 2/0/0 5 10"]), [], 1..=3;
+    catmark_grid_holes_boundary_none: grid(4, &["t hole 1/0/0 6"]), ["--boundary", "none"], 1..=3;
+    catmark_cube_hole: cube(&["t hole 1/0/0 2"]), [], 1..=3;
+
+    // Face-varying data across a UV seam, under every linear interpolation.
+    catmark_uv_seam_fvar_none: cube_uv_seam(&[]), ["--fvar", "none"], 1..=3;
+    catmark_uv_seam_fvar_corners_only: cube_uv_seam(&[]), ["--fvar", "corners-only"], 1..=3;
+    catmark_uv_seam_fvar_corners_plus1: cube_uv_seam(&[]), ["--fvar", "corners-plus1"], 1..=3;
+    catmark_uv_seam_fvar_corners_plus2: cube_uv_seam(&[]), ["--fvar", "corners-plus2"], 1..=3;
+    catmark_uv_seam_fvar_boundaries: cube_uv_seam(&[]), ["--fvar", "boundaries"], 1..=3;
+    catmark_uv_seam_fvar_all: cube_uv_seam(&[]), ["--fvar", "all"], 1..=3;
+    catmark_uv_seam_fvar_default: cube_uv_seam(&[]), [], 1..=2;
+    catmark_uv_seam_tag_fvar_1: cube_uv_seam(&["t facevaryinginterpolateboundary 1/0/0 1"]), [], 1..=2;
+    catmark_uv_seam_tag_fvar_3: cube_uv_seam(&["t facevaryinginterpolateboundary 1/0/0 3"]), [], 1..=2;
+    catmark_uv_regions_fvar_none: grid_uv_regions(&[]), ["--fvar", "none"], 1..=3;
+    catmark_uv_regions_fvar_corners_only: grid_uv_regions(&[]), ["--fvar", "corners-only"], 1..=3;
+    catmark_uv_regions_fvar_corners_plus1: grid_uv_regions(&[]), ["--fvar", "corners-plus1"], 1..=3;
+    catmark_uv_regions_fvar_corners_plus2: grid_uv_regions(&[]), ["--fvar", "corners-plus2"], 1..=3;
+    catmark_uv_regions_fvar_boundaries: grid_uv_regions(&[]), ["--fvar", "boundaries"], 1..=3;
+    catmark_uv_regions_fvar_all: grid_uv_regions(&[]), ["--fvar", "all"], 1..=3;
+    loop_uv_fan_fvar_corners_plus2: triangle_fan_uv(), ["--scheme", "loop", "--fvar", "corners-plus2"], 1..=3;
+    catmark_uv_seam_creased: cube_uv_seam(&[SEMI_SHARP_CHAIN]), ["--fvar", "corners-plus1"], 1..=3;
+    catmark_grid_uv_fvar_none: grid_uv(3, &[]), ["--fvar", "none"], 1..=3;
+    catmark_grid_uv_fvar_boundaries_edge_and_corner: grid_uv(3, &[]), ["--fvar", "boundaries", "--boundary", "edge-and-corner"], 1..=3;
+
+    // OBJ corner syntax.
+    catmark_obj_syntax_negative_indices: cube_obj_syntax(), ["--fvar", "corners-only"], 1..=2;
+    catmark_obj_syntax_normals_only: cube_vn_only(), [], 1..=2;
+
+    // Non-manifold topology.
+    catmark_nonmanifold_fin: fin(), [], 1..=3;
+    catmark_nonmanifold_bowtie: bowtie(), [], 1..=3;
+    catmark_nonmanifold_bowtie_edge_and_corner: bowtie(), ["--boundary", "edge-and-corner"], 1..=2;
+
+    // Loop.
+    loop_tetrahedron: tetrahedron(&[]), ["--scheme", "loop"], 1..=4;
+    loop_tetrahedron_crease: tetrahedron(&["t crease 3/1/0 0 1 2 2.0"]), ["--scheme", "loop"], 1..=3;
+    loop_icosahedron: icosahedron(&[]), ["--scheme", "loop"], 1..=3;
+    loop_icosahedron_crease: icosahedron(&["t crease 4/3/0 0 11 5 1 1.5 10 0.4", "t corner 1/1/0 3 4.0"]), ["--scheme", "loop"], 1..=3;
+    loop_fan_edge_only: triangle_fan(&[]), ["--scheme", "loop", "--boundary", "edge-only"], 1..=3;
+    loop_fan_edge_and_corner: triangle_fan(&[]), ["--scheme", "loop", "--boundary", "edge-and-corner"], 1..=3;
+    // Every face of the fan touches the boundary: under `none` all are holes.
+    loop_fan_boundary_none_all_holes: triangle_fan(&[]), ["--scheme", "loop", "--boundary", "none"], 1..=2;
+    loop_triangle_grid_boundary_none: triangle_grid(4, &[]), ["--scheme", "loop", "--boundary", "none"], 1..=3;
+    loop_triangle_grid_edge_and_corner: triangle_grid(4, &["t hole 1/0/0 9"]), ["--scheme", "loop", "--boundary", "edge-and-corner"], 1..=3;
+
+    // Bilinear.
+    bilinear_cube: cube(&[SEMI_SHARP_CHAIN]), ["--scheme", "bilinear"], 1..=3;
+    bilinear_mixed_uv: mixed_uv(), ["--scheme", "bilinear"], 1..=3;
+    bilinear_pyramid_pentagon: pyramid_pentagon(&[]), ["--scheme", "bilinear"], 1..=2;
+
+    // Chaikin creasing on fractional sharpness.
+    catmark_chaikin_flag: cube(&[SEMI_SHARP_CHAIN, SEMI_SHARP_CORNER]), ["--creasing", "chaikin"], 1..=3;
+    catmark_chaikin_tag: cube(&[SEMI_SHARP_CHAIN, "t creasemethod 0/0/1 chaikin"]), [], 1..=3;
+    catmark_chaikin_flag_overrides_tag: cube(&[SEMI_SHARP_CHAIN, "t creasemethod 0/0/1 chaikin"]), ["--creasing", "uniform"], 1..=3;
+    loop_chaikin_icosahedron: icosahedron(&["t crease 4/3/0 0 11 5 1 0.3 1.6 2.2"]), ["--scheme", "loop", "--creasing", "chaikin"], 1..=3;
+
+    // Smooth triangles on a Catmull-Clark triangle mesh.
+    catmark_triangles_catmark: octahedron(&[]), ["--triangles", "catmark"], 1..=3;
+    catmark_triangles_smooth: octahedron(&[]), ["--triangles", "smooth"], 1..=3;
+    catmark_triangles_smooth_tag: octahedron(&["t smoothtriangles 0/0/1 smooth"]), [], 1..=3;
+    catmark_triangles_smooth_pyramid: pyramid_pentagon(&[]), ["--triangles", "smooth"], 1..=3;
+
+    // A crease between two vertices that share no edge: OpenSubdiv warns and
+    // ignores it (the other crease on the same line still applies).
+    catmark_crease_without_edge: cube(&["t crease 2/1/0 0 3 2.0", "t crease 2/1/0 0 1 2.0"]), [], 1..=3;
+}
+
+// ---------------------------------------------------------------------------
+// The driver itself, and a case the crate must refuse.
+
+/// The reference driver gets the well-known counts of a Catmull-Clark cube.
+#[test]
+fn driver_cube_counts() {
+    let input = work_dir().join("driver_cube_counts.obj");
+    fs::write(&input, cube(&[])).unwrap();
+    for (level, vertices, faces) in [(1, 26, 24), (2, 98, 96), (3, 386, 384)] {
+        let out = work_dir().join(format!("driver_cube_counts.L{level}.obj"));
+        expect_success(
+            "reference driver",
+            Command::new(driver())
+                .arg(&input)
+                .arg(&out)
+                .args(["--level", &level.to_string()]),
+        );
+        let c = counts(&fs::read_to_string(&out).unwrap());
+        assert_eq!(
+            c,
+            Counts {
+                vertices,
+                uvs: 0,
+                faces,
+                face_corners: 4 * faces,
+                other: 0
+            },
+            "level {level}"
+        );
+    }
+}
+
+/// Loop refuses quads: both programs fail, and the crate leaves no output file.
+#[test]
+fn loop_on_quads_fails() {
+    let dir = work_dir();
+    let input = dir.join("loop_on_quads_fails.obj");
+    fs::write(&input, cube(&[])).unwrap();
+
+    let ref_out = dir.join("loop_on_quads_fails.driver.obj");
+    let _ = fs::remove_file(&ref_out);
+    let out = run(Command::new(driver())
+        .arg(&input)
+        .arg(&ref_out)
+        .args(["--scheme", "loop", "--level", "1"]));
+    assert!(
+        !out.status.success(),
+        "the reference driver accepted quads under Loop"
+    );
+
+    let our_out = dir.join("loop_on_quads_fails.crate.obj");
+    let _ = fs::remove_file(&our_out);
+    let mut cmd = Command::new(subdiv_bin());
+    cmd.arg("refine")
+        .arg(&input)
+        .arg("-o")
+        .arg(&our_out)
+        .args(["--engine", "osd", "--scheme", "loop", "--level", "1"]);
+    let out = run(&mut cmd);
+    assert!(
+        !out.status.success(),
+        "`{}` succeeded on a quad mesh; stdout:\n{}",
+        show(&cmd),
+        String::from_utf8_lossy(&out.stdout)
+    );
+    assert!(
+        !our_out.exists(),
+        "`{}` failed but left its output file behind",
+        show(&cmd)
+    );
+}
+
+/// The harness itself reports the first differing line (and is not vacuous).
+#[test]
+#[should_panic(expected = "first difference at line 2")]
+fn harness_reports_first_difference() {
+    compare(
+        "harness_self_test",
+        1,
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        b"v 0 0 0\nv 1 0 1.0000000000000001e-17\nv 0 1 0\nf 1 2 3\n",
+    );
+}
