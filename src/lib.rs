@@ -36,14 +36,19 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
+pub mod compare;
 pub mod error;
 pub mod io;
 pub mod level;
 pub mod mesh;
 pub mod options;
+pub mod real;
 pub mod refinement;
+pub mod refiner;
+pub mod rules;
 pub mod shapes;
 pub mod stencil;
+pub mod topology;
 
 #[cfg(feature = "osd")]
 #[allow(unsafe_code)]
@@ -56,6 +61,7 @@ pub use options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, MAX_LEVEL, Options, Scheme,
     TriangleSubdivision, UniformOptions,
 };
+pub use real::Real;
 pub use refinement::{Limit, Precision, Refinement};
 pub use stencil::{LimitStencilTable, StencilTable};
 

@@ -25,6 +25,8 @@ struct Cli {
 enum Command {
     /// Refine a mesh uniformly and write the last level as OBJ.
     Refine(RefineArgs),
+    /// Refine with both engines and compare them level by level, vertex by vertex.
+    Compare(CompareArgs),
     /// The main job on the built-in cube: refine it to level 2 with every available engine.
     Demo,
     /// Print the versions of subdiv and of the OpenSubdiv it is built against.
@@ -39,26 +41,18 @@ enum Engine {
     Osd,
 }
 
+/// The input mesh and the subdivision options, shared by `refine` and `compare`.
 #[derive(Args)]
-struct RefineArgs {
+struct MeshArgs {
     /// Input OBJ file (with OpenSubdiv `t` tags); see --builtin for generated shapes.
     #[arg(required_unless_present = "builtin", conflicts_with = "builtin")]
     input: Option<PathBuf>,
     /// Use a generated shape instead of a file: cube, cube-uv, grid, torus, tetrahedron.
     #[arg(long, value_name = "NAME")]
     builtin: Option<String>,
-    /// Output OBJ file; without it nothing is written and a summary is printed.
-    #[arg(short, long, value_name = "OUT.obj")]
-    output: Option<PathBuf>,
-    /// Refinement level (0..=10).
-    #[arg(long, default_value_t = 2)]
-    level: u32,
     /// Subdivision scheme.
     #[arg(long, default_value = "catmark", value_parser = parse::<Scheme>)]
     scheme: Scheme,
-    /// Refinement engine.
-    #[arg(long, value_enum, default_value = "native")]
-    engine: Engine,
     /// Vertex boundary interpolation (overrides the file's tag).
     #[arg(long, value_parser = parse::<BoundaryInterpolation>)]
     boundary: Option<BoundaryInterpolation>,
@@ -71,15 +65,75 @@ struct RefineArgs {
     /// Catmull-Clark triangle weights (overrides the file's tag).
     #[arg(long, value_parser = parse::<TriangleSubdivision>)]
     triangles: Option<TriangleSubdivision>,
-    /// Write limit positions (and limit face-varying values) instead of refined ones.
-    #[arg(long)]
-    limit: bool,
     /// Floating-point precision of the interpolation.
     #[arg(long, default_value = "f64", value_parser = parse::<Precision>)]
     precision: Precision,
+    /// Order child vertices from faces first (OpenSubdiv's orderVerticesFromFacesFirst).
+    #[arg(long)]
+    faces_first: bool,
     /// Treat every warning (unknown tag, crease without edge...) as an error.
     #[arg(long)]
     strict: bool,
+}
+
+#[derive(Args)]
+struct RefineArgs {
+    #[command(flatten)]
+    mesh: MeshArgs,
+    /// Output OBJ file; without it nothing is written and a summary is printed.
+    #[arg(short, long, value_name = "OUT.obj")]
+    output: Option<PathBuf>,
+    /// Refinement level (0..=10).
+    #[arg(long, default_value_t = 2)]
+    level: u32,
+    /// Refinement engine.
+    #[arg(long, value_enum, default_value = "native")]
+    engine: Engine,
+    /// Write limit positions (and limit face-varying values) instead of refined ones.
+    #[arg(long)]
+    limit: bool,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    #[command(flatten)]
+    mesh: MeshArgs,
+    /// Levels to compare: `A..B` (inclusive) or a single level.
+    #[arg(long, default_value = "1..4", value_parser = parse_levels)]
+    levels: (u32, u32),
+    /// Largest accepted deviation, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-6)]
+    tolerance: f64,
+    /// Print the report as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_levels(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{s}' is not a level or a range A..B of levels");
+    let (a, b) = match s.split_once("..") {
+        Some((a, b)) => (
+            a.trim().parse().map_err(|_| bad())?,
+            b.trim()
+                .trim_start_matches('=')
+                .parse()
+                .map_err(|_| bad())?,
+        ),
+        None => {
+            let l = s.trim().parse().map_err(|_| bad())?;
+            (l, l)
+        }
+    };
+    if a > b {
+        return Err(format!("the range {s} is empty"));
+    }
+    if b > subdiv::MAX_LEVEL {
+        return Err(format!(
+            "level {b} is deeper than the supported {}",
+            subdiv::MAX_LEVEL
+        ));
+    }
+    Ok((a, b))
 }
 
 fn parse<T: std::str::FromStr<Err = String>>(s: &str) -> Result<T, String> {
@@ -92,6 +146,8 @@ enum Failure {
     Error(Error),
     /// A feature this build does not offer yet: exit 2.
     Unavailable(String),
+    /// `compare` found a difference (already reported): exit 3.
+    Differ,
 }
 
 impl From<Error> for Failure {
@@ -104,6 +160,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Refine(args) => refine(&args),
+        Command::Compare(args) => compare(&args),
         Command::Demo => demo(),
         Command::Version => {
             version();
@@ -120,6 +177,7 @@ fn main() -> ExitCode {
             eprintln!("subdiv: {msg}");
             ExitCode::from(2)
         }
+        Err(Failure::Differ) => ExitCode::from(3),
     }
 }
 
@@ -132,7 +190,7 @@ fn version() {
 }
 
 /// Loads the input: a file (tags applied over the shape-file defaults) or a built-in shape.
-fn load(args: &RefineArgs) -> Result<(String, Mesh, Options), Failure> {
+fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
     let (name, shape) = match (&args.input, &args.builtin) {
         (Some(path), _) => (
             path.display().to_string(),
@@ -197,9 +255,15 @@ fn run_engine(
     limit: bool,
 ) -> Result<Refinement, Failure> {
     match engine {
-        Engine::Native => Err(Failure::Unavailable(
-            "the native engine is not implemented yet; use --engine osd".into(),
-        )),
+        Engine::Native => {
+            match subdiv::refiner::refine_with(mesh, options, uniform, precision, limit) {
+                Ok(r) => Ok(r),
+                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
+                    "native engine: {msg}; use --engine osd"
+                ))),
+                Err(e) => Err(e.into()),
+            }
+        }
         #[cfg(feature = "osd")]
         Engine::Osd => Ok(subdiv::osd::refine_with(
             mesh, options, uniform, precision, limit,
@@ -248,8 +312,8 @@ fn summary(name: &str, engine: Engine, r: &Refinement, seconds: f64) -> String {
 }
 
 fn refine(args: &RefineArgs) -> Result<(), Failure> {
-    let (name, mesh, options) = load(args)?;
-    let uniform = UniformOptions::new(args.level);
+    let (name, mesh, options) = load(&args.mesh)?;
+    let uniform = UniformOptions::new(args.level).faces_first(args.mesh.faces_first);
     subdiv::refinement::check_level(&mesh, &options, args.level)?;
     let start = Instant::now();
     let r = run_engine(
@@ -257,7 +321,7 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
         &mesh,
         &options,
         uniform,
-        args.precision,
+        args.mesh.precision,
         args.limit,
     )?;
     let seconds = start.elapsed().as_secs_f64();
@@ -332,4 +396,125 @@ fn demo() -> Result<(), Failure> {
         ));
     }
     Ok(())
+}
+
+/// One level of `subdiv compare`, as printed and as JSON.
+#[derive(serde::Serialize)]
+struct CompareRow {
+    level: u32,
+    native_counts: [usize; 4],
+    osd_counts: [usize; 4],
+    first_differing_face: Option<usize>,
+    topology_equal: bool,
+    max_abs_deviation: f64,
+    max_rel_deviation: f64,
+    worst_vertex: Option<usize>,
+    fvar_deviation: f64,
+    agrees: bool,
+}
+
+#[derive(serde::Serialize)]
+struct CompareReport<'a> {
+    input: &'a str,
+    options: String,
+    precision: &'a str,
+    tolerance: f64,
+    levels: Vec<CompareRow>,
+    agrees: bool,
+}
+
+fn compare(args: &CompareArgs) -> Result<(), Failure> {
+    let (name, mesh, options) = load(&args.mesh)?;
+    let (first, last) = args.levels;
+    subdiv::refinement::check_level(&mesh, &options, last)?;
+    let uniform = UniformOptions::new(last).faces_first(args.mesh.faces_first);
+    let native = run_engine(
+        Engine::Native,
+        &mesh,
+        &options,
+        uniform,
+        args.mesh.precision,
+        false,
+    )?;
+    let osd = run_engine(
+        Engine::Osd,
+        &mesh,
+        &options,
+        uniform,
+        args.mesh.precision,
+        false,
+    )?;
+    let rows: Vec<CompareRow> = subdiv::compare::compare(&native, &osd)
+        .into_iter()
+        .filter(|c| c.level >= first)
+        .map(|c| CompareRow {
+            level: c.level,
+            native_counts: c.counts[0],
+            osd_counts: c.counts[1],
+            first_differing_face: c.first_face_difference,
+            topology_equal: c.topology_equal(),
+            max_abs_deviation: c.max_position_deviation,
+            max_rel_deviation: c.relative_position_deviation,
+            worst_vertex: c.worst_vertex,
+            fvar_deviation: c.max_fvar_deviation,
+            agrees: c.agrees(args.tolerance),
+        })
+        .collect();
+    let agrees = rows.iter().all(|r| r.agrees);
+    let report = CompareReport {
+        input: &name,
+        options: format!(
+            "{} boundary={} fvar={} creasing={} triangles={}{}",
+            options.scheme,
+            options.boundary,
+            options.fvar,
+            options.creasing,
+            options.triangles,
+            if args.mesh.faces_first {
+                " faces-first"
+            } else {
+                ""
+            }
+        ),
+        precision: args.mesh.precision.name(),
+        tolerance: args.tolerance,
+        levels: rows,
+        agrees,
+    };
+    if args.json {
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::InvalidArgument(format!("cannot encode the report: {e}")))?;
+        println!("{text}");
+    } else {
+        println!(
+            "{}: {} ({}), tolerance {:e} of the bounding-box diagonal",
+            name, report.options, report.precision, args.tolerance
+        );
+        println!(
+            "level  vertices (native/osd)  faces (native/osd)  first diff face  max abs dev  max rel dev  fvar dev  result"
+        );
+        for r in &report.levels {
+            println!(
+                "{:>5}  {:>21}  {:>18}  {:>15}  {:>11.3e}  {:>11.3e}  {:>8.2e}  {}",
+                r.level,
+                format!("{}/{}", r.native_counts[0], r.osd_counts[0]),
+                format!("{}/{}", r.native_counts[2], r.osd_counts[2]),
+                r.first_differing_face
+                    .map_or("-".to_string(), |f| f.to_string()),
+                r.max_abs_deviation,
+                r.max_rel_deviation,
+                r.fvar_deviation,
+                if r.agrees { "ok" } else { "DIFFERENT" }
+            );
+        }
+        println!(
+            "{}",
+            if agrees {
+                "the engines agree"
+            } else {
+                "the engines DIFFER"
+            }
+        );
+    }
+    if agrees { Ok(()) } else { Err(Failure::Differ) }
 }

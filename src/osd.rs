@@ -143,28 +143,13 @@ mod sealed {
     }
 }
 
-/// The real types OpenSubdiv interpolates in: `f32` and `f64`.
-pub trait Real: Copy + Default + sealed::Sealed + 'static {
-    /// This type's [`Precision`].
-    const PRECISION: Precision;
-    /// Converts from `f64` (rounding to nearest for `f32`).
-    fn from_f64(x: f64) -> Self;
-    /// Converts to `f64` exactly.
-    fn to_f64(self) -> f64;
-}
+/// The real types the bridge interpolates in: `f32` and `f64`.
+pub trait Real: crate::Real + sealed::Sealed {}
+impl Real for f32 {}
+impl Real for f64 {}
 
 macro_rules! impl_real {
-    ($t:ty, $prec:expr, $interp:ident, $limit:ident, $limit_fvar:ident) => {
-        impl Real for $t {
-            const PRECISION: Precision = $prec;
-            fn from_f64(x: f64) -> Self {
-                x as $t
-            }
-            fn to_f64(self) -> f64 {
-                self as f64
-            }
-        }
-
+    ($t:ty, $interp:ident, $limit:ident, $limit_fvar:ident) => {
         impl sealed::Sealed for $t {
             fn interpolate(
                 r: &Refiner,
@@ -250,20 +235,8 @@ macro_rules! impl_real {
     };
 }
 
-impl_real!(
-    f32,
-    Precision::F32,
-    sdv_interpolate_f32,
-    sdv_limit_f32,
-    sdv_limit_fvar_f32
-);
-impl_real!(
-    f64,
-    Precision::F64,
-    sdv_interpolate_f64,
-    sdv_limit_f64,
-    sdv_limit_fvar_f64
-);
+impl_real!(f32, sdv_interpolate_f32, sdv_limit_f32, sdv_limit_fvar_f32);
+impl_real!(f64, sdv_interpolate_f64, sdv_limit_f64, sdv_limit_fvar_f64);
 
 /// Element counts of one level.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -297,6 +270,7 @@ pub struct LimitData<T> {
 pub struct Refiner {
     raw: NonNull<ffi::sdv_refiner>,
     base_vertices: usize,
+    base_faces: usize,
     base_corners: usize,
     options: Options,
     fvar_channels: usize,
@@ -421,6 +395,7 @@ impl Refiner {
         let mut refiner = Refiner {
             raw,
             base_vertices: mesh.vertex_count(),
+            base_faces: mesh.face_count(),
             base_corners: mesh.face_vertices.len(),
             options: *options,
             fvar_channels: mesh.fvar_channels.len(),
@@ -474,13 +449,14 @@ impl Refiner {
 
     /// Refines uniformly to `uniform.level` (any earlier refinement is discarded first).
     pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
-        // Validate the level ourselves: OpenSubdiv would silently wrap it.
-        if uniform.level > crate::MAX_LEVEL {
-            return Err(Error::Level {
-                level: uniform.level,
-                reason: format!("the deepest supported level is {}", crate::MAX_LEVEL),
-            });
-        }
+        // Validate the level ourselves: OpenSubdiv would silently wrap it, and
+        // refuse sizes that cannot fit before anything is allocated.
+        crate::refinement::check_level_counts(
+            self.base_faces,
+            self.base_corners,
+            self.options.scheme,
+            uniform.level,
+        )?;
         let mut err = ErrBuf::new();
         self.uniform = None;
         // SAFETY: `raw` is live and uniquely borrowed.

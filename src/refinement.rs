@@ -109,9 +109,25 @@ impl Refinement {
     }
 }
 
-/// Refuses a level before anything is allocated: above [`MAX_LEVEL`], or one whose
-/// face-vertex count would not fit OpenSubdiv's 32-bit indices.
+/// Refuses a level before anything is allocated: above [`MAX_LEVEL`], one whose
+/// face-vertex count would not fit OpenSubdiv's 32-bit indices, or one whose
+/// estimated memory exceeds what this machine has available.
 pub fn check_level(mesh: &Mesh, options: &Options, level: u32) -> Result<()> {
+    check_level_counts(
+        mesh.face_count(),
+        mesh.face_vertices.len(),
+        options.scheme,
+        level,
+    )
+}
+
+/// Bytes per refined face corner and per refined vertex that a refinement
+/// needs, roughly (topology tables of every level plus f64 positions).
+const BYTES_PER_CORNER: f64 = 40.0;
+const BYTES_PER_VERTEX: f64 = 64.0;
+
+/// [`check_level`] from the base counts alone.
+pub fn check_level_counts(faces: usize, corners: usize, scheme: Scheme, level: u32) -> Result<()> {
     if level > MAX_LEVEL {
         return Err(Error::Level {
             level,
@@ -123,10 +139,9 @@ pub fn check_level(mesh: &Mesh, options: &Options, level: u32) -> Result<()> {
     }
     // After one level every face has become quads (one per corner) or, under
     // Loop, four triangles; each later level multiplies the faces by four.
-    let corners = mesh.face_vertices.len() as f64;
-    let first = match options.scheme {
-        Scheme::Loop => 4.0 * mesh.face_count() as f64 * 3.0,
-        _ => corners * 4.0,
+    let first = match scheme {
+        Scheme::Loop => 4.0 * faces as f64 * 3.0,
+        _ => corners as f64 * 4.0,
     };
     let face_vertices = first * 4f64.powi(level as i32 - 1);
     if face_vertices > i32::MAX as f64 {
@@ -138,7 +153,33 @@ pub fn check_level(mesh: &Mesh, options: &Options, level: u32) -> Result<()> {
             ),
         });
     }
+    // All levels together hold about 4/3 of the last one; a quad mesh has
+    // about as many vertices as faces.
+    let all_corners = face_vertices * 4.0 / 3.0;
+    let bytes = all_corners * BYTES_PER_CORNER + all_corners / 4.0 * BYTES_PER_VERTEX;
+    if let Some(available) = available_memory() {
+        if bytes > available as f64 {
+            return Err(Error::Level {
+                level,
+                reason: format!(
+                    "level {level} of this mesh needs about {:.1} GiB, more than the {:.1} GiB available",
+                    bytes / GIB,
+                    available as f64 / GIB
+                ),
+            });
+        }
+    }
     Ok(())
+}
+
+const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+
+/// Memory available to a new allocation, from `/proc/meminfo` where there is one.
+fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 #[cfg(test)]
@@ -156,10 +197,17 @@ mod tests {
             Err(Error::Level { level: 11, .. })
         ));
         let grid = shapes::grid(200, 200);
-        assert!(check_level(&grid, &opts, 6).is_ok());
-        assert!(matches!(
-            check_level(&grid, &opts, 9),
-            Err(Error::Level { level: 9, .. })
-        ));
+        assert!(check_level(&grid, &opts, 4).is_ok());
+        let err = check_level(&grid, &opts, 9).unwrap_err();
+        assert!(matches!(err, Error::Level { level: 9, .. }));
+        assert!(err.to_string().contains("4.194e10 face corners"), "{err}");
+        // About 2e9 corners at level 5: fits 32 bits, but needs over 100 GiB.
+        if let Some(avail) = available_memory() {
+            let err = check_level_counts(500_000, 2_000_000, Scheme::Catmark, 5);
+            if (avail as f64) < 1e11 {
+                let err = err.unwrap_err().to_string();
+                assert!(err.contains("GiB"), "{err}");
+            }
+        }
     }
 }

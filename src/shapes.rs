@@ -147,3 +147,362 @@ mod tests {
         }
     }
 }
+
+/// A mesh from a list of points and faces given as slices.
+fn mesh(points: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
+    Mesh::from_faces(
+        points.iter().map(|&p| DVec3::from_array(p)).collect(),
+        faces,
+    )
+}
+
+/// A square pyramid whose base is an `n`-gon (n ≥ 3): one n-gon and n triangles.
+pub fn pyramid(n: u32) -> Mesh {
+    let mut m = Mesh::default();
+    for i in 0..n {
+        let a = TAU * i as f64 / n as f64;
+        m.positions.push(DVec3::new(a.cos(), a.sin(), 0.0));
+    }
+    m.positions.push(DVec3::new(0.1, -0.05, 1.2));
+    let base: Vec<u32> = (0..n).rev().collect();
+    m.add_face(&base);
+    for i in 0..n {
+        m.add_face(&[i, (i + 1) % n, n]);
+    }
+    m
+}
+
+/// A closed prism over a regular `n`-gon: two n-gon caps and n quads.
+pub fn prism(n: u32) -> Mesh {
+    let mut m = Mesh::default();
+    for z in [0.0, 1.0] {
+        for i in 0..n {
+            let a = TAU * i as f64 / n as f64 + 0.1 * z;
+            m.positions.push(DVec3::new(a.cos(), a.sin(), z));
+        }
+    }
+    let bottom: Vec<u32> = (0..n).rev().collect();
+    let top: Vec<u32> = (n..2 * n).collect();
+    m.add_face(&bottom);
+    m.add_face(&top);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        m.add_face(&[i, j, n + j, n + i]);
+    }
+    m
+}
+
+/// A closed "pole": an `n`-valent vertex at the top of a cone of quads and
+/// triangles, closed by an n-gon at the bottom.
+pub fn pole(n: u32) -> Mesh {
+    let mut m = Mesh::default();
+    m.positions.push(DVec3::new(0.0, 0.0, 1.0));
+    for ring in 1..=2 {
+        for i in 0..n {
+            let a = TAU * i as f64 / n as f64 + 0.05 * ring as f64;
+            let r = 0.5 * ring as f64;
+            m.positions.push(DVec3::new(
+                r * a.cos(),
+                r * a.sin(),
+                1.0 - 0.4 * ring as f64,
+            ));
+        }
+    }
+    let ring = |k: u32, i: u32| 1 + (k - 1) * n + (i % n);
+    for i in 0..n {
+        m.add_face(&[0, ring(1, i), ring(1, i + 1)]);
+        m.add_face(&[ring(1, i), ring(2, i), ring(2, i + 1), ring(1, i + 1)]);
+    }
+    let bottom: Vec<u32> = (0..n).rev().map(|i| ring(2, i)).collect();
+    m.add_face(&bottom);
+    m
+}
+
+/// An open fan of `n` triangles around a centre vertex (a boundary vertex of
+/// valence `n + 1`), spanning `angle` radians.
+pub fn fan(n: u32, angle: f64) -> Mesh {
+    let mut m = Mesh::default();
+    m.positions.push(DVec3::ZERO);
+    for i in 0..=n {
+        let a = angle * i as f64 / n as f64;
+        m.positions
+            .push(DVec3::new(a.cos(), a.sin(), 0.1 * (i % 2) as f64));
+    }
+    for i in 0..n {
+        m.add_face(&[0, i + 1, i + 2]);
+    }
+    m
+}
+
+/// Four disjoint cubes of different sizes in one mesh (several connected
+/// components, like OpenSubdiv's "four boxes" regression shape).
+pub fn four_boxes() -> Mesh {
+    let mut m = Mesh::default();
+    let c = cube();
+    for (k, (offset, scale)) in [
+        (DVec3::new(-1.5, -1.5, 0.0), 1.0),
+        (DVec3::new(1.5, -1.5, 0.0), 0.8),
+        (DVec3::new(-1.5, 1.5, 0.0), 1.2),
+        (DVec3::new(1.5, 1.5, 0.3), 0.6),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let base = (8 * k) as u32;
+        m.positions
+            .extend(c.positions.iter().map(|p| *p * scale + offset));
+        for f in c.faces() {
+            let shifted: Vec<u32> = f.iter().map(|v| v + base).collect();
+            m.add_face(&shifted);
+        }
+    }
+    m
+}
+
+/// A regular icosahedron (20 triangles), for Loop.
+pub fn icosahedron() -> Mesh {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    mesh(
+        &[
+            [-1.0, t, 0.0],
+            [1.0, t, 0.0],
+            [-1.0, -t, 0.0],
+            [1.0, -t, 0.0],
+            [0.0, -1.0, t],
+            [0.0, 1.0, t],
+            [0.0, -1.0, -t],
+            [0.0, 1.0, -t],
+            [t, 0.0, -1.0],
+            [t, 0.0, 1.0],
+            [-t, 0.0, -1.0],
+            [-t, 0.0, 1.0],
+        ],
+        &[
+            &[0, 11, 5],
+            &[0, 5, 1],
+            &[0, 1, 7],
+            &[0, 7, 10],
+            &[0, 10, 11],
+            &[1, 5, 9],
+            &[5, 11, 4],
+            &[11, 10, 2],
+            &[10, 7, 6],
+            &[7, 1, 8],
+            &[3, 9, 4],
+            &[3, 4, 2],
+            &[3, 2, 6],
+            &[3, 6, 8],
+            &[3, 8, 9],
+            &[4, 9, 5],
+            &[2, 4, 11],
+            &[6, 2, 10],
+            &[8, 6, 7],
+            &[9, 8, 1],
+        ],
+    )
+}
+
+/// Three quads sharing one edge (a non-manifold "fin") plus a quad on each side.
+pub fn fin() -> Mesh {
+    mesh(
+        &[
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+            [2.0, 0.0, 0.1],
+            [2.0, 1.0, 0.1],
+        ],
+        &[&[0, 2, 3, 1], &[1, 5, 4, 0], &[0, 1, 7, 6], &[2, 8, 9, 3]],
+    )
+}
+
+/// Two quads sharing a single vertex (a "bowtie") and a third quad hanging off one of them.
+pub fn bowtie() -> Mesh {
+    mesh(
+        &[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.2],
+            [-1.0, 0.0, 0.0],
+            [-1.0, -1.0, 0.0],
+            [0.0, -1.0, -0.2],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ],
+        &[&[0, 1, 2, 3], &[0, 4, 5, 6], &[1, 7, 8, 2]],
+    )
+}
+
+/// A grid with a vertex whose faces wind inconsistently, a degenerate face
+/// (a repeated vertex) and a face repeating an edge: the non-manifold input
+/// OpenSubdiv still accepts.
+pub fn inconsistent() -> Mesh {
+    let mut m = grid(3, 2);
+    m.fvar_channels.clear();
+    // Flip face 1's winding.
+    let r = m.face_offsets[1] as usize..m.face_offsets[2] as usize;
+    m.face_vertices[r].reverse();
+    // A degenerate quad (vertex 0 twice) on top of face 0.
+    m.positions.push(DVec3::new(0.5, -0.7, 0.3));
+    let extra = (m.positions.len() - 1) as u32;
+    m.add_face(&[0, extra, 1, 0]);
+    m
+}
+
+/// Splits every quad of a mesh into two triangles (other faces are kept), for Loop.
+pub fn triangulate(mesh: &Mesh) -> Mesh {
+    let mut out = Mesh {
+        positions: mesh.positions.clone(),
+        ..Mesh::default()
+    };
+    for (i, f) in mesh.faces().enumerate() {
+        if f.len() == 4 {
+            // Alternate the diagonal for a less regular pattern.
+            if i % 2 == 0 {
+                out.add_face(&[f[0], f[1], f[2]]);
+                out.add_face(&[f[0], f[2], f[3]]);
+            } else {
+                out.add_face(&[f[0], f[1], f[3]]);
+                out.add_face(&[f[1], f[2], f[3]]);
+            }
+        } else {
+            out.add_face(f);
+        }
+    }
+    out.creases = mesh.creases.clone();
+    out.corners = mesh.corners.clone();
+    out
+}
+
+/// The conformance corpus: every shape with a name, covering the cases
+/// OpenSubdiv distinguishes (n-gons, poles, boundaries, creases, corners,
+/// holes, non-manifold features, UV seams). Triangle-only shapes are marked
+/// so Loop can be run on them too.
+pub fn corpus() -> Vec<(String, Mesh)> {
+    let mut out: Vec<(String, Mesh)> = Vec::new();
+    let mut push = |name: String, m: Mesh| out.push((name, m));
+    push("cube".into(), cube());
+    push("cube-uv".into(), cube_with_uvs());
+    push("torus".into(), torus(8, 6));
+    push("tetrahedron".into(), tetrahedron());
+    push("icosahedron".into(), icosahedron());
+    push("four-boxes".into(), four_boxes());
+    for n in 3..=12 {
+        push(format!("prism-{n}"), prism(n));
+    }
+    for n in [3, 4, 5, 6, 8] {
+        push(format!("pyramid-{n}"), pyramid(n));
+    }
+    for n in 3..=12 {
+        push(format!("pole-{n}"), pole(n));
+    }
+    push("grid-4x3".into(), grid(4, 3));
+    push("grid-1x1".into(), grid(1, 1));
+    for n in [1, 2, 3, 5] {
+        push(format!("fan-{n}"), fan(n, 2.5));
+    }
+    push("fan-closed-5".into(), {
+        let mut m = fan(5, TAU * 5.0 / 6.0);
+        m.add_face(&[0, 6, 1]);
+        m
+    });
+    // Creases of every kind of sharpness on a cube.
+    for &s in &[0.0f32, 0.3, 0.5, 1.0, 1.5, 2.0, 2.7, 3.0, 4.25, 9.99, 10.0] {
+        let mut m = cube();
+        m.add_crease(0, 1, s);
+        m.add_crease(1, 2, s * 0.5);
+        m.add_crease(1, 5, s);
+        push(format!("cube-crease-{s}"), m);
+    }
+    // A crease loop around a torus and a chain ending inside the mesh (darts).
+    push("torus-crease-loop".into(), {
+        let mut m = torus(8, 6);
+        for i in 0..8 {
+            m.add_crease(i, (i + 1) % 8, 2.5);
+        }
+        m
+    });
+    push("torus-dart-chain".into(), {
+        let mut m = torus(8, 6);
+        m.add_crease(9, 10, 10.0);
+        m.add_crease(10, 11, 1.5);
+        m.add_crease(11, 19, 0.8);
+        m
+    });
+    push("grid-crease-chain".into(), {
+        let mut m = grid(4, 4);
+        m.add_crease(6, 7, 3.0);
+        m.add_crease(7, 8, 1.25);
+        m.add_crease(7, 12, 10.0);
+        m
+    });
+    for &s in &[0.5f32, 1.0, 2.5, 10.0] {
+        let mut m = cube();
+        m.add_corner(0, s);
+        m.add_corner(6, s * 0.3);
+        m.add_crease(0, 1, 1.0);
+        push(format!("cube-corner-{s}"), m);
+    }
+    push("grid-corners".into(), {
+        let mut m = grid(3, 3);
+        m.add_corner(5, 2.0);
+        m.add_corner(0, 10.0);
+        m
+    });
+    push("grid-holes".into(), {
+        let mut m = grid(4, 4);
+        m.holes.extend([5, 6, 15]);
+        m
+    });
+    push("cube-hole".into(), {
+        let mut m = cube();
+        m.holes.push(1);
+        m
+    });
+    push("tri-grid".into(), triangulate(&grid(4, 3)));
+    push("tri-torus-crease".into(), {
+        let mut m = triangulate(&torus(8, 6));
+        for i in 0..8 {
+            m.add_crease(i, (i + 1) % 8, 1.75);
+        }
+        m.add_corner(20, 2.5);
+        m
+    });
+    push("tri-grid-creases".into(), {
+        let mut m = grid(4, 4);
+        m.add_crease(6, 7, 3.0);
+        m.add_crease(7, 8, 0.5);
+        m.add_crease(7, 12, 10.0);
+        m.add_corner(18, 1.5);
+        triangulate(&m)
+    });
+    push("fin".into(), fin());
+    push("bowtie".into(), bowtie());
+    push("inconsistent".into(), inconsistent());
+    push("crease-without-edge".into(), {
+        let mut m = cube();
+        m.add_crease(0, 6, 3.0);
+        m
+    });
+    out
+}
+
+#[cfg(test)]
+mod corpus_tests {
+    use super::*;
+
+    #[test]
+    fn corpus_is_valid() {
+        let corpus = corpus();
+        assert!(corpus.len() > 60);
+        for (name, m) in &corpus {
+            m.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+    }
+}

@@ -37,18 +37,59 @@ v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 
 f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n";
 
 #[test]
-fn native_engine_is_refused_until_it_exists() {
+fn native_engine_writes_the_same_file_as_opensubdiv() {
     let input = write("native.obj", QUAD_GRID);
-    let out = tmp("native-out.obj");
+    let native = tmp("native-out.obj");
+    let osd = tmp("native-osd-out.obj");
+    for (engine, out) in [("native", &native), ("osd", &osd)] {
+        let o = subdiv(&[
+            "refine",
+            input.to_str().unwrap(),
+            "--level",
+            "3",
+            "--engine",
+            engine,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{engine}: {}", stderr(&o));
+    }
+    let (a, b) = (
+        std::fs::read_to_string(&native).unwrap(),
+        std::fs::read_to_string(&osd).unwrap(),
+    );
+    assert_eq!(a.lines().filter(|l| l.starts_with("f ")).count(), 256);
+    assert_eq!(a, b, "native and OpenSubdiv output differ");
+}
+
+#[test]
+fn compare_reports_agreement_and_json() {
+    let input = write("compare.obj", QUAD_GRID);
+    let o = subdiv(&["compare", input.to_str().unwrap(), "--levels", "1..3"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("the engines agree"), "{text}");
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.trim_end().ends_with(" ok"))
+            .count(),
+        3,
+        "{text}"
+    );
     let o = subdiv(&[
-        "refine",
+        "compare",
         input.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
+        "--levels",
+        "2",
+        "--json",
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("native engine is not implemented"));
-    assert!(!out.exists(), "no placeholder output may be written");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(json["agrees"], true);
+    assert_eq!(json["levels"][0]["level"], 2);
+    assert_eq!(json["levels"][0]["native_counts"][0], 81);
+    let o = subdiv(&["compare", input.to_str().unwrap(), "--levels", "3..1"]);
+    assert_eq!(o.status.code(), Some(2), "clap refuses an empty range");
 }
 
 #[test]

@@ -1,0 +1,511 @@
+//! The native engine: refine topology once, then interpolate any number of
+//! primvar sets against it — the native counterpart of OpenSubdiv's
+//! `Far::TopologyRefiner` and `Far::PrimvarRefiner`.
+//!
+//! ```
+//! use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+//! let cube = shapes::cube();
+//! let mut refiner = Refiner::new(&cube, &Options::default())?;
+//! refiner.refine_uniform(UniformOptions::new(2))?;
+//! let positions = refiner.refine_positions(&cube.positions)?;
+//! assert_eq!(positions[2].len(), 98);
+//! # Ok::<(), subdiv::Error>(())
+//! ```
+
+use crate::error::{Error, Result};
+use crate::level::{FVarLevel, LevelTopology};
+use crate::mesh::{Mesh, MeshWarning};
+use crate::options::{Options, Scheme, UniformOptions};
+use crate::real::Real;
+use crate::refinement::{
+    Precision, Refinement as RefinementResult, check_level, check_level_counts,
+};
+use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
+use crate::topology::fvar::FVarLevel as FVarChannelLevel;
+use crate::topology::{Level, Refinement, build_base_level, fvar, refine_level};
+
+mod fvar_interp;
+use glam::{DVec3, Vec3};
+
+/// Kinds of primvar interpolation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Vertex,
+    Varying,
+}
+
+/// A mesh's topology refined natively, level by level.
+#[derive(Debug, Clone)]
+pub struct Refiner {
+    pub(crate) options: Options,
+    pub(crate) rules: SchemeRules,
+    pub(crate) levels: Vec<Level>,
+    pub(crate) refinements: Vec<Refinement>,
+    pub(crate) uniform: Option<UniformOptions>,
+    /// Face-varying topology: `fvar[channel][level]`.
+    pub(crate) fvar: Vec<Vec<FVarChannelLevel>>,
+    warnings: Vec<MeshWarning>,
+}
+
+impl Refiner {
+    /// Builds the base level of a mesh (validated first).
+    pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
+        let validation = mesh.validate()?;
+        if options.scheme == Scheme::Loop {
+            if let Some((face, size)) = mesh
+                .faces()
+                .map(<[u32]>::len)
+                .enumerate()
+                .find(|&(_, n)| n != 3)
+            {
+                return Err(Error::InvalidArgument(format!(
+                    "face {face} has {size} vertices; the Loop scheme needs triangles"
+                )));
+            }
+        }
+        if !mesh.fvar_channels.is_empty() {
+            return Err(Error::Unavailable(
+                "native face-varying interpolation is still being written".into(),
+            ));
+        }
+        if mesh.vertex_count() == 0 || mesh.face_count() == 0 {
+            return Err(Error::InvalidArgument(
+                "the mesh has no vertices or no faces".into(),
+            ));
+        }
+        let base = build_base_level(mesh, options);
+        let fvar = mesh
+            .fvar_channels
+            .iter()
+            .map(|c| {
+                vec![fvar::build_base(
+                    &base,
+                    options,
+                    c.value_count(),
+                    &c.indices,
+                )]
+            })
+            .collect();
+        Ok(Refiner {
+            options: *options,
+            rules: SchemeRules::new(options),
+            levels: vec![base],
+            refinements: Vec::new(),
+            uniform: None,
+            fvar,
+            warnings: validation.warnings,
+        })
+    }
+
+    /// Warnings found while validating the mesh.
+    pub fn warnings(&self) -> &[MeshWarning] {
+        &self.warnings
+    }
+
+    /// The options the refiner was built with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// Refines uniformly to `uniform.level`, discarding any earlier refinement.
+    pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
+        let base = &self.levels[0];
+        check_level_counts(
+            base.face_count(),
+            base.face_vertices.members.len(),
+            self.options.scheme,
+            uniform.level,
+        )?;
+        self.levels.truncate(1);
+        self.refinements.clear();
+        for channel in &mut self.fvar {
+            channel.truncate(1);
+        }
+        for _ in 0..uniform.level {
+            let parent = self.levels.last().expect("base level");
+            let (r, child) = refine_level(
+                parent,
+                &self.options,
+                uniform.order_vertices_from_faces_first,
+            );
+            for channel in &mut self.fvar {
+                let parent_fvar = channel.last().expect("base channel");
+                let child_fvar = fvar::refine(parent, &child, &r, parent_fvar, &self.options);
+                channel.push(child_fvar);
+            }
+            self.refinements.push(r);
+            self.levels.push(child);
+        }
+        self.uniform = Some(uniform);
+        Ok(())
+    }
+
+    /// The deepest refined level.
+    pub fn max_level(&self) -> u32 {
+        (self.levels.len() - 1) as u32
+    }
+
+    /// Internal topology of `level`.
+    pub fn internal_level(&self, level: u32) -> Result<&Level> {
+        self.levels.get(level as usize).ok_or_else(|| {
+            Error::InvalidArgument(format!(
+                "level {level} does not exist (refined levels are 0..={})",
+                self.max_level()
+            ))
+        })
+    }
+
+    /// The topology of `level` as OpenSubdiv reports it (edge-vertices of the
+    /// last level only with full topology).
+    pub fn level(&self, level: u32) -> Result<LevelTopology> {
+        let l = self.internal_level(level)?;
+        let full =
+            level < self.max_level() || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
+        Ok(LevelTopology {
+            vertex_count: l.vertex_count,
+            edge_count: l.edge_count(),
+            face_offsets: l.face_vertices.offsets.clone(),
+            face_vertices: l.face_vertices.members.clone(),
+            edge_vertices: if full {
+                l.edge_vertices.clone()
+            } else {
+                Vec::new()
+            },
+            edge_sharpness: l.edge_sharpness.clone(),
+            vertex_sharpness: l.vertex_sharpness.clone(),
+            face_holes: l.face_holes.clone(),
+            fvar: self
+                .fvar
+                .iter()
+                .map(|channel| FVarLevel {
+                    value_count: channel[level as usize].value_count(),
+                    face_values: channel[level as usize].face_values().to_vec(),
+                })
+                .collect(),
+        })
+    }
+
+    fn check_buffers<T>(&self, level: u32, width: usize, src: &[T], dst: &[T]) -> Result<()> {
+        if level == 0 || level > self.max_level() {
+            return Err(Error::InvalidArgument(format!(
+                "cannot interpolate to level {level}: refined levels are 1..={}",
+                self.max_level()
+            )));
+        }
+        if width == 0 {
+            return Err(Error::InvalidArgument(
+                "primvar width must be at least 1".into(),
+            ));
+        }
+        let (n_src, n_dst) = (
+            self.levels[level as usize - 1].vertex_count,
+            self.levels[level as usize].vertex_count,
+        );
+        if src.len() != n_src * width {
+            return Err(Error::InvalidArgument(format!(
+                "source primvar buffer has {} values, expected {} ({n_src} vertices × {width})",
+                src.len(),
+                n_src * width
+            )));
+        }
+        if dst.len() != n_dst * width {
+            return Err(Error::InvalidArgument(format!(
+                "destination primvar buffer has {} values, expected {} ({n_dst} vertices × {width})",
+                dst.len(),
+                n_dst * width
+            )));
+        }
+        Ok(())
+    }
+
+    /// Interpolates vertex data of `width` components from level `level - 1`
+    /// to `level` (`PrimvarRefiner::Interpolate`).
+    pub fn interpolate<T: Real>(&self, level: u32, width: usize, src: &[T]) -> Result<Vec<T>> {
+        let n = self.internal_level(level)?.vertex_count;
+        let mut dst = vec![T::ZERO; n * width];
+        self.interpolate_into(level, width, src, &mut dst)?;
+        Ok(dst)
+    }
+
+    /// As [`Refiner::interpolate`], into a caller's buffer (no allocation per frame).
+    pub fn interpolate_into<T: Real>(
+        &self,
+        level: u32,
+        width: usize,
+        src: &[T],
+        dst: &mut [T],
+    ) -> Result<()> {
+        self.check_buffers(level, width, src, dst)?;
+        self.interpolate_level(Kind::Vertex, level as usize, width, src, dst);
+        Ok(())
+    }
+
+    /// Interpolates varying data (linearly) from level `level - 1` to `level`
+    /// (`PrimvarRefiner::InterpolateVarying`).
+    pub fn interpolate_varying<T: Real>(
+        &self,
+        level: u32,
+        width: usize,
+        src: &[T],
+    ) -> Result<Vec<T>> {
+        let n = self.internal_level(level)?.vertex_count;
+        let mut dst = vec![T::ZERO; n * width];
+        self.check_buffers(level, width, src, &dst)?;
+        self.interpolate_level(Kind::Varying, level as usize, width, src, &mut dst);
+        Ok(dst)
+    }
+
+    /// Interpolates vertex data through every level: `result[l]` is level `l`.
+    pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Vec<T>>> {
+        let mut out = vec![base.to_vec()];
+        for level in 1..=self.max_level() {
+            let next = self.interpolate(level, width, out.last().expect("non-empty"))?;
+            out.push(next);
+        }
+        Ok(out)
+    }
+
+    /// Positions of every level, from base positions, in `f64`.
+    pub fn refine_positions(&self, base: &[DVec3]) -> Result<Vec<Vec<DVec3>>> {
+        let flat: Vec<f64> = base.iter().flat_map(|p| p.to_array()).collect();
+        Ok(self
+            .interpolate_all(3, &flat)?
+            .into_iter()
+            .map(|l| {
+                l.chunks_exact(3)
+                    .map(|c| DVec3::new(c[0], c[1], c[2]))
+                    .collect()
+            })
+            .collect())
+    }
+
+    /// Positions of every level, from base positions, in `f32`.
+    pub fn refine_positions_f32(&self, base: &[Vec3]) -> Result<Vec<Vec<Vec3>>> {
+        let flat: Vec<f32> = base.iter().flat_map(|p| p.to_array()).collect();
+        Ok(self
+            .interpolate_all(3, &flat)?
+            .into_iter()
+            .map(|l| {
+                l.chunks_exact(3)
+                    .map(|c| Vec3::new(c[0], c[1], c[2]))
+                    .collect()
+            })
+            .collect())
+    }
+
+    /// One level of interpolation, in OpenSubdiv's order: face points, edge
+    /// points, then vertex points, each accumulated term by term in the same
+    /// order as `PrimvarRefiner` (so `f64` results agree to the last bits).
+    fn interpolate_level<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        width: usize,
+        src: &[T],
+        dst: &mut [T],
+    ) {
+        let parent = &self.levels[level - 1];
+        let child = &self.levels[level];
+        let r = &self.refinements[level - 1];
+        let mut acc = vec![T::ZERO; width];
+        let mut mask = Mask::<T>::new();
+        let add = |acc: &mut [T], row: &[T], w: T| {
+            for (a, &s) in acc.iter_mut().zip(row) {
+                *a += s * w;
+            }
+        };
+        fn row<T>(data: &[T], i: u32, width: usize) -> &[T] {
+            let i = i as usize * width;
+            &data[i..i + width]
+        }
+        // Face points (none under Loop).
+        let face_points = if r.has_face_points() {
+            parent.face_count()
+        } else {
+            0
+        };
+        for f in 0..face_points {
+            let verts = parent.face_verts(f);
+            self.rules.face_vertex_mask(verts.len(), &mut mask);
+            acc.fill(T::ZERO);
+            for (&v, &w) in verts.iter().zip(&mask.vertex) {
+                add(&mut acc, row(src, v, width), w);
+            }
+            let c = r.face_child(f) as usize * width;
+            dst[c..c + width].copy_from_slice(&acc);
+        }
+        // Edge points.
+        let mut face_sizes = Vec::new();
+        let half = T::from_f64(0.5);
+        for e in 0..parent.edge_count() {
+            let ev = parent.edge_vertices[e];
+            let c = r.edge_child(e);
+            acc.fill(T::ZERO);
+            if kind == Kind::Varying {
+                add(&mut acc, row(src, ev[0], width), half);
+                add(&mut acc, row(src, ev[1], width), half);
+            } else {
+                let faces = parent.edge_faces_of(e);
+                face_sizes.clear();
+                face_sizes.extend(
+                    faces
+                        .iter()
+                        .map(|&f| parent.face_vertices.count(f as usize) as u32),
+                );
+                let s = parent.edge_sharpness[e];
+                let hood = EdgeNeighborhood {
+                    sharpness: s,
+                    face_sizes: &face_sizes,
+                };
+                let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
+                let c_rule = child.vertex_tags[c as usize].rule;
+                self.rules
+                    .edge_vertex_mask(&hood, p_rule, c_rule, &mut mask);
+                add(&mut acc, row(src, ev[0], width), mask.vertex[0]);
+                add(&mut acc, row(src, ev[1], width), mask.vertex[1]);
+                if mask.face_weights_for_centers {
+                    for (&f, &w) in faces.iter().zip(&mask.face) {
+                        add(&mut acc, row(dst, r.face_child(f as usize), width), w);
+                    }
+                } else {
+                    // Loop: the face's vertex opposite the edge.
+                    for (&f, &w) in faces.iter().zip(&mask.face) {
+                        let f_edges = parent.face_edges_of(f as usize);
+                        let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
+                        let opposite = parent.face_verts(f as usize)[(k + 2) % f_edges.len()];
+                        add(&mut acc, row(src, opposite, width), w);
+                    }
+                }
+            }
+            let c = c as usize * width;
+            dst[c..c + width].copy_from_slice(&acc);
+        }
+        // Vertex points.
+        let mut edge_sharpness = Vec::new();
+        let mut child_edge_sharpness = Vec::new();
+        for v in 0..parent.vertex_count {
+            let c = r.vertex_child(v);
+            acc.fill(T::ZERO);
+            if kind == Kind::Varying {
+                add(&mut acc, row(src, v as u32, width), T::ONE);
+            } else {
+                let edges = parent.vertex_edges_of(v);
+                let faces = parent.vertex_faces_of(v);
+                edge_sharpness.clear();
+                edge_sharpness.extend(edges.iter().map(|&e| parent.edge_sharpness[e as usize]));
+                child_edge_sharpness.resize(edges.len(), 0.0);
+                crease::subdivide_edge_sharpnesses_around_vertex(
+                    self.options.creasing,
+                    &edge_sharpness,
+                    &mut child_edge_sharpness,
+                );
+                let hood = VertexNeighborhood {
+                    sharpness: parent.vertex_sharpness[v],
+                    edge_sharpness: &edge_sharpness,
+                    face_count: faces.len(),
+                    child_sharpness: child.vertex_sharpness[c as usize],
+                    child_edge_sharpness: &child_edge_sharpness,
+                };
+                let p_rule = parent.vertex_tags[v].rule;
+                let c_rule = child.vertex_tags[c as usize].rule;
+                self.rules
+                    .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
+                if !mask.face.is_empty() {
+                    for (&f, &w) in faces.iter().zip(&mask.face) {
+                        add(&mut acc, row(dst, r.face_child(f as usize), width), w);
+                    }
+                }
+                if !mask.edge.is_empty() {
+                    for (&e, &w) in edges.iter().zip(&mask.edge) {
+                        add(
+                            &mut acc,
+                            row(src, parent.other_vertex(e as usize, v as u32), width),
+                            w,
+                        );
+                    }
+                }
+                add(&mut acc, row(src, v as u32, width), mask.vertex[0]);
+            }
+            let c = c as usize * width;
+            dst[c..c + width].copy_from_slice(&acc);
+        }
+    }
+}
+
+/// Refines a mesh uniformly with the native engine and interpolates positions
+/// in `f64`.
+pub fn refine(mesh: &Mesh, options: &Options, uniform: UniformOptions) -> Result<RefinementResult> {
+    refine_with(mesh, options, uniform, Precision::F64, false)
+}
+
+/// Refines a mesh uniformly with the native engine, interpolating in `precision`.
+pub fn refine_with(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+    limit: bool,
+) -> Result<RefinementResult> {
+    if limit {
+        return Err(Error::Unavailable(
+            "native limit evaluation is not implemented yet".into(),
+        ));
+    }
+    check_level(mesh, options, uniform.level)?;
+    let mut refiner = Refiner::new(mesh, options)?;
+    refiner.refine_uniform(uniform)?;
+    let levels = (0..=uniform.level)
+        .map(|l| refiner.level(l))
+        .collect::<Result<Vec<_>>>()?;
+    let positions = match precision {
+        Precision::F64 => refiner.refine_positions(&mesh.positions)?,
+        Precision::F32 => {
+            let base: Vec<Vec3> = mesh.positions.iter().map(|p| p.as_vec3()).collect();
+            refiner
+                .refine_positions_f32(&base)?
+                .into_iter()
+                .map(|l| l.into_iter().map(|p| p.as_dvec3()).collect())
+                .collect()
+        }
+    };
+    let fvar_widths: Vec<usize> = mesh.fvar_channels.iter().map(|c| c.width).collect();
+    let fvar_values = match precision {
+        Precision::F64 => refine_fvar::<f64>(&refiner, mesh)?,
+        Precision::F32 => refine_fvar::<f32>(&refiner, mesh)?,
+    };
+    Ok(RefinementResult {
+        options: *options,
+        uniform,
+        precision,
+        levels,
+        positions,
+        fvar_widths,
+        fvar_values,
+        limit: None,
+    })
+}
+
+/// Face-varying values of every level and channel (`[level][channel]`), in `T`.
+fn refine_fvar<T: Real>(refiner: &Refiner, mesh: &Mesh) -> Result<Vec<Vec<Vec<f64>>>> {
+    let mut current: Vec<Vec<T>> = mesh
+        .fvar_channels
+        .iter()
+        .map(|c| c.values.iter().map(|&v| T::from_f64(v)).collect())
+        .collect();
+    let widen = |data: &[Vec<T>]| {
+        data.iter()
+            .map(|c| c.iter().map(|v| v.to_f64()).collect())
+            .collect()
+    };
+    let mut out = vec![widen(&current)];
+    for level in 1..=refiner.max_level() {
+        current = mesh
+            .fvar_channels
+            .iter()
+            .enumerate()
+            .map(|(c, ch)| refiner.interpolate_face_varying(c, level, ch.width, &current[c]))
+            .collect::<Result<Vec<_>>>()?;
+        out.push(widen(&current));
+    }
+    Ok(out)
+}

@@ -1,0 +1,444 @@
+//! Building the base level from face-vertex lists and tags.
+
+use super::{EdgeTag, Level, Relation, VertexTag};
+use crate::mesh::Mesh;
+use crate::options::{BoundaryInterpolation, Options, Scheme};
+use crate::rules::crease;
+
+const NONE: u32 = u32::MAX;
+
+/// Builds the base level of `mesh` exactly as OpenSubdiv's factory does:
+/// edges, incidence relations in OpenSubdiv's order, non-manifold tags,
+/// user sharpness, boundary sharpening, holes and vertex rules.
+///
+/// The mesh must have been validated ([`Mesh::validate`]).
+pub fn build_base_level(mesh: &Mesh, options: &Options) -> Level {
+    let mut level = topology_from_face_vertices(mesh);
+    assign_tags(&mut level, mesh, options);
+    level
+}
+
+/// Appends to per-element lists kept as singly linked chains in flat arrays,
+/// preserving insertion order (needed to find edges as OpenSubdiv does).
+struct Chains {
+    head: Vec<u32>,
+    tail: Vec<u32>,
+    count: Vec<u32>,
+    next: Vec<u32>,
+    value: Vec<u32>,
+}
+
+impl Chains {
+    fn new(elements: usize, capacity: usize) -> Self {
+        Chains {
+            head: vec![NONE; elements],
+            tail: vec![NONE; elements],
+            count: vec![0; elements],
+            next: Vec::with_capacity(capacity),
+            value: Vec::with_capacity(capacity),
+        }
+    }
+
+    fn push_element(&mut self) {
+        self.head.push(NONE);
+        self.tail.push(NONE);
+        self.count.push(0);
+    }
+
+    fn append(&mut self, element: usize, value: u32) {
+        let node = self.value.len() as u32;
+        self.value.push(value);
+        self.next.push(NONE);
+        match self.tail[element] {
+            NONE => self.head[element] = node,
+            t => self.next[t as usize] = node,
+        }
+        self.tail[element] = node;
+        self.count[element] += 1;
+    }
+
+    fn iter(&self, element: usize) -> impl Iterator<Item = u32> + '_ {
+        let mut node = self.head[element];
+        std::iter::from_fn(move || {
+            if node == NONE {
+                return None;
+            }
+            let v = self.value[node as usize];
+            node = self.next[node as usize];
+            Some(v)
+        })
+    }
+
+    fn last(&self, element: usize) -> Option<u32> {
+        match self.tail[element] {
+            NONE => None,
+            t => Some(self.value[t as usize]),
+        }
+    }
+
+    fn into_relation(self) -> Relation {
+        let mut offsets = Vec::with_capacity(self.head.len() + 1);
+        let mut members = Vec::with_capacity(self.value.len());
+        offsets.push(0);
+        for e in 0..self.head.len() {
+            members.extend(self.iter(e));
+            offsets.push(members.len() as u32);
+        }
+        Relation { offsets, members }
+    }
+}
+
+/// Edges, edge-faces, vertex-faces and vertex-edges from the face-vertex lists,
+/// with non-manifold detection, orientation and local indices.
+fn topology_from_face_vertices(mesh: &Mesh) -> Level {
+    let nv = mesh.vertex_count();
+    let face_vertices = Relation {
+        offsets: mesh.face_offsets.clone(),
+        members: mesh.face_vertices.clone(),
+    };
+    let corners = face_vertices.members.len();
+    let mut face_edges = vec![0u32; corners];
+    let mut edge_vertices: Vec<[u32; 2]> = Vec::with_capacity(2 * nv);
+    let mut edge_faces = Chains::new(0, corners);
+    let mut vertex_edges = Chains::new(nv, 2 * corners);
+    let mut non_manifold_edges: Vec<u32> = Vec::new();
+
+    // Vertex-faces are known up front: every corner adds its face to its vertex.
+    let mut vf_offsets = vec![0u32; nv + 1];
+    for &v in &face_vertices.members {
+        vf_offsets[v as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        vf_offsets[i + 1] += vf_offsets[i];
+    }
+    let mut vf_fill = vf_offsets.clone();
+    let mut vf_members = vec![0u32; corners];
+
+    for f in 0..face_vertices.len() {
+        let range = face_vertices.range(f);
+        let verts = &face_vertices.members[range.clone()];
+        let n = verts.len();
+        for i in 0..n {
+            let v0 = verts[i];
+            let v1 = verts[(i + 1) % n];
+            let mut edge = if v0 != v1 {
+                vertex_edges.iter(v0 as usize).find(|&e| {
+                    let ev = edge_vertices[e as usize];
+                    ev[0] == v1 || ev[1] == v1
+                })
+            } else {
+                // A degenerate edge is always a new, non-manifold instance.
+                non_manifold_edges.push(edge_vertices.len() as u32);
+                None
+            };
+            if let Some(e) = edge {
+                let e_usize = e as usize;
+                if edge_faces.last(e_usize) == Some(f as u32) {
+                    // The edge occurs twice in this face: make a new instance.
+                    non_manifold_edges.push(e);
+                    non_manifold_edges.push(edge_vertices.len() as u32);
+                    edge = None;
+                } else if edge_faces.count[e_usize] > 1 {
+                    non_manifold_edges.push(e);
+                } else if v0 == edge_vertices[e_usize][0] {
+                    // Same direction as in the first face: opposite windings.
+                    non_manifold_edges.push(e);
+                }
+            }
+            let e = match edge {
+                Some(e) => e,
+                None => {
+                    let e = edge_vertices.len() as u32;
+                    edge_vertices.push([v0, v1]);
+                    edge_faces.push_element();
+                    vertex_edges.append(v0 as usize, e);
+                    vertex_edges.append(v1 as usize, e);
+                    e
+                }
+            };
+            edge_faces.append(e as usize, f as u32);
+            vf_members[vf_fill[v0 as usize] as usize] = f as u32;
+            vf_fill[v0 as usize] += 1;
+            face_edges[range.start + i] = e;
+        }
+    }
+
+    let ne = edge_vertices.len();
+    let mut level = Level {
+        depth: 0,
+        vertex_count: nv,
+        face_vertices,
+        face_edges,
+        edge_vertices,
+        edge_faces: edge_faces.into_relation(),
+        edge_face_local: Vec::new(),
+        vertex_faces: Relation {
+            offsets: vf_offsets,
+            members: vf_members,
+        },
+        vertex_face_local: Vec::new(),
+        vertex_edges: vertex_edges.into_relation(),
+        vertex_edge_local: Vec::new(),
+        edge_sharpness: vec![0.0; ne],
+        vertex_sharpness: vec![0.0; nv],
+        edge_tags: vec![EdgeTag::default(); ne],
+        vertex_tags: vec![VertexTag::default(); nv],
+        face_holes: vec![false; mesh.face_count()],
+        max_edge_faces: 0,
+        max_valence: 0,
+    };
+    for &e in &non_manifold_edges {
+        let e = e as usize;
+        level.edge_tags[e].non_manifold = true;
+        let [a, b] = level.edge_vertices[e];
+        level.vertex_tags[a as usize].non_manifold = true;
+        level.vertex_tags[b as usize].non_manifold = true;
+    }
+    orient_incident_components(&mut level);
+    populate_local_indices(&mut level);
+    level.max_edge_faces = (0..ne)
+        .map(|e| level.edge_faces.count(e))
+        .max()
+        .unwrap_or(0);
+    level.max_valence = (0..level.face_count())
+        .map(|f| level.face_vertices.count(f))
+        .chain((0..nv).map(|v| level.vertex_faces.count(v).max(level.vertex_edges.count(v))))
+        .max()
+        .unwrap_or(0);
+    level
+}
+
+/// Orders the faces and edges of every manifold vertex counter-clockwise,
+/// tagging as non-manifold every vertex where that fails.
+fn orient_incident_components(level: &mut Level) {
+    let mut faces = Vec::new();
+    let mut edges = Vec::new();
+    for v in 0..level.vertex_count {
+        if level.vertex_tags[v].non_manifold {
+            continue;
+        }
+        if order_vertex(level, v as u32, &mut faces, &mut edges) {
+            level.vertex_faces.get_mut(v).copy_from_slice(&faces);
+            level.vertex_edges.get_mut(v).copy_from_slice(&edges);
+        } else {
+            level.vertex_tags[v].non_manifold = true;
+        }
+    }
+}
+
+fn position(slice: &[u32], value: u32) -> usize {
+    slice
+        .iter()
+        .position(|&x| x == value)
+        .unwrap_or(slice.len())
+}
+
+/// Walks around vertex `v` from face to face through shared edges. Interior
+/// vertices start at their first face; boundary vertices at the face of their
+/// leading boundary edge (the one leaving `v` in its face).
+fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32>) -> bool {
+    let v_faces = level.vertex_faces_of(v as usize);
+    let v_edges = level.vertex_edges_of(v as usize);
+    let (nf, ne) = (v_faces.len(), v_edges.len());
+    faces.clear();
+    edges.clear();
+    if nf == 0 || ne < 2 || ne > nf + 1 {
+        return false;
+    }
+    let (mut face, mut corner, mut edge);
+    if ne == nf {
+        face = v_faces[0];
+        corner = position(level.face_verts(face as usize), v);
+        edge = level.face_edges_of(face as usize)[corner];
+    } else {
+        let mut start = None;
+        for &e in v_edges {
+            let e_faces = level.edge_faces_of(e as usize);
+            if e_faces.len() == 1 {
+                let f = e_faces[0];
+                let c = position(level.face_verts(f as usize), v);
+                start = Some((f, c, e));
+                if level.face_edges_of(f as usize).get(c) == Some(&e) {
+                    break;
+                }
+            }
+        }
+        match start {
+            Some((f, c, e)) => (face, corner, edge) = (f, c, e),
+            None => return false,
+        }
+    }
+    let first = edge;
+    faces.push(face);
+    edges.push(edge);
+    while edges.len() < ne {
+        let f_edges = level.face_edges_of(face as usize);
+        let prev = if corner == 0 {
+            f_edges.len() - 1
+        } else {
+            corner - 1
+        };
+        let next_edge = f_edges[prev];
+        if next_edge == edge || next_edge == first {
+            return false;
+        }
+        edges.push(next_edge);
+        if faces.len() < nf {
+            let e_faces = level.edge_faces_of(next_edge as usize);
+            if e_faces.is_empty() || (e_faces.len() == 1 && e_faces[0] == face) {
+                return false;
+            }
+            face = if e_faces[0] == face {
+                e_faces[1]
+            } else {
+                e_faces[0]
+            };
+            corner = position(level.face_edges_of(face as usize), next_edge);
+            faces.push(face);
+        }
+        edge = next_edge;
+    }
+    true
+}
+
+/// Local indices: where a vertex sits in each face, which end of each edge it
+/// is, and where an edge sits in each face. Repeated members of a face (only
+/// possible when non-manifold) are assigned in order of occurrence.
+fn populate_local_indices(level: &mut Level) {
+    let mut vfl = vec![0u16; level.vertex_faces.members.len()];
+    for v in 0..level.vertex_count {
+        let range = level.vertex_faces.range(v);
+        let mut last = NONE;
+        for i in range.clone() {
+            let f = level.vertex_faces.members[i];
+            let verts = level.face_verts(f as usize);
+            let start = if f == last {
+                vfl[i - 1] as usize + 1
+            } else {
+                0
+            };
+            let k = verts[start..]
+                .iter()
+                .position(|&x| x == v as u32)
+                .map_or(verts.len(), |p| p + start);
+            vfl[i] = k as u16;
+            last = f;
+        }
+    }
+    let mut vel = vec![0u16; level.vertex_edges.members.len()];
+    for v in 0..level.vertex_count {
+        let range = level.vertex_edges.range(v);
+        for i in range.clone() {
+            let e = level.vertex_edges.members[i];
+            let [a, b] = level.edge_vertices[e as usize];
+            vel[i] = if a != b {
+                (b == v as u32) as u16
+            } else {
+                (i > range.start && level.vertex_edges.members[i - 1] == e) as u16
+            };
+        }
+    }
+    let mut efl = vec![0u16; level.edge_faces.members.len()];
+    for e in 0..level.edge_count() {
+        let range = level.edge_faces.range(e);
+        let mut last = NONE;
+        for i in range {
+            let f = level.edge_faces.members[i];
+            let f_edges = level.face_edges_of(f as usize);
+            let start = if f == last {
+                efl[i - 1] as usize + 1
+            } else {
+                0
+            };
+            let k = f_edges[start..]
+                .iter()
+                .position(|&x| x == e as u32)
+                .map_or(f_edges.len(), |p| p + start);
+            efl[i] = k as u16;
+            last = f;
+        }
+    }
+    level.vertex_face_local = vfl;
+    level.vertex_edge_local = vel;
+    level.edge_face_local = efl;
+}
+
+/// User sharpness and holes, then OpenSubdiv's boundary and non-manifold
+/// sharpening, hole tagging for `BoundaryInterpolation::None`, and vertex rules.
+fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
+    for c in &mesh.creases {
+        if let Some(e) = level.find_edge(c.vertices[0], c.vertices[1]) {
+            level.edge_sharpness[e as usize] = c.sharpness;
+        }
+    }
+    for c in &mesh.corners {
+        level.vertex_sharpness[c.vertex as usize] = c.sharpness;
+    }
+    for &f in &mesh.holes {
+        level.face_holes[f as usize] = true;
+    }
+
+    // Boundary faces become holes with no boundary interpolation — except for
+    // bilinear, whose rules need no neighbourhood.
+    if options.boundary == BoundaryInterpolation::None && options.scheme != Scheme::Bilinear {
+        for v in 0..level.vertex_count {
+            let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
+            if nf == ne && !level.vertex_tags[v].non_manifold {
+                continue;
+            }
+            let exclude = level.vertex_edges_of(v).iter().any(|&e| {
+                level.edge_faces.count(e as usize) == 1
+                    && !crease::is_infinite(level.edge_sharpness[e as usize])
+            });
+            if exclude {
+                for i in level.vertex_faces.range(v) {
+                    let f = level.vertex_faces.members[i];
+                    level.face_holes[f as usize] = true;
+                }
+            }
+        }
+    }
+
+    for e in 0..level.edge_count() {
+        let tag = &mut level.edge_tags[e];
+        tag.boundary = level.edge_faces.count(e) < 2;
+        if tag.boundary || tag.non_manifold {
+            level.edge_sharpness[e] = crate::rules::SHARPNESS_INFINITE;
+        }
+        let s = level.edge_sharpness[e];
+        tag.inf_sharp = crease::is_infinite(s);
+        tag.semi_sharp = crease::is_sharp(s) && !tag.inf_sharp;
+    }
+
+    let sharpen_corners = options.boundary == BoundaryInterpolation::EdgeAndCorner;
+    for v in 0..level.vertex_count {
+        let (mut boundary, mut inf, mut semi, mut non_manifold) = (0, 0, 0, 0);
+        for &e in level.vertex_edges_of(v) {
+            let t = level.edge_tags[e as usize];
+            boundary += t.boundary as usize;
+            inf += t.inf_sharp as usize;
+            semi += t.semi_sharp as usize;
+            non_manifold += t.non_manifold as usize;
+        }
+        let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
+        let topological_corner = nf == 1 && ne == 2;
+        let tag = &mut level.vertex_tags[v];
+        if topological_corner && sharpen_corners {
+            level.vertex_sharpness[v] = crate::rules::SHARPNESS_INFINITE;
+        } else if tag.non_manifold {
+            // Interior non-manifold creases (two opposing non-manifold edges
+            // with extra "fin" faces and no boundary) stay unsharpened.
+            if !(non_manifold == 2 && boundary == 0 && nf > ne) {
+                level.vertex_sharpness[v] = crate::rules::SHARPNESS_INFINITE;
+            }
+        }
+        let s = level.vertex_sharpness[v];
+        tag.inf_sharp = crease::is_infinite(s);
+        tag.semi_sharp = crease::is_semi_sharp(s);
+        tag.semi_sharp_edges = semi > 0;
+        tag.inf_sharp_edges = inf > 0;
+        tag.rule = crease::vertex_rule_from_sharp_edge_count(s, inf + semi);
+        tag.boundary = boundary > 0;
+        tag.corner = topological_corner && tag.inf_sharp;
+    }
+}

@@ -1,0 +1,180 @@
+//! The native engine against OpenSubdiv, index by index, over the generated
+//! corpus and every option combination that applies.
+#![cfg(feature = "osd")]
+
+use subdiv::compare::compare;
+use subdiv::{
+    BoundaryInterpolation, CreasingMethod, Mesh, Options, Precision, Scheme, TriangleSubdivision,
+    UniformOptions, osd, refiner, shapes,
+};
+
+/// Positions must agree to this fraction of the bounding-box diagonal.
+const TOLERANCE: f64 = 1e-12;
+
+fn check(
+    name: &str,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+) -> Result<(), String> {
+    let expected = osd::refine_with(mesh, options, uniform, precision, false);
+    let actual = refiner::refine_with(mesh, options, uniform, precision, false);
+    let (expected, actual) = match (expected, actual) {
+        (Ok(e), Ok(a)) => (e, a),
+        (Err(e), Err(a)) => {
+            return if std::mem::discriminant(&e) == std::mem::discriminant(&a) {
+                Ok(())
+            } else {
+                Err(format!(
+                    "{name} {options:?}: both fail differently: osd {e} / native {a}"
+                ))
+            };
+        }
+        (e, a) => {
+            return Err(format!(
+                "{name} {options:?} {uniform:?}: osd {:?} vs native {:?}",
+                e.err(),
+                a.err()
+            ));
+        }
+    };
+    let tolerance = match precision {
+        Precision::F64 => TOLERANCE,
+        Precision::F32 => 1e-6,
+    };
+    for c in compare(&actual, &expected) {
+        if !c.agrees(tolerance) {
+            let l = c.level as usize;
+            let face = c.first_face_difference.map(|f| {
+                format!(
+                    "face {f}: native {:?} osd {:?}",
+                    actual.levels[l].faces().nth(f),
+                    expected.levels[l].faces().nth(f)
+                )
+            });
+            return Err(format!(
+                "{name} {options:?} {uniform:?} {precision}: level {l}: counts {:?}, {face:?}, tags equal {}, \
+                 position deviation {:e} (relative {:e}) at vertex {:?}: native {:?} osd {:?}",
+                c.counts,
+                c.tags_equal,
+                c.max_position_deviation,
+                c.relative_position_deviation,
+                c.worst_vertex,
+                c.worst_vertex.map(|v| actual.positions[l][v]),
+                c.worst_vertex.map(|v| expected.positions[l][v]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn options_for(mesh: &Mesh) -> Vec<Options> {
+    let has_triangles = mesh.faces().any(|f| f.len() == 3);
+    let all_triangles = mesh.faces().all(|f| f.len() == 3);
+    let mut out = Vec::new();
+    let schemes: &[Scheme] = if all_triangles {
+        &[Scheme::Catmark, Scheme::Bilinear, Scheme::Loop]
+    } else {
+        &[Scheme::Catmark, Scheme::Bilinear]
+    };
+    for &scheme in schemes {
+        for &boundary in BoundaryInterpolation::ALL {
+            for &creasing in CreasingMethod::ALL {
+                for &triangles in TriangleSubdivision::ALL {
+                    if triangles == TriangleSubdivision::Smooth
+                        && (!has_triangles || scheme != Scheme::Catmark)
+                    {
+                        continue;
+                    }
+                    out.push(Options {
+                        scheme,
+                        boundary,
+                        creasing,
+                        triangles,
+                        ..Options::default()
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+fn max_level(mesh: &Mesh) -> u32 {
+    if mesh.face_count() <= 12 { 4 } else { 3 }
+}
+
+fn run_corpus(filter: impl Fn(&str) -> bool) {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (name, mut mesh) in shapes::corpus() {
+        if !filter(&name) {
+            continue;
+        }
+        // Face-varying data is checked separately.
+        mesh.fvar_channels.clear();
+        for options in options_for(&mesh) {
+            let level = max_level(&mesh);
+            for uniform in [
+                UniformOptions::new(level),
+                UniformOptions::new(2).faces_first(true),
+                UniformOptions::new(2).full_topology(true),
+            ] {
+                checked += 1;
+                if let Err(e) = check(&name, &mesh, &options, uniform, Precision::F64) {
+                    failures.push(e);
+                }
+            }
+        }
+        let options = Options::shape_file_defaults();
+        checked += 1;
+        if let Err(e) = check(
+            &name,
+            &mesh,
+            &options,
+            UniformOptions::new(2),
+            Precision::F32,
+        ) {
+            failures.push(e);
+        }
+    }
+    assert!(checked > 0);
+    eprintln!("checked {checked} cases");
+    if !failures.is_empty() {
+        let n = failures.len();
+        failures.truncate(8);
+        panic!(
+            "{n} of {checked} cases differ from OpenSubdiv; first ones:\n{}",
+            failures.join("\n")
+        );
+    }
+}
+
+#[test]
+fn closed_shapes() {
+    run_corpus(|n| {
+        n.starts_with("cube")
+            || n.starts_with("torus")
+            || n.starts_with("prism")
+            || n.starts_with("pole")
+            || n == "four-boxes"
+    });
+}
+
+#[test]
+fn open_and_triangle_shapes() {
+    run_corpus(|n| {
+        n.starts_with("grid")
+            || n.starts_with("tri-")
+            || n.starts_with("fan")
+            || n.starts_with("pyramid")
+            || n == "tetrahedron"
+            || n == "icosahedron"
+    });
+}
+
+#[test]
+fn non_manifold_shapes() {
+    run_corpus(|n| matches!(n, "fin" | "bowtie" | "inconsistent" | "crease-without-edge"));
+}
