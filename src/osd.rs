@@ -24,6 +24,7 @@ use crate::error::{Error, Result};
 use crate::level::{FVarLevel, LevelTopology};
 use crate::mesh::Mesh;
 use crate::options::{Options, UniformOptions};
+pub use crate::refinement::LimitData;
 use crate::refinement::{Limit, Precision, Refinement, check_level};
 use crate::stencil::{LimitStencilTable, StencilTable};
 use glam::DVec3;
@@ -252,17 +253,6 @@ pub struct LevelCounts {
     /// Whether the level has all topological relations; `false` for a last
     /// level refined without full topology, which has no edge-vertex table.
     pub full_topology: bool,
-}
-
-/// Limit data of one primvar at the vertices of the last level.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct LimitData<T> {
-    /// Limit values, `width` per vertex.
-    pub positions: Vec<T>,
-    /// First tangents, `width` per vertex.
-    pub du: Vec<T>,
-    /// Second tangents, `width` per vertex.
-    pub dv: Vec<T>,
 }
 
 /// An OpenSubdiv `Far::TopologyRefiner`, owned.

@@ -45,6 +45,18 @@ impl FromStr for Precision {
     }
 }
 
+/// Limit values and both tangents of one primvar (`width` components per
+/// vertex) at the vertices of one level.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LimitData<T> {
+    /// Limit values, `width` per vertex.
+    pub positions: Vec<T>,
+    /// First tangents, `width` per vertex.
+    pub du: Vec<T>,
+    /// Second tangents, `width` per vertex.
+    pub dv: Vec<T>,
+}
+
 /// Limit positions, tangents and face-varying values at the vertices of one level.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Limit {

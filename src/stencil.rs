@@ -37,8 +37,36 @@ impl StencilTable {
         (&self.indices[a..b], &self.weights[a..b])
     }
 
-    /// Applies the table to base data of `width` components per vertex.
-    pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
+    /// Applies the table to base data of `width` components per vertex, in
+    /// parallel over the stencils (rayon's global pool).
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let table = r.stencil_table()?;
+    /// let frame: Vec<f64> = cube.positions.iter().flat_map(|p| (*p * 2.0).to_array()).collect();
+    /// let refined = table.apply_par(3, &frame)?;
+    /// assert_eq!(refined, table.apply(3, &frame)?);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn apply_par(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
+        use rayon::prelude::*;
+        self.check_apply(width, base)?;
+        let mut out = vec![0.0; self.len() * width];
+        out.par_chunks_mut(width * 256)
+            .enumerate()
+            .for_each(|(block, chunk)| {
+                for (k, dst) in chunk.chunks_exact_mut(width).enumerate() {
+                    self.apply_row(block * 256 + k, width, base, dst);
+                }
+            });
+        Ok(out)
+    }
+
+    /// Checks that `base` fits the table; returns its vertex count.
+    fn check_apply(&self, width: usize, base: &[f64]) -> Result<usize> {
         if width == 0 || base.len() % width != 0 {
             return Err(Error::InvalidArgument(format!(
                 "base data of {} values is not a whole number of {width}-wide elements",
@@ -46,20 +74,33 @@ impl StencilTable {
             )));
         }
         let count = base.len() / width;
+        if let Some(&v) = self.indices.iter().max() {
+            if v as usize >= count {
+                return Err(Error::InvalidArgument(format!(
+                    "the stencils refer to base vertex {v}, but only {count} were given"
+                )));
+            }
+        }
+        Ok(count)
+    }
+
+    #[inline]
+    fn apply_row(&self, i: usize, width: usize, base: &[f64], dst: &mut [f64]) {
+        let (idx, w) = self.row(i);
+        for (&v, &w) in idx.iter().zip(w) {
+            let v = v as usize * width;
+            for (d, s) in dst.iter_mut().zip(&base[v..v + width]) {
+                *d += w * s;
+            }
+        }
+    }
+
+    /// Applies the table to base data of `width` components per vertex.
+    pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
+        self.check_apply(width, base)?;
         let mut out = vec![0.0; self.len() * width];
         for (i, dst) in out.chunks_exact_mut(width).enumerate() {
-            let (idx, w) = self.row(i);
-            for (&v, &w) in idx.iter().zip(w) {
-                let v = v as usize;
-                if v >= count {
-                    return Err(Error::InvalidArgument(format!(
-                        "stencil {i} refers to base vertex {v}, but only {count} were given"
-                    )));
-                }
-                for (d, s) in dst.iter_mut().zip(&base[v * width..(v + 1) * width]) {
-                    *d += w * s;
-                }
-            }
+            self.apply_row(i, width, base, dst);
         }
         Ok(out)
     }

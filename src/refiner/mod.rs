@@ -18,7 +18,7 @@ use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
 use crate::real::Real;
 use crate::refinement::{
-    Precision, Refinement as RefinementResult, check_level, check_level_counts,
+    Limit, Precision, Refinement as RefinementResult, check_level, check_level_counts,
 };
 use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::FVarLevel as FVarChannelLevel;
@@ -27,9 +27,21 @@ use crate::topology::{Level, Refinement, build_base_level, fvar, refine_level};
 mod fvar_interp;
 use glam::{DVec3, Vec3};
 
+mod limit;
+mod stencils;
+
+/// Where a mask term reads its value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Source {
+    /// A vertex of the parent level.
+    Parent(u32),
+    /// A vertex of the child level computed earlier (a face point).
+    Child(u32),
+}
+
 /// Kinds of primvar interpolation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
+pub(crate) enum Kind {
     Vertex,
     Varying,
 }
@@ -304,20 +316,40 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
+        let mut acc = vec![T::ZERO; width];
+        self.walk_masks::<T>(kind, level, |child, terms| {
+            acc.fill(T::ZERO);
+            for &(source, w) in terms {
+                let (data, i): (&[T], u32) = match source {
+                    Source::Parent(i) => (src, i),
+                    Source::Child(i) => (&*dst, i),
+                };
+                let row = &data[i as usize * width..(i as usize + 1) * width];
+                for (a, &s) in acc.iter_mut().zip(row) {
+                    *a += s * w;
+                }
+            }
+            let c = child as usize * width;
+            dst[c..c + width].copy_from_slice(&acc);
+        });
+    }
+
+    /// Calls `emit(child, terms)` for every child vertex of `level`, in the
+    /// order OpenSubdiv computes them (face points, edge points, vertex
+    /// points), with the weighted terms in OpenSubdiv's accumulation order.
+    /// A term names a parent vertex, or a child vertex emitted earlier (the
+    /// face points that Catmull-Clark edge and vertex points use).
+    pub(crate) fn walk_masks<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        mut emit: impl FnMut(u32, &[(Source, T)]),
+    ) {
         let parent = &self.levels[level - 1];
         let child = &self.levels[level];
         let r = &self.refinements[level - 1];
-        let mut acc = vec![T::ZERO; width];
         let mut mask = Mask::<T>::new();
-        let add = |acc: &mut [T], row: &[T], w: T| {
-            for (a, &s) in acc.iter_mut().zip(row) {
-                *a += s * w;
-            }
-        };
-        fn row<T>(data: &[T], i: u32, width: usize) -> &[T] {
-            let i = i as usize * width;
-            &data[i..i + width]
-        }
+        let mut terms: Vec<(Source, T)> = Vec::with_capacity(2 * parent.max_valence + 2);
         // Face points (none under Loop).
         let face_points = if r.has_face_points() {
             parent.face_count()
@@ -327,12 +359,14 @@ impl Refiner {
         for f in 0..face_points {
             let verts = parent.face_verts(f);
             self.rules.face_vertex_mask(verts.len(), &mut mask);
-            acc.fill(T::ZERO);
-            for (&v, &w) in verts.iter().zip(&mask.vertex) {
-                add(&mut acc, row(src, v, width), w);
-            }
-            let c = r.face_child(f) as usize * width;
-            dst[c..c + width].copy_from_slice(&acc);
+            terms.clear();
+            terms.extend(
+                verts
+                    .iter()
+                    .zip(&mask.vertex)
+                    .map(|(&v, &w)| (Source::Parent(v), w)),
+            );
+            emit(r.face_child(f), &terms);
         }
         // Edge points.
         let mut face_sizes = Vec::new();
@@ -340,10 +374,9 @@ impl Refiner {
         for e in 0..parent.edge_count() {
             let ev = parent.edge_vertices[e];
             let c = r.edge_child(e);
-            acc.fill(T::ZERO);
+            terms.clear();
             if kind == Kind::Varying {
-                add(&mut acc, row(src, ev[0], width), half);
-                add(&mut acc, row(src, ev[1], width), half);
+                terms.extend([(Source::Parent(ev[0]), half), (Source::Parent(ev[1]), half)]);
             } else {
                 let faces = parent.edge_faces_of(e);
                 face_sizes.clear();
@@ -361,11 +394,11 @@ impl Refiner {
                 let c_rule = child.vertex_tags[c as usize].rule;
                 self.rules
                     .edge_vertex_mask(&hood, p_rule, c_rule, &mut mask);
-                add(&mut acc, row(src, ev[0], width), mask.vertex[0]);
-                add(&mut acc, row(src, ev[1], width), mask.vertex[1]);
+                terms.push((Source::Parent(ev[0]), mask.vertex[0]));
+                terms.push((Source::Parent(ev[1]), mask.vertex[1]));
                 if mask.face_weights_for_centers {
                     for (&f, &w) in faces.iter().zip(&mask.face) {
-                        add(&mut acc, row(dst, r.face_child(f as usize), width), w);
+                        terms.push((Source::Child(r.face_child(f as usize)), w));
                     }
                 } else {
                     // Loop: the face's vertex opposite the edge.
@@ -373,21 +406,20 @@ impl Refiner {
                         let f_edges = parent.face_edges_of(f as usize);
                         let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
                         let opposite = parent.face_verts(f as usize)[(k + 2) % f_edges.len()];
-                        add(&mut acc, row(src, opposite, width), w);
+                        terms.push((Source::Parent(opposite), w));
                     }
                 }
             }
-            let c = c as usize * width;
-            dst[c..c + width].copy_from_slice(&acc);
+            emit(c, &terms);
         }
-        // Vertex points.
+        // Vertex points: face weights, then edge weights, then the vertex.
         let mut edge_sharpness = Vec::new();
         let mut child_edge_sharpness = Vec::new();
         for v in 0..parent.vertex_count {
             let c = r.vertex_child(v);
-            acc.fill(T::ZERO);
+            terms.clear();
             if kind == Kind::Varying {
-                add(&mut acc, row(src, v as u32, width), T::ONE);
+                terms.push((Source::Parent(v as u32), T::ONE));
             } else {
                 let edges = parent.vertex_edges_of(v);
                 let faces = parent.vertex_faces_of(v);
@@ -410,24 +442,15 @@ impl Refiner {
                 let c_rule = child.vertex_tags[c as usize].rule;
                 self.rules
                     .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
-                if !mask.face.is_empty() {
-                    for (&f, &w) in faces.iter().zip(&mask.face) {
-                        add(&mut acc, row(dst, r.face_child(f as usize), width), w);
-                    }
+                for (&f, &w) in faces.iter().zip(&mask.face) {
+                    terms.push((Source::Child(r.face_child(f as usize)), w));
                 }
-                if !mask.edge.is_empty() {
-                    for (&e, &w) in edges.iter().zip(&mask.edge) {
-                        add(
-                            &mut acc,
-                            row(src, parent.other_vertex(e as usize, v as u32), width),
-                            w,
-                        );
-                    }
+                for (&e, &w) in edges.iter().zip(&mask.edge) {
+                    terms.push((Source::Parent(parent.other_vertex(e as usize, v as u32)), w));
                 }
-                add(&mut acc, row(src, v as u32, width), mask.vertex[0]);
+                terms.push((Source::Parent(v as u32), mask.vertex[0]));
             }
-            let c = c as usize * width;
-            dst[c..c + width].copy_from_slice(&acc);
+            emit(c, &terms);
         }
     }
 }
@@ -473,6 +496,40 @@ pub fn refine_with(
         Precision::F64 => refine_fvar::<f64>(&refiner, mesh)?,
         Precision::F32 => refine_fvar::<f32>(&refiner, mesh)?,
     };
+    let limit = if limit {
+        let last: Vec<f64> = positions
+            .last()
+            .expect("level 0")
+            .iter()
+            .flat_map(|p| p.to_array())
+            .collect();
+        let data = match precision {
+            Precision::F64 => refiner.limit(3, &last)?,
+            Precision::F32 => {
+                let narrow: Vec<f32> = last.iter().map(|&x| x as f32).collect();
+                let d = refiner.limit(3, &narrow)?;
+                let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+                crate::refinement::LimitData {
+                    positions: widen(d.positions),
+                    du: widen(d.du),
+                    dv: widen(d.dv),
+                }
+            }
+        };
+        let points = |v: &[f64]| {
+            v.chunks_exact(3)
+                .map(|c| DVec3::new(c[0], c[1], c[2]))
+                .collect::<Vec<_>>()
+        };
+        Some(Limit {
+            positions: points(&data.positions),
+            du: points(&data.du),
+            dv: points(&data.dv),
+            fvar_values: Vec::new(),
+        })
+    } else {
+        None
+    };
     Ok(RefinementResult {
         options: *options,
         uniform,
@@ -481,7 +538,7 @@ pub fn refine_with(
         positions,
         fvar_widths,
         fvar_values,
-        limit: None,
+        limit,
     })
 }
 

@@ -1,0 +1,203 @@
+//! Native limit evaluation and stencil tables against OpenSubdiv's
+//! `PrimvarRefiner::Limit` and `StencilTableFactory`, over the corpus.
+#![cfg(feature = "osd")]
+
+use std::collections::BTreeMap;
+use subdiv::compare::bbox_diagonal;
+use subdiv::{
+    BoundaryInterpolation, Mesh, Options, Scheme, StencilTable, UniformOptions, osd, refiner,
+    shapes,
+};
+
+fn flat(mesh: &Mesh) -> Vec<f64> {
+    mesh.positions.iter().flat_map(|p| p.to_array()).collect()
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn rows_equal(a: &StencilTable, b: &StencilTable, tol: f64, skip: &[bool]) -> Result<(), String> {
+    if a.len() != b.len() {
+        return Err(format!("{} vs {} stencils", a.len(), b.len()));
+    }
+    for r in 0..a.len() {
+        if skip.get(r) == Some(&true) {
+            continue;
+        }
+        let map = |t: &StencilTable| {
+            let mut m = BTreeMap::new();
+            let (i, w) = t.row(r);
+            for (&i, &w) in i.iter().zip(w) {
+                *m.entry(i).or_insert(0.0) += w;
+            }
+            m.retain(|_, w: &mut f64| w.abs() > 1e-15);
+            m
+        };
+        let (ma, mb) = (map(a), map(b));
+        if ma.keys().ne(mb.keys())
+            || ma
+                .values()
+                .zip(mb.values())
+                .any(|(x, y)| (x - y).abs() > tol)
+        {
+            return Err(format!("stencil {r}: native {ma:?} vs osd {mb:?}"));
+        }
+    }
+    Ok(())
+}
+
+/// OpenSubdiv's `Level::getMaxValence()` for the last level of `n`: the base
+/// level's largest face, vertex-face or vertex-edge count, raised at each
+/// quad split to at least 4 and to 2 + the parent's largest edge-face count
+/// (at each triangle split: 6 and 2 + twice it).
+fn opensubdiv_max_valence(mesh: &Mesh, levels: usize) -> usize {
+    let r = refiner::Refiner::new(mesh, &Options::default()).unwrap();
+    let base = r.internal_level(0).unwrap();
+    let mut valence = base.max_valence;
+    let mut edge_faces = base.max_edge_faces;
+    for _ in 0..levels {
+        valence = valence.max(4).max(2 + edge_faces);
+        edge_faces = edge_faces.max(2);
+    }
+    valence
+}
+
+fn level_index(n: &refiner::Refiner) -> usize {
+    n.max_level() as usize
+}
+
+fn check(name: &str, mesh: &Mesh, options: &Options, level: u32) -> Result<(), String> {
+    let ctx = format!("{name} {options:?} level {level}");
+    let mut o = osd::Refiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
+    o.refine_uniform(UniformOptions::new(level).full_topology(true))
+        .map_err(|e| e.to_string())?;
+    let mut n = refiner::Refiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
+    n.refine_uniform(UniformOptions::new(level))
+        .map_err(|e| e.to_string())?;
+    let base = flat(mesh);
+    let last = o.interpolate_all(3, &base).unwrap().pop().unwrap();
+    let scale = bbox_diagonal(&mesh.positions).max(1e-300);
+    let tol = 1e-12 * scale;
+
+    let (lo, mut ln) = (o.limit(3, &last).unwrap(), n.limit(3, &last).unwrap());
+    // OpenSubdiv 3.5's PrimvarRefiner::Limit sizes each mask's face weights by
+    // the level's maximum valence; a non-manifold vertex with more faces than
+    // that (a fin's edge point: 3 faces per side) writes its tangent face
+    // weights over the next mask. The native engine computes the intended
+    // masks, so tangents are compared only where OpenSubdiv's buffers fit.
+    let level = n.internal_level(level).unwrap();
+    let max_valence = opensubdiv_max_valence(mesh, level_index(&n));
+    let overflows: Vec<bool> = (0..level.vertex_count)
+        .map(|v| level.vertex_faces_of(v).len() > max_valence)
+        .collect();
+    for (v, _) in overflows.iter().enumerate().filter(|(_, o)| **o) {
+        let r = 3 * v..3 * v + 3;
+        ln.du[r.clone()].copy_from_slice(&lo.du[r.clone()]);
+        ln.dv[r.clone()].copy_from_slice(&lo.dv[r]);
+    }
+    for (what, a, b) in [
+        ("position", &ln.positions, &lo.positions),
+        ("du", &ln.du, &lo.du),
+        ("dv", &ln.dv, &lo.dv),
+    ] {
+        let d = max_diff(a, b);
+        if d > tol * 10.0 {
+            return Err(format!("{ctx}: limit {what} differs by {d:e}"));
+        }
+    }
+    let only = n.limit_positions(3, &last).unwrap();
+    if max_diff(&only, &lo.positions) > tol {
+        return Err(format!("{ctx}: limit positions alone differ"));
+    }
+
+    let (so, sn) = (o.stencil_table().unwrap(), n.stencil_table().unwrap());
+    rows_equal(&sn, &so, 1e-12, &[]).map_err(|e| format!("{ctx}: stencils: {e}"))?;
+    let applied = sn.apply(3, &base).unwrap();
+    if max_diff(&applied, &last) > tol {
+        return Err(format!(
+            "{ctx}: applying the stencils differs from refining"
+        ));
+    }
+    for r in 0..sn.len() {
+        let s: f64 = sn.row(r).1.iter().sum();
+        if (s - 1.0).abs() > 1e-12 {
+            return Err(format!("{ctx}: stencil {r} sums to {s}"));
+        }
+    }
+    let (lso, lsn) = (
+        o.limit_stencil_table().unwrap(),
+        n.limit_stencil_table().unwrap(),
+    );
+    for (what, a, b, skip) in [
+        ("position", &lsn.positions, &lso.positions, &[][..]),
+        ("du", &lsn.du, &lso.du, &overflows[..]),
+        ("dv", &lsn.dv, &lso.dv, &overflows[..]),
+    ] {
+        rows_equal(a, b, 1e-11, skip).map_err(|e| format!("{ctx}: limit stencils {what}: {e}"))?;
+    }
+    let applied = lsn.positions.apply(3, &base).unwrap();
+    if max_diff(&applied, &lo.positions) > tol * 10.0 {
+        return Err(format!(
+            "{ctx}: applying the limit stencils differs from the limit"
+        ));
+    }
+    Ok(())
+}
+
+#[test]
+fn limit_and_stencils_match_opensubdiv() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (name, mut mesh) in shapes::corpus() {
+        mesh.fvar_channels.clear();
+        let all_triangles = mesh.faces().all(|f| f.len() == 3);
+        let schemes: &[Scheme] = if all_triangles {
+            &[Scheme::Catmark, Scheme::Loop, Scheme::Bilinear]
+        } else {
+            &[Scheme::Catmark, Scheme::Bilinear]
+        };
+        for &scheme in schemes {
+            for boundary in [
+                BoundaryInterpolation::EdgeOnly,
+                BoundaryInterpolation::EdgeAndCorner,
+                BoundaryInterpolation::None,
+            ] {
+                let options = Options::default()
+                    .with_scheme(scheme)
+                    .with_boundary(boundary);
+                for level in 0..=3 {
+                    checked += 1;
+                    if let Err(e) = check(&name, &mesh, &options, level) {
+                        failures.push(e);
+                    }
+                }
+            }
+        }
+    }
+    if !failures.is_empty() {
+        let n = failures.len();
+        failures.truncate(6);
+        panic!("{n} of {checked} cases differ:\n{}", failures.join("\n"));
+    }
+}
+
+#[test]
+fn limit_at_level_zero_and_validation() {
+    let cube = shapes::cube();
+    let r = refiner::Refiner::new(&cube, &Options::default()).unwrap();
+    let lim = r.limit(3, &flat(&cube)).unwrap();
+    // Valence-3 corner of a cube: the Catmull-Clark limit is inside the hull,
+    // on the diagonal by symmetry.
+    let p = &lim.positions[0..3];
+    assert!(
+        p[0] == p[1] && p[1] == p[2] && p[0] > -0.5 && p[0] < 0.0,
+        "{p:?}"
+    );
+    assert!(r.limit(3, &[0.0; 5]).is_err());
+    assert!(r.limit::<f64>(0, &[]).is_err());
+}
