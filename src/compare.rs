@@ -26,6 +26,11 @@ pub struct LevelComparison {
     pub fvar_topology_equal: bool,
     /// Largest difference between corresponding face-varying values.
     pub max_fvar_deviation: f64,
+    /// At the last level, when both sides evaluated the limit: the largest
+    /// difference of limit positions and tangents, relative to the
+    /// bounding-box diagonal (tangents are scaled alike), or of limit
+    /// face-varying values (absolute), whichever is larger.
+    pub limit_deviation: Option<f64>,
 }
 
 impl LevelComparison {
@@ -42,6 +47,7 @@ impl LevelComparison {
         self.topology_equal()
             && self.relative_position_deviation <= tolerance
             && self.max_fvar_deviation <= tolerance
+            && self.limit_deviation.is_none_or(|d| d <= tolerance)
     }
 }
 
@@ -59,7 +65,49 @@ pub fn bbox_diagonal(points: &[DVec3]) -> f64 {
 /// Compares every level the two refinements have in common.
 pub fn compare(a: &Refinement, b: &Refinement) -> Vec<LevelComparison> {
     let levels = a.levels.len().min(b.levels.len());
-    (0..levels).map(|l| compare_level(a, b, l)).collect()
+    let mut out: Vec<LevelComparison> = (0..levels).map(|l| compare_level(a, b, l)).collect();
+    if let (Some(la), Some(lb), Some(last)) = (&a.limit, &b.limit, out.last_mut()) {
+        let diag = bbox_diagonal(&lb.positions).max(f64::MIN_POSITIVE);
+        let mut worst = 0.0f64;
+        for (x, y) in [
+            (&la.positions, &lb.positions),
+            (&la.du, &lb.du),
+            (&la.dv, &lb.dv),
+        ] {
+            if x.len() != y.len() {
+                worst = f64::INFINITY;
+                continue;
+            }
+            for (p, q) in x.iter().zip(y.iter()) {
+                let d = (*p - *q).length();
+                worst = if d.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst.max(d)
+                };
+            }
+        }
+        let mut deviation = worst / diag;
+        if la.fvar_values.len() != lb.fvar_values.len() {
+            deviation = f64::INFINITY;
+        }
+        for (x, y) in la.fvar_values.iter().zip(&lb.fvar_values) {
+            if x.len() != y.len() {
+                deviation = f64::INFINITY;
+                continue;
+            }
+            for (p, q) in x.iter().zip(y) {
+                let d = (p - q).abs();
+                deviation = if d.is_nan() {
+                    f64::INFINITY
+                } else {
+                    deviation.max(d)
+                };
+            }
+        }
+        last.limit_deviation = Some(deviation);
+    }
+    out
 }
 
 fn compare_level(a: &Refinement, b: &Refinement, l: usize) -> LevelComparison {
@@ -125,5 +173,6 @@ fn compare_level(a: &Refinement, b: &Refinement, l: usize) -> LevelComparison {
         worst_vertex: worst,
         fvar_topology_equal,
         max_fvar_deviation: max_fvar,
+        limit_deviation: None,
     }
 }

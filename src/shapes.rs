@@ -380,6 +380,33 @@ pub fn triangulate(mesh: &Mesh) -> Mesh {
     out
 }
 
+/// As [`triangulate`], keeping the face-varying channels (split the same way).
+pub fn triangulate_with_uvs(mesh: &Mesh) -> Mesh {
+    let mut out = triangulate(mesh);
+    for ch in &mesh.fvar_channels {
+        let mut indices = Vec::with_capacity(out.face_vertices.len());
+        for (i, (f, range)) in mesh.faces().zip(mesh.face_offsets.windows(2)).enumerate() {
+            let vals = &ch.indices[range[0] as usize..range[1] as usize];
+            if f.len() == 4 {
+                if i % 2 == 0 {
+                    indices.extend([vals[0], vals[1], vals[2], vals[0], vals[2], vals[3]]);
+                } else {
+                    indices.extend([vals[0], vals[1], vals[3], vals[1], vals[2], vals[3]]);
+                }
+            } else {
+                indices.extend_from_slice(vals);
+            }
+        }
+        out.fvar_channels.push(crate::mesh::FVarChannel {
+            width: ch.width,
+            values: ch.values.clone(),
+            indices,
+        });
+    }
+    out.holes.clear();
+    out
+}
+
 /// The conformance corpus: every shape with a name, covering the cases
 /// OpenSubdiv distinguishes (n-gons, poles, boundaries, creases, corners,
 /// holes, non-manifold features, UV seams). Triangle-only shapes are marked

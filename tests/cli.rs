@@ -60,6 +60,26 @@ fn native_engine_writes_the_same_file_as_opensubdiv() {
     );
     assert_eq!(a.lines().filter(|l| l.starts_with("f ")).count(), 256);
     assert_eq!(a, b, "native and OpenSubdiv output differ");
+    // The same for limit positions.
+    for (engine, out) in [("native", &native), ("osd", &osd)] {
+        let o = subdiv(&[
+            "refine",
+            input.to_str().unwrap(),
+            "--level",
+            "2",
+            "--limit",
+            "--engine",
+            engine,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{engine} --limit: {}", stderr(&o));
+    }
+    let (a, b) = (
+        std::fs::read_to_string(&native).unwrap(),
+        std::fs::read_to_string(&osd).unwrap(),
+    );
+    assert_eq!(a, b, "native and OpenSubdiv limit output differ");
 }
 
 #[test]

@@ -83,7 +83,8 @@ fn catmark_limit_is_the_bicubic_bspline() {
     let (mesh, grid) = periodic_grid(n);
     let mut r = Refiner::new(&mesh, &Options::default()).unwrap();
     for level in 0..=3u32 {
-        r.refine_uniform(UniformOptions::new(level)).unwrap();
+        r.refine_uniform(UniformOptions::new(level).full_topology(true))
+            .unwrap();
         let positions = r.refine_positions(&mesh.positions).unwrap();
         let last: Vec<f64> = positions[level as usize]
             .iter()
@@ -119,7 +120,8 @@ fn catmark_limit_is_the_bicubic_bspline() {
         if level >= 1 {
             let face_point_limit = {
                 let mut r1 = Refiner::new(&mesh, &Options::default()).unwrap();
-                r1.refine_uniform(UniformOptions::new(1)).unwrap();
+                r1.refine_uniform(UniformOptions::new(1).full_topology(true))
+                    .unwrap();
                 let p1 = r1.refine_positions(&mesh.positions).unwrap();
                 let flat: Vec<f64> = p1[1].iter().flat_map(|p| p.to_array()).collect();
                 r1.limit(3, &flat).unwrap()
@@ -219,11 +221,13 @@ fn limit_is_invariant_under_refinement() {
     ] {
         let mut r = Refiner::new(&mesh, &options).unwrap();
         let flat: Vec<f64> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
-        r.refine_uniform(UniformOptions::new(1)).unwrap();
+        r.refine_uniform(UniformOptions::new(1).full_topology(true))
+            .unwrap();
         let level1 = r.interpolate_all(3, &flat).unwrap().pop().unwrap();
         let base_limit = r.limit(3, &level1).unwrap().positions;
         for level in 2..=4 {
-            r.refine_uniform(UniformOptions::new(level)).unwrap();
+            r.refine_uniform(UniformOptions::new(level).full_topology(true))
+                .unwrap();
             let last = r.interpolate_all(3, &flat).unwrap().pop().unwrap();
             let limit = r.limit(3, &last).unwrap().positions;
             // In the default order the first vertices are the base vertices' descendants.

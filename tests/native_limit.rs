@@ -77,7 +77,7 @@ fn check(name: &str, mesh: &Mesh, options: &Options, level: u32) -> Result<(), S
     o.refine_uniform(UniformOptions::new(level).full_topology(true))
         .map_err(|e| e.to_string())?;
     let mut n = refiner::Refiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
-    n.refine_uniform(UniformOptions::new(level))
+    n.refine_uniform(UniformOptions::new(level).full_topology(true))
         .map_err(|e| e.to_string())?;
     let base = flat(mesh);
     let last = o.interpolate_all(3, &base).unwrap().pop().unwrap();
@@ -200,4 +200,54 @@ fn limit_at_level_zero_and_validation() {
     );
     assert!(r.limit(3, &[0.0; 5]).is_err());
     assert!(r.limit::<f64>(0, &[]).is_err());
+}
+
+/// Limit face-varying values (`PrimvarRefiner::LimitFaceVarying`) of every
+/// corpus shape with UVs, in every face-varying mode.
+#[test]
+fn limit_face_varying_matches_opensubdiv() {
+    use subdiv::{FVarLinearInterpolation, Precision};
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (name, mesh) in shapes::corpus() {
+        if mesh.fvar_channels.is_empty() {
+            continue;
+        }
+        for (mesh, scheme) in [
+            (mesh.clone(), Scheme::Catmark),
+            (shapes::triangulate_with_uvs(&mesh), Scheme::Loop),
+        ] {
+            for &fvar in FVarLinearInterpolation::ALL {
+                for boundary in [
+                    BoundaryInterpolation::EdgeOnly,
+                    BoundaryInterpolation::EdgeAndCorner,
+                ] {
+                    let options = Options::default()
+                        .with_scheme(scheme)
+                        .with_fvar(fvar)
+                        .with_boundary(boundary);
+                    for level in 1..=3 {
+                        checked += 1;
+                        let uniform = UniformOptions::new(level);
+                        let a =
+                            refiner::refine_with(&mesh, &options, uniform, Precision::F64, true)
+                                .unwrap();
+                        let b = osd::refine_with(&mesh, &options, uniform, Precision::F64, true)
+                            .unwrap();
+                        let (la, lb) = (a.limit.unwrap(), b.limit.unwrap());
+                        if la.fvar_values != lb.fvar_values {
+                            failures.push(format!("{name} {options:?} level {level}"));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 100);
+    assert!(
+        failures.is_empty(),
+        "{} of {checked} differ: {:?}",
+        failures.len(),
+        &failures[..failures.len().min(5)]
+    );
 }

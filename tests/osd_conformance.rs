@@ -1,4 +1,4 @@
-//! Conformance of `subdiv refine --engine osd` with an independent OpenSubdiv
+//! Conformance of `subdiv refine` (both engines) with an independent OpenSubdiv
 //! driver (`tests/osd_driver/osd_driver.cpp`), index by index.
 //!
 //! The driver is a from-scratch C++ program over OpenSubdiv's Far layer: its
@@ -126,7 +126,7 @@ fn counts(text: &str) -> Counts {
 
 /// Compares the driver's and the crate's outputs; panics with the first
 /// differing line when they are not byte-identical.
-fn compare(case: &str, level: u32, reference: &[u8], ours: &[u8]) {
+fn compare(case: &str, engine: &str, level: u32, reference: &[u8], ours: &[u8]) {
     let ref_text = String::from_utf8_lossy(reference);
     let our_text = String::from_utf8_lossy(ours);
     let ref_counts = counts(&ref_text);
@@ -142,7 +142,7 @@ fn compare(case: &str, level: u32, reference: &[u8], ours: &[u8]) {
         return;
     }
     let mut msg = format!(
-        "{case} level {level}: `subdiv refine --engine osd` differs from the reference driver\n"
+        "{case} level {level}: `subdiv refine --engine {engine}` differs from the reference driver\n"
     );
     let _ = writeln!(msg, "  driver counts: {ref_counts:?}");
     let _ = writeln!(msg, "  crate  counts: {our_counts:?}");
@@ -179,9 +179,7 @@ fn check(case: &str, obj: &str, flags: &[&str], levels: RangeInclusive<u32>) {
     for level in levels {
         let lv = level.to_string();
         let ref_out = dir.join(format!("{case}.L{level}.driver.obj"));
-        let our_out = dir.join(format!("{case}.L{level}.crate.obj"));
         let _ = fs::remove_file(&ref_out);
-        let _ = fs::remove_file(&our_out);
 
         expect_success(
             &format!("{case} level {level}: reference driver"),
@@ -191,20 +189,26 @@ fn check(case: &str, obj: &str, flags: &[&str], levels: RangeInclusive<u32>) {
                 .args(["--level", &lv])
                 .args(flags),
         );
-        expect_success(
-            &format!("{case} level {level}: subdiv refine --engine osd"),
-            Command::new(subdiv_bin())
-                .arg("refine")
-                .arg(&input)
-                .arg("-o")
-                .arg(&our_out)
-                .args(["--engine", "osd", "--level", &lv])
-                .args(flags),
-        );
         let reference = fs::read(&ref_out).expect("read the driver's output");
-        let ours = fs::read(&our_out)
-            .unwrap_or_else(|e| panic!("{case} level {level}: subdiv wrote no output file: {e}"));
-        compare(case, level, &reference, &ours);
+        // Both engines must write exactly the driver's file.
+        for engine in ["osd", "native"] {
+            let our_out = dir.join(format!("{case}.L{level}.{engine}.obj"));
+            let _ = fs::remove_file(&our_out);
+            expect_success(
+                &format!("{case} level {level}: subdiv refine --engine {engine}"),
+                Command::new(subdiv_bin())
+                    .arg("refine")
+                    .arg(&input)
+                    .arg("-o")
+                    .arg(&our_out)
+                    .args(["--engine", engine, "--level", &lv])
+                    .args(flags),
+            );
+            let ours = fs::read(&our_out).unwrap_or_else(|e| {
+                panic!("{case} level {level}: subdiv --engine {engine} wrote no output file: {e}")
+            });
+            compare(case, engine, level, &reference, &ours);
+        }
     }
 }
 
@@ -876,8 +880,108 @@ fn loop_on_quads_fails() {
 fn harness_reports_first_difference() {
     compare(
         "harness_self_test",
+        "osd",
         1,
         b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
         b"v 0 0 0\nv 1 0 1.0000000000000001e-17\nv 0 1 0\nf 1 2 3\n",
     );
+}
+
+/// A small deterministic generator (no dependency): random meshes the engines
+/// have never seen, compared with the independent driver.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        self.0 >> 33
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+    fn unit(&mut self) -> f64 {
+        self.below(1_000_000) as f64 / 1_000_000.0
+    }
+}
+
+/// A jittered grid with random cells dropped, split into triangles or left as
+/// quads, plus random creases and corners; every 3rd mesh is all triangles.
+fn random_mesh(seed: u64) -> (String, bool) {
+    let mut rng = Lcg(seed);
+    let (nx, ny) = (2 + rng.below(4) as usize, 2 + rng.below(3) as usize);
+    let all_triangles = seed % 3 == 0;
+    let mut positions = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            positions.push([
+                i as f64 + 0.3 * rng.unit(),
+                j as f64 + 0.3 * rng.unit(),
+                rng.unit() - 0.5,
+            ]);
+        }
+    }
+    let at = |i: usize, j: usize| j * (nx + 1) + i;
+    let mut faces = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+            match if all_triangles { 1 } else { rng.below(6) } {
+                0 if faces.len() > 1 => {}
+                1 => {
+                    faces.push(vec![q[0], q[1], q[2]]);
+                    faces.push(vec![q[0], q[2], q[3]]);
+                }
+                _ => faces.push(q.to_vec()),
+            }
+        }
+    }
+    let mut tags = Vec::new();
+    for _ in 0..rng.below(4) {
+        let f = &faces[rng.below(faces.len() as u64) as usize];
+        let k = rng.below(f.len() as u64) as usize;
+        let s = [0.5, 1.0, 2.25, 10.0][rng.below(4) as usize];
+        tags.push(format!(
+            "t crease 2/1/0 {} {} {s}",
+            f[k],
+            f[(k + 1) % f.len()]
+        ));
+    }
+    if rng.below(2) == 0 {
+        tags.push(format!(
+            "t corner 1/1/0 {} 3.5",
+            rng.below(positions.len() as u64)
+        ));
+    }
+    let tags: Vec<&str> = tags.iter().map(String::as_str).collect();
+    (obj(&positions, &faces, None, &tags), all_triangles)
+}
+
+#[test]
+fn random_meshes_match_the_driver() {
+    for seed in 1..=24u64 {
+        let (text, triangles) = random_mesh(seed);
+        let scheme = if triangles {
+            "loop"
+        } else {
+            ["catmark", "bilinear"][(seed % 2) as usize]
+        };
+        let boundary = ["edge-only", "edge-and-corner", "none"][(seed % 3) as usize];
+        let creasing = ["uniform", "chaikin"][((seed / 2) % 2) as usize];
+        check(
+            &format!("random_{seed}"),
+            &text,
+            &[
+                "--scheme",
+                scheme,
+                "--boundary",
+                boundary,
+                "--creasing",
+                creasing,
+            ],
+            1..=3,
+        );
+    }
 }

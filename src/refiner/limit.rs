@@ -109,6 +109,13 @@ fn apply<T: Real>(
 impl Refiner {
     fn check_limit_source<T>(&self, width: usize, src: &[T]) -> Result<&Level> {
         let level = self.levels.last().expect("base level");
+        if !level.has_full_topology() {
+            return Err(Error::InvalidArgument(
+                "limit evaluation needs full topology in the last level \
+                 (refine with full_topology_in_last_level, as OpenSubdiv requires)"
+                    .into(),
+            ));
+        }
         if width == 0 {
             return Err(Error::InvalidArgument(
                 "primvar width must be at least 1".into(),
@@ -128,7 +135,8 @@ impl Refiner {
 
     /// Limit values and both tangents at the vertices of the last level, from
     /// data at that level (`PrimvarRefiner::Limit`). Works at any level,
-    /// including 0; the native engine always keeps the topology it needs.
+    /// including 0; like OpenSubdiv, it needs the last level refined with
+    /// `full_topology_in_last_level`.
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
         let level = self.check_limit_source(width, src)?;
         let n = level.vertex_count * width;

@@ -75,11 +75,6 @@ impl Refiner {
                 )));
             }
         }
-        if !mesh.fvar_channels.is_empty() {
-            return Err(Error::Unavailable(
-                "native face-varying interpolation is still being written".into(),
-            ));
-        }
         if mesh.vertex_count() == 0 || mesh.face_count() == 0 {
             return Err(Error::InvalidArgument(
                 "the mesh has no vertices or no faces".into(),
@@ -133,12 +128,19 @@ impl Refiner {
         for channel in &mut self.fvar {
             channel.truncate(1);
         }
-        for _ in 0..uniform.level {
+        for level in 1..=uniform.level {
             let parent = self.levels.last().expect("base level");
+            // Like OpenSubdiv, the last level gets only what interpolation
+            // needs unless full topology is asked for (or face-varying
+            // channels need the rest).
+            let minimal = level == uniform.level
+                && !uniform.full_topology_in_last_level
+                && self.fvar.is_empty();
             let (r, child) = refine_level(
                 parent,
                 &self.options,
                 uniform.order_vertices_from_faces_first,
+                minimal,
             );
             for channel in &mut self.fvar {
                 let parent_fvar = channel.last().expect("base channel");
@@ -469,13 +471,14 @@ pub fn refine_with(
     precision: Precision,
     limit: bool,
 ) -> Result<RefinementResult> {
-    if limit {
-        return Err(Error::Unavailable(
-            "native limit evaluation is not implemented yet".into(),
-        ));
-    }
     check_level(mesh, options, uniform.level)?;
     let mut refiner = Refiner::new(mesh, options)?;
+    // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
+    let uniform = if limit {
+        uniform.full_topology(true)
+    } else {
+        uniform
+    };
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)
         .map(|l| refiner.level(l))
@@ -525,7 +528,12 @@ pub fn refine_with(
             positions: points(&data.positions),
             du: points(&data.du),
             dv: points(&data.dv),
-            fvar_values: Vec::new(),
+            fvar_values: limit_fvar(
+                &refiner,
+                mesh,
+                precision,
+                fvar_values.last().expect("level 0"),
+            )?,
         })
     } else {
         None
@@ -540,6 +548,30 @@ pub fn refine_with(
         fvar_values,
         limit,
     })
+}
+
+/// Limit values of every face-varying channel, from the last level's values.
+fn limit_fvar(
+    refiner: &Refiner,
+    mesh: &Mesh,
+    precision: Precision,
+    last: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>> {
+    mesh.fvar_channels
+        .iter()
+        .enumerate()
+        .map(|(c, ch)| match precision {
+            Precision::F64 => refiner.limit_face_varying(c, ch.width, &last[c]),
+            Precision::F32 => {
+                let narrow: Vec<f32> = last[c].iter().map(|&x| x as f32).collect();
+                Ok(refiner
+                    .limit_face_varying(c, ch.width, &narrow)?
+                    .into_iter()
+                    .map(f64::from)
+                    .collect())
+            }
+        })
+        .collect()
 }
 
 /// Face-varying values of every level and channel (`[level][channel]`), in `T`.

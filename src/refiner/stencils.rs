@@ -125,6 +125,11 @@ impl Refiner {
     /// the last level, from base vertices.
     pub fn limit_stencil_table(&self) -> Result<LimitStencilTable> {
         let last = self.levels.len() - 1;
+        if !self.levels[last].has_full_topology() {
+            return Err(crate::Error::InvalidArgument(
+                "limit stencils need full topology in the last level (refine with full_topology_in_last_level)".into(),
+            ));
+        }
         let rows = self.rows_of_level(last).into_table();
         let level = &self.levels[last];
         let base = self.levels[0].vertex_count;

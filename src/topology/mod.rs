@@ -191,7 +191,16 @@ impl Level {
     /// Number of edges.
     #[inline]
     pub fn edge_count(&self) -> usize {
-        self.edge_vertices.len()
+        self.edge_sharpness.len()
+    }
+
+    /// Whether all relations are present. A last level refined with minimal
+    /// topology (OpenSubdiv's default) has only its face-vertices, sharpness
+    /// and tags.
+    #[inline]
+    pub fn has_full_topology(&self) -> bool {
+        self.edge_vertices.len() == self.edge_sharpness.len()
+            && self.vertex_faces.len() == self.vertex_count
     }
 
     /// The vertices of face `f`.

@@ -99,9 +99,18 @@ fn next(j: usize, n: usize) -> usize {
 /// Splits `parent` once — Catmull-Clark and bilinear: every face into quads;
 /// Loop: every triangle into four — and returns the child level with all
 /// relations, sharpness and tags.
-pub fn refine_level(parent: &Level, options: &Options, faces_first: bool) -> (Refinement, Level) {
+///
+/// With `minimal`, only the face-vertices of the child are built (with its
+/// sharpness, tags and holes): what a last level needs for interpolation,
+/// as OpenSubdiv builds it unless asked for full topology.
+pub fn refine_level(
+    parent: &Level,
+    options: &Options,
+    faces_first: bool,
+    minimal: bool,
+) -> (Refinement, Level) {
     if options.scheme == Scheme::Loop {
-        return refine_triangles(parent, options, faces_first);
+        return refine_triangles(parent, options, faces_first, minimal);
     }
     let r = Refinement::new(parent, faces_first, true);
     let (nv, ne, nf) = (
@@ -162,177 +171,205 @@ pub fn refine_level(parent: &Level, options: &Options, faces_first: bool) -> (Re
         }
     }
 
-    // Edge-vertices: face edges join the face point to an edge point; edge
-    // halves join the edge point to an end vertex's child.
-    let mut edge_vertices = vec![[0u32; 2]; child_edges];
-    for f in 0..nf {
-        let base = parent.face_vertices.offsets[f] as usize;
-        for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
-            edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
+    // Everything but the face-vertices is skipped for a minimal last level.
+    let (
+        edge_vertices,
+        ef_offsets,
+        ef_members,
+        ef_local,
+        vf_offsets,
+        vf_members,
+        vf_local,
+        ve_offsets,
+        ve_members,
+        ve_local,
+    ) = if minimal {
+        Default::default()
+    } else {
+        // Edge-vertices: face edges join the face point to an edge point; edge
+        // halves join the edge point to an end vertex's child.
+        let mut edge_vertices = vec![[0u32; 2]; child_edges];
+        for f in 0..nf {
+            let base = parent.face_vertices.offsets[f] as usize;
+            for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
+                edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
+            }
         }
-    }
-    for e in 0..ne {
-        let ev = parent.edge_vertices[e];
-        for j in 0..2 {
-            edge_vertices[r.edge_child_edge(e, j) as usize] =
-                [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+        for e in 0..ne {
+            let ev = parent.edge_vertices[e];
+            for j in 0..2 {
+                edge_vertices[r.edge_child_edge(e, j) as usize] =
+                    [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+            }
         }
-    }
 
-    // Edge-faces.
-    let mut ef_offsets = Vec::with_capacity(child_edges + 1);
-    let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
-    let mut ef_local = Vec::with_capacity(ef_members.capacity());
-    ef_offsets.push(0u32);
-    for f in 0..nf {
-        let base = parent.face_vertices.offsets[f] as usize;
-        let n = parent.face_vertices.count(f);
-        for j in 0..n {
-            let jn = next(j, n);
-            ef_members.push((base + j) as u32);
-            ef_local.push(if n == 4 { jn } else { 1 } as u16);
-            ef_members.push((base + jn) as u32);
-            ef_local.push(if n == 4 { (jn + 2) & 3 } else { 2 } as u16);
-            ef_offsets.push(ef_members.len() as u32);
+        // Edge-faces.
+        let mut ef_offsets = Vec::with_capacity(child_edges + 1);
+        let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
+        let mut ef_local = Vec::with_capacity(ef_members.capacity());
+        ef_offsets.push(0u32);
+        for f in 0..nf {
+            let base = parent.face_vertices.offsets[f] as usize;
+            let n = parent.face_vertices.count(f);
+            for j in 0..n {
+                let jn = next(j, n);
+                ef_members.push((base + j) as u32);
+                ef_local.push(if n == 4 { jn } else { 1 } as u16);
+                ef_members.push((base + jn) as u32);
+                ef_local.push(if n == 4 { (jn + 2) & 3 } else { 2 } as u16);
+                ef_offsets.push(ef_members.len() as u32);
+            }
         }
-    }
-    for e in 0..ne {
-        let ev = parent.edge_vertices[e];
-        for j in 0..2 {
-            for (&f, &k) in parent
+        for e in 0..ne {
+            let ev = parent.edge_vertices[e];
+            for j in 0..2 {
+                for (&f, &k) in parent
+                    .edge_faces_of(e)
+                    .iter()
+                    .zip(parent.edge_face_locals(e))
+                {
+                    let (f, k) = (f as usize, k as usize);
+                    let n = parent.face_vertices.count(f);
+                    let of_edge = if ev[0] == ev[1] {
+                        j
+                    } else {
+                        (parent.face_verts(f)[k] != ev[j]) as usize
+                    };
+                    let mut in_face = k + of_edge;
+                    if in_face == n {
+                        in_face = 0;
+                    }
+                    ef_members.push(parent.face_vertices.offsets[f] + in_face as u32);
+                    ef_local.push(if n == 4 {
+                        k
+                    } else if of_edge == 1 {
+                        3
+                    } else {
+                        0
+                    } as u16);
+                }
+                ef_offsets.push(ef_members.len() as u32);
+            }
+        }
+
+        // Vertex-faces and vertex-edges, per child vertex, grouped by origin.
+        let mut vf_count = vec![0u32; child_vertices];
+        let mut ve_count = vec![0u32; child_vertices];
+        for v in 0..nv {
+            let c = r.vertex_child(v) as usize;
+            vf_count[c] = parent.vertex_faces.count(v) as u32;
+            ve_count[c] = parent.vertex_edges.count(v) as u32;
+        }
+        for f in 0..nf {
+            let c = r.face_child(f) as usize;
+            vf_count[c] = parent.face_vertices.count(f) as u32;
+            ve_count[c] = parent.face_vertices.count(f) as u32;
+        }
+        for e in 0..ne {
+            let c = r.edge_child(e) as usize;
+            vf_count[c] = 2 * parent.edge_faces.count(e) as u32;
+            ve_count[c] = 2 + parent.edge_faces.count(e) as u32;
+        }
+        let vf_offsets = prefix_sums(&vf_count);
+        let ve_offsets = prefix_sums(&ve_count);
+        let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
+        let mut vf_local = vec![0u16; vf_members.len()];
+        let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
+        let mut ve_local = vec![0u16; ve_members.len()];
+
+        for f in 0..nf {
+            let c = r.face_child(f) as usize;
+            let base = parent.face_vertices.offsets[f] as usize;
+            let n = parent.face_vertices.count(f);
+            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+            for j in 0..n {
+                vf_members[o + j] = (base + j) as u32;
+                vf_local[o + j] = if n == 4 { (j + 2) & 3 } else { 2 } as u16;
+                ve_members[oe + j] = (base + prev(j, n)) as u32;
+                ve_local[oe + j] = 0;
+            }
+        }
+        let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
+        for e in 0..ne {
+            let c = r.edge_child(e) as usize;
+            let ev = parent.edge_vertices[e];
+            let (mut o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+            // The two halves first, then the edges inside each face; after the
+            // first face the edges are rotated into counter-clockwise order.
+            edge_list.clear();
+            edge_list.push((r.edge_child_edge(e, 0), 0u16));
+            edge_list.push((r.edge_child_edge(e, 1), 0u16));
+            for (i, (&f, &k)) in parent
                 .edge_faces_of(e)
                 .iter()
                 .zip(parent.edge_face_locals(e))
+                .enumerate()
             {
                 let (f, k) = (f as usize, k as usize);
                 let n = parent.face_vertices.count(f);
-                let of_edge = if ev[0] == ev[1] {
-                    j
-                } else {
-                    (parent.face_verts(f)[k] != ev[j]) as usize
-                };
-                let mut in_face = k + of_edge;
-                if in_face == n {
-                    in_face = 0;
+                let base = parent.face_vertices.offsets[f];
+                let (c0, c1) = (k, next(k, n));
+                vf_members[o] = base + c1 as u32;
+                vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
+                vf_members[o + 1] = base + c0 as u32;
+                vf_local[o + 1] = if n == 4 { c1 } else { 1 } as u16;
+                o += 2;
+                edge_list.push((base + k as u32, 1));
+                if i == 0 {
+                    if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
+                        edge_list.swap(0, 1);
+                    }
+                    edge_list.swap(1, 2);
                 }
-                ef_members.push(parent.face_vertices.offsets[f] + in_face as u32);
-                ef_local.push(if n == 4 {
-                    k
-                } else if of_edge == 1 {
-                    3
-                } else {
-                    0
-                } as u16);
             }
-            ef_offsets.push(ef_members.len() as u32);
-        }
-    }
-
-    // Vertex-faces and vertex-edges, per child vertex, grouped by origin.
-    let mut vf_count = vec![0u32; child_vertices];
-    let mut ve_count = vec![0u32; child_vertices];
-    for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
-        vf_count[c] = parent.vertex_faces.count(v) as u32;
-        ve_count[c] = parent.vertex_edges.count(v) as u32;
-    }
-    for f in 0..nf {
-        let c = r.face_child(f) as usize;
-        vf_count[c] = parent.face_vertices.count(f) as u32;
-        ve_count[c] = parent.face_vertices.count(f) as u32;
-    }
-    for e in 0..ne {
-        let c = r.edge_child(e) as usize;
-        vf_count[c] = 2 * parent.edge_faces.count(e) as u32;
-        ve_count[c] = 2 + parent.edge_faces.count(e) as u32;
-    }
-    let vf_offsets = prefix_sums(&vf_count);
-    let ve_offsets = prefix_sums(&ve_count);
-    let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
-    let mut vf_local = vec![0u16; vf_members.len()];
-    let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
-    let mut ve_local = vec![0u16; ve_members.len()];
-
-    for f in 0..nf {
-        let c = r.face_child(f) as usize;
-        let base = parent.face_vertices.offsets[f] as usize;
-        let n = parent.face_vertices.count(f);
-        let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        for j in 0..n {
-            vf_members[o + j] = (base + j) as u32;
-            vf_local[o + j] = if n == 4 { (j + 2) & 3 } else { 2 } as u16;
-            ve_members[oe + j] = (base + prev(j, n)) as u32;
-            ve_local[oe + j] = 0;
-        }
-    }
-    let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
-    for e in 0..ne {
-        let c = r.edge_child(e) as usize;
-        let ev = parent.edge_vertices[e];
-        let (mut o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        // The two halves first, then the edges inside each face; after the
-        // first face the edges are rotated into counter-clockwise order.
-        edge_list.clear();
-        edge_list.push((r.edge_child_edge(e, 0), 0u16));
-        edge_list.push((r.edge_child_edge(e, 1), 0u16));
-        for (i, (&f, &k)) in parent
-            .edge_faces_of(e)
-            .iter()
-            .zip(parent.edge_face_locals(e))
-            .enumerate()
-        {
-            let (f, k) = (f as usize, k as usize);
-            let n = parent.face_vertices.count(f);
-            let base = parent.face_vertices.offsets[f];
-            let (c0, c1) = (k, next(k, n));
-            vf_members[o] = base + c1 as u32;
-            vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
-            vf_members[o + 1] = base + c0 as u32;
-            vf_local[o + 1] = if n == 4 { c1 } else { 1 } as u16;
-            o += 2;
-            edge_list.push((base + k as u32, 1));
-            if i == 0 {
-                if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
-                    edge_list.swap(0, 1);
-                }
-                edge_list.swap(1, 2);
+            for (i, &(m, l)) in edge_list.iter().enumerate() {
+                ve_members[oe + i] = m;
+                ve_local[oe + i] = l;
             }
         }
-        for (i, &(m, l)) in edge_list.iter().enumerate() {
-            ve_members[oe + i] = m;
-            ve_local[oe + i] = l;
+        for v in 0..nv {
+            let c = r.vertex_child(v) as usize;
+            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+            for (i, (&f, &k)) in parent
+                .vertex_faces_of(v)
+                .iter()
+                .zip(parent.vertex_face_locals(v))
+                .enumerate()
+            {
+                let n = parent.face_vertices.count(f as usize);
+                vf_members[o + i] = parent.face_vertices.offsets[f as usize] + k as u32;
+                vf_local[o + i] = if n == 4 { k } else { 0 };
+            }
+            for (i, (&e, &l)) in parent
+                .vertex_edges_of(v)
+                .iter()
+                .zip(parent.vertex_edge_locals(v))
+                .enumerate()
+            {
+                ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
+                ve_local[oe + i] = 1;
+            }
         }
-    }
-    for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
-        let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        for (i, (&f, &k)) in parent
-            .vertex_faces_of(v)
-            .iter()
-            .zip(parent.vertex_face_locals(v))
-            .enumerate()
-        {
-            let n = parent.face_vertices.count(f as usize);
-            vf_members[o + i] = parent.face_vertices.offsets[f as usize] + k as u32;
-            vf_local[o + i] = if n == 4 { k } else { 0 };
-        }
-        for (i, (&e, &l)) in parent
-            .vertex_edges_of(v)
-            .iter()
-            .zip(parent.vertex_edge_locals(v))
-            .enumerate()
-        {
-            ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
-            ve_local[oe + i] = 1;
-        }
-    }
+        (
+            edge_vertices,
+            ef_offsets,
+            ef_members,
+            ef_local,
+            vf_offsets,
+            vf_members,
+            vf_local,
+            ve_offsets,
+            ve_members,
+            ve_local,
+        )
+    };
 
     let mut child = Level {
         depth: parent.depth + 1,
         vertex_count: child_vertices,
         face_vertices,
-        face_edges,
-        edge_vertices,
+        face_edges: if minimal { Vec::new() } else { face_edges },
+        edge_vertices: if minimal { Vec::new() } else { edge_vertices },
         edge_faces: Relation {
             offsets: ef_offsets,
             members: ef_members,
@@ -370,7 +407,12 @@ pub fn refine_level(parent: &Level, options: &Options, faces_first: bool) -> (Re
 /// Triangle split (Loop): child faces `4f..4f+4` of triangle `f` are the three
 /// corner triangles (child `j` at corner `j`) and the middle one; child edges
 /// are the three inside each face, then two per parent edge.
-fn refine_triangles(parent: &Level, options: &Options, faces_first: bool) -> (Refinement, Level) {
+fn refine_triangles(
+    parent: &Level,
+    options: &Options,
+    faces_first: bool,
+    minimal: bool,
+) -> (Refinement, Level) {
     let r = Refinement::new(parent, faces_first, false);
     let (nv, ne, nf) = (
         parent.vertex_count,
@@ -430,127 +472,146 @@ fn refine_triangles(parent: &Level, options: &Options, faces_first: bool) -> (Re
         }
     }
 
-    // Edge-faces.
-    let mut ef_offsets = Vec::with_capacity(child_edges + 1);
-    let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
-    let mut ef_local = Vec::with_capacity(ef_members.capacity());
-    ef_offsets.push(0u32);
-    for f in 0..nf {
-        for j in 0..3 {
-            let l = ((j + 1) % 3) as u16;
-            ef_members.extend([(4 * f + j) as u32, (4 * f + 3) as u32]);
-            ef_local.extend([l, l]);
-            ef_offsets.push(ef_members.len() as u32);
+    // Everything but the face-vertices is skipped for a minimal last level.
+    let (
+        ef_offsets,
+        ef_members,
+        ef_local,
+        vf_offsets,
+        vf_members,
+        vf_local,
+        ve_offsets,
+        ve_members,
+        ve_local,
+    ) = if minimal {
+        Default::default()
+    } else {
+        // Edge-faces.
+        let mut ef_offsets = Vec::with_capacity(child_edges + 1);
+        let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
+        let mut ef_local = Vec::with_capacity(ef_members.capacity());
+        ef_offsets.push(0u32);
+        for f in 0..nf {
+            for j in 0..3 {
+                let l = ((j + 1) % 3) as u16;
+                ef_members.extend([(4 * f + j) as u32, (4 * f + 3) as u32]);
+                ef_local.extend([l, l]);
+                ef_offsets.push(ef_members.len() as u32);
+            }
         }
-    }
-    for e in 0..ne {
-        let ev = parent.edge_vertices[e];
-        for j in 0..2 {
-            for (&f, &k) in parent
+        for e in 0..ne {
+            let ev = parent.edge_vertices[e];
+            for j in 0..2 {
+                for (&f, &k) in parent
+                    .edge_faces_of(e)
+                    .iter()
+                    .zip(parent.edge_face_locals(e))
+                {
+                    let (f, k) = (f as usize, k as usize);
+                    let of_edge = if ev[0] == ev[1] {
+                        j
+                    } else {
+                        (parent.face_verts(f)[k] != ev[j]) as usize
+                    };
+                    let in_face = (k + of_edge) % 3;
+                    ef_members.push((4 * f + in_face) as u32);
+                    ef_local.push(k as u16);
+                }
+                ef_offsets.push(ef_members.len() as u32);
+            }
+        }
+
+        // Vertex-faces and vertex-edges.
+        let mut vf_count = vec![0u32; child_vertices];
+        let mut ve_count = vec![0u32; child_vertices];
+        for v in 0..nv {
+            let c = r.vertex_child(v) as usize;
+            vf_count[c] = parent.vertex_faces.count(v) as u32;
+            ve_count[c] = parent.vertex_edges.count(v) as u32;
+        }
+        for e in 0..ne {
+            let c = r.edge_child(e) as usize;
+            vf_count[c] = 3 * parent.edge_faces.count(e) as u32;
+            ve_count[c] = 2 + 2 * parent.edge_faces.count(e) as u32;
+        }
+        let vf_offsets = prefix_sums(&vf_count);
+        let ve_offsets = prefix_sums(&ve_count);
+        let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
+        let mut vf_local = vec![0u16; vf_members.len()];
+        let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
+        let mut ve_local = vec![0u16; ve_members.len()];
+        for e in 0..ne {
+            let c = r.edge_child(e) as usize;
+            let ev = parent.edge_vertices[e];
+            let (mut o, mut oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+            let mut last_half = None;
+            for (i, (&f, &k)) in parent
                 .edge_faces_of(e)
                 .iter()
                 .zip(parent.edge_face_locals(e))
+                .enumerate()
             {
                 let (f, k) = (f as usize, k as usize);
-                let of_edge = if ev[0] == ev[1] {
-                    j
-                } else {
-                    (parent.face_verts(f)[k] != ev[j]) as usize
-                };
-                let in_face = (k + of_edge) % 3;
-                ef_members.push((4 * f + in_face) as u32);
-                ef_local.push(k as u16);
-            }
-            ef_offsets.push(ef_members.len() as u32);
-        }
-    }
-
-    // Vertex-faces and vertex-edges.
-    let mut vf_count = vec![0u32; child_vertices];
-    let mut ve_count = vec![0u32; child_vertices];
-    for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
-        vf_count[c] = parent.vertex_faces.count(v) as u32;
-        ve_count[c] = parent.vertex_edges.count(v) as u32;
-    }
-    for e in 0..ne {
-        let c = r.edge_child(e) as usize;
-        vf_count[c] = 3 * parent.edge_faces.count(e) as u32;
-        ve_count[c] = 2 + 2 * parent.edge_faces.count(e) as u32;
-    }
-    let vf_offsets = prefix_sums(&vf_count);
-    let ve_offsets = prefix_sums(&ve_count);
-    let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
-    let mut vf_local = vec![0u16; vf_members.len()];
-    let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
-    let mut ve_local = vec![0u16; ve_members.len()];
-    for e in 0..ne {
-        let c = r.edge_child(e) as usize;
-        let ev = parent.edge_vertices[e];
-        let (mut o, mut oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        let mut last_half = None;
-        for (i, (&f, &k)) in parent
-            .edge_faces_of(e)
-            .iter()
-            .zip(parent.edge_face_locals(e))
-            .enumerate()
-        {
-            let (f, k) = (f as usize, k as usize);
-            // Leading, middle and trailing child triangles around the edge point.
-            for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
-                vf_members[o] = (4 * f + child) as u32;
-                vf_local[o] = local as u16;
-                o += 1;
-            }
-            if i == 0 {
-                let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
-                let (first, second) = if reversed { (0, 1) } else { (1, 0) };
-                ve_members[oe] = r.edge_child_edge(e, first);
-                ve_local[oe] = 0;
-                oe += 1;
-                last_half = Some(r.edge_child_edge(e, second));
-            }
-            ve_members[oe] = inner_edge(f, (k + 1) % 3);
-            ve_local[oe] = 1;
-            ve_members[oe + 1] = inner_edge(f, k);
-            ve_local[oe + 1] = 0;
-            oe += 2;
-            if let Some(h) = last_half.take() {
-                ve_members[oe] = h;
-                ve_local[oe] = 0;
-                oe += 1;
+                // Leading, middle and trailing child triangles around the edge point.
+                for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
+                    vf_members[o] = (4 * f + child) as u32;
+                    vf_local[o] = local as u16;
+                    o += 1;
+                }
+                if i == 0 {
+                    let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+                    let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+                    ve_members[oe] = r.edge_child_edge(e, first);
+                    ve_local[oe] = 0;
+                    oe += 1;
+                    last_half = Some(r.edge_child_edge(e, second));
+                }
+                ve_members[oe] = inner_edge(f, (k + 1) % 3);
+                ve_local[oe] = 1;
+                ve_members[oe + 1] = inner_edge(f, k);
+                ve_local[oe + 1] = 0;
+                oe += 2;
+                if let Some(h) = last_half.take() {
+                    ve_members[oe] = h;
+                    ve_local[oe] = 0;
+                    oe += 1;
+                }
             }
         }
-    }
-    for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
-        let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        for (i, (&f, &k)) in parent
-            .vertex_faces_of(v)
-            .iter()
-            .zip(parent.vertex_face_locals(v))
-            .enumerate()
-        {
-            vf_members[o + i] = 4 * f + k as u32;
-            vf_local[o + i] = k;
+        for v in 0..nv {
+            let c = r.vertex_child(v) as usize;
+            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+            for (i, (&f, &k)) in parent
+                .vertex_faces_of(v)
+                .iter()
+                .zip(parent.vertex_face_locals(v))
+                .enumerate()
+            {
+                vf_members[o + i] = 4 * f + k as u32;
+                vf_local[o + i] = k;
+            }
+            for (i, (&e, &l)) in parent
+                .vertex_edges_of(v)
+                .iter()
+                .zip(parent.vertex_edge_locals(v))
+                .enumerate()
+            {
+                ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
+                ve_local[oe + i] = 1;
+            }
         }
-        for (i, (&e, &l)) in parent
-            .vertex_edges_of(v)
-            .iter()
-            .zip(parent.vertex_edge_locals(v))
-            .enumerate()
-        {
-            ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
-            ve_local[oe + i] = 1;
-        }
-    }
+        (
+            ef_offsets, ef_members, ef_local, vf_offsets, vf_members, vf_local, ve_offsets,
+            ve_members, ve_local,
+        )
+    };
 
     let mut child = Level {
         depth: parent.depth + 1,
         vertex_count: child_vertices,
         face_vertices,
-        face_edges,
-        edge_vertices,
+        face_edges: if minimal { Vec::new() } else { face_edges },
+        edge_vertices: if minimal { Vec::new() } else { edge_vertices },
         edge_faces: Relation {
             offsets: ef_offsets,
             members: ef_members,
@@ -682,9 +743,15 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
         let c = r.vertex_child(v) as usize;
         let decayed = p.semi_sharp && !child.vertex_tags[c].semi_sharp;
         if p.semi_sharp_edges || decayed {
+            // The child's edges are the halves of the parent's edges at this
+            // vertex (found through the parent: the child level may be minimal).
             let (mut inf, mut semi) = (0, 0);
-            for &ce in child.vertex_edges_of(c) {
-                let t = child.edge_tags[ce as usize];
+            for (&e, &l) in parent
+                .vertex_edges_of(v)
+                .iter()
+                .zip(parent.vertex_edge_locals(v))
+            {
+                let t = child.edge_tags[r.edge_child_edge(e as usize, l as usize) as usize];
                 inf += t.inf_sharp as usize;
                 semi += t.semi_sharp as usize;
             }
