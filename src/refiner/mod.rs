@@ -20,15 +20,26 @@ use crate::real::Real;
 use crate::refinement::{
     Limit, Precision, Refinement as RefinementResult, check_level, check_level_counts,
 };
-use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
+use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::FVarLevel as FVarChannelLevel;
 use crate::topology::{Level, Refinement, build_base_level, fvar, refine_level};
 
 mod fvar_interp;
 use glam::{DVec3, Vec3};
 
+mod kernel;
 mod limit;
 mod stencils;
+
+pub(crate) use kernel::Scratch;
+
+/// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
+#[inline]
+pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
+    let f_edges = level.face_edges_of(f);
+    let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
+    level.face_verts(f)[(k + 2) % f_edges.len()]
+}
 
 /// Where a mask term reads its value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -318,22 +329,7 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
-        let mut acc = vec![T::ZERO; width];
-        self.walk_masks::<T>(kind, level, |child, terms| {
-            acc.fill(T::ZERO);
-            for &(source, w) in terms {
-                let (data, i): (&[T], u32) = match source {
-                    Source::Parent(i) => (src, i),
-                    Source::Child(i) => (&*dst, i),
-                };
-                let row = &data[i as usize * width..(i as usize + 1) * width];
-                for (a, &s) in acc.iter_mut().zip(row) {
-                    *a += s * w;
-                }
-            }
-            let c = child as usize * width;
-            dst[c..c + width].copy_from_slice(&acc);
-        });
+        kernel::interpolate(self, kind, level, width, src, dst);
     }
 
     /// Calls `emit(child, terms)` for every child vertex of `level`, in the
@@ -348,112 +344,142 @@ impl Refiner {
         mut emit: impl FnMut(u32, &[(Source, T)]),
     ) {
         let parent = &self.levels[level - 1];
-        let child = &self.levels[level];
         let r = &self.refinements[level - 1];
-        let mut mask = Mask::<T>::new();
-        let mut terms: Vec<(Source, T)> = Vec::with_capacity(2 * parent.max_valence + 2);
-        // Face points (none under Loop).
+        let mut scratch = Scratch::<T>::new();
         let face_points = if r.has_face_points() {
             parent.face_count()
         } else {
             0
         };
         for f in 0..face_points {
-            let verts = parent.face_verts(f);
-            self.rules.face_vertex_mask(verts.len(), &mut mask);
-            terms.clear();
-            terms.extend(
-                verts
-                    .iter()
-                    .zip(&mask.vertex)
-                    .map(|(&v, &w)| (Source::Parent(v), w)),
-            );
-            emit(r.face_child(f), &terms);
+            self.face_terms(level, f, &mut scratch);
+            emit(r.face_child(f), &scratch.terms);
         }
-        // Edge points.
-        let mut face_sizes = Vec::new();
-        let half = T::from_f64(0.5);
         for e in 0..parent.edge_count() {
-            let ev = parent.edge_vertices[e];
-            let c = r.edge_child(e);
-            terms.clear();
-            if kind == Kind::Varying {
-                terms.extend([(Source::Parent(ev[0]), half), (Source::Parent(ev[1]), half)]);
-            } else {
-                let faces = parent.edge_faces_of(e);
-                face_sizes.clear();
-                face_sizes.extend(
-                    faces
-                        .iter()
-                        .map(|&f| parent.face_vertices.count(f as usize) as u32),
-                );
-                let s = parent.edge_sharpness[e];
-                let hood = EdgeNeighborhood {
-                    sharpness: s,
-                    face_sizes: &face_sizes,
-                };
-                let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
-                let c_rule = child.vertex_tags[c as usize].rule;
-                self.rules
-                    .edge_vertex_mask(&hood, p_rule, c_rule, &mut mask);
-                terms.push((Source::Parent(ev[0]), mask.vertex[0]));
-                terms.push((Source::Parent(ev[1]), mask.vertex[1]));
-                if mask.face_weights_for_centers {
-                    for (&f, &w) in faces.iter().zip(&mask.face) {
-                        terms.push((Source::Child(r.face_child(f as usize)), w));
-                    }
-                } else {
-                    // Loop: the face's vertex opposite the edge.
-                    for (&f, &w) in faces.iter().zip(&mask.face) {
-                        let f_edges = parent.face_edges_of(f as usize);
-                        let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
-                        let opposite = parent.face_verts(f as usize)[(k + 2) % f_edges.len()];
-                        terms.push((Source::Parent(opposite), w));
-                    }
-                }
-            }
-            emit(c, &terms);
+            self.edge_terms(kind, level, e, &mut scratch);
+            emit(r.edge_child(e), &scratch.terms);
         }
-        // Vertex points: face weights, then edge weights, then the vertex.
-        let mut edge_sharpness = Vec::new();
-        let mut child_edge_sharpness = Vec::new();
         for v in 0..parent.vertex_count {
-            let c = r.vertex_child(v);
-            terms.clear();
-            if kind == Kind::Varying {
-                terms.push((Source::Parent(v as u32), T::ONE));
-            } else {
-                let edges = parent.vertex_edges_of(v);
-                let faces = parent.vertex_faces_of(v);
-                edge_sharpness.clear();
-                edge_sharpness.extend(edges.iter().map(|&e| parent.edge_sharpness[e as usize]));
-                child_edge_sharpness.resize(edges.len(), 0.0);
-                crease::subdivide_edge_sharpnesses_around_vertex(
-                    self.options.creasing,
-                    &edge_sharpness,
-                    &mut child_edge_sharpness,
-                );
-                let hood = VertexNeighborhood {
-                    sharpness: parent.vertex_sharpness[v],
-                    edge_sharpness: &edge_sharpness,
-                    face_count: faces.len(),
-                    child_sharpness: child.vertex_sharpness[c as usize],
-                    child_edge_sharpness: &child_edge_sharpness,
-                };
-                let p_rule = parent.vertex_tags[v].rule;
-                let c_rule = child.vertex_tags[c as usize].rule;
-                self.rules
-                    .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
-                for (&f, &w) in faces.iter().zip(&mask.face) {
-                    terms.push((Source::Child(r.face_child(f as usize)), w));
-                }
-                for (&e, &w) in edges.iter().zip(&mask.edge) {
-                    terms.push((Source::Parent(parent.other_vertex(e as usize, v as u32)), w));
-                }
-                terms.push((Source::Parent(v as u32), mask.vertex[0]));
-            }
-            emit(c, &terms);
+            self.vertex_terms(kind, level, v, &mut scratch);
+            emit(r.vertex_child(v), &scratch.terms);
         }
+    }
+
+    /// The terms of the face point of parent face `f` (level `level - 1`).
+    pub(crate) fn face_terms<T: Real>(&self, level: usize, f: usize, s: &mut Scratch<T>) {
+        let verts = self.levels[level - 1].face_verts(f);
+        self.rules.face_vertex_mask(verts.len(), &mut s.mask);
+        s.terms.clear();
+        s.terms.extend(
+            verts
+                .iter()
+                .zip(&s.mask.vertex)
+                .map(|(&v, &w)| (Source::Parent(v), w)),
+        );
+    }
+
+    /// The terms of the edge point of parent edge `e`.
+    pub(crate) fn edge_terms<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        e: usize,
+        s: &mut Scratch<T>,
+    ) {
+        let parent = &self.levels[level - 1];
+        let child = &self.levels[level];
+        let r = &self.refinements[level - 1];
+        let ev = parent.edge_vertices[e];
+        s.terms.clear();
+        if kind == Kind::Varying {
+            let half = T::from_f64(0.5);
+            s.terms
+                .extend([(Source::Parent(ev[0]), half), (Source::Parent(ev[1]), half)]);
+            return;
+        }
+        let faces = parent.edge_faces_of(e);
+        s.face_sizes.clear();
+        s.face_sizes.extend(
+            faces
+                .iter()
+                .map(|&f| parent.face_vertices.count(f as usize) as u32),
+        );
+        let sharpness = parent.edge_sharpness[e];
+        let hood = EdgeNeighborhood {
+            sharpness,
+            face_sizes: &s.face_sizes,
+        };
+        let p_rule = if sharpness > 0.0 {
+            Rule::Crease
+        } else {
+            Rule::Smooth
+        };
+        let c_rule = child.vertex_tags[r.edge_child(e) as usize].rule;
+        self.rules
+            .edge_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
+        s.terms.push((Source::Parent(ev[0]), s.mask.vertex[0]));
+        s.terms.push((Source::Parent(ev[1]), s.mask.vertex[1]));
+        if s.mask.face_weights_for_centers {
+            for (&f, &w) in faces.iter().zip(&s.mask.face) {
+                s.terms.push((Source::Child(r.face_child(f as usize)), w));
+            }
+        } else {
+            // Loop: the face's vertex opposite the edge.
+            for (&f, &w) in faces.iter().zip(&s.mask.face) {
+                s.terms
+                    .push((Source::Parent(opposite_vertex(parent, f as usize, e)), w));
+            }
+        }
+    }
+
+    /// The terms of the child of parent vertex `v`: face weights, then edge
+    /// weights, then the vertex.
+    pub(crate) fn vertex_terms<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        v: usize,
+        s: &mut Scratch<T>,
+    ) {
+        let parent = &self.levels[level - 1];
+        let child = &self.levels[level];
+        let r = &self.refinements[level - 1];
+        let c = r.vertex_child(v) as usize;
+        s.terms.clear();
+        if kind == Kind::Varying {
+            s.terms.push((Source::Parent(v as u32), T::ONE));
+            return;
+        }
+        let edges = parent.vertex_edges_of(v);
+        let faces = parent.vertex_faces_of(v);
+        s.edge_sharpness.clear();
+        s.edge_sharpness
+            .extend(edges.iter().map(|&e| parent.edge_sharpness[e as usize]));
+        s.child_edge_sharpness.resize(edges.len(), 0.0);
+        crease::subdivide_edge_sharpnesses_around_vertex(
+            self.options.creasing,
+            &s.edge_sharpness,
+            &mut s.child_edge_sharpness,
+        );
+        let hood = VertexNeighborhood {
+            sharpness: parent.vertex_sharpness[v],
+            edge_sharpness: &s.edge_sharpness,
+            face_count: faces.len(),
+            child_sharpness: child.vertex_sharpness[c],
+            child_edge_sharpness: &s.child_edge_sharpness,
+        };
+        let p_rule = parent.vertex_tags[v].rule;
+        let c_rule = child.vertex_tags[c].rule;
+        self.rules
+            .vertex_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
+        for (&f, &w) in faces.iter().zip(&s.mask.face) {
+            s.terms.push((Source::Child(r.face_child(f as usize)), w));
+        }
+        for (&e, &w) in edges.iter().zip(&s.mask.edge) {
+            s.terms
+                .push((Source::Parent(parent.other_vertex(e as usize, v as u32)), w));
+        }
+        s.terms.push((Source::Parent(v as u32), s.mask.vertex[0]));
     }
 }
 

@@ -125,7 +125,11 @@ pub fn refine_level(
 
     // Face-vertices and face-edges of the child quads.
     let mut face_vertices = Relation::uniform(child_faces, 4);
-    let mut face_edges = vec![0u32; child_faces * 4];
+    let mut face_edges = if minimal {
+        Vec::new()
+    } else {
+        vec![0u32; child_faces * 4]
+    };
     for f in 0..nf {
         let base = parent.face_vertices.offsets[f] as usize;
         let verts = parent.face_verts(f);
@@ -164,9 +168,13 @@ pub fn refine_level(
             // A child of a quad keeps the parent's orientation: its corner
             // vertex sits at position j. Children of other faces start there.
             let rot = if n == 4 { j } else { 0 };
-            for k in 0..4 {
-                face_vertices.members[4 * c + (rot + k) % 4] = v4[k];
-                face_edges[4 * c + (rot + k) % 4] = e4[k];
+            for (k, &v) in v4.iter().enumerate() {
+                face_vertices.members[4 * c + (rot + k) % 4] = v;
+            }
+            if !minimal {
+                for (k, &e) in e4.iter().enumerate() {
+                    face_edges[4 * c + (rot + k) % 4] = e;
+                }
             }
         }
     }
