@@ -37,11 +37,14 @@
 #![deny(unsafe_code)]
 
 pub mod compare;
+pub mod curve;
+pub mod doo_sabin;
 pub mod error;
 pub mod io;
 pub mod level;
 pub mod mesh;
 pub mod options;
+pub mod patch;
 pub mod real;
 pub mod refinement;
 pub mod refiner;

@@ -1,9 +1,12 @@
 //! The `subdiv` command-line tool.
 
 use clap::{Args, Parser, Subcommand};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::str::FromStr;
 use std::time::Instant;
+use subdiv::curve::{CurveScheme, Point};
 use subdiv::io::{ObjOutput, ShapeFile, UvOutput};
 use subdiv::{
     BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh, Options,
@@ -27,6 +30,8 @@ enum Command {
     Refine(RefineArgs),
     /// Refine with both engines and compare them level by level, vertex by vertex.
     Compare(CompareArgs),
+    /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme.
+    Curve(CurveArgs),
     /// The main job on the built-in cube: refine it to level 2 with every available engine.
     Demo,
     /// Print the versions of subdiv and of the OpenSubdiv it is built against.
@@ -41,6 +46,31 @@ enum Engine {
     Osd,
 }
 
+/// `--scheme`: one of OpenSubdiv's schemes, or Doo-Sabin (native engine only).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum SchemeArg {
+    /// An OpenSubdiv scheme: both engines.
+    Osd(Scheme),
+    /// Doo-Sabin: the native engine only (`subdiv::doo_sabin`).
+    DooSabin,
+}
+
+impl FromStr for SchemeArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "doo-sabin" {
+            return Ok(SchemeArg::DooSabin);
+        }
+        // OpenSubdiv's message, with doo-sabin added to the list.
+        s.parse::<Scheme>()
+            .map(SchemeArg::Osd)
+            .map_err(|e| match e.strip_suffix(')') {
+                Some(head) => format!("{head}, doo-sabin)"),
+                None => e,
+            })
+    }
+}
+
 /// The input mesh and the subdivision options, shared by `refine` and `compare`.
 #[derive(Args)]
 struct MeshArgs {
@@ -51,8 +81,8 @@ struct MeshArgs {
     #[arg(long, value_name = "NAME")]
     builtin: Option<String>,
     /// Subdivision scheme.
-    #[arg(long, default_value = "catmark", value_parser = parse::<Scheme>)]
-    scheme: Scheme,
+    #[arg(long, default_value = "catmark", value_parser = parse::<SchemeArg>)]
+    scheme: SchemeArg,
     /// Vertex boundary interpolation (overrides the file's tag).
     #[arg(long, value_parser = parse::<BoundaryInterpolation>)]
     boundary: Option<BoundaryInterpolation>,
@@ -92,6 +122,53 @@ struct RefineArgs {
     /// Write limit positions (and limit face-varying values) instead of refined ones.
     #[arg(long)]
     limit: bool,
+    /// Doo-Sabin corner weights: original or centroid (with --scheme doo-sabin).
+    #[arg(long, value_name = "WEIGHTS", value_parser = parse::<subdiv::doo_sabin::Weights>)]
+    doo_sabin_weights: Option<subdiv::doo_sabin::Weights>,
+    /// Doo-Sabin boundary rule: open or chaikin (with --scheme doo-sabin).
+    #[arg(long, value_name = "RULE", value_parser = parse::<subdiv::doo_sabin::Boundary>)]
+    doo_sabin_boundary: Option<subdiv::doo_sabin::Boundary>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum CurveSchemeArg {
+    /// Chaikin's corner cutting (the quadratic B-spline).
+    Chaikin,
+    /// Uniform B-spline refinement of degree --degree (the averaging algorithm).
+    Bspline,
+    /// The interpolating four-point scheme.
+    FourPoint,
+    /// Jarek's curve, half way between the cubic B-spline and the four-point scheme.
+    Jarek,
+}
+
+#[derive(Args)]
+struct CurveArgs {
+    /// Input points: one per line, 2 or 3 numbers separated by spaces; `#` starts a comment.
+    #[arg(value_name = "INPUT.txt")]
+    input: PathBuf,
+    /// Curve scheme.
+    #[arg(long, value_enum)]
+    scheme: CurveSchemeArg,
+    /// B-spline degree, 1 to 15 (--scheme bspline only) [default: 3].
+    #[arg(long, value_name = "D")]
+    degree: Option<usize>,
+    /// Four-point tension w (--scheme four-point only) [default: 1/16].
+    #[arg(long, value_name = "W", allow_negative_numbers = true)]
+    tension: Option<f64>,
+    /// The polygon is closed (its last point joins its first).
+    #[arg(long)]
+    closed: bool,
+    /// Refinement levels [default: 1].
+    #[arg(long, value_name = "N", conflicts_with = "tolerance")]
+    level: Option<u32>,
+    /// Flatten the limit curve (chaikin, bspline) into a polyline within EPS of it.
+    #[arg(long, value_name = "EPS", allow_negative_numbers = true)]
+    tolerance: Option<f64>,
+    /// Output: `.svg` draws the control polygon and each level in its own colour,
+    /// any other name gets the points as text; without it the text goes to stdout.
+    #[arg(short, long, value_name = "OUT.txt|OUT.svg")]
+    output: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -148,6 +225,8 @@ enum Failure {
     Unavailable(String),
     /// `compare` found a difference (already reported): exit 3.
     Differ,
+    /// An error of the curve or Doo-Sabin tools, already worded: exit 1.
+    Message(String),
 }
 
 impl From<Error> for Failure {
@@ -161,6 +240,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Refine(args) => refine(&args),
         Command::Compare(args) => compare(&args),
+        Command::Curve(args) => curve(&args),
         Command::Demo => demo(),
         Command::Version => {
             version();
@@ -178,6 +258,10 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
         Err(Failure::Differ) => ExitCode::from(3),
+        Err(Failure::Message(msg)) => {
+            eprintln!("subdiv: error: {msg}");
+            ExitCode::from(1)
+        }
     }
 }
 
@@ -230,7 +314,9 @@ fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
         eprintln!("subdiv: warning: {name}: {w}");
     }
     let mut options = shape.options();
-    options.scheme = args.scheme;
+    if let SchemeArg::Osd(scheme) = args.scheme {
+        options.scheme = scheme;
+    }
     if let Some(b) = args.boundary {
         options.boundary = b;
     }
@@ -312,6 +398,15 @@ fn summary(name: &str, engine: Engine, r: &Refinement, seconds: f64) -> String {
 }
 
 fn refine(args: &RefineArgs) -> Result<(), Failure> {
+    if args.mesh.scheme == SchemeArg::DooSabin {
+        return refine_doo_sabin(args);
+    }
+    if args.doo_sabin_weights.is_some() || args.doo_sabin_boundary.is_some() {
+        return Err(Error::InvalidArgument(
+            "--doo-sabin-weights and --doo-sabin-boundary need --scheme doo-sabin".into(),
+        )
+        .into());
+    }
     let (name, mesh, options) = load(&args.mesh)?;
     let uniform = UniformOptions::new(args.level).faces_first(args.mesh.faces_first);
     subdiv::refinement::check_level(&mesh, &options, args.level)?;
@@ -424,6 +519,11 @@ struct CompareReport<'a> {
 }
 
 fn compare(args: &CompareArgs) -> Result<(), Failure> {
+    if args.mesh.scheme == SchemeArg::DooSabin {
+        return Err(Failure::Unavailable(
+            "compare needs both engines and OpenSubdiv has no Doo-Sabin scheme; use `subdiv refine --scheme doo-sabin`".into(),
+        ));
+    }
     let (name, mesh, options) = load(&args.mesh)?;
     let (first, last) = args.levels;
     subdiv::refinement::check_level(&mesh, &options, last)?;
@@ -517,4 +617,216 @@ fn compare(args: &CompareArgs) -> Result<(), Failure> {
         );
     }
     if agrees { Ok(()) } else { Err(Failure::Differ) }
+}
+
+/// `subdiv refine --scheme doo-sabin`: the native Doo-Sabin refiner.
+fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
+    if args.engine == Engine::Osd {
+        return Err(Failure::Unavailable(
+            "OpenSubdiv has no Doo-Sabin scheme: --scheme doo-sabin needs --engine native".into(),
+        ));
+    }
+    if args.limit {
+        return Err(Failure::Unavailable(
+            "doo-sabin has no limit evaluation (--limit)".into(),
+        ));
+    }
+    if args.mesh.precision != Precision::F64 {
+        return Err(Failure::Unavailable(
+            "doo-sabin computes in f64 only (--precision f32)".into(),
+        ));
+    }
+    let m = &args.mesh;
+    for (given, flag) in [
+        (m.boundary.is_some(), "--boundary"),
+        (m.fvar.is_some(), "--fvar"),
+        (m.creasing.is_some(), "--creasing"),
+        (m.triangles.is_some(), "--triangles"),
+        (m.faces_first, "--faces-first"),
+    ] {
+        if given {
+            return Err(Error::InvalidArgument(format!(
+                "{flag} does not apply to --scheme doo-sabin (see --doo-sabin-weights and --doo-sabin-boundary)"
+            ))
+            .into());
+        }
+    }
+    if args.level > subdiv::MAX_LEVEL {
+        return Err(Error::Level {
+            level: args.level,
+            reason: format!("the deepest supported level is {}", subdiv::MAX_LEVEL),
+        }
+        .into());
+    }
+    let (name, mesh, _) = load(&args.mesh)?;
+    if !mesh.creases.is_empty()
+        || !mesh.corners.is_empty()
+        || !mesh.holes.is_empty()
+        || !mesh.fvar_channels.is_empty()
+    {
+        let msg =
+            format!("{name}: doo-sabin ignores creases, corners, holes and texture coordinates");
+        if args.mesh.strict {
+            return Err(Error::InvalidArgument(format!("{msg} (--strict)")).into());
+        }
+        eprintln!("subdiv: warning: {msg}");
+    }
+    let options = subdiv::doo_sabin::Options {
+        weights: args.doo_sabin_weights.unwrap_or_default(),
+        boundary: args.doo_sabin_boundary.unwrap_or_default(),
+    };
+    let start = Instant::now();
+    let levels = subdiv::doo_sabin::refine(&mesh, &options, args.level)
+        .map_err(|e| Failure::Message(format!("{name}: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let last = levels.last().unwrap_or(&mesh);
+    match &args.output {
+        Some(path) => subdiv::io::write_mesh_obj(path, last, Precision::F64)?,
+        None => {
+            let counts = |f: fn(&Mesh) -> usize| {
+                levels
+                    .iter()
+                    .map(|l| f(l).to_string())
+                    .collect::<Vec<_>>()
+                    .join("→")
+            };
+            println!(
+                "{name}: doo-sabin ({}, {} boundary) level {} (native, f64): vertices {}, faces {}; {:.3} ms",
+                options.weights,
+                options.boundary,
+                args.level,
+                counts(Mesh::vertex_count),
+                counts(Mesh::face_count),
+                seconds * 1e3
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `subdiv curve`: refine or flatten a curve given as one point per line.
+fn curve(args: &CurveArgs) -> Result<(), Failure> {
+    let message = |e: &dyn std::fmt::Display| Failure::Message(e.to_string());
+    let scheme = match args.scheme {
+        CurveSchemeArg::Chaikin => CurveScheme::Chaikin,
+        CurveSchemeArg::Bspline => CurveScheme::BSpline {
+            degree: args.degree.unwrap_or(3),
+        },
+        CurveSchemeArg::FourPoint => CurveScheme::FourPoint {
+            tension: args.tension.unwrap_or(subdiv::curve::DEFAULT_TENSION),
+        },
+        CurveSchemeArg::Jarek => CurveScheme::Jarek,
+    };
+    if args.degree.is_some() && args.scheme != CurveSchemeArg::Bspline {
+        return Err(Failure::Message(format!(
+            "--degree applies to --scheme bspline only ({} is not a B-spline of a chosen degree)",
+            scheme.name()
+        )));
+    }
+    if args.tension.is_some() && args.scheme != CurveSchemeArg::FourPoint {
+        return Err(Failure::Message(
+            "--tension applies to --scheme four-point only".into(),
+        ));
+    }
+    scheme.check().map_err(|e| message(&e))?;
+    if args.tolerance.is_some() && scheme.limit_degree().is_none() {
+        return Err(message(&subdiv::curve::CurveError::NoClosedFormLimit {
+            scheme: scheme.name(),
+        }));
+    }
+    let file = subdiv::curve::read_points(&args.input).map_err(|e| message(&e))?;
+    file.require(&scheme, args.closed)
+        .map_err(|e| message(&e))?;
+    match &file.points {
+        subdiv::curve::Points::Planar(p) => run_curve(p, scheme, args),
+        subdiv::curve::Points::Spatial(p) => run_curve(p, scheme, args),
+    }
+}
+
+fn run_curve<P: Point>(points: &[P], scheme: CurveScheme, args: &CurveArgs) -> Result<(), Failure> {
+    let fail =
+        |e: subdiv::curve::CurveError| Failure::Message(format!("{}: {e}", args.input.display()));
+    let shape = if args.closed { "closed" } else { "open" };
+    let input_name = args.input.file_name().map_or_else(
+        || args.input.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    // The polygons to draw (label, points, closed) and the result.
+    let (layers, title): (Vec<(String, Vec<P>, bool)>, String) = match args.tolerance {
+        Some(eps) => {
+            let line = subdiv::curve::flatten(points, scheme, args.closed, eps).map_err(fail)?;
+            (
+                vec![
+                    (
+                        format!("control polygon ({} points)", points.len()),
+                        points.to_vec(),
+                        args.closed,
+                    ),
+                    (
+                        format!(
+                            "limit curve flattened to {eps:e} ({} points)",
+                            line.points.len()
+                        ),
+                        line.points,
+                        args.closed,
+                    ),
+                ],
+                format!("{input_name}: {scheme}, {shape}, flattened to {eps:e}"),
+            )
+        }
+        None => {
+            let levels = args.level.unwrap_or(1);
+            let all =
+                subdiv::curve::refine_levels(points, scheme, args.closed, levels).map_err(fail)?;
+            (
+                all.into_iter()
+                    .enumerate()
+                    .map(|(k, l)| {
+                        let label = if k == 0 {
+                            format!("control polygon ({} points)", l.len())
+                        } else {
+                            format!("level {k} ({} points)", l.len())
+                        };
+                        (label, l, args.closed)
+                    })
+                    .collect(),
+                format!(
+                    "{input_name}: {scheme}, {shape}, {levels} level{}",
+                    if levels == 1 { "" } else { "s" }
+                ),
+            )
+        }
+    };
+    let result = layers.last().map_or(&[][..], |l| l.1.as_slice());
+    match &args.output {
+        Some(path)
+            if path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("svg")) =>
+        {
+            let drawn: Vec<subdiv::io::svg::Layer<'_, P>> = layers
+                .iter()
+                .map(|(label, points, closed)| subdiv::io::svg::Layer {
+                    label,
+                    points,
+                    closed: *closed,
+                })
+                .collect();
+            let svg = subdiv::io::svg::curve_svg(
+                &title,
+                &drawn,
+                &subdiv::io::svg::Projection::for_points::<P>(),
+            );
+            subdiv::io::svg::write_svg(path, &svg)?;
+        }
+        Some(path) => subdiv::curve::write_points(path, result)?,
+        None => {
+            let text = subdiv::curve::format_points(result);
+            let mut out = std::io::stdout().lock();
+            out.write_all(text.as_bytes())
+                .and_then(|()| out.flush())
+                .map_err(|e| Failure::Message(format!("cannot write to stdout: {e}")))?;
+        }
+    }
+    Ok(())
 }

@@ -4,6 +4,7 @@
 //! shape files (creases, corners, holes and subdivision options); see [`obj`].
 
 pub mod obj;
+pub mod svg;
 
 pub use obj::{
     ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, format_g, mesh_to_obj_string, parse_obj,

@@ -1,0 +1,503 @@
+//! SVG pictures of curves and meshes, written by code (the README's gallery,
+//! `subdiv curve -o OUT.svg`).
+//!
+//! Curves are drawn as the classic figures draw them: the control polygon in
+//! grey, dashed, with its points as dots, and each refinement level (or a
+//! flattened limit curve) in its own colour, with a legend. Meshes are drawn
+//! as an orthographic projection ([`Projection`]), either as shaded faces with
+//! their edges (painter's algorithm: faces sorted back to front) or as a plain
+//! wireframe. Everything is deterministic: the same input gives the same file.
+//!
+//! ```
+//! use glam::DVec2;
+//! use subdiv::curve::{refine_levels, CurveScheme};
+//! use subdiv::io::svg::curve_levels_svg;
+//!
+//! let p = [DVec2::ZERO, DVec2::new(1.0, 2.0), DVec2::new(3.0, 2.0), DVec2::new(4.0, 0.0)];
+//! let levels = refine_levels(&p, CurveScheme::Chaikin, false, 3)?;
+//! let svg = curve_levels_svg("Chaikin", &levels, false);
+//! assert!(svg.starts_with("<svg") && svg.contains("level 3 (18 points)"));
+//! # Ok::<(), subdiv::curve::CurveError>(())
+//! ```
+
+use crate::curve::Point;
+use crate::error::Error;
+use crate::mesh::Mesh;
+use glam::{DVec2, DVec3};
+use std::collections::HashSet;
+use std::fmt::Write as _;
+use std::io::{self, Write};
+use std::path::Path;
+
+/// The colours of refinement levels 1, 2, 3, … (then repeating).
+pub const PALETTE: [&str; 8] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+];
+
+/// The colour of the control polygon.
+pub const CONTROL_COLOR: &str = "#7f7f7f";
+
+/// An orthographic projection: a 3-D point maps to its coordinates along the
+/// screen's `right` and `up` axes; `toward_viewer` orders faces by depth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Projection {
+    /// The screen's x axis, in world coordinates (unit length).
+    pub right: DVec3,
+    /// The screen's y axis, in world coordinates (unit length).
+    pub up: DVec3,
+    /// The direction from the scene toward the viewer (unit length).
+    pub toward_viewer: DVec3,
+}
+
+impl Default for Projection {
+    fn default() -> Self {
+        Projection::PLAN
+    }
+}
+
+impl Projection {
+    /// The x-y plane seen from +z: x to the right, y up (for 2-D data).
+    pub const PLAN: Projection = Projection {
+        right: DVec3::X,
+        up: DVec3::Y,
+        toward_viewer: DVec3::Z,
+    };
+
+    /// A view from the direction at `azimuth` degrees around the z axis (0 = from
+    /// +x) and `elevation` degrees above the x-y plane, with z up on the screen.
+    /// The elevation is clamped to ±89.9°.
+    pub fn orbit(azimuth: f64, elevation: f64) -> Projection {
+        let (az, el) = (
+            azimuth.to_radians(),
+            elevation.clamp(-89.9, 89.9).to_radians(),
+        );
+        let toward_viewer = DVec3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
+        let right = DVec3::Z.cross(toward_viewer).normalize();
+        let up = toward_viewer.cross(right);
+        Projection {
+            right,
+            up,
+            toward_viewer,
+        }
+    }
+
+    /// The default view of points of type `P`: [`PLAN`](Self::PLAN) for 2-D,
+    /// [`orbit(-60, 25)`](Self::orbit) for 3-D.
+    pub fn for_points<P: Point>() -> Projection {
+        if P::DIM == 2 {
+            Projection::PLAN
+        } else {
+            Projection::orbit(-60.0, 25.0)
+        }
+    }
+
+    /// The screen coordinates of `p` (y up).
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        DVec2::new(p.dot(self.right), p.dot(self.up))
+    }
+
+    /// How near `p` is to the viewer (larger is nearer).
+    pub fn depth(&self, p: DVec3) -> f64 {
+        p.dot(self.toward_viewer)
+    }
+}
+
+/// One polygon of a curve figure.
+#[derive(Debug, Clone, Copy)]
+pub struct Layer<'a, P: Point> {
+    /// The legend text.
+    pub label: &'a str,
+    /// The points.
+    pub points: &'a [P],
+    /// Whether the last point joins the first.
+    pub closed: bool,
+}
+
+/// Maps world (projected) coordinates into a pixel box, y down.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    scale: f64,
+    origin: DVec2, // world point at the box's centre
+    centre: DVec2, // the box's centre in pixels
+}
+
+impl Frame {
+    fn fit(points: impl Iterator<Item = DVec2>, size: DVec2, centre: DVec2) -> Frame {
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for p in points {
+            if p.is_finite() {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        if lo.x > hi.x || lo.x.is_nan() {
+            (lo, hi) = (DVec2::ZERO, DVec2::ZERO);
+        }
+        let extent = (hi - lo).max(DVec2::splat(1e-12));
+        let scale = (size.x / extent.x).min(size.y / extent.y);
+        Frame {
+            scale,
+            origin: (lo + hi) * 0.5,
+            centre,
+        }
+    }
+
+    fn px(&self, p: DVec2) -> DVec2 {
+        let d = (p - self.origin) * self.scale;
+        DVec2::new(self.centre.x + d.x, self.centre.y - d.y)
+    }
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn points_attr(points: impl Iterator<Item = DVec2>) -> String {
+    let mut s = String::new();
+    for (i, p) in points.enumerate() {
+        if i > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{:.2},{:.2}", p.x, p.y);
+    }
+    s
+}
+
+fn header(out: &mut String, width: f64, height: f64, title: &str) {
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.0} {height:.0}\" font-family=\"sans-serif\">"
+    );
+    let _ = writeln!(out, "<title>{}</title>", escape(title));
+    let _ = writeln!(
+        out,
+        "<rect width=\"{width:.0}\" height=\"{height:.0}\" fill=\"white\"/>"
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{:.1}\" y=\"24\" font-size=\"16\" text-anchor=\"middle\">{}</text>",
+        width / 2.0,
+        escape(title)
+    );
+}
+
+/// The colour of layer `k` of a curve figure: grey for the control polygon
+/// (`k = 0`), then [`PALETTE`].
+pub fn layer_color(k: usize) -> &'static str {
+    if k == 0 {
+        CONTROL_COLOR
+    } else {
+        PALETTE[(k - 1) % PALETTE.len()]
+    }
+}
+
+/// A curve figure: layer 0 is drawn as the control polygon (grey, dashed,
+/// with dots), layer `k ≥ 1` in [`layer_color(k)`](layer_color), thinner for
+/// later layers, with dots at its points while it has at most 200 of them.
+pub fn curve_svg<P: Point>(
+    title: &str,
+    layers: &[Layer<'_, P>],
+    projection: &Projection,
+) -> String {
+    const WIDTH: f64 = 640.0;
+    const PLOT: f64 = 560.0;
+    let projected: Vec<Vec<DVec2>> = layers
+        .iter()
+        .map(|l| {
+            l.points
+                .iter()
+                .map(|p| projection.project(p.to_dvec3()))
+                .collect()
+        })
+        .collect();
+    let all = projected.iter().flatten().copied();
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for p in all.clone() {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    let extent = if lo.x <= hi.x {
+        (hi - lo).max(DVec2::splat(1e-12))
+    } else {
+        DVec2::ONE
+    };
+    // The plot keeps the data's aspect ratio, at most PLOT × PLOT pixels.
+    let scale = (PLOT / extent.x).min(PLOT / extent.y);
+    let plot_h = (extent.y * scale).max(40.0);
+    let top = 44.0;
+    let legend_top = top + plot_h + 24.0;
+    let height = legend_top + 20.0 * layers.len() as f64 + 8.0;
+    let frame = Frame::fit(
+        all,
+        DVec2::new(PLOT, plot_h),
+        DVec2::new(WIDTH / 2.0, top + plot_h / 2.0),
+    );
+    let mut out = String::new();
+    header(&mut out, WIDTH, height, title);
+    for (k, (layer, pts)) in layers.iter().zip(&projected).enumerate() {
+        let color = layer_color(k);
+        let px: Vec<DVec2> = pts.iter().map(|&p| frame.px(p)).collect();
+        let element = if layer.closed { "polygon" } else { "polyline" };
+        let (width, dash) = if k == 0 {
+            (1.5, " stroke-dasharray=\"6 4\"")
+        } else {
+            ((2.4 - 0.3 * (k as f64 - 1.0)).max(1.0), "")
+        };
+        let _ = writeln!(
+            out,
+            "<{element} points=\"{}\" fill=\"none\" stroke=\"{color}\" stroke-width=\"{width:.1}\" stroke-linejoin=\"round\"{dash}/>",
+            points_attr(px.iter().copied())
+        );
+        if k == 0 || px.len() <= 200 {
+            let r = if k == 0 { 4.0 } else { 2.2 };
+            let _ = writeln!(out, "<g fill=\"{color}\">");
+            for p in &px {
+                let _ = writeln!(
+                    out,
+                    "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{r}\"/>",
+                    p.x, p.y
+                );
+            }
+            let _ = writeln!(out, "</g>");
+        }
+        let y = legend_top + 20.0 * k as f64;
+        let _ = writeln!(
+            out,
+            "<line x1=\"40\" y1=\"{y:.1}\" x2=\"80\" y2=\"{y:.1}\" stroke=\"{color}\" stroke-width=\"{width:.1}\"{dash}/>"
+        );
+        let _ = writeln!(
+            out,
+            "<text x=\"90\" y=\"{:.1}\" font-size=\"13\">{}</text>",
+            y + 4.5,
+            escape(layer.label)
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
+/// The classic figure of a refinement: `levels[0]` is the control polygon,
+/// `levels[k]` level `k`, each in its own colour, labelled with its point
+/// count. 3-D points are drawn with [`Projection::for_points`].
+pub fn curve_levels_svg<P: Point>(title: &str, levels: &[Vec<P>], closed: bool) -> String {
+    let labels: Vec<String> = levels
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == 0 {
+                format!("control polygon ({} points)", l.len())
+            } else {
+                format!("level {k} ({} points)", l.len())
+            }
+        })
+        .collect();
+    let layers: Vec<Layer<'_, P>> = levels
+        .iter()
+        .zip(&labels)
+        .map(|(points, label)| Layer {
+            label,
+            points,
+            closed,
+        })
+        .collect();
+    curve_svg(title, &layers, &Projection::for_points::<P>())
+}
+
+/// How [`mesh_svg`] draws faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MeshStyle {
+    /// Filled faces, shaded by their angle to the viewer, with their edges,
+    /// sorted back to front (faces turned away are drawn darker).
+    #[default]
+    Shaded,
+    /// Every edge once, no fill.
+    Wireframe,
+}
+
+/// One panel of a mesh figure.
+#[derive(Debug, Clone, Copy)]
+pub struct MeshPanel<'a> {
+    /// The caption under the panel.
+    pub label: &'a str,
+    /// The mesh (its positions and faces; tags are not drawn).
+    pub mesh: &'a Mesh,
+}
+
+/// Meshes side by side, in one orthographic projection and one scale, each
+/// with its caption.
+pub fn mesh_svg(
+    title: &str,
+    panels: &[MeshPanel<'_>],
+    projection: &Projection,
+    style: MeshStyle,
+) -> String {
+    const PANEL: f64 = 240.0;
+    const INNER: f64 = 210.0;
+    let width = (PANEL * panels.len().max(1) as f64).max(320.0);
+    let top = 40.0;
+    let height = top + PANEL + 30.0;
+    let mut out = String::new();
+    header(&mut out, width, height, title);
+    // One scale for all panels: fit the largest extent into INNER.
+    let mut extent = DVec2::splat(1e-12);
+    for panel in panels {
+        let f = Frame::fit(
+            panel.mesh.positions.iter().map(|&p| projection.project(p)),
+            DVec2::splat(INNER),
+            DVec2::ZERO,
+        );
+        extent = extent.max(DVec2::splat(INNER / f.scale));
+    }
+    let scale = INNER / extent.x.max(extent.y);
+    let x0 = (width - PANEL * panels.len() as f64) / 2.0;
+    for (k, panel) in panels.iter().enumerate() {
+        let mesh = panel.mesh;
+        let fit = Frame::fit(
+            mesh.positions.iter().map(|&p| projection.project(p)),
+            DVec2::splat(INNER),
+            DVec2::ZERO,
+        );
+        let frame = Frame {
+            scale,
+            origin: fit.origin,
+            centre: DVec2::new(x0 + PANEL * (k as f64 + 0.5), top + PANEL / 2.0),
+        };
+        let px = |v: u32| {
+            mesh.positions
+                .get(v as usize)
+                .map_or(frame.centre, |&p| frame.px(projection.project(p)))
+        };
+        match style {
+            MeshStyle::Shaded => {
+                let face_list: Vec<&[u32]> = mesh.faces().collect();
+                let mut faces: Vec<(f64, usize)> = face_list
+                    .iter()
+                    .enumerate()
+                    .map(|(f, verts)| {
+                        let depth = verts
+                            .iter()
+                            .filter_map(|&v| mesh.positions.get(v as usize))
+                            .map(|&p| projection.depth(p))
+                            .sum::<f64>()
+                            / verts.len().max(1) as f64;
+                        (depth, f)
+                    })
+                    .collect();
+                faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                let _ = writeln!(
+                    out,
+                    "<g stroke=\"#1a1a1a\" stroke-width=\"0.6\" stroke-linejoin=\"round\">"
+                );
+                for &(_, f) in &faces {
+                    let verts = face_list[f];
+                    let normal = newell_normal(mesh, verts);
+                    let facing = normal.dot(projection.toward_viewer);
+                    // Lit from the upper left, in front of the viewer.
+                    let to_light = (projection.up * 0.6 - projection.right * 0.4
+                        + projection.toward_viewer * 0.7)
+                        .normalize();
+                    let light = normal.dot(to_light).abs().mul_add(0.6, 0.38);
+                    let (r, g, b) = if facing >= 0.0 {
+                        (0.62 * light, 0.78 * light, 1.0 * light)
+                    } else {
+                        (0.45 * light, 0.42 * light, 0.5 * light)
+                    };
+                    let _ = writeln!(
+                        out,
+                        "<polygon points=\"{}\" fill=\"#{:02x}{:02x}{:02x}\"/>",
+                        points_attr(verts.iter().map(|&v| px(v))),
+                        (r * 255.0).round() as u8,
+                        (g * 255.0).round() as u8,
+                        (b * 255.0).round() as u8
+                    );
+                }
+                let _ = writeln!(out, "</g>");
+            }
+            MeshStyle::Wireframe => {
+                let mut seen = HashSet::new();
+                let _ = writeln!(out, "<g stroke=\"#1f4e9c\" stroke-width=\"0.8\">");
+                for verts in mesh.faces() {
+                    for (i, &a) in verts.iter().enumerate() {
+                        let b = verts[(i + 1) % verts.len()];
+                        if seen.insert((a.min(b), a.max(b))) {
+                            let (p, q) = (px(a), px(b));
+                            let _ = writeln!(
+                                out,
+                                "<line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/>",
+                                p.x, p.y, q.x, q.y
+                            );
+                        }
+                    }
+                }
+                let _ = writeln!(out, "</g>");
+            }
+        }
+        let _ = writeln!(
+            out,
+            "<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\" text-anchor=\"middle\">{}</text>",
+            frame.centre.x,
+            top + PANEL + 16.0,
+            escape(panel.label)
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
+/// The unit normal of a polygon by Newell's method (zero for a degenerate one).
+fn newell_normal(mesh: &Mesh, verts: &[u32]) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    let p = |v: u32| mesh.positions.get(v as usize).copied().unwrap_or_default();
+    for (i, &a) in verts.iter().enumerate() {
+        let (a, b) = (p(a), p(verts[(i + 1) % verts.len()]));
+        n += DVec3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
+    }
+    n.normalize_or_zero()
+}
+
+/// Writes an SVG text to `path` atomically.
+pub fn write_svg(path: &Path, svg: &str) -> Result<(), Error> {
+    write_atomically(path, svg.as_bytes())
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same directory,
+/// renamed over `path` at the end: `path` is replaced only when everything
+/// was written, and the temporary file is removed on failure.
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let io_error = |source: io::Error| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file_name = path.file_name().ok_or_else(|| {
+        io_error(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "the path does not name a file",
+        ))
+    })?;
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+    let mut prefix = std::ffi::OsString::from(".");
+    prefix.push(file_name);
+    prefix.push(".");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut temp = builder.tempfile_in(dir).map_err(io_error)?;
+    temp.write_all(bytes).map_err(io_error)?;
+    temp.flush().map_err(io_error)?;
+    temp.persist(path).map_err(|e| io_error(e.error))?;
+    Ok(())
+}
