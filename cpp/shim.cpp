@@ -10,6 +10,8 @@
 #include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
+#include <opensubdiv/osd/bufferDescriptor.h>
+#include <opensubdiv/osd/cpuEvaluator.h>
 #include <opensubdiv/version.h>
 
 #include <algorithm>
@@ -96,6 +98,12 @@ struct sdv_refiner {
     std::string warnings;
     bool full_topology_last_level = true;  // level 0 always has full topology
     ~sdv_refiner() { delete refiner; }
+};
+
+struct sdv_evaluator {
+    Far::StencilTable const *table = nullptr;
+    int controls = 0;
+    ~sdv_evaluator() { delete table; }
 };
 
 struct sdv_stencils {
@@ -687,6 +695,56 @@ int sdv_stencils_export(const sdv_stencils *s, int32_t *sizes, int32_t *offsets,
         std::copy(s->offsets.begin(), s->offsets.end(), offsets);
         std::copy(s->indices.begin(), s->indices.end(), indices);
         std::copy(s->weights.begin(), s->weights.begin() + s->indices.size(), weights);
+    });
+}
+
+int sdv_evaluator_create(const sdv_refiner *r, sdv_evaluator **out, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        *out = nullptr;
+        const sdv_refiner &rr = need(r);
+        Far::TopologyRefiner const &tr = *rr.refiner;
+        Far::StencilTableFactory::Options o;
+        o.interpolationMode = Far::StencilTableFactory::INTERPOLATE_VERTEX;
+        o.generateOffsets = true;
+        o.generateIntermediateLevels = false;
+        o.generateControlVerts = tr.GetMaxLevel() == 0;
+        o.maxLevel = tr.GetMaxLevel();
+        Far::StencilTable const *table = Far::StencilTableFactory::Create(tr, o);
+        if (!table) fail("StencilTableFactory::Create failed");
+        auto *e = new (std::nothrow) sdv_evaluator();
+        if (!e) {
+            delete table;
+            throw std::bad_alloc();
+        }
+        e->table = table;
+        e->controls = tr.GetLevel(0).GetNumVertices();
+        *out = e;
+    });
+}
+
+void sdv_evaluator_destroy(sdv_evaluator *e) { delete e; }
+
+void sdv_evaluator_counts(const sdv_evaluator *e, int32_t *controls, int32_t *stencils) {
+    if (controls) *controls = e ? e->controls : 0;
+    if (stencils) *stencils = (e && e->table) ? e->table->GetNumStencils() : 0;
+}
+
+int sdv_evaluator_eval_f32(const sdv_evaluator *e, int32_t width, const float *src, size_t src_len, float *dst,
+                           size_t dst_len, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!e || !e->table) fail("null evaluator");
+        if (width < 1) fail("primvar width must be at least 1");
+        int n = e->table->GetNumStencils();
+        check_len(src_len, (long long)e->controls * width, "source primvar buffer");
+        check_len(dst_len, (long long)n * width, "destination primvar buffer");
+        if (n == 0) return;
+        if (!src || !dst) fail("null primvar buffer");
+        Osd::BufferDescriptor sd(0, width, width), dd(0, width, width);
+        bool ok = Osd::CpuEvaluator::EvalStencils(src, sd, dst, dd, &e->table->GetSizes()[0],
+                                                  &e->table->GetOffsets()[0], &e->table->GetControlIndices()[0],
+                                                  &e->table->GetWeights()[0], 0, n);
+        if (!ok) throw ShimError(SDV_ERR_OSD, "Osd::CpuEvaluator::EvalStencils failed");
     });
 }
 

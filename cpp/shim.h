@@ -162,6 +162,20 @@ int sdv_stencils_export(const sdv_stencils *s, int32_t *sizes, int32_t *offsets,
                         int32_t *indices, double *weights, size_t rows_cap, size_t nnz_cap,
                         char *err, size_t err_len);
 
+/*
+ * OpenSubdiv's production stencil path: a float Far::StencilTable for the
+ * last level (vertex interpolation, no intermediate levels), applied by
+ * Osd::CpuEvaluator::EvalStencils to interleaved float primvars of `width`
+ * components per vertex.
+ */
+typedef struct sdv_evaluator sdv_evaluator;
+int sdv_evaluator_create(const sdv_refiner *r, sdv_evaluator **out, char *err, size_t err_len);
+void sdv_evaluator_destroy(sdv_evaluator *e);
+/* number of control (base) vertices and of stencils (last-level vertices) */
+void sdv_evaluator_counts(const sdv_evaluator *e, int32_t *controls, int32_t *stencils);
+int sdv_evaluator_eval_f32(const sdv_evaluator *e, int32_t width, const float *src, size_t src_len,
+                           float *dst, size_t dst_len, char *err, size_t err_len);
+
 #ifdef __cplusplus
 }
 #endif

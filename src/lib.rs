@@ -36,6 +36,8 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
+#[cfg(feature = "osd")]
+pub mod bench;
 pub mod compare;
 pub mod curve;
 pub mod doo_sabin;

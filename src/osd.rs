@@ -846,6 +846,94 @@ impl Refiner {
     }
 }
 
+/// OpenSubdiv's production stencil evaluation: a float `Far::StencilTable`
+/// for the last level, applied by `Osd::CpuEvaluator::EvalStencils`. Used to
+/// measure OpenSubdiv's per-frame cost against [`StencilTable::apply_par`].
+#[derive(Debug)]
+pub struct StencilEvaluator {
+    raw: NonNull<ffi::sdv_evaluator>,
+    controls: usize,
+    stencils: usize,
+}
+
+// SAFETY: the evaluator is immutable after creation; evaluation only reads it.
+unsafe impl Send for StencilEvaluator {}
+// SAFETY: see above.
+unsafe impl Sync for StencilEvaluator {}
+
+impl Drop for StencilEvaluator {
+    fn drop(&mut self) {
+        // SAFETY: created by sdv_evaluator_create, freed once.
+        unsafe { ffi::sdv_evaluator_destroy(self.raw.as_ptr()) }
+    }
+}
+
+impl StencilEvaluator {
+    /// Builds OpenSubdiv's float stencil table for the refiner's last level.
+    pub fn new(refiner: &Refiner) -> Result<Self> {
+        let mut raw: *mut ffi::sdv_evaluator = std::ptr::null_mut();
+        let mut err = ErrBuf::new();
+        // SAFETY: the refiner is live; `raw` receives a new evaluator.
+        err.run(|e| unsafe {
+            ffi::sdv_evaluator_create(refiner.raw.as_ptr(), &mut raw, e, ERR_LEN)
+        })?;
+        let raw =
+            NonNull::new(raw).ok_or_else(|| Error::Osd("the shim returned no evaluator".into()))?;
+        let (mut controls, mut stencils) = (0i32, 0i32);
+        // SAFETY: the evaluator is live.
+        unsafe { ffi::sdv_evaluator_counts(raw.as_ptr(), &mut controls, &mut stencils) };
+        Ok(StencilEvaluator {
+            raw,
+            controls: controls as usize,
+            stencils: stencils as usize,
+        })
+    }
+
+    /// Number of stencils (vertices of the last level).
+    pub fn len(&self) -> usize {
+        self.stencils
+    }
+
+    /// Whether the table has no stencil.
+    pub fn is_empty(&self) -> bool {
+        self.stencils == 0
+    }
+
+    /// Applies the stencils to base data of `width` floats per vertex, into `dst`.
+    pub fn eval_into(&self, width: usize, src: &[f32], dst: &mut [f32]) -> Result<()> {
+        let mut err = ErrBuf::new();
+        let w = to_i32(width, "width")?;
+        // SAFETY: both lengths are passed and checked by the shim against the
+        // table's counts before either buffer is touched.
+        err.run(|e| unsafe {
+            ffi::sdv_evaluator_eval_f32(
+                self.raw.as_ptr(),
+                w,
+                src.as_ptr(),
+                src.len(),
+                dst.as_mut_ptr(),
+                dst.len(),
+                e,
+                ERR_LEN,
+            )
+        })
+    }
+
+    /// Applies the stencils to base data of `width` floats per vertex.
+    pub fn eval(&self, width: usize, src: &[f32]) -> Result<Vec<f32>> {
+        if src.len() != self.controls * width {
+            return Err(Error::InvalidArgument(format!(
+                "source primvar buffer has {} values, expected {}",
+                src.len(),
+                self.controls * width
+            )));
+        }
+        let mut dst = vec![0f32; self.stencils * width];
+        self.eval_into(width, src, &mut dst)?;
+        Ok(dst)
+    }
+}
+
 fn flatten<T: Real>(points: &[DVec3]) -> Vec<T> {
     points
         .iter()

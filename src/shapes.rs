@@ -95,6 +95,40 @@ pub fn torus(nu: u32, nv: u32) -> Mesh {
     mesh
 }
 
+/// A closed torus of `nu` × `nv` cells where quads and pairs of triangles
+/// alternate like a checkerboard (a mixed mesh for Catmull-Clark).
+pub fn torus_mixed(nu: u32, nv: u32) -> Mesh {
+    let quads = torus(nu, nv);
+    let mut mesh = Mesh {
+        positions: quads.positions.clone(),
+        ..Mesh::default()
+    };
+    for (i, f) in quads.faces().enumerate() {
+        let (u, v) = (i as u32 % nu, i as u32 / nu);
+        if (u + v) % 2 == 0 {
+            mesh.add_face(f);
+        } else {
+            mesh.add_face(&[f[0], f[1], f[2]]);
+            mesh.add_face(&[f[0], f[2], f[3]]);
+        }
+    }
+    mesh
+}
+
+/// A closed torus of `nu` × `nv` cells, each split into two triangles (for Loop).
+pub fn torus_triangles(nu: u32, nv: u32) -> Mesh {
+    let quads = torus(nu, nv);
+    let mut mesh = Mesh {
+        positions: quads.positions.clone(),
+        ..Mesh::default()
+    };
+    for f in quads.faces() {
+        mesh.add_face(&[f[0], f[1], f[2]]);
+        mesh.add_face(&[f[0], f[2], f[3]]);
+    }
+    mesh
+}
+
 /// A regular tetrahedron (4 triangles), for the Loop scheme.
 pub fn tetrahedron() -> Mesh {
     Mesh::from_faces(

@@ -65,6 +65,43 @@ impl StencilTable {
         Ok(out)
     }
 
+    /// As [`StencilTable::apply_par`] for `f32` data (weights rounded to `f32`
+    /// as they are applied), into a caller's buffer: the per-frame path.
+    pub fn apply_par_f32_into(&self, width: usize, base: &[f32], out: &mut [f32]) -> Result<()> {
+        use rayon::prelude::*;
+        let count = base.len().checked_div(width).unwrap_or(0);
+        if width == 0 || base.len() % width != 0 || out.len() != self.len() * width {
+            return Err(Error::InvalidArgument(format!(
+                "buffers of {} and {} values do not fit {} stencils of width {width}",
+                base.len(),
+                out.len(),
+                self.len()
+            )));
+        }
+        if self.indices.iter().any(|&v| v as usize >= count) {
+            return Err(Error::InvalidArgument(format!(
+                "the stencils refer to base vertices beyond the {count} given"
+            )));
+        }
+        const BLOCK: usize = 1024;
+        out.par_chunks_mut(width * BLOCK)
+            .enumerate()
+            .for_each(|(block, chunk)| {
+                for (k, dst) in chunk.chunks_exact_mut(width).enumerate() {
+                    dst.fill(0.0);
+                    let (idx, w) = self.row(block * BLOCK + k);
+                    for (&v, &w) in idx.iter().zip(w) {
+                        let v = v as usize * width;
+                        let w = w as f32;
+                        for (d, s) in dst.iter_mut().zip(&base[v..v + width]) {
+                            *d += w * s;
+                        }
+                    }
+                }
+            });
+        Ok(())
+    }
+
     /// Checks that `base` fits the table; returns its vertex count.
     fn check_apply(&self, width: usize, base: &[f64]) -> Result<usize> {
         if width == 0 || base.len() % width != 0 {

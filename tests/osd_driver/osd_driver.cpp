@@ -7,6 +7,7 @@
 //
 // Usage:
 //   osd_driver INPUT.obj OUTPUT.obj [--level N] [--scheme catmark|loop|bilinear]
+//   (OUTPUT "-" refines without writing anything, for whole-process benchmarks)
 //       [--boundary none|edge-only|edge-and-corner]
 //       [--fvar none|corners-only|corners-plus1|corners-plus2|boundaries|all]
 //       [--creasing uniform|chaikin] [--triangles catmark|smooth]
@@ -519,6 +520,9 @@ int run(int argc, char **argv) {
 
     Far::TopologyLevel const &last = refiner->GetLevel(maxLevel);
     if ((int)pos.size() != last.GetNumVertices()) fail("vertex count mismatch");
+
+    // OUTPUT "-" skips writing: the refinement alone, for benchmarks.
+    if (positional[1] == "-") return 0;
 
     std::string out;
     out.reserve(pos.size() * 64 + (size_t)last.GetNumFaces() * 32);

@@ -1,0 +1,518 @@
+//! Side-by-side benchmarks of the native engine and OpenSubdiv, measured in
+//! the same process and the same run (interleaved repetitions, medians), as
+//! `subdiv bench` prints and writes them.
+
+use crate::mesh::Mesh;
+use crate::options::{Options, Scheme, UniformOptions};
+use crate::{Result, osd, refiner, shapes};
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// One input of the benchmark: a mesh and the scheme to refine it with.
+#[derive(Debug, Clone)]
+pub struct BenchInput {
+    /// Short name.
+    pub name: String,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The subdivision scheme.
+    pub scheme: Scheme,
+    /// Deepest level to refine.
+    pub max_level: u32,
+}
+
+/// The default inputs: a 100×100 quad torus, an 80×80 torus of alternating
+/// quads and triangle pairs, a 100×50 triangle torus (Catmull-Clark and Loop)
+/// and a 1000×1000 quad grid refined one level. `quick` shrinks them.
+pub fn default_inputs(quick: bool) -> Vec<BenchInput> {
+    let d = if quick { 4 } else { 1 };
+    let input = |name: &str, mesh: Mesh, scheme: Scheme, max_level: u32| BenchInput {
+        name: name.to_string(),
+        mesh,
+        scheme,
+        max_level,
+    };
+    let mut grid = shapes::grid(1000 / d, 1000 / d);
+    grid.fvar_channels.clear();
+    vec![
+        input(
+            &format!("torus {0}x{0} quads", 100 / d),
+            shapes::torus(100 / d, 100 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {0}x{0} mixed", 80 / d),
+            shapes::torus_mixed(80 / d, 80 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {}x{} triangles", 100 / d, 50 / d),
+            shapes::torus_triangles(100 / d, 50 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {}x{} triangles", 100 / d, 50 / d),
+            shapes::torus_triangles(100 / d, 50 / d),
+            Scheme::Loop,
+            4,
+        ),
+        input(
+            &format!("grid {0}x{0} quads", 1000 / d),
+            grid,
+            Scheme::Catmark,
+            1,
+        ),
+    ]
+}
+
+/// One comparison: the same work done by both engines.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Row {
+    /// The input.
+    pub input: String,
+    /// The scheme.
+    pub scheme: String,
+    /// The level.
+    pub level: u32,
+    /// What was measured.
+    pub task: String,
+    /// Median native time, seconds.
+    pub native: f64,
+    /// Median OpenSubdiv time, seconds.
+    pub osd: f64,
+    /// Vertices produced (for rates).
+    pub vertices: usize,
+}
+
+impl Row {
+    /// OpenSubdiv's time over the native time (above 1: native is faster).
+    pub fn speedup(&self) -> f64 {
+        self.osd / self.native
+    }
+}
+
+/// A whole benchmark run.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Report {
+    /// When and where it ran.
+    pub machine: String,
+    /// Native threads used.
+    pub threads: usize,
+    /// Measured memory copy bandwidth, bytes per second.
+    pub bandwidth: f64,
+    /// All comparisons.
+    pub rows: Vec<Row>,
+    /// Stencil apply: native and OpenSubdiv bytes moved per second.
+    pub stencil_bandwidth: Option<(f64, f64)>,
+}
+
+/// Runs `a` and `b` alternately (the order swapping every repetition) and
+/// returns their median times in seconds.
+pub fn interleaved(reps: usize, mut a: impl FnMut(), mut b: impl FnMut()) -> (f64, f64) {
+    let (mut ta, mut tb) = (Vec::with_capacity(reps), Vec::with_capacity(reps));
+    for i in 0..reps.max(1) {
+        let time = |f: &mut dyn FnMut()| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64()
+        };
+        if i % 2 == 0 {
+            ta.push(time(&mut a));
+            tb.push(time(&mut b));
+        } else {
+            tb.push(time(&mut b));
+            ta.push(time(&mut a));
+        }
+    }
+    (median(&mut ta), median(&mut tb))
+}
+
+/// A named series of (level, native seconds, OpenSubdiv seconds).
+type Series = (String, Vec<(u32, f64, f64)>);
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// This machine's memory bandwidth: the best of a few copies of a 256 MiB
+/// buffer, counting bytes read plus bytes written.
+pub fn measure_bandwidth() -> f64 {
+    let n = 32 << 20; // 32 Mi f64 = 256 MiB
+    let src = vec![1.0f64; n];
+    let mut dst = vec![0.0f64; n];
+    let mut best = f64::MAX;
+    for _ in 0..5 {
+        let t = Instant::now();
+        dst.copy_from_slice(black_box(&src));
+        best = best.min(t.elapsed().as_secs_f64());
+        black_box(&dst);
+    }
+    (2 * n * 8) as f64 / best
+}
+
+fn flat32(mesh: &Mesh) -> Vec<f32> {
+    mesh.positions
+        .iter()
+        .flat_map(|p| p.as_vec3().to_array())
+        .collect()
+}
+
+/// Runs every comparison on `inputs`; `progress` is called once per step
+/// with a description.
+pub fn run(
+    inputs: &[BenchInput],
+    quick: bool,
+    threads: usize,
+    mut progress: impl FnMut(&str),
+) -> Result<Report> {
+    let reps = if quick { 3 } else { 7 };
+    let mut rows = Vec::new();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+        .map_err(|e| {
+            crate::Error::InvalidArgument(format!("cannot start {threads} threads: {e}"))
+        })?;
+    let bandwidth = measure_bandwidth();
+    let mut stencil_bandwidth = None;
+    for input in inputs {
+        let options = Options::default().with_scheme(input.scheme);
+        let base = flat32(&input.mesh);
+        let label =
+            |task: &str, level: u32| format!("{} {} L{level}: {task}", input.name, input.scheme);
+        for level in 1..=input.max_level {
+            progress(&label("topology + positions", level));
+            let uniform = UniformOptions::new(level);
+            let mut vertices = 0;
+            let (native, osd) = pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        let mut r =
+                            refiner::Refiner::new(&input.mesh, &options).expect("native refiner");
+                        r.refine_uniform(uniform).expect("native refinement");
+                        let p = r.interpolate_all(3, &base).expect("native positions");
+                        vertices = p.last().map_or(0, |l| l.len() / 3);
+                        black_box(p);
+                    },
+                    || {
+                        let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd refiner");
+                        r.refine_uniform(uniform).expect("osd refinement");
+                        black_box(r.interpolate_all(3, &base).expect("osd positions"));
+                    },
+                )
+            });
+            rows.push(Row {
+                input: input.name.clone(),
+                scheme: input.scheme.to_string(),
+                level,
+                task: "topology + positions".into(),
+                native,
+                osd,
+                vertices,
+            });
+        }
+        // Separate tasks at the deepest level.
+        let level = input.max_level;
+        let uniform = UniformOptions::new(level);
+        let mut n = refiner::Refiner::new(&input.mesh, &options)?;
+        n.refine_uniform(uniform)?;
+        let mut o = osd::Refiner::new(&input.mesh, &options)?;
+        o.refine_uniform(uniform)?;
+        let vertices = n.internal_level(level)?.vertex_count;
+        let mut push = |task: &str, (native, osd): (f64, f64)| {
+            rows.push(Row {
+                input: input.name.clone(),
+                scheme: input.scheme.to_string(),
+                level,
+                task: task.into(),
+                native,
+                osd,
+                vertices,
+            })
+        };
+        progress(&label("base topology", level));
+        push(
+            "base topology",
+            interleaved(
+                reps,
+                || {
+                    drop(black_box(
+                        refiner::Refiner::new(&input.mesh, &options).expect("native"),
+                    ))
+                },
+                || {
+                    drop(black_box(
+                        osd::Refiner::new(&input.mesh, &options).expect("osd"),
+                    ))
+                },
+            ),
+        );
+        progress(&label("topology refinement", level));
+        push(
+            "topology refinement",
+            interleaved(
+                reps,
+                || {
+                    let mut r = refiner::Refiner::new(&input.mesh, &options).expect("native");
+                    r.refine_uniform(uniform).expect("native");
+                    black_box(r);
+                },
+                || {
+                    let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd");
+                    r.refine_uniform(uniform).expect("osd");
+                    black_box(r);
+                },
+            ),
+        );
+        progress(&label("positions (f32)", level));
+        push(
+            "positions (f32)",
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || drop(black_box(n.interpolate_all(3, &base).expect("native"))),
+                    || drop(black_box(o.interpolate_all(3, &base).expect("osd"))),
+                )
+            }),
+        );
+        progress(&label("limit (f32)", level));
+        let full = uniform.full_topology(true);
+        let mut nf = refiner::Refiner::new(&input.mesh, &options)?;
+        nf.refine_uniform(full)?;
+        let mut of = osd::Refiner::new(&input.mesh, &options)?;
+        of.refine_uniform(full)?;
+        let last = nf.interpolate_all(3, &base)?.pop().unwrap_or_default();
+        push(
+            "limit (f32)",
+            interleaved(
+                reps,
+                || drop(black_box(nf.limit(3, &last).expect("native"))),
+                || drop(black_box(of.limit(3, &last).expect("osd"))),
+            ),
+        );
+        progress(&label("stencil table", level));
+        push(
+            "stencil table",
+            interleaved(
+                reps.min(3),
+                || drop(black_box(n.stencil_table().expect("native"))),
+                || drop(black_box(osd::StencilEvaluator::new(&o).expect("osd"))),
+            ),
+        );
+        progress(&label("stencil apply", level));
+        let table = n.stencil_table()?;
+        let evaluator = osd::StencilEvaluator::new(&o)?;
+        let mut out_n = vec![0f32; table.len() * 3];
+        let mut out_o = vec![0f32; evaluator.len() * 3];
+        let times = pool.install(|| {
+            interleaved(
+                reps * 3,
+                || {
+                    table
+                        .apply_par_f32_into(3, &base, &mut out_n)
+                        .expect("native")
+                },
+                || evaluator.eval_into(3, &base, &mut out_o).expect("osd"),
+            )
+        });
+        // Bytes each pass moves: the table (index + weight), the sources it
+        // reads and the results it writes.
+        let bytes = (table.indices.len() * (4 + 8 + 12) + table.len() * (8 + 12)) as f64;
+        let osd_bytes = (table.indices.len() * (4 + 4 + 12) + table.len() * (8 + 12)) as f64;
+        stencil_bandwidth = Some((bytes / times.0, osd_bytes / times.1));
+        push("stencil apply (f32)", times);
+    }
+    Ok(Report {
+        machine: machine_description(),
+        threads,
+        bandwidth,
+        rows,
+        stencil_bandwidth,
+    })
+}
+
+/// The date, processor and core count, for reports.
+pub fn machine_description() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown processor".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!("{cpu}, {cores} cores, OpenSubdiv {}", osd::version())
+}
+
+impl Report {
+    /// The report as a Markdown table.
+    pub fn markdown(&self, date: &str) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "Measured {date} on {} ({} native thread(s)); memory bandwidth {:.1} GB/s.\n",
+            self.machine,
+            self.threads,
+            self.bandwidth / 1e9
+        );
+        let _ = writeln!(
+            s,
+            "| input | scheme | level | task | native ms | OpenSubdiv ms | speed-up |"
+        );
+        let _ = writeln!(s, "| --- | --- | ---: | --- | ---: | ---: | ---: |");
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {:.2} | {:.2} | {:.2}x |",
+                r.input,
+                r.scheme,
+                r.level,
+                r.task,
+                r.native * 1e3,
+                r.osd * 1e3,
+                r.speedup()
+            );
+        }
+        if let Some((n, o)) = self.stencil_bandwidth {
+            let _ = writeln!(
+                s,
+                "\nStencil apply moves {:.1} GB/s natively ({:.0}% of the measured bandwidth) and {:.1} GB/s in OpenSubdiv.",
+                n / 1e9,
+                100.0 * n / self.bandwidth,
+                o / 1e9
+            );
+        }
+        s
+    }
+
+    /// An SVG line chart of "topology + positions" time per level, native
+    /// against OpenSubdiv, one pair of lines per input.
+    pub fn svg_time_per_level(&self) -> String {
+        let series: Vec<Series> = {
+            let mut out: Vec<Series> = Vec::new();
+            for r in self
+                .rows
+                .iter()
+                .filter(|r| r.task == "topology + positions")
+            {
+                let key = format!("{} {}", r.input, r.scheme);
+                match out.iter_mut().find(|(k, _)| *k == key) {
+                    Some((_, v)) => v.push((r.level, r.native, r.osd)),
+                    None => out.push((key, vec![(r.level, r.native, r.osd)])),
+                }
+            }
+            out
+        };
+        let max = self
+            .rows
+            .iter()
+            .filter(|r| r.task == "topology + positions")
+            .map(|r| r.native.max(r.osd))
+            .fold(1e-6, f64::max);
+        let (w, h, left, bottom) = (640.0, 360.0, 60.0, 40.0);
+        let x = |l: u32| left + (l as f64 - 1.0) / 3.0 * (w - left - 20.0);
+        let y = |t: f64| h - bottom - (t / max) * (h - bottom - 20.0);
+        let colors = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"];
+        let mut s = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="11">"#
+        );
+        let _ = write!(
+            s,
+            r#"<rect width="{w}" height="{h}" fill="white"/><line x1="{left}" y1="{}" x2="{}" y2="{}" stroke="black"/><line x1="{left}" y1="20" x2="{left}" y2="{}" stroke="black"/>"#,
+            h - bottom,
+            w - 20.0,
+            h - bottom,
+            h - bottom
+        );
+        for l in 1..=4 {
+            let _ = write!(
+                s,
+                r#"<text x="{}" y="{}" text-anchor="middle">level {l}</text>"#,
+                x(l),
+                h - bottom + 16.0
+            );
+        }
+        let _ = write!(s, r#"<text x="8" y="14">ms (max {:.1})</text>"#, max * 1e3);
+        for (i, (name, pts)) in series.iter().enumerate() {
+            let c = colors[i % colors.len()];
+            for (osd, dash) in [(false, ""), (true, r#" stroke-dasharray="5,4""#)] {
+                let path: Vec<String> = pts
+                    .iter()
+                    .map(|&(l, n, o)| format!("{:.1},{:.1}", x(l), y(if osd { o } else { n })))
+                    .collect();
+                let _ = write!(
+                    s,
+                    r#"<polyline fill="none" stroke="{c}" stroke-width="2"{dash} points="{}"/>"#,
+                    path.join(" ")
+                );
+            }
+            let _ = write!(
+                s,
+                r#"<text x="{}" y="{}" fill="{c}">{name} (solid: native, dashed: OpenSubdiv)</text>"#,
+                left + 10.0,
+                32.0 + 14.0 * i as f64
+            );
+        }
+        s.push_str("</svg>\n");
+        s
+    }
+
+    /// An SVG bar chart of refined vertices per second at the deepest level
+    /// against the rate the measured memory bandwidth would allow for the
+    /// bytes each refined vertex needs (its f32 position written once).
+    pub fn svg_rate_vs_bandwidth(&self) -> String {
+        let rows: Vec<&Row> = self
+            .rows
+            .iter()
+            .filter(|r| r.task == "positions (f32)")
+            .collect();
+        let bound = self.bandwidth / 12.0;
+        let max = rows
+            .iter()
+            .map(|r| (r.vertices as f64 / r.native).max(r.vertices as f64 / r.osd))
+            .fold(bound, f64::max);
+        let (w, bar) = (640.0, 18.0);
+        let h = 40.0 + rows.len() as f64 * 2.0 * (bar + 4.0) + 30.0;
+        let scale = |v: f64| (v / max) * (w - 260.0);
+        let mut s = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="11"><rect width="{w}" height="{h}" fill="white"/>"#
+        );
+        let _ = write!(
+            s,
+            r#"<text x="8" y="16">refined vertices per second (positions, f32); line: bandwidth bound {:.2e}/s</text>"#,
+            bound
+        );
+        let mut yy = 30.0;
+        for r in rows {
+            for (who, t, c) in [("native", r.native, "#1f77b4"), ("osd", r.osd, "#d62728")] {
+                let rate = r.vertices as f64 / t;
+                let _ = write!(
+                    s,
+                    r#"<text x="8" y="{}">{} {} {who}</text><rect x="250" y="{yy}" width="{:.1}" height="{bar}" fill="{c}"/><text x="{:.1}" y="{}">{:.2e}</text>"#,
+                    yy + 13.0,
+                    r.input,
+                    r.scheme,
+                    scale(rate),
+                    254.0 + scale(rate),
+                    yy + 13.0,
+                    rate
+                );
+                yy += bar + 4.0;
+            }
+        }
+        let bx = 250.0 + scale(bound);
+        let _ = write!(
+            s,
+            r#"<line x1="{bx:.1}" y1="24" x2="{bx:.1}" y2="{yy}" stroke="black" stroke-dasharray="3,3"/></svg>"#
+        );
+        s.push('\n');
+        s
+    }
+}
