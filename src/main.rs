@@ -32,6 +32,8 @@ enum Command {
     Compare(CompareArgs),
     /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme.
     Curve(CurveArgs),
+    /// Benchmark the native engine against OpenSubdiv, side by side in the same run.
+    Bench(BenchArgs),
     /// The main job on the built-in cube: refine it to level 2 with every available engine.
     Demo,
     /// Print the versions of subdiv and of the OpenSubdiv it is built against.
@@ -128,6 +130,9 @@ struct RefineArgs {
     /// Doo-Sabin boundary rule: open or chaikin (with --scheme doo-sabin).
     #[arg(long, value_name = "RULE", value_parser = parse::<subdiv::doo_sabin::Boundary>)]
     doo_sabin_boundary: Option<subdiv::doo_sabin::Boundary>,
+    /// Print the process's peak memory (bytes) on stderr at the end (for `subdiv bench`).
+    #[arg(long, hide = true)]
+    peak_memory: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -241,6 +246,7 @@ fn main() -> ExitCode {
         Command::Refine(args) => refine(&args),
         Command::Compare(args) => compare(&args),
         Command::Curve(args) => curve(&args),
+        Command::Bench(args) => bench(&args),
         Command::Demo => demo(),
         Command::Version => {
             version();
@@ -424,7 +430,17 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
         Some(path) => write_output(path, &r)?,
         None => println!("{}", summary(&name, args.engine, &r, seconds)),
     }
+    if args.peak_memory {
+        eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
+    }
     Ok(())
+}
+
+/// The process's peak resident memory, from /proc/self/status.
+fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    Some(line.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
 }
 
 /// Writes the last level (or its limit) in OpenSubdiv's order; holes are left out.
@@ -829,4 +845,269 @@ fn run_curve<P: Point>(points: &[P], scheme: CurveScheme, args: &CurveArgs) -> R
         }
     }
     Ok(())
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// OBJ files to benchmark (Catmull-Clark, levels 1-3); without them, the
+    /// generated tori and grid of the standard benchmark.
+    inputs: Vec<PathBuf>,
+    /// Smaller inputs and fewer repetitions.
+    #[arg(long)]
+    quick: bool,
+    /// Threads for the native engine.
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Write bench.md, bench.json and SVG plots into this directory.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+#[cfg(not(feature = "osd"))]
+fn bench(_args: &BenchArgs) -> Result<(), Failure> {
+    Err(Failure::Unavailable(
+        "benchmarks compare with OpenSubdiv: rebuild with the default feature `osd`".into(),
+    ))
+}
+
+#[cfg(feature = "osd")]
+fn bench(args: &BenchArgs) -> Result<(), Failure> {
+    use subdiv::bench;
+    let inputs = if args.inputs.is_empty() {
+        bench::default_inputs(args.quick)
+    } else {
+        let mut v = Vec::new();
+        for path in &args.inputs {
+            let shape = subdiv::io::read_obj(path).map_err(Error::from)?;
+            v.push(bench::BenchInput {
+                name: path.display().to_string(),
+                mesh: shape.mesh,
+                scheme: Scheme::Catmark,
+                max_level: 3,
+            });
+        }
+        v
+    };
+    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 7).sum();
+    let bar = indicatif::ProgressBar::new(steps);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let report = bench::run(&inputs, args.quick, args.threads, |msg| {
+        bar.set_message(msg.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    let date = today();
+    let mut text = report.markdown(&date);
+    if args.inputs.is_empty() {
+        text.push_str(&whole_process(&inputs[0], args.quick));
+    }
+    text.push_str(&targets(&report));
+    println!("{text}");
+    if let Some(dir) = &args.out {
+        let io = |e: std::io::Error| {
+            Failure::Error(Error::Io {
+                path: dir.clone(),
+                source: e,
+            })
+        };
+        std::fs::create_dir_all(dir).map_err(io)?;
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::InvalidArgument(e.to_string()))?;
+        for (name, body) in [
+            ("bench.md", text.clone()),
+            ("bench.json", json),
+            ("time-per-level.svg", report.svg_time_per_level()),
+            ("rate-vs-bandwidth.svg", report.svg_rate_vs_bandwidth()),
+        ] {
+            std::fs::write(dir.join(name), body).map_err(io)?;
+        }
+        println!("wrote {}", dir.display());
+    }
+    Ok(())
+}
+
+/// Today's date (UTC) as YYYY-MM-DD.
+#[cfg(feature = "osd")]
+fn today() -> String {
+    let days = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs() / 86_400) as i64;
+    // Civil-from-days (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+/// The issue-6 targets, checked against the report.
+#[cfg(feature = "osd")]
+fn targets(report: &subdiv::bench::Report) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::from("\nTargets (OpenSubdiv time / native time):\n");
+    for r in report
+        .rows
+        .iter()
+        .filter(|r| r.task == "topology + positions" && r.level == 4)
+    {
+        let goal = if report.threads >= 2 { 5.0 } else { 3.0 };
+        let _ = writeln!(
+            s,
+            "  level 4 topology + positions, {} {}, {} thread(s): {:.2}x (target {goal}x) {}",
+            r.input,
+            r.scheme,
+            report.threads,
+            r.speedup(),
+            if r.speedup() >= goal {
+                "met"
+            } else {
+                "NOT MET"
+            }
+        );
+    }
+    for r in report
+        .rows
+        .iter()
+        .filter(|r| r.task == "stencil apply (f32)")
+    {
+        let _ = writeln!(
+            s,
+            "  stencil apply, {} {}: {:.2}x (target 4x) {}",
+            r.input,
+            r.scheme,
+            r.speedup(),
+            if r.speedup() >= 4.0 { "met" } else { "NOT MET" }
+        );
+    }
+    if let Some((n, _)) = report.stencil_bandwidth {
+        let share = n / report.bandwidth;
+        let _ = writeln!(
+            s,
+            "  stencil apply bandwidth: {:.0}% of measured (target 50%) {}",
+            share * 100.0,
+            if share >= 0.5 { "met" } else { "NOT MET" }
+        );
+    }
+    s
+}
+
+/// Whole-process time and peak memory: `subdiv refine` (native and osd) and,
+/// when a C++ compiler is available, an equivalent C++ program against
+/// OpenSubdiv (the driver in tests/osd_driver, embedded in this binary).
+#[cfg(feature = "osd")]
+fn whole_process(input: &subdiv::bench::BenchInput, quick: bool) -> String {
+    use std::fmt::Write as _;
+    use std::process::Command;
+    let mut s = String::from("\nWhole process, level 4, no output file:\n");
+    let dir = match tempfile::tempdir() {
+        Ok(d) => d,
+        Err(e) => return format!("{s}  skipped: no temporary directory ({e})\n"),
+    };
+    let obj = dir.path().join("input.obj");
+    if let Err(e) = subdiv::io::write_mesh_obj(&obj, &input.mesh, Precision::F64) {
+        return format!("{s}  skipped: {e}\n");
+    }
+    let exe = match std::env::current_exe() {
+        Ok(e) => e,
+        Err(e) => return format!("{s}  skipped: {e}\n"),
+    };
+    let driver_src = dir.path().join("osd_driver.cpp");
+    let driver = dir.path().join("osd_driver");
+    let have_driver = std::fs::write(
+        &driver_src,
+        include_str!("../tests/osd_driver/osd_driver.cpp"),
+    )
+    .is_ok()
+        && Command::new("g++")
+            .args(["-std=c++14", "-O2"])
+            .arg(&driver_src)
+            .args(["-losdCPU", "-o"])
+            .arg(&driver)
+            .output()
+            .is_ok_and(|o| o.status.success());
+    let reps = if quick { 3 } else { 5 };
+    let run = |cmd: &mut Command| -> Option<(f64, u64)> {
+        let mut times = Vec::new();
+        let mut peak = 0;
+        for _ in 0..reps {
+            let t = Instant::now();
+            let out = cmd.output().ok()?;
+            times.push(t.elapsed().as_secs_f64());
+            if !out.status.success() {
+                return None;
+            }
+            let err = String::from_utf8_lossy(&out.stderr);
+            if let Some(v) = err
+                .lines()
+                .find_map(|l| l.strip_prefix("peak_memory_bytes "))
+            {
+                peak = v.trim().parse().unwrap_or(0);
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        Some((times[times.len() / 2], peak))
+    };
+    let refine = |engine: &str| {
+        let mut c = Command::new(&exe);
+        c.arg("refine")
+            .arg(&obj)
+            .args(["--level", "4", "--engine", engine, "--peak-memory"]);
+        c
+    };
+    let native = run(&mut refine("native"));
+    let osd = run(&mut refine("osd"));
+    let cpp = if have_driver {
+        run(Command::new(&driver)
+            .arg(&obj)
+            .arg("-")
+            .args(["--level", "4"]))
+    } else {
+        None
+    };
+    match (native, osd) {
+        (Some((tn, mn)), Some((to, mo))) => {
+            let _ = writeln!(
+                s,
+                "  subdiv refine --engine native: {:.1} ms, peak memory {:.0} MiB",
+                tn * 1e3,
+                mn as f64 / 1048576.0
+            );
+            let _ = writeln!(
+                s,
+                "  subdiv refine --engine osd:    {:.1} ms, peak memory {:.0} MiB",
+                to * 1e3,
+                mo as f64 / 1048576.0
+            );
+            if mn > 0 && mo > 0 {
+                let ratio = mn as f64 / mo as f64;
+                let _ = writeln!(
+                    s,
+                    "  peak memory native / OpenSubdiv: {ratio:.2} (target 0.6) {}",
+                    if ratio <= 0.6 { "met" } else { "NOT MET" }
+                );
+            }
+            match cpp {
+                Some((tc, _)) => {
+                    let ratio = tc / tn;
+                    let _ = writeln!(
+                        s,
+                        "  C++ program against OpenSubdiv: {:.1} ms; speed-up {ratio:.2}x (target 3x) {}",
+                        tc * 1e3,
+                        if ratio >= 3.0 { "met" } else { "NOT MET" }
+                    );
+                }
+                None => s.push_str("  C++ program: skipped (g++ or libosd-dev not available)\n"),
+            }
+        }
+        _ => s.push_str("  skipped: a child process failed\n"),
+    }
+    s
 }

@@ -18,6 +18,8 @@ pub(crate) struct LimitMasks<T> {
     /// The vertex two places after this one in each incident face.
     pub face_points: Vec<u32>,
     edge_sharpness: Vec<f32>,
+    /// Masks of smooth interior vertices by valence: they depend on nothing else.
+    smooth: Vec<Option<[Mask<T>; 3]>>,
 }
 
 impl<T: Real> LimitMasks<T> {
@@ -29,6 +31,7 @@ impl<T: Real> LimitMasks<T> {
             edge_points: Vec::new(),
             face_points: Vec::new(),
             edge_sharpness: Vec::new(),
+            smooth: Vec::new(),
         }
     }
 
@@ -51,7 +54,28 @@ impl<T: Real> LimitMasks<T> {
             child_edge_sharpness: &[],
         };
         let rule = level.vertex_tags[v].rule;
-        if tangents {
+        let smooth = matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
+            && faces.len() == edges.len();
+        if smooth {
+            let n = faces.len();
+            if self.smooth.len() <= n {
+                self.smooth.resize(n + 1, None);
+            }
+            if self.smooth[n].is_none() {
+                let (mut p, mut t1, mut t2) = (Mask::new(), Mask::new(), Mask::new());
+                refiner
+                    .rules
+                    .vertex_limit_masks(&hood, rule, &mut p, &mut t1, &mut t2);
+                self.smooth[n] = Some([p, t1, t2]);
+            }
+            if let Some([p, t1, t2]) = &self.smooth[n] {
+                self.pos.clone_from(p);
+                if tangents {
+                    self.tan1.clone_from(t1);
+                    self.tan2.clone_from(t2);
+                }
+            }
+        } else if tangents {
             refiner.rules.vertex_limit_masks(
                 &hood,
                 rule,
