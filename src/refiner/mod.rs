@@ -196,7 +196,18 @@ impl Refiner {
             } else {
                 Vec::new()
             },
-            edge_sharpness: l.edge_sharpness.clone(),
+            edge_sharpness: if l.edge_sharpness.len() == l.edge_count() {
+                l.edge_sharpness.clone()
+            } else {
+                // A minimal last level keeps no edge sharpness: recompute it.
+                let parent = &self.levels[level as usize - 1];
+                crate::topology::refine::child_edge_sharpness(
+                    parent,
+                    &self.refinements[level as usize - 1],
+                    self.options.creasing,
+                    l.edge_count(),
+                )
+            },
             vertex_sharpness: l.vertex_sharpness.clone(),
             face_holes: l.face_holes.clone(),
             fvar: self

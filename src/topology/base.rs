@@ -179,6 +179,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         vertex_face_local: Vec::new(),
         vertex_edges: vertex_edges.into_relation(),
         vertex_edge_local: Vec::new(),
+        num_edges: ne,
         edge_sharpness: vec![0.0; ne],
         vertex_sharpness: vec![0.0; nv],
         edge_tags: vec![EdgeTag::default(); ne],

@@ -19,7 +19,7 @@
 
 mod base;
 pub mod fvar;
-mod refine;
+pub mod refine;
 
 pub use base::build_base_level;
 pub use refine::{Refinement, refine_level};
@@ -165,11 +165,14 @@ pub struct Level {
     pub vertex_edges: Relation,
     /// Which end of each edge the vertex is (0 or 1).
     pub vertex_edge_local: Vec<u16>,
-    /// Edge sharpness.
+    /// Number of edges.
+    pub num_edges: usize,
+    /// Edge sharpness (empty in a minimal last level; see
+    /// [`refine::child_edge_sharpness`]).
     pub edge_sharpness: Vec<f32>,
     /// Vertex sharpness.
     pub vertex_sharpness: Vec<f32>,
-    /// Edge tags.
+    /// Edge tags (empty in a minimal last level).
     pub edge_tags: Vec<EdgeTag>,
     /// Vertex tags.
     pub vertex_tags: Vec<VertexTag>,
@@ -191,7 +194,7 @@ impl Level {
     /// Number of edges.
     #[inline]
     pub fn edge_count(&self) -> usize {
-        self.edge_sharpness.len()
+        self.num_edges
     }
 
     /// Whether all relations are present. A last level refined with minimal
@@ -199,7 +202,8 @@ impl Level {
     /// and tags.
     #[inline]
     pub fn has_full_topology(&self) -> bool {
-        self.edge_vertices.len() == self.edge_sharpness.len()
+        self.edge_vertices.len() == self.num_edges
+            && self.edge_sharpness.len() == self.num_edges
             && self.vertex_faces.len() == self.vertex_count
     }
 

@@ -393,9 +393,18 @@ pub fn refine_level(
             members: ve_members,
         },
         vertex_edge_local: ve_local,
-        edge_sharpness: vec![0.0; child_edges],
+        num_edges: child_edges,
+        edge_sharpness: if minimal {
+            Vec::new()
+        } else {
+            vec![0.0; child_edges]
+        },
         vertex_sharpness: vec![0.0; child_vertices],
-        edge_tags: vec![EdgeTag::default(); child_edges],
+        edge_tags: if minimal {
+            Vec::new()
+        } else {
+            vec![EdgeTag::default(); child_edges]
+        },
         vertex_tags: vec![VertexTag::default(); child_vertices],
         face_holes: Vec::with_capacity(child_faces),
         max_edge_faces: parent.max_edge_faces.max(2),
@@ -635,9 +644,18 @@ fn refine_triangles(
             members: ve_members,
         },
         vertex_edge_local: ve_local,
-        edge_sharpness: vec![0.0; child_edges],
+        num_edges: child_edges,
+        edge_sharpness: if minimal {
+            Vec::new()
+        } else {
+            vec![0.0; child_edges]
+        },
         vertex_sharpness: vec![0.0; child_vertices],
-        edge_tags: vec![EdgeTag::default(); child_edges],
+        edge_tags: if minimal {
+            Vec::new()
+        } else {
+            vec![EdgeTag::default(); child_edges]
+        },
         vertex_tags: vec![VertexTag::default(); child_vertices],
         face_holes: parent.face_holes.iter().flat_map(|&h| [h; 4]).collect(),
         max_edge_faces: parent.max_edge_faces.max(2),
@@ -664,10 +682,13 @@ fn prefix_sums(counts: &[u32]) -> Vec<u32> {
 /// smooth, edge points take their rule from the parent edge, and children of
 /// vertices inherit their parent's tags.
 fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement) {
+    let store_edges = !child.edge_tags.is_empty();
     for e in 0..parent.edge_count() {
         let t = parent.edge_tags[e];
-        child.edge_tags[r.edge_child_edge(e, 0) as usize] = t;
-        child.edge_tags[r.edge_child_edge(e, 1) as usize] = t;
+        if store_edges {
+            child.edge_tags[r.edge_child_edge(e, 0) as usize] = t;
+            child.edge_tags[r.edge_child_edge(e, 1) as usize] = t;
+        }
         let sharp = t.semi_sharp || t.inf_sharp;
         child.vertex_tags[r.edge_child(e) as usize] = VertexTag {
             non_manifold: t.non_manifold,
@@ -683,39 +704,88 @@ fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement) {
     }
 }
 
-/// Edge and vertex sharpness of the child level, then the rules of child
-/// vertices whose neighbourhood was semi-sharp.
-fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method: CreasingMethod) {
+/// The sharpness and tags of child edge `j` of parent edge `e` (the half at
+/// the parent's end vertex `j`): inherited tags, sharpness decayed by the
+/// creasing method, semi-sharpness dropped once it reaches zero.
+pub fn child_edge(
+    parent: &Level,
+    e: usize,
+    j: usize,
+    method: CreasingMethod,
+    around: &mut Vec<f32>,
+) -> (f32, EdgeTag) {
+    let mut tag = parent.edge_tags[e];
+    if tag.inf_sharp {
+        return (SHARPNESS_INFINITE, tag);
+    }
+    if !tag.semi_sharp {
+        return (0.0, tag);
+    }
+    let ps = parent.edge_sharpness[e];
+    let s = match method {
+        CreasingMethod::Uniform => crease::subdivide_uniform_sharpness(ps),
+        CreasingMethod::Chaikin => {
+            let pv = parent.edge_vertices[e][j] as usize;
+            around.clear();
+            around.extend(
+                parent
+                    .vertex_edges_of(pv)
+                    .iter()
+                    .map(|&x| parent.edge_sharpness[x as usize]),
+            );
+            crease::subdivide_edge_sharpness_at_vertex(method, ps, around)
+        }
+    };
+    if !crease::is_sharp(s) {
+        tag.semi_sharp = false;
+    }
+    (s, tag)
+}
+
+/// The sharpness of every edge of a child level (edges inside parent faces
+/// are smooth): what a minimal last level does not store.
+pub fn child_edge_sharpness(
+    parent: &Level,
+    r: &Refinement,
+    method: CreasingMethod,
+    child_edges: usize,
+) -> Vec<f32> {
+    let mut out = vec![0.0; child_edges];
     let mut around = Vec::new();
     for e in 0..parent.edge_count() {
-        let ps = parent.edge_sharpness[e];
-        for (j, &end) in parent.edge_vertices[e].iter().enumerate() {
-            let c = r.edge_child_edge(e, j) as usize;
-            let tag = &mut child.edge_tags[c];
-            if tag.inf_sharp {
-                child.edge_sharpness[c] = SHARPNESS_INFINITE;
-            } else if tag.semi_sharp {
-                let s = match method {
-                    CreasingMethod::Uniform => crease::subdivide_uniform_sharpness(ps),
-                    CreasingMethod::Chaikin => {
-                        let pv = end as usize;
-                        around.clear();
-                        around.extend(
-                            parent
-                                .vertex_edges_of(pv)
-                                .iter()
-                                .map(|&x| parent.edge_sharpness[x as usize]),
-                        );
-                        crease::subdivide_edge_sharpness_at_vertex(method, ps, &around)
-                    }
-                };
+        for j in 0..2 {
+            out[r.edge_child_edge(e, j) as usize] = child_edge(parent, e, j, method, &mut around).0;
+        }
+    }
+    out
+}
+
+/// Edge and vertex sharpness of the child level, then the rules of child
+/// vertices whose neighbourhood was semi-sharp. A minimal child stores no
+/// edge sharpness or tags: they are recomputed where the rules need them.
+fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method: CreasingMethod) {
+    let mut around = Vec::new();
+    let store_edges = !child.edge_tags.is_empty();
+    if store_edges {
+        for e in 0..parent.edge_count() {
+            if !parent.edge_tags[e].semi_sharp && !parent.edge_tags[e].inf_sharp {
+                continue;
+            }
+            for j in 0..2 {
+                let c = r.edge_child_edge(e, j) as usize;
+                let (s, tag) = child_edge(parent, e, j, method, &mut around);
                 child.edge_sharpness[c] = s;
-                if !crease::is_sharp(s) {
-                    tag.semi_sharp = false;
-                }
+                child.edge_tags[c] = tag;
             }
         }
     }
+    let edge_semi = |e: usize, j: usize, around: &mut Vec<f32>, child: &Level| -> EdgeTag {
+        if store_edges {
+            child.edge_tags[r.edge_child_edge(e, j) as usize]
+        } else {
+            child_edge(parent, e, j, method, around).1
+        }
+    };
     for v in 0..parent.vertex_count {
         let c = r.vertex_child(v) as usize;
         let tag = &mut child.vertex_tags[c];
@@ -736,7 +806,7 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
             continue;
         }
         let count = (0..2)
-            .filter(|&j| child.edge_tags[r.edge_child_edge(e, j) as usize].semi_sharp)
+            .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp)
             .count();
         let tag = &mut child.vertex_tags[c];
         tag.semi_sharp_edges = count > 0;
@@ -759,7 +829,7 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
                 .iter()
                 .zip(parent.vertex_edge_locals(v))
             {
-                let t = child.edge_tags[r.edge_child_edge(e as usize, l as usize) as usize];
+                let t = edge_semi(e as usize, l as usize, &mut around, child);
                 inf += t.inf_sharp as usize;
                 semi += t.semi_sharp as usize;
             }
