@@ -1,5 +1,6 @@
 # subdiv — the two set-up commands:
-#   make run    install what is missing, build in release mode, run the main job
+#   make run    install what is missing, build in release mode, run the main job:
+#               `subdiv report` on the embedded set, into ./report/
 #   make test   install what is missing, run the whole test suite
 # Both install the system packages they need with apt-get (as root) when missing.
 
@@ -22,7 +23,7 @@ deps:
 
 run: deps
 	$(CARGO) build --release
-	./target/release/subdiv demo
+	./target/release/subdiv report --out report
 
 test: deps
 	$(CARGO) test --all-features
@@ -33,6 +34,7 @@ lint: deps
 	$(CARGO) fmt --check
 	$(CARGO) clippy --all-targets --all-features -- -D warnings
 	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --all-features
 
 fmt:
 	$(CARGO) fmt

@@ -50,6 +50,8 @@ pub mod patch;
 pub mod real;
 pub mod refinement;
 pub mod refiner;
+#[cfg(feature = "osd")]
+pub mod report;
 pub mod rules;
 pub mod shapes;
 pub mod stencil;

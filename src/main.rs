@@ -34,6 +34,9 @@ enum Command {
     Curve(CurveArgs),
     /// Benchmark the native engine against OpenSubdiv, side by side in the same run.
     Bench(BenchArgs),
+    /// The main job: compare native against OpenSubdiv on a set of inputs for every
+    /// option that applies, benchmark both, and write report.md and report.html.
+    Report(ReportArgs),
     /// The main job on the built-in cube: refine it to level 2 with every available engine.
     Demo,
     /// Print the versions of subdiv and of the OpenSubdiv it is built against.
@@ -247,6 +250,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare(&args),
         Command::Curve(args) => curve(&args),
         Command::Bench(args) => bench(&args),
+        Command::Report(args) => report(&args),
         Command::Demo => demo(),
         Command::Version => {
             version();
@@ -1110,4 +1114,86 @@ fn whole_process(input: &subdiv::bench::BenchInput, quick: bool) -> String {
         _ => s.push_str("  skipped: a child process failed\n"),
     }
     s
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    /// OBJ files (with OpenSubdiv `t` tags) to report on; without them, the
+    /// embedded set (cube, torus, creases, pole, holes, UV seams, four boxes,
+    /// Loop, bilinear, non-manifold).
+    #[arg(value_name = "INPUT.obj")]
+    inputs: Vec<PathBuf>,
+    /// Directory for report.md, report.html and figures/.
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    out: PathBuf,
+    /// Levels to compare and benchmark: `A..B` (inclusive) or a single level
+    /// [default: 1..4, with --quick 1..2].
+    #[arg(long, value_parser = parse_levels)]
+    levels: Option<(u32, u32)>,
+    /// Fewer option sets (one option varied at a time), levels 1..2, shorter benchmarks.
+    #[arg(long)]
+    quick: bool,
+    /// Largest accepted deviation, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-6)]
+    tolerance: f64,
+}
+
+#[cfg(not(feature = "osd"))]
+fn report(_args: &ReportArgs) -> Result<(), Failure> {
+    Err(Failure::Unavailable(
+        "the report compares with OpenSubdiv: rebuild with the default feature `osd`".into(),
+    ))
+}
+
+/// `subdiv report`: conformance and benchmarks on the embedded set or on OBJ files.
+#[cfg(feature = "osd")]
+fn report(args: &ReportArgs) -> Result<(), Failure> {
+    use subdiv::report::{self, Settings};
+    let mut settings = Settings::new(args.quick);
+    if let Some((a, b)) = args.levels {
+        settings.first_level = a;
+        settings.last_level = b;
+    }
+    settings.tolerance = args.tolerance;
+    let inputs = if args.inputs.is_empty() {
+        report::embedded_inputs()
+    } else {
+        let mut v = Vec::with_capacity(args.inputs.len());
+        for path in &args.inputs {
+            let (input, warnings) = report::read_input(path)?;
+            for w in warnings {
+                eprintln!("subdiv: warning: {}: {w}", path.display());
+            }
+            v.push(input);
+        }
+        v
+    };
+    let bar = indicatif::ProgressBar::new(report::steps(&inputs, &settings));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {wide_msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let result = report::run(&inputs, &settings, |msg| {
+        bar.set_message(msg.to_string());
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let rep = result?;
+    rep.write(&args.out)?;
+    // The files are written; a closed stdout (`| head`) is not an error.
+    let mut out = std::io::stdout().lock();
+    let _ = write!(out, "{}", rep.summary_text()).and_then(|()| {
+        writeln!(
+            out,
+            "wrote {} and {}",
+            args.out.join("report.md").display(),
+            args.out.join("report.html").display()
+        )
+    });
+    if rep.conforms() {
+        Ok(())
+    } else {
+        Err(Failure::Differ)
+    }
 }

@@ -1,0 +1,207 @@
+//! `subdiv report`, run as a user runs it: on a small OBJ file, on the
+//! embedded set (quick), and on a corrupted file.
+#![cfg(feature = "osd")]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn subdiv(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_subdiv"))
+        .args(args)
+        .output()
+        .expect("run subdiv")
+}
+
+/// A fresh directory under the target's temporary directory.
+fn fresh_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("report")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A tagged quad mesh with UVs split along a seam, a semi-sharp crease and a
+/// corner: every kind of option applies to it.
+const SHAPE: &str = "\
+# a small test shape
+v 0 0 0
+v 1 0 0
+v 2 0 0.2
+v 0 1 0
+v 1 1 0.5
+v 2 1 0
+v 0 2 0.1
+v 1 2 0
+v 2 2 0
+vt 0 0
+vt 0.5 0
+vt 1 0
+vt 0 0.5
+vt 0.5 0.5
+vt 1 0.5
+vt 0 1
+vt 0.5 1
+vt 1 1
+vt 0.6 0.5
+vt 0.6 1
+f 1/1 2/2 5/5 4/4
+f 2/2 3/3 6/6 5/5
+f 4/4 5/10 8/11 7/7
+f 5/5 6/6 9/9 8/8
+t crease 2/1/0 2 5 1.5
+t corner 1/1/0 1 2.0
+t interpolateboundary 1/0/0 2
+";
+
+/// Runs the report into a fresh directory; returns the output, report.md and report.html.
+fn run_report(name: &str, extra: &[&str]) -> (Output, String, String, PathBuf) {
+    let dir = fresh_dir(name);
+    let out = dir.join("out");
+    let mut args = vec!["report", "--quick", "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = subdiv(&args);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap_or_default();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap_or_default();
+    (o, md, html, out)
+}
+
+/// The page stands alone: no URL anywhere, no script, stylesheet link or image.
+fn assert_self_contained(html: &str) {
+    for bad in [
+        "http://", "https://", "<script", "<link", "<img", "@import", "url(//",
+    ] {
+        assert!(!html.contains(bad), "report.html contains {bad:?}");
+    }
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    assert!(html.contains("<style>"));
+    assert!(html.trim_end().ends_with("</html>"));
+}
+
+#[test]
+fn report_on_an_obj_file() {
+    let dir = fresh_dir("obj-input");
+    let shape = dir.join("seam-crease.obj");
+    std::fs::write(&shape, SHAPE).unwrap();
+    let (o, md, html, out) = run_report("obj", &[shape.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", text(&o.stderr));
+    let stdout = text(&o.stdout);
+    assert!(stdout.contains("seam-crease.obj"), "{stdout}");
+    assert!(stdout.contains("CONFORMS"), "{stdout}");
+    for doc in [&md, &html] {
+        assert!(doc.contains("seam-crease.obj"));
+        assert!(doc.contains("CONFORMS"));
+        assert!(doc.contains("0 (bit-identical)"));
+        assert!(!doc.contains("http"), "an external resource or link");
+    }
+    assert_self_contained(&html);
+    // Three inline SVGs: deviation plot, time plot, picture of the shape.
+    assert_eq!(html.matches("<svg").count(), 3);
+    assert!(html.contains("deviation from OpenSubdiv (log scale)"));
+    assert!(html.contains("refine + positions: median time"));
+    assert!(html.contains("native level 2, coloured by deviation"));
+    // The options that apply to this mesh were varied: boundary, creasing,
+    // triangles (none here), face-varying modes.
+    for mode in ["corners-only", "boundaries", "chaikin", "edge-and-corner"] {
+        assert!(md.contains(mode), "{mode} not compared");
+    }
+    // The Markdown's figures exist as files.
+    for kind in ["deviation", "time", "shape"] {
+        let f = out
+            .join("figures")
+            .join(format!("01-seam-crease-obj-{kind}.svg"));
+        assert!(md.contains(&format!("figures/01-seam-crease-obj-{kind}.svg")));
+        assert!(std::fs::read_to_string(&f).unwrap().starts_with("<svg"));
+    }
+    // No temporary files left behind.
+    for entry in std::fs::read_dir(&out).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(!name.ends_with(".tmp"), "{name}");
+    }
+}
+
+#[test]
+fn report_on_the_embedded_set() {
+    let (o, md, html, _) = run_report("embedded", &[]);
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", text(&o.stderr));
+    let names = [
+        "cube",
+        "torus",
+        "creased-box",
+        "pole",
+        "holes",
+        "cube-uv",
+        "grid-uv-regions",
+        "four-boxes",
+        "icosahedron",
+        "bilinear-prism",
+        "fin",
+    ];
+    let stdout = text(&o.stdout);
+    for name in names {
+        assert!(stdout.contains(name), "{name} not in the summary");
+        assert!(
+            md.contains(&format!("## {name}")),
+            "{name} not in report.md"
+        );
+        assert!(
+            html.contains(&format!("<section id=\"input-{name}\">")),
+            "{name} not in report.html"
+        );
+    }
+    assert_self_contained(&html);
+    assert!(!md.contains("http"));
+    assert_eq!(html.matches("<svg").count(), 3 * names.len());
+    assert!(html.contains("class=\"verdict pass\""));
+    assert!(html.contains("OpenSubdiv"));
+    assert!(html.contains("Machine"));
+    // Loop on the icosahedron, bilinear, and all six face-varying modes on the UV meshes.
+    for needle in ["| loop |", "| bilinear |", "| corners-plus2 |", "| none |"] {
+        assert!(md.contains(needle), "{needle} not compared");
+    }
+}
+
+#[test]
+fn a_corrupted_obj_is_an_error_with_file_and_line() {
+    let dir = fresh_dir("corrupted");
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 1 oops 0\nf 1 2 3\n").unwrap();
+    let (o, _, html, out) = run_report("corrupted-out", &[bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = text(&o.stderr);
+    assert!(stderr.contains("bad.obj:3"), "{stderr}");
+    assert!(html.is_empty() && !out.join("report.html").exists());
+
+    // A face naming a missing vertex: also line-numbered.
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 4\n").unwrap();
+    let o = subdiv(&[
+        "report",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("bad.obj:4"), "{}", text(&o.stderr));
+
+    // A missing file.
+    let missing = dir.join("missing.obj");
+    let o = subdiv(&[
+        "report",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        missing.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("missing.obj"));
+
+    // A bad level range is refused by the parser.
+    let o = subdiv(&["report", "--levels", "3..1"]);
+    assert_eq!(o.status.code(), Some(2));
+}
