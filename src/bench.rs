@@ -327,6 +327,17 @@ pub fn run(
         let osd_bytes = (table.indices.len() * (4 + 4 + 12) + table.len() * (8 + 12)) as f64;
         stencil_bandwidth = Some((bytes / times.0, osd_bytes / times.1));
         push("stencil apply (f32)", times);
+        progress(&label("factorized stencil apply", level));
+        let factorized = n.factorized_stencils::<f32>()?;
+        let mut out_f = vec![0f32; factorized.len() * 3];
+        let times = pool.install(|| {
+            interleaved(
+                reps * 3,
+                || factorized.apply_into(3, &base, &mut out_f).expect("native"),
+                || evaluator.eval_into(3, &base, &mut out_o).expect("osd"),
+            )
+        });
+        push("factorized stencil apply (f32)", times);
     }
     Ok(Report {
         machine: machine_description(),

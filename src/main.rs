@@ -13,6 +13,26 @@ use subdiv::{
     Precision, Refinement, Scheme, TriangleSubdivision, UniformOptions,
 };
 
+/// `println!` that ends the process quietly when stdout is closed (a pipe
+/// into `head`), instead of panicking on the broken pipe.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        print_line(format_args!($($arg)*))
+    };
+}
+
+fn print_line(args: std::fmt::Arguments<'_>) {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = writeln!(out, "{args}") {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("subdiv: cannot write to standard output: {e}");
+        std::process::exit(1);
+    }
+}
+
 #[derive(Parser)]
 #[command(
     name = "subdiv",
@@ -276,11 +296,11 @@ fn main() -> ExitCode {
 }
 
 fn version() {
-    println!("subdiv {}", env!("CARGO_PKG_VERSION"));
+    outln!("subdiv {}", env!("CARGO_PKG_VERSION"));
     #[cfg(feature = "osd")]
-    println!("OpenSubdiv {}", subdiv::osd::version());
+    outln!("OpenSubdiv {}", subdiv::osd::version());
     #[cfg(not(feature = "osd"))]
-    println!("OpenSubdiv bridge: not built (feature `osd` is off)");
+    outln!("OpenSubdiv bridge: not built (feature `osd` is off)");
 }
 
 /// Loads the input: a file (tags applied over the shape-file defaults) or a built-in shape.
@@ -432,7 +452,7 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
     let seconds = start.elapsed().as_secs_f64();
     match &args.output {
         Some(path) => write_output(path, &r)?,
-        None => println!("{}", summary(&name, args.engine, &r, seconds)),
+        None => outln!("{}", summary(&name, args.engine, &r, seconds)),
     }
     if args.peak_memory {
         eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
@@ -493,14 +513,14 @@ fn demo() -> Result<(), Failure> {
             false,
         ) {
             Ok(r) => {
-                println!(
+                outln!(
                     "{}",
                     summary("builtin:cube", engine, &r, start.elapsed().as_secs_f64())
                 );
                 ran += 1;
             }
             Err(Failure::Unavailable(msg)) => {
-                println!("builtin:cube ({}): skipped: {msg}", engine_name(engine))
+                outln!("builtin:cube ({}): skipped: {msg}", engine_name(engine))
             }
             Err(e) => return Err(e),
         }
@@ -604,17 +624,20 @@ fn compare(args: &CompareArgs) -> Result<(), Failure> {
     if args.json {
         let text = serde_json::to_string_pretty(&report)
             .map_err(|e| Error::InvalidArgument(format!("cannot encode the report: {e}")))?;
-        println!("{text}");
+        outln!("{text}");
     } else {
-        println!(
+        outln!(
             "{}: {} ({}), tolerance {:e} of the bounding-box diagonal",
-            name, report.options, report.precision, args.tolerance
+            name,
+            report.options,
+            report.precision,
+            args.tolerance
         );
-        println!(
+        outln!(
             "level  vertices (native/osd)  faces (native/osd)  first diff face  max abs dev  max rel dev  fvar dev  result"
         );
         for r in &report.levels {
-            println!(
+            outln!(
                 "{:>5}  {:>21}  {:>18}  {:>15}  {:>11.3e}  {:>11.3e}  {:>8.2e}  {}",
                 r.level,
                 format!("{}/{}", r.native_counts[0], r.osd_counts[0]),
@@ -627,7 +650,7 @@ fn compare(args: &CompareArgs) -> Result<(), Failure> {
                 if r.agrees { "ok" } else { "DIFFERENT" }
             );
         }
-        println!(
+        outln!(
             "{}",
             if agrees {
                 "the engines agree"
@@ -710,7 +733,7 @@ fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
                     .collect::<Vec<_>>()
                     .join("→")
             };
-            println!(
+            outln!(
                 "{name}: doo-sabin ({}, {} boundary) level {} (native, f64): vertices {}, faces {}; {:.3} ms",
                 options.weights,
                 options.boundary,
@@ -892,7 +915,7 @@ fn bench(args: &BenchArgs) -> Result<(), Failure> {
         }
         v
     };
-    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 7).sum();
+    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 8).sum();
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
@@ -909,7 +932,7 @@ fn bench(args: &BenchArgs) -> Result<(), Failure> {
         text.push_str(&whole_process(&inputs[0], args.quick));
     }
     text.push_str(&targets(&report));
-    println!("{text}");
+    outln!("{text}");
     if let Some(dir) = &args.out {
         let io = |e: std::io::Error| {
             Failure::Error(Error::Io {
@@ -928,7 +951,7 @@ fn bench(args: &BenchArgs) -> Result<(), Failure> {
         ] {
             std::fs::write(dir.join(name), body).map_err(io)?;
         }
-        println!("wrote {}", dir.display());
+        outln!("wrote {}", dir.display());
     }
     Ok(())
 }
@@ -984,7 +1007,8 @@ fn targets(report: &subdiv::bench::Report) -> String {
     {
         let _ = writeln!(
             s,
-            "  stencil apply, {} {}: {:.2}x (target 4x) {}",
+            "  {}, {} {}: {:.2}x (target 4x) {}",
+            r.task,
             r.input,
             r.scheme,
             r.speedup(),

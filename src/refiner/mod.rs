@@ -32,6 +32,7 @@ mod limit;
 mod stencils;
 
 pub(crate) use kernel::Scratch;
+pub use stencils::FactorizedStencils;
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
 #[inline]

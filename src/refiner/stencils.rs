@@ -166,3 +166,196 @@ impl Refiner {
         Ok(out)
     }
 }
+
+/// One refinement step of a [`FactorizedStencils`]: the terms of every child
+/// vertex, in OpenSubdiv's order of computation — face points, edge points,
+/// vertex points, each a contiguous block of child indices — over the parent
+/// level or (high bit set) over the face points computed before them.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct Step<T> {
+    /// `rows + 1` offsets into `source` and `weight`.
+    offsets: Vec<u32>,
+    /// Source of each term: a parent vertex, or (high bit set) a child vertex.
+    source: Vec<u32>,
+    /// Weight of each term.
+    weight: Vec<T>,
+    /// Number of vertices of the child level.
+    child_count: usize,
+    /// First child index and row count of the face, edge and vertex blocks.
+    blocks: [(usize, usize); 3],
+}
+
+const CHILD_BIT: u32 = 1 << 31;
+
+/// The refinement to the last level as a product of sparse per-level
+/// stencils: the masks of every level recorded once, in `T`, then applied to
+/// any number of frames without recomputing them.
+///
+/// Applying it gives exactly the result of [`Refiner::interpolate_all`] in the
+/// same precision (same weights, same order of accumulation), with far fewer
+/// terms than a flat [`StencilTable`], whose stencils grow with every level.
+///
+/// ```
+/// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+/// let torus = shapes::torus(8, 6);
+/// let mut r = Refiner::new(&torus, &Options::default())?;
+/// r.refine_uniform(UniformOptions::new(3))?;
+/// let stencils = r.factorized_stencils::<f32>()?;
+/// let base: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+/// let mut out = vec![0.0; stencils.len() * 3];
+/// stencils.apply_into(3, &base, &mut out)?;
+/// assert_eq!(out, r.interpolate_all(3, &base)?.pop().unwrap());
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FactorizedStencils<T> {
+    base_count: usize,
+    steps: Vec<Step<T>>,
+}
+
+impl<T: crate::Real> FactorizedStencils<T> {
+    /// Number of vertices of the last level (rows of the whole product).
+    pub fn len(&self) -> usize {
+        self.steps.last().map_or(self.base_count, |s| s.child_count)
+    }
+
+    /// Whether the last level has no vertex.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Number of weights stored over all levels.
+    pub fn term_count(&self) -> usize {
+        self.steps.iter().map(|s| s.weight.len()).sum()
+    }
+
+    /// Applies the stencils to base data of `width` components per vertex,
+    /// writing the last level into `out`; the faces and the rest of each level
+    /// are computed in parallel (rayon).
+    pub fn apply_into(&self, width: usize, base: &[T], out: &mut [T]) -> Result<()> {
+        if width == 0 || base.len() != self.base_count * width || out.len() != self.len() * width {
+            return Err(crate::Error::InvalidArgument(format!(
+                "buffers of {} and {} values do not fit {} base and {} refined vertices of width {width}",
+                base.len(),
+                out.len(),
+                self.base_count,
+                self.len()
+            )));
+        }
+        if self.steps.is_empty() {
+            out.copy_from_slice(base);
+            return Ok(());
+        }
+        let mut src: Vec<T> = base.to_vec();
+        let mut tmp: Vec<T> = Vec::new();
+        for (k, step) in self.steps.iter().enumerate() {
+            let last = k + 1 == self.steps.len();
+            if !last {
+                tmp.clear();
+                tmp.resize(step.child_count * width, T::ZERO);
+            }
+            let dst: &mut [T] = if last { &mut *out } else { &mut tmp };
+            apply_step(step, width, &src, dst);
+            if !last {
+                std::mem::swap(&mut src, &mut tmp);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One step: face-point rows first (they only read the parent), then edge
+/// and vertex rows, which may read face points. Rows are independent within
+/// a phase and write disjoint blocks, so each phase runs in parallel.
+fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut [T]) {
+    use rayon::prelude::*;
+    const GRAIN: usize = 2048;
+    let [(f0, nf), (e0, ne), (v0, nv)] = step.blocks;
+    let row = |r: usize, faces: &[T], out: &mut [T]| {
+        out.fill(T::ZERO);
+        let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
+        for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
+            let (data, i) = if s & CHILD_BIT != 0 {
+                (faces, (s & !CHILD_BIT) as usize - f0)
+            } else {
+                (src, s as usize)
+            };
+            for (x, &v) in out.iter_mut().zip(&data[i * width..i * width + width]) {
+                *x += v * w;
+            }
+        }
+    };
+    dst[f0 * width..(f0 + nf) * width]
+        .par_chunks_mut(width)
+        .with_min_len(GRAIN)
+        .enumerate()
+        .for_each(|(k, out)| row(k, &[], out));
+    // Split the child level into its three blocks to read the face points
+    // while writing the edge and vertex points.
+    let mut blocks: Vec<(usize, usize, usize)> = vec![(f0, nf, 0), (e0, ne, 1), (v0, nv, 2)];
+    blocks.sort_unstable();
+    let mut parts: [&mut [T]; 3] = [&mut [], &mut [], &mut []];
+    let mut rest = dst;
+    let mut at = 0;
+    for &(start, count, which) in &blocks {
+        let (_, tail) = rest.split_at_mut((start - at) * width);
+        let (block, tail) = tail.split_at_mut(count * width);
+        parts[which] = block;
+        rest = tail;
+        at = start + count;
+    }
+    let [faces, edges, verts] = parts;
+    let faces: &[T] = faces;
+    edges
+        .par_chunks_mut(width)
+        .with_min_len(GRAIN)
+        .enumerate()
+        .for_each(|(k, out)| row(nf + k, faces, out));
+    verts
+        .par_chunks_mut(width)
+        .with_min_len(GRAIN)
+        .enumerate()
+        .for_each(|(k, out)| row(nf + ne + k, faces, out));
+}
+
+impl Refiner {
+    /// The refinement to the last level as per-level stencils in `T`: apply
+    /// it to new base positions (animation frames) without recomputing masks.
+    pub fn factorized_stencils<T: crate::Real>(&self) -> Result<FactorizedStencils<T>> {
+        let mut steps = Vec::with_capacity(self.levels.len() - 1);
+        for level in 1..self.levels.len() {
+            let r = &self.refinements[level - 1];
+            let parent = &self.levels[level - 1];
+            let nf = if r.has_face_points() {
+                parent.face_count()
+            } else {
+                0
+            };
+            let mut step = Step {
+                child_count: self.levels[level].vertex_count,
+                blocks: [
+                    (r.first_vertex_from_faces as usize, nf),
+                    (r.first_vertex_from_edges as usize, parent.edge_count()),
+                    (r.first_vertex_from_vertices as usize, parent.vertex_count),
+                ],
+                offsets: vec![0],
+                ..Step::default()
+            };
+            self.walk_masks::<T>(Kind::Vertex, level, |_child, terms| {
+                for &(source, w) in terms {
+                    step.source.push(match source {
+                        Source::Parent(i) => i,
+                        Source::Child(i) => i | CHILD_BIT,
+                    });
+                    step.weight.push(w);
+                }
+                step.offsets.push(step.source.len() as u32);
+            });
+            steps.push(step);
+        }
+        Ok(FactorizedStencils {
+            base_count: self.levels[0].vertex_count,
+            steps,
+        })
+    }
+}
