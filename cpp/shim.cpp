@@ -480,6 +480,22 @@ int sdv_refiner_create(const sdv_mesh_desc *desc, const sdv_options *opts, sdv_r
             throw ShimError(SDV_ERR_OSD, "OpenSubdiv could not create the refiner: " +
                                              (t_osd_errors.empty() ? std::string("no reason given") : t_osd_errors));
         }
+        // OpenSubdiv's smooth masks assume a smooth vertex has as many edges as
+        // faces; a face naming a vertex twice can break that without making
+        // anything non-manifold, and its assertion then aborts the process.
+        Far::TopologyLevel const &base = tr->GetLevel(0);
+        for (int v = 0; v < base.GetNumVertices(); ++v) {
+            Sdc::Crease::Rule rule = base.GetVertexRule(v);
+            if ((rule == Sdc::Crease::RULE_SMOOTH || rule == Sdc::Crease::RULE_DART) &&
+                base.GetVertexFaces(v).size() != base.GetVertexEdges(v).size()) {
+                std::string msg = "vertex " + str(v) + " has " + str(base.GetVertexFaces(v).size()) + " faces and " +
+                                  str(base.GetVertexEdges(v).size()) +
+                                  " edges but no sharp feature: OpenSubdiv cannot refine a smooth vertex whose faces "
+                                  "and edges do not pair up (a face names it twice)";
+                delete tr;
+                fail(msg);
+            }
+        }
         auto *r = new (std::nothrow) sdv_refiner();
         if (!r) {
             delete tr;

@@ -330,7 +330,10 @@ fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
     };
     for w in &shape.warnings {
         if args.strict {
-            return Err(Error::InvalidArgument(format!("{name}: {w} (--strict)")).into());
+            return Err(Failure::Message(format!(
+                "{name}:{}: {} (--strict)",
+                w.line, w.message
+            )));
         }
         eprintln!("subdiv: warning: {name}: {w}");
     }
@@ -339,7 +342,7 @@ fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
     } else {
         shape.mesh.validate()
     }
-    .map_err(Error::from)?;
+    .map_err(|e| Failure::Message(format!("{name}: invalid mesh: {e}")))?;
     for w in &validation.warnings {
         eprintln!("subdiv: warning: {name}: {w}");
     }
@@ -448,7 +451,12 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
         uniform,
         args.mesh.precision,
         args.limit,
-    )?;
+    )
+    .map_err(|f| match f {
+        // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
+        Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
+        other => other,
+    })?;
     let seconds = start.elapsed().as_secs_f64();
     match &args.output {
         Some(path) => write_output(path, &r)?,

@@ -93,6 +93,14 @@ impl Refiner {
             ));
         }
         let base = build_base_level(mesh, options);
+        if let Some(v) = crate::topology::unpaired_smooth_vertex(&base) {
+            return Err(Error::InvalidArgument(format!(
+                "vertex {v} has {} faces and {} edges but no sharp feature: OpenSubdiv cannot refine a smooth \
+                 vertex whose faces and edges do not pair up (a face names it twice)",
+                base.vertex_faces.count(v),
+                base.vertex_edges.count(v)
+            )));
+        }
         let fvar = mesh
             .fvar_channels
             .iter()
@@ -185,8 +193,9 @@ impl Refiner {
     /// last level only with full topology).
     pub fn level(&self, level: u32) -> Result<LevelTopology> {
         let l = self.internal_level(level)?;
-        let full =
-            level < self.max_level() || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
+        let full = level == 0
+            || level < self.max_level()
+            || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
         Ok(LevelTopology {
             vertex_count: l.vertex_count,
             edge_count: l.edge_count(),

@@ -26,6 +26,17 @@ pub use refine::{Refinement, refine_level};
 
 use crate::rules::Rule;
 
+/// The first vertex whose rule is smooth (or dart) although its faces and
+/// edges do not pair up — possible when a face names the vertex twice without
+/// making anything non-manifold. OpenSubdiv's smooth masks assume pairs (its
+/// own assertion aborts on such a vertex), so both engines refuse the mesh.
+pub fn unpaired_smooth_vertex(level: &Level) -> Option<usize> {
+    (0..level.vertex_count).find(|&v| {
+        matches!(level.vertex_tags[v].rule, Rule::Smooth | Rule::Dart)
+            && level.vertex_faces.count(v) != level.vertex_edges.count(v)
+    })
+}
+
 /// Tags of an edge (OpenSubdiv's `ETag`, the parts refinement uses).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct EdgeTag {
