@@ -536,6 +536,27 @@ int sdv_refiner_refine_uniform(sdv_refiner *r, int32_t level, int32_t faces_firs
         uo.fullTopologyInLastLevel = full_topology != 0;
         r->refiner->RefineUniform(uo);
         if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, "OpenSubdiv: " + t_osd_errors);
+        // Catmull-Clark's smooth masks assert that a vertex has as many edges
+        // as faces. A vertex named twice by a face can break that and still be
+        // smooth once semi-sharp features decay: refuse before interpolating.
+        if (r->refiner->GetSchemeType() == Sdc::SCHEME_CATMARK) {
+            Far::TopologyRefiner const &tr = *r->refiner;
+            for (int l = 0; l < tr.GetMaxLevel(); ++l) {
+                Far::TopologyLevel const &p = tr.GetLevel(l), &c = tr.GetLevel(l + 1);
+                for (int v = 0; v < p.GetNumVertices(); ++v) {
+                    if (p.GetVertexFaces(v).size() == p.GetVertexEdges(v).size()) continue;
+                    Sdc::Crease::Rule pr = p.GetVertexRule(v), cr = c.GetVertexRule(p.GetVertexChildVertex(v));
+                    bool smooth = pr == Sdc::Crease::RULE_SMOOTH || pr == Sdc::Crease::RULE_DART ||
+                                  cr == Sdc::Crease::RULE_SMOOTH || cr == Sdc::Crease::RULE_DART;
+                    if (smooth) {
+                        r->refiner->Unrefine();
+                        fail("vertex " + str(v) + " of level " + str(l) +
+                             " becomes smooth although its faces and edges do not pair up (a face names it "
+                             "twice): OpenSubdiv cannot refine it");
+                    }
+                }
+            }
+        }
         r->full_topology_last_level = full_topology != 0;
     });
 }

@@ -30,6 +30,10 @@
 # FUZZ_KEEP_GOING=1 libFuzzer runs in fork mode and keeps going after a
 # crash (every crash is still saved).
 #
+# SUBDIV_FUZZ_SKIP_REPEATED=1 makes the OpenSubdiv checks skip meshes with a
+# face that names a vertex twice (a family of OpenSubdiv assertion aborts),
+# to look past them.
+#
 # Corpus: fuzz/corpus/TARGET (grows), seeded from fuzz/seeds/TARGET and, for
 # obj_parser, tests/malformed/*.obj. Crashes, hangs and the run's log go to
 # fuzz/artifacts/TARGET/. Reproduce a crash with

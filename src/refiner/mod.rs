@@ -170,7 +170,43 @@ impl Refiner {
             self.refinements.push(r);
             self.levels.push(child);
         }
+        if let Err(e) = self.check_unpaired_smooth() {
+            self.levels.truncate(1);
+            self.refinements.clear();
+            for channel in &mut self.fvar {
+                channel.truncate(1);
+            }
+            self.uniform = None;
+            return Err(e);
+        }
         self.uniform = Some(uniform);
+        Ok(())
+    }
+
+    /// Catmull-Clark's smooth masks need a vertex's faces and edges to pair
+    /// up; a vertex named twice by a face can break that and become smooth when
+    /// its semi-sharp features decay. OpenSubdiv aborts on it; refuse it.
+    fn check_unpaired_smooth(&self) -> Result<()> {
+        if self.options.scheme != Scheme::Catmark {
+            return Ok(());
+        }
+        for (l, r) in self.refinements.iter().enumerate() {
+            let (p, c) = (&self.levels[l], &self.levels[l + 1]);
+            for v in 0..p.vertex_count {
+                if p.vertex_faces.count(v) == p.vertex_edges.count(v) {
+                    continue;
+                }
+                let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
+                if smooth(p.vertex_tags[v].rule)
+                    || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule)
+                {
+                    return Err(Error::InvalidArgument(format!(
+                        "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
+                         (a face names it twice): OpenSubdiv cannot refine it"
+                    )));
+                }
+            }
+        }
         Ok(())
     }
 
