@@ -4,6 +4,7 @@
 
 use approx::assert_abs_diff_eq;
 use glam::DVec3;
+use subdiv::compare::bbox_diagonal;
 use subdiv::osd::{self, Refiner};
 use subdiv::{
     BoundaryInterpolation, Error, FVarLinearInterpolation, Mesh, MeshError, Options, Precision,
@@ -190,14 +191,6 @@ fn semi_sharp_crease_decays_by_one_per_level() {
     assert_eq!(max_sharpness(1), 1.5);
     assert_eq!(max_sharpness(2), 0.5);
     assert_eq!(max_sharpness(3), 0.0);
-}
-
-fn bbox_diagonal(points: &[DVec3]) -> f64 {
-    let (lo, hi) = points.iter().fold(
-        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
-    (hi - lo).length()
 }
 
 #[test]

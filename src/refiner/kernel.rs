@@ -183,7 +183,6 @@ fn store<T: Real, W: Width>(dst: &mut [T], i: u32, acc: &[T; MAX_WIDTH], width: 
 
 fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &mut [T]) {
     let parent: &Level = &r.levels[level - 1];
-    let child: &Level = &r.levels[level];
     let refinement = &r.refinements[level - 1];
     let scheme = r.options.scheme;
     let tri_smooth =
@@ -282,5 +281,4 @@ fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &
         }
         store(dst, refinement.vertex_child(v), &acc, width);
     }
-    let _ = child;
 }

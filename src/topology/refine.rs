@@ -372,52 +372,41 @@ pub fn refine_level(
         )
     };
 
-    let mut child = Level {
-        depth: parent.depth + 1,
-        vertex_count: child_vertices,
-        face_vertices,
-        face_edges: if minimal { Vec::new() } else { face_edges },
-        edge_vertices: if minimal { Vec::new() } else { edge_vertices },
-        edge_faces: Relation {
-            offsets: ef_offsets,
-            members: ef_members,
+    let child = assemble_child(
+        parent,
+        &r,
+        options,
+        Parts {
+            vertex_count: child_vertices,
+            face_vertices,
+            face_edges,
+            edge_vertices,
+            edge_faces: Relation {
+                offsets: ef_offsets,
+                members: ef_members,
+            },
+            edge_face_local: ef_local,
+            vertex_faces: Relation {
+                offsets: vf_offsets,
+                members: vf_members,
+            },
+            vertex_face_local: vf_local,
+            vertex_edges: Relation {
+                offsets: ve_offsets,
+                members: ve_members,
+            },
+            vertex_edge_local: ve_local,
+            num_edges: child_edges,
+            face_holes: parent
+                .face_holes
+                .iter()
+                .enumerate()
+                .flat_map(|(f, &h)| std::iter::repeat_n(h, parent.face_vertices.count(f)))
+                .collect(),
+            max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
         },
-        edge_face_local: ef_local,
-        vertex_faces: Relation {
-            offsets: vf_offsets,
-            members: vf_members,
-        },
-        vertex_face_local: vf_local,
-        vertex_edges: Relation {
-            offsets: ve_offsets,
-            members: ve_members,
-        },
-        vertex_edge_local: ve_local,
-        num_edges: child_edges,
-        edge_sharpness: if minimal {
-            Vec::new()
-        } else {
-            vec![0.0; child_edges]
-        },
-        vertex_sharpness: vec![0.0; child_vertices],
-        edge_tags: if minimal {
-            Vec::new()
-        } else {
-            vec![EdgeTag::default(); child_edges]
-        },
-        vertex_tags: vec![VertexTag::default(); child_vertices],
-        face_holes: Vec::with_capacity(child_faces),
-        max_edge_faces: parent.max_edge_faces.max(2),
-        max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
-    };
-    for f in 0..nf {
-        let hole = parent.face_holes[f];
-        child
-            .face_holes
-            .extend(std::iter::repeat_n(hole, parent.face_vertices.count(f)));
-    }
-    propagate_tags(parent, &mut child, &r);
-    subdivide_sharpness(parent, &mut child, &r, options.creasing);
+        minimal,
+    );
     (r, child)
 }
 
@@ -443,8 +432,12 @@ fn refine_triangles(
     let inner_edge = |f: usize, j: usize| (3 * f + j) as u32;
 
     let mut face_vertices = Relation::uniform(child_faces, 3);
-    let mut face_edges = vec![0u32; child_faces * 3];
-    let mut edge_vertices = vec![[0u32; 2]; child_edges];
+    // A minimal last level needs neither face-edges nor edge-vertices.
+    let (mut face_edges, mut edge_vertices) = if minimal {
+        (Vec::new(), Vec::new())
+    } else {
+        (vec![0u32; child_faces * 3], vec![[0u32; 2]; child_edges])
+    };
     for f in 0..nf {
         let fv = parent.face_verts(f);
         let fe = parent.face_edges_of(f);
@@ -473,19 +466,26 @@ fn refine_triangles(
             [inner_edge(f, 2), halves[1][1], halves[2][0]],
             [inner_edge(f, 2), inner_edge(f, 0), inner_edge(f, 1)],
         ];
-        for k in 0..4 {
-            face_vertices.members[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(&tris[k]);
-            face_edges[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(&edges[k]);
+        for (k, tri) in tris.iter().enumerate() {
+            face_vertices.members[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(tri);
+        }
+        if minimal {
+            continue;
+        }
+        for (k, e) in edges.iter().enumerate() {
+            face_edges[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(e);
         }
         edge_vertices[3 * f] = [ep(0), ep(2)];
         edge_vertices[3 * f + 1] = [ep(1), ep(0)];
         edge_vertices[3 * f + 2] = [ep(2), ep(1)];
     }
-    for e in 0..ne {
-        let ev = parent.edge_vertices[e];
-        for j in 0..2 {
-            edge_vertices[r.edge_child_edge(e, j) as usize] =
-                [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+    if !minimal {
+        for e in 0..ne {
+            let ev = parent.edge_vertices[e];
+            for j in 0..2 {
+                edge_vertices[r.edge_child_edge(e, j) as usize] =
+                    [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+            }
         }
     }
 
@@ -623,47 +623,97 @@ fn refine_triangles(
         )
     };
 
+    let child = assemble_child(
+        parent,
+        &r,
+        options,
+        Parts {
+            vertex_count: child_vertices,
+            face_vertices,
+            face_edges,
+            edge_vertices,
+            edge_faces: Relation {
+                offsets: ef_offsets,
+                members: ef_members,
+            },
+            edge_face_local: ef_local,
+            vertex_faces: Relation {
+                offsets: vf_offsets,
+                members: vf_members,
+            },
+            vertex_face_local: vf_local,
+            vertex_edges: Relation {
+                offsets: ve_offsets,
+                members: ve_members,
+            },
+            vertex_edge_local: ve_local,
+            num_edges: child_edges,
+            face_holes: parent.face_holes.iter().flat_map(|&h| [h; 4]).collect(),
+            max_valence: parent.max_valence.max(6).max(2 + 2 * parent.max_edge_faces),
+        },
+        minimal,
+    );
+    (r, child)
+}
+
+/// The tables of a child level built by a split, before tags and sharpness.
+struct Parts {
+    vertex_count: usize,
+    face_vertices: Relation,
+    face_edges: Vec<u32>,
+    edge_vertices: Vec<[u32; 2]>,
+    edge_faces: Relation,
+    edge_face_local: Vec<u16>,
+    vertex_faces: Relation,
+    vertex_face_local: Vec<u16>,
+    vertex_edges: Relation,
+    vertex_edge_local: Vec<u16>,
+    num_edges: usize,
+    face_holes: Vec<bool>,
+    max_valence: usize,
+}
+
+/// The child level from its tables: tags and sharpness propagated from the
+/// parent. A minimal level keeps only face-vertices, vertex sharpness and tags.
+fn assemble_child(
+    parent: &Level,
+    r: &Refinement,
+    options: &Options,
+    p: Parts,
+    minimal: bool,
+) -> Level {
     let mut child = Level {
         depth: parent.depth + 1,
-        vertex_count: child_vertices,
-        face_vertices,
-        face_edges: if minimal { Vec::new() } else { face_edges },
-        edge_vertices: if minimal { Vec::new() } else { edge_vertices },
-        edge_faces: Relation {
-            offsets: ef_offsets,
-            members: ef_members,
-        },
-        edge_face_local: ef_local,
-        vertex_faces: Relation {
-            offsets: vf_offsets,
-            members: vf_members,
-        },
-        vertex_face_local: vf_local,
-        vertex_edges: Relation {
-            offsets: ve_offsets,
-            members: ve_members,
-        },
-        vertex_edge_local: ve_local,
-        num_edges: child_edges,
+        vertex_count: p.vertex_count,
+        face_vertices: p.face_vertices,
+        face_edges: if minimal { Vec::new() } else { p.face_edges },
+        edge_vertices: if minimal { Vec::new() } else { p.edge_vertices },
+        edge_faces: p.edge_faces,
+        edge_face_local: p.edge_face_local,
+        vertex_faces: p.vertex_faces,
+        vertex_face_local: p.vertex_face_local,
+        vertex_edges: p.vertex_edges,
+        vertex_edge_local: p.vertex_edge_local,
+        num_edges: p.num_edges,
         edge_sharpness: if minimal {
             Vec::new()
         } else {
-            vec![0.0; child_edges]
+            vec![0.0; p.num_edges]
         },
-        vertex_sharpness: vec![0.0; child_vertices],
+        vertex_sharpness: vec![0.0; p.vertex_count],
         edge_tags: if minimal {
             Vec::new()
         } else {
-            vec![EdgeTag::default(); child_edges]
+            vec![EdgeTag::default(); p.num_edges]
         },
-        vertex_tags: vec![VertexTag::default(); child_vertices],
-        face_holes: parent.face_holes.iter().flat_map(|&h| [h; 4]).collect(),
+        vertex_tags: vec![VertexTag::default(); p.vertex_count],
+        face_holes: p.face_holes,
         max_edge_faces: parent.max_edge_faces.max(2),
-        max_valence: parent.max_valence.max(6).max(2 + 2 * parent.max_edge_faces),
+        max_valence: p.max_valence,
     };
-    propagate_tags(parent, &mut child, &r);
-    subdivide_sharpness(parent, &mut child, &r, options.creasing);
-    (r, child)
+    propagate_tags(parent, &mut child, r);
+    subdivide_sharpness(parent, &mut child, r, options.creasing);
+    child
 }
 
 fn prefix_sums(counts: &[u32]) -> Vec<u32> {
