@@ -169,6 +169,8 @@ void validate(const sdv_mesh_desc &d, const sdv_options &o) {
     if (d.num_corners > 0 && (!d.corner_vertices || !d.corner_sharpness)) fail("null corner arrays");
     if (d.num_holes > 0 && !d.holes) fail("null hole array");
     if (d.num_fvar_channels > 0 && !d.fvar_channels) fail("null face-varying channel array");
+    // OpenSubdiv refuses it too, but only after reporting an error through its callback.
+    if (d.num_faces == 0) fail("the mesh has no faces: there is nothing to refine");
 
     long long total = 0;
     for (int f = 0; f < d.num_faces; ++f) {
@@ -477,7 +479,7 @@ int sdv_refiner_create(const sdv_mesh_desc *desc, const sdv_options *opts, sdv_r
         t_osd_warnings.clear();
         Far::TopologyRefiner *tr = Factory::Create(d, Factory::Options(scheme, so));
         if (!tr) {
-            throw ShimError(SDV_ERR_OSD, "OpenSubdiv could not create the refiner: " +
+            throw ShimError(SDV_ERR_OSD, "could not create the refiner: " +
                                              (t_osd_errors.empty() ? std::string("no reason given") : t_osd_errors));
         }
         // OpenSubdiv's smooth masks assume a smooth vertex has as many edges as
@@ -535,7 +537,7 @@ int sdv_refiner_refine_uniform(sdv_refiner *r, int32_t level, int32_t faces_firs
         uo.orderVerticesFromFacesFirst = faces_first != 0;
         uo.fullTopologyInLastLevel = full_topology != 0;
         r->refiner->RefineUniform(uo);
-        if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, "OpenSubdiv: " + t_osd_errors);
+        if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, t_osd_errors);
         // Catmull-Clark's smooth masks assert that a vertex has as many edges
         // as faces. A vertex named twice by a face can break that and still be
         // smooth once semi-sharp features decay: refuse before interpolating.

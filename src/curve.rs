@@ -23,7 +23,11 @@
 //! - **four-point** with tension `w` (1/16 by default): the old points stay and
 //!   `E[i] = (1/2 + w)(P[i] + P[i+1]) - w (P[i-1] + P[i+2])` is inserted between
 //!   `P[i]` and `P[i+1]` (with `w = 1/16`: `(-P[i-1] + 9 P[i] + 9 P[i+1] - P[i+2]) / 16`);
-//!   output `P0 E0 P1 E1 …`.
+//!   output `P0 E0 P1 E1 …`. Any finite `w` is accepted: `w = 0` inserts the
+//!   midpoints (the polygon itself is the limit), small positive tensions give
+//!   smooth curves (Dyn, Levin and Gregory prove C¹ limit curves for
+//!   `0 < w < (√5 - 1) / 8 ≈ 0.1545`; 1/16 also reproduces cubics), and larger
+//!   `|w|` pushes the new points ever further out at every level.
 //! - **jarek**: the midpoints `M[i] = (P[i] + P[i+1]) / 2` are inserted, then,
 //!   all computed from this untweaked polygon, each old point moves a quarter
 //!   of the way to the average of its two neighbouring midpoints,
@@ -39,6 +43,12 @@
 //! A closed polygon needs at least 3 points in every scheme; an open one needs
 //! `d + 1` for a B-spline of degree `d` (3 for Chaikin) and 2 for four-point
 //! and Jarek ([`CurveScheme::min_points`]).
+//!
+//! Every refined point is finite. Midpoints are computed without overflow, so
+//! the averaging schemes (B-splines, Chaikin) accept any finite coordinates;
+//! four-point and Jarek extrapolate (ghost points, bulges), and a level in
+//! which a coordinate would leave the range of `f64` is refused whole
+//! ([`CurveError::Overflow`]) rather than returned with `inf` or `NaN`.
 //!
 //! # B-spline curves
 //!
@@ -192,7 +202,9 @@ pub enum CurveScheme {
     },
     /// The interpolating four-point scheme (Dyn, Levin and Gregory).
     FourPoint {
-        /// The tension `w`; [`DEFAULT_TENSION`] = 1/16 is the classic scheme.
+        /// The tension `w`, any finite number; [`DEFAULT_TENSION`] = 1/16 is the
+        /// classic scheme, and `0 < w < (√5 - 1) / 8` gives C¹ limit curves
+        /// (see the [module documentation](self)).
         tension: f64,
     },
     /// Jarek Rossignac's curve: half way between the cubic B-spline and the four-point scheme.
@@ -232,6 +244,9 @@ impl CurveScheme {
     }
 
     /// Checks the scheme's parameters (degree `1..=MAX_DEGREE`, finite tension).
+    ///
+    /// A finite but huge tension passes; the refinement then refuses the
+    /// first level that overflows ([`CurveError::Overflow`]).
     pub fn check(&self) -> Result<(), CurveError> {
         match *self {
             CurveScheme::BSpline { degree } if !(1..=MAX_DEGREE).contains(&degree) => {
@@ -279,9 +294,24 @@ impl fmt::Display for CurveScheme {
         match *self {
             CurveScheme::BSpline { degree } => write!(f, "bspline of degree {degree}"),
             CurveScheme::FourPoint { tension } if tension != DEFAULT_TENSION => {
-                write!(f, "four-point with tension {tension}")
+                write!(f, "four-point with tension {}", Num(tension))
             }
             _ => f.write_str(self.name()),
+        }
+    }
+}
+
+/// A number in a message: as Rust writes it, or in exponent form when it is
+/// very large or very small (`1e300` rather than 301 digits).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-4..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
         }
     }
 }
@@ -317,16 +347,36 @@ pub enum CurveError {
         /// The index of the point.
         index: usize,
     },
+    /// A refined point would have a coordinate beyond the range of `f64`
+    /// (±1.8e308): the input's coordinates (or the four-point tension) are too
+    /// large for the scheme, which extrapolates. Nothing is returned.
+    #[error(
+        "level {level} of {scheme} overflows: its point {index} would have a coordinate beyond the range of f64 ({})",
+        if matches!(scheme, CurveScheme::FourPoint { .. }) {
+            "the coordinates or the tension are too large"
+        } else {
+            "the coordinates are too large"
+        }
+    )]
+    Overflow {
+        /// The scheme.
+        scheme: CurveScheme,
+        /// The level (1 for the first refinement).
+        level: u32,
+        /// The index of the first such point in that level.
+        index: usize,
+    },
     /// The result would have more than [`MAX_POINTS`] points.
     #[error("the result would have more than {MAX_POINTS} points")]
     TooManyPoints,
     /// A flattening tolerance that is not a positive finite number.
-    #[error("tolerance {0} is not a positive finite number")]
+    #[error("tolerance {} is not a positive finite number", Num(*.0))]
     BadTolerance(f64),
     /// The tolerance is not reached after [`MAX_FLATTEN_DEPTH`] halvings (it is
     /// below the rounding error of the curve's coordinates).
     #[error(
-        "tolerance {tolerance} is not reached after {MAX_FLATTEN_DEPTH} halvings of segment {segment} (it is below the rounding error)"
+        "tolerance {} is not reached after {MAX_FLATTEN_DEPTH} halvings of segment {segment} (it is below the rounding error)",
+        Num(*.tolerance)
     )]
     ToleranceTooSmall {
         /// The tolerance.
@@ -373,8 +423,41 @@ fn check_points<P: Point>(
     Ok(())
 }
 
+/// The midpoint `(a + b) / 2`, without overflow: where `a + b` overflows
+/// (coordinates beyond ±f64::MAX / 2), that coordinate is `a / 2 + b / 2`.
+/// Everywhere else the result is exactly `(a + b) * 0.5`.
 fn mid<P: Point>(a: P, b: P) -> P {
-    (a + b) * 0.5
+    let m = (a + b) * 0.5;
+    if m.is_finite() || !(a.is_finite() && b.is_finite()) {
+        return m;
+    }
+    let safe: Vec<f64> = a
+        .coords()
+        .into_iter()
+        .zip(b.coords())
+        .map(|(x, y)| {
+            let m = (x + y) * 0.5;
+            if m.is_finite() { m } else { x * 0.5 + y * 0.5 }
+        })
+        .collect();
+    P::from_coords(&safe).unwrap_or(m)
+}
+
+/// `points`, level `level` of `scheme`, or [`CurveError::Overflow`] when one
+/// of them has a coordinate that is not finite.
+fn finite_level<P: Point>(
+    points: Vec<P>,
+    scheme: CurveScheme,
+    level: u32,
+) -> Result<Vec<P>, CurveError> {
+    match points.iter().position(|p| !p.is_finite()) {
+        Some(index) => Err(CurveError::Overflow {
+            scheme,
+            level,
+            index,
+        }),
+        None => Ok(points),
+    }
 }
 
 /// One level of uniform B-spline refinement of degree `degree` (the averaging
@@ -391,8 +474,9 @@ fn mid<P: Point>(a: P, b: P) -> P {
 /// # Ok::<(), subdiv::curve::CurveError>(())
 /// ```
 pub fn bspline<P: Point>(points: &[P], degree: usize, closed: bool) -> Result<Vec<P>, CurveError> {
-    check_points(points, &CurveScheme::BSpline { degree }, closed)?;
-    Ok(bspline_step(points, degree, closed))
+    let scheme = CurveScheme::BSpline { degree };
+    check_points(points, &scheme, closed)?;
+    finite_level(bspline_step(points, degree, closed), scheme, 1)
 }
 
 /// [`bspline`] without the checks (`points.len() >= min_points`, `degree >= 1`).
@@ -436,7 +520,7 @@ pub(crate) fn bspline_step<P: Point>(points: &[P], degree: usize, closed: bool) 
 /// ```
 pub fn chaikin<P: Point>(points: &[P], closed: bool) -> Result<Vec<P>, CurveError> {
     check_points(points, &CurveScheme::Chaikin, closed)?;
-    Ok(chaikin_step(points, closed))
+    finite_level(chaikin_step(points, closed), CurveScheme::Chaikin, 1)
 }
 
 fn chaikin_step<P: Point>(points: &[P], closed: bool) -> Vec<P> {
@@ -489,8 +573,9 @@ pub fn four_point<P: Point>(
     tension: f64,
     closed: bool,
 ) -> Result<Vec<P>, CurveError> {
-    check_points(points, &CurveScheme::FourPoint { tension }, closed)?;
-    Ok(four_point_step(points, tension, closed))
+    let scheme = CurveScheme::FourPoint { tension };
+    check_points(points, &scheme, closed)?;
+    finite_level(four_point_step(points, tension, closed), scheme, 1)
 }
 
 fn four_point_step<P: Point>(points: &[P], w: f64, closed: bool) -> Vec<P> {
@@ -527,7 +612,7 @@ fn four_point_step<P: Point>(points: &[P], w: f64, closed: bool) -> Vec<P> {
 /// ```
 pub fn jarek<P: Point>(points: &[P], closed: bool) -> Result<Vec<P>, CurveError> {
     check_points(points, &CurveScheme::Jarek, closed)?;
-    Ok(jarek_step(points, closed))
+    finite_level(jarek_step(points, closed), CurveScheme::Jarek, 1)
 }
 
 fn jarek_step<P: Point>(points: &[P], closed: bool) -> Vec<P> {
@@ -560,7 +645,7 @@ pub fn refine_once<P: Point>(
     closed: bool,
 ) -> Result<Vec<P>, CurveError> {
     check_points(points, &scheme, closed)?;
-    Ok(step(points, scheme, closed))
+    finite_level(step(points, scheme, closed), scheme, 1)
 }
 
 fn step<P: Point>(points: &[P], scheme: CurveScheme, closed: bool) -> Vec<P> {
@@ -592,6 +677,10 @@ pub fn refined_count(
 
 /// The polygon after `levels` levels of `scheme` (`levels = 0` returns a copy).
 ///
+/// A level with a coordinate beyond the range of `f64` is
+/// [`CurveError::Overflow`] (four-point and Jarek on huge coordinates, or a
+/// huge four-point tension).
+///
 /// ```
 /// use glam::DVec3;
 /// use subdiv::curve::{refine, CurveScheme};
@@ -610,7 +699,8 @@ pub fn refine<P: Point>(
     Ok(all.pop().unwrap_or_default())
 }
 
-/// Every level from 0 (the input) to `levels`: `levels + 1` polygons.
+/// Every level from 0 (the input) to `levels`: `levels + 1` polygons, all
+/// finite ([`CurveError::Overflow`] names the first level that is not).
 pub fn refine_levels<P: Point>(
     points: &[P],
     scheme: CurveScheme,
@@ -620,9 +710,9 @@ pub fn refine_levels<P: Point>(
     check_points(points, &scheme, closed)?;
     refined_count(points.len(), scheme, closed, levels)?;
     let mut all = vec![points.to_vec()];
-    for _ in 0..levels {
+    for level in 1..=levels {
         let next = step(all.last().map_or(&[][..], Vec::as_slice), scheme, closed);
-        all.push(next);
+        all.push(finite_level(next, scheme, level)?);
     }
     Ok(all)
 }
@@ -940,7 +1030,20 @@ fn split_half<P: Point>(ctrl: &[P]) -> (Vec<P>, Vec<P>) {
 /// chord within it of the curve. For a quadratic (Chaikin) it is exact:
 /// `B(t) - L(t) = 2 t (1 - t) (b_1 - (b_0 + b_2) / 2)` reaches
 /// `|b_0 - 2 b_1 + b_2| / 4` at `t = 1/2`. Lines (`d ≤ 1`) give 0.
+///
+/// Coordinates so large that the squared lengths overflow (beyond about
+/// 1e154) are measured at a scale of 2^-600 (exact), then scaled back.
 pub fn flatness_bound<P: Point>(ctrl: &[P]) -> f64 {
+    let bound = unscaled_flatness_bound(ctrl);
+    if bound.is_finite() || !ctrl.iter().all(|p| p.is_finite()) {
+        return bound;
+    }
+    const SCALE: f64 = f64::from_bits((1023 - 600) << 52); // 2^-600
+    let small: Vec<P> = ctrl.iter().map(|&p| p * SCALE).collect();
+    unscaled_flatness_bound(&small) / SCALE
+}
+
+fn unscaled_flatness_bound<P: Point>(ctrl: &[P]) -> f64 {
     let n = ctrl.len();
     if n < 3 {
         return 0.0;
@@ -1075,11 +1178,12 @@ pub enum PointsErrorKind {
         /// The line of the first point.
         first_line: usize,
     },
-    /// A field that is not a number.
-    #[error("'{0}' is not a number")]
+    /// A field that is not a number (as written; the message escapes its
+    /// control characters).
+    #[error("'{}' is not a number", crate::io::obj::escape(.0))]
     NotANumber(String),
     /// A number that is NaN or infinite.
-    #[error("'{0}' is not a finite number")]
+    #[error("'{}' is not a finite number", crate::io::obj::escape(.0))]
     NonFinite(String),
     /// The file ends with fewer points than the scheme needs.
     #[error("the input ends after {got} point{}; {scheme} on {} polygon needs at least {needed}", if *.got == 1 { "" } else { "s" }, if *.closed { "a closed" } else { "an open" })]
@@ -1092,6 +1196,14 @@ pub enum PointsErrorKind {
         scheme: &'static str,
         /// Whether the polygon is closed.
         closed: bool,
+    },
+    /// Bytes that are not UTF-8, outside a comment ([`read_points`]).
+    #[error("invalid UTF-8 at column {column} (byte 0x{byte:02X}): a points file must be text")]
+    InvalidUtf8 {
+        /// The 1-based byte offset of the invalid sequence in its line.
+        column: usize,
+        /// Its first byte.
+        byte: u8,
     },
     /// The file could not be read.
     #[error("cannot read: {0}")]
@@ -1178,13 +1290,34 @@ pub fn parse_points(text: &str, file: &Path) -> Result<PointsFile, PointsError> 
 }
 
 /// Reads a points file ([`parse_points`]).
+///
+/// Failing to read the file is a [`PointsErrorKind::Io`] error on line 0.
+/// The text must be UTF-8 outside comments: the first invalid UTF-8 sequence
+/// before a `#` is a [`PointsErrorKind::InvalidUtf8`] error naming its line
+/// and column (bytes in comments are ignored, as everything after `#` is).
 pub fn read_points(path: &Path) -> Result<PointsFile, PointsError> {
-    let text = std::fs::read_to_string(path).map_err(|e| PointsError {
+    let error = |line: usize, kind| PointsError {
         file: path.to_path_buf(),
-        line: 0,
-        kind: PointsErrorKind::Io(e.to_string()),
-    })?;
-    parse_points(&text, path)
+        line,
+        kind,
+    };
+    let bytes = std::fs::read(path).map_err(|e| error(0, PointsErrorKind::Io(e.to_string())))?;
+    // Lines as `str::lines` counts them; '#' and '\n' never occur inside a
+    // multi-byte UTF-8 sequence, so splitting the bytes at them is safe.
+    for (index, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let content = line.split(|&b| b == b'#').next().unwrap_or_default();
+        if let Err(e) = std::str::from_utf8(content) {
+            let at = e.valid_up_to();
+            return Err(error(
+                index + 1,
+                PointsErrorKind::InvalidUtf8 {
+                    column: at + 1,
+                    byte: content[at],
+                },
+            ));
+        }
+    }
+    parse_points(&String::from_utf8_lossy(&bytes), path)
 }
 
 /// The points as text, one per line, every coordinate with 17 significant

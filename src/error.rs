@@ -1,6 +1,6 @@
 //! The crate's error types.
 
-use crate::mesh::MeshError;
+use crate::mesh::{MAX_VALENCE, MeshError};
 use std::path::PathBuf;
 use thiserror::Error;
 
@@ -14,6 +14,10 @@ pub enum Error {
     /// An OBJ file could not be read.
     #[error(transparent)]
     Obj(#[from] ObjError),
+    /// The mesh has no faces, so there is nothing to refine. Both engines
+    /// refuse it, before OpenSubdiv is involved.
+    #[error("the mesh has no faces: there is nothing to refine")]
+    EmptyMesh,
     /// OpenSubdiv (through the bridge) refused or failed.
     #[error("OpenSubdiv: {0}")]
     Osd(String),
@@ -77,6 +81,9 @@ pub enum ObjErrorKind {
     /// A face with fewer than three corners.
     #[error("face has {0} corners; a face needs at least 3")]
     FaceTooSmall(usize),
+    /// A face with more corners than OpenSubdiv supports ([`MAX_VALENCE`]).
+    #[error("face has {0} corners; at most {MAX_VALENCE} are supported")]
+    FaceTooLarge(usize),
     /// Some face corners have texture coordinates and others do not.
     #[error("texture coordinates must be given for every corner of every face or for none: {0}")]
     InconsistentTexcoords(String),

@@ -181,7 +181,8 @@ struct CurveArgs {
     /// B-spline degree, 1 to 15 (--scheme bspline only) [default: 3].
     #[arg(long, value_name = "D")]
     degree: Option<usize>,
-    /// Four-point tension w (--scheme four-point only) [default: 1/16].
+    /// Four-point tension w (--scheme four-point only) [default: 1/16]; any finite
+    /// value; 0 < w < 0.15 gives smooth curves.
     #[arg(long, value_name = "W", allow_negative_numbers = true)]
     tension: Option<f64>,
     /// The polygon is closed (its last point joins its first).

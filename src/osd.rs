@@ -291,11 +291,15 @@ fn to_i32(n: usize, what: &str) -> Result<i32> {
 impl Refiner {
     /// Builds OpenSubdiv's refiner for a mesh (level 0 only).
     ///
-    /// The mesh is validated first ([`Mesh::validate`]); the shim checks every
-    /// index again before OpenSubdiv sees it. Warnings of either are kept in
-    /// [`Refiner::warnings`].
+    /// The mesh is validated first ([`Mesh::validate`]), and a mesh without
+    /// faces is [`Error::EmptyMesh`], as in the native engine; the shim checks
+    /// every index again before OpenSubdiv sees it. Warnings of either are
+    /// kept in [`Refiner::warnings`].
     pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
         let validation = mesh.validate()?;
+        if mesh.face_count() == 0 {
+            return Err(Error::EmptyMesh);
+        }
         Self::build(
             mesh,
             options,

@@ -777,7 +777,7 @@ fn compare_set(
         let n = refiner::refine_with(mesh, options, uniform, Precision::F64, limit)
             .map_err(|e| format!("native engine{}: {e}", if limit { " (limit)" } else { "" }))?;
         let o = osd::refine_with(mesh, options, uniform, Precision::F64, limit)
-            .map_err(|e| format!("OpenSubdiv{}: {e}", if limit { " (limit)" } else { "" }))?;
+            .map_err(|e| format!("osd engine{}: {e}", if limit { " (limit)" } else { "" }))?;
         Ok((n, o))
     };
     let pair = match both(false) {

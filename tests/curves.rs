@@ -670,6 +670,187 @@ fn flattening_errors_are_typed() {
 }
 
 // ---------------------------------------------------------------------------
+// huge coordinates and tensions
+// ---------------------------------------------------------------------------
+
+/// 2^k, exactly.
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((1023 + k) as u64) << 52)
+}
+
+#[test]
+fn midpoints_of_huge_coordinates_do_not_overflow() {
+    let m = f64::MAX;
+    let p = [DVec2::new(m, -m), DVec2::new(m, -m), DVec2::new(m, 0.0)];
+    assert_eq!(
+        curve::bspline(&p, 1, true).unwrap(),
+        [
+            p[0],
+            DVec2::new(m, -m),
+            p[1],
+            DVec2::new(m, -m / 2.0),
+            p[2],
+            DVec2::new(m, -m / 2.0),
+        ]
+    );
+    // The averaging schemes are exactly homogeneous: near f64::MAX (where
+    // P[i] + P[i+1] overflows) they give, bit for bit, the refinement of the
+    // small polygon scaled up.
+    let scale = pow2(1017);
+    for closed in [false, true] {
+        let small = int_points(9, 21);
+        let big: Vec<DVec2> = small.iter().map(|&q| q * scale).collect();
+        for scheme in [
+            CurveScheme::Chaikin,
+            CurveScheme::bspline(1),
+            CurveScheme::bspline(2),
+            CurveScheme::bspline(3),
+            CurveScheme::bspline(5),
+        ] {
+            let want: Vec<DVec2> = curve::refine(&small, scheme, closed, 3)
+                .unwrap()
+                .into_iter()
+                .map(|q| q * scale)
+                .collect();
+            assert_eq!(
+                curve::refine(&big, scheme, closed, 3).unwrap(),
+                want,
+                "{scheme} closed={closed}"
+            );
+        }
+    }
+}
+
+#[test]
+fn overflowing_levels_are_refused_whole() {
+    // P1 + P2 overflows in E1, the fourth point of level 1.
+    let p = [
+        DVec2::ZERO,
+        DVec2::new(1.7e308, 0.0),
+        DVec2::new(1.7e308, 0.0),
+        DVec2::ZERO,
+    ];
+    let overflow = CurveError::Overflow {
+        scheme: CurveScheme::four_point(),
+        level: 1,
+        index: 3,
+    };
+    assert_eq!(
+        curve::four_point(&p, DEFAULT_TENSION, false),
+        Err(overflow.clone())
+    );
+    assert_eq!(
+        curve::refine(&p, CurveScheme::four_point(), false, 2),
+        Err(overflow.clone())
+    );
+    assert_eq!(
+        curve::refine_once(&p, CurveScheme::four_point(), false),
+        Err(overflow.clone())
+    );
+    assert_eq!(
+        overflow.to_string(),
+        "level 1 of four-point overflows: its point 3 would have a coordinate beyond the \
+         range of f64 (the coordinates or the tension are too large)"
+    );
+    // Jarek bulges its midpoints out: M1 = 1.7e308 moves out by 1/16 of it.
+    let jarek = curve::jarek(&p, true).unwrap_err();
+    assert_eq!(
+        jarek,
+        CurveError::Overflow {
+            scheme: CurveScheme::Jarek,
+            level: 1,
+            index: 3
+        }
+    );
+    assert_eq!(
+        jarek.to_string(),
+        "level 1 of jarek overflows: its point 3 would have a coordinate beyond the \
+         range of f64 (the coordinates are too large)"
+    );
+    // A huge tension on small points: at once, or after a level that still fits.
+    let zigzag = [
+        DVec2::ZERO,
+        DVec2::new(1.0, 2.0),
+        DVec2::new(3.0, 2.0),
+        DVec2::new(4.0, 0.0),
+    ];
+    for (tension, level) in [(1e308, 1), (1e300, 2), (-1e200, 2)] {
+        let scheme = CurveScheme::FourPoint { tension };
+        assert_eq!(scheme.check(), Ok(()));
+        assert_eq!(
+            curve::refine(&zigzag, scheme, false, 3),
+            Err(CurveError::Overflow {
+                scheme,
+                level,
+                index: 1
+            }),
+            "tension {tension}"
+        );
+    }
+    assert_eq!(
+        curve::refine(&zigzag, CurveScheme::FourPoint { tension: 1e300 }, false, 3)
+            .unwrap_err()
+            .to_string(),
+        "level 2 of four-point with tension 1e300 overflows: its point 1 would have a \
+         coordinate beyond the range of f64 (the coordinates or the tension are too large)"
+    );
+    // Whatever is returned is finite.
+    for tension in [1e10, -1e10, 0.25, -0.5] {
+        let scheme = CurveScheme::FourPoint { tension };
+        let all = curve::refine_levels(&zigzag, scheme, true, 4).unwrap();
+        assert!(all.iter().flatten().all(|q| q.is_finite()), "{tension}");
+    }
+}
+
+#[test]
+fn huge_curves_flatten_as_their_scaled_down_copies() {
+    // |b0 - 2 b1 + b2| / 4, although its square overflows.
+    let b = [DVec2::ZERO, DVec2::new(0.0, 4e200), DVec2::ZERO];
+    assert_eq!(flatness_bound(&b), 2e200);
+    let scale = pow2(900);
+    for (scheme, closed) in [
+        (CurveScheme::Chaikin, false),
+        (CurveScheme::bspline(3), true),
+    ] {
+        let small = int_points(7, 3);
+        let big: Vec<DVec2> = small.iter().map(|&q| q * scale).collect();
+        let want: Vec<DVec2> = curve::flatten(&small, scheme, closed, 0.01)
+            .unwrap()
+            .points
+            .into_iter()
+            .map(|q| q * scale)
+            .collect();
+        let got = curve::flatten(&big, scheme, closed, 0.01 * scale).unwrap();
+        assert_eq!(got.points, want, "{scheme}");
+    }
+}
+
+#[test]
+fn huge_curves_are_drawn_like_their_scaled_down_copies() {
+    use subdiv::io::svg::{Layer, Projection, curve_svg};
+    let small = int_points(6, 8);
+    let svg = |scale: f64| {
+        let p: Vec<DVec2> = small.iter().map(|&q| q * scale).collect();
+        let levels = curve::refine_levels(&p, CurveScheme::Chaikin, true, 2).unwrap();
+        let layers: Vec<Layer<'_, DVec2>> = levels
+            .iter()
+            .map(|l| Layer {
+                label: "level",
+                points: l,
+                closed: true,
+            })
+            .collect();
+        curve_svg("huge", &layers, &Projection::PLAN)
+    };
+    // Beyond 1e300 the figure is drawn at 2^-64 of its size: the picture of
+    // the small polygon, not every point at the centre (or NaN).
+    let huge = svg(pow2(1017));
+    assert_eq!(huge, svg(pow2(1017 - 64)));
+    assert_eq!(huge, svg(1.0));
+    assert!(!huge.contains("NaN") && !huge.contains("inf"), "{huge}");
+}
+
+// ---------------------------------------------------------------------------
 // errors
 // ---------------------------------------------------------------------------
 
@@ -750,6 +931,16 @@ fn points_text_round_trips_exactly_at_17_digits() {
         curve::format_points(&[DVec2::new(0.1, 1e20), DVec2::new(-0.0, 1.5)]),
         "0.10000000000000001 1e+20\n-0 1.5\n"
     );
+}
+
+#[test]
+fn points_errors_escape_control_characters() {
+    // A field that would clear the terminal: kept as written in the kind,
+    // escaped in the message (as are backslashes).
+    let e = curve::parse_points("0 0\n1 \u{1b}[2J\\\n", Path::new("t.txt")).unwrap_err();
+    assert_eq!(e.kind, PointsErrorKind::NotANumber("\u{1b}[2J\\".into()));
+    assert_eq!(e.to_string(), "t.txt:2: '\\u{1b}[2J\\\\' is not a number");
+    assert!(!e.to_string().chars().any(char::is_control));
 }
 
 #[test]
@@ -1137,4 +1328,83 @@ fn cli_bad_options_are_errors() {
     // Level 0 writes the input back.
     let o = run(&["--scheme", "jarek", "--level", "0"]);
     assert_eq!(stdout(&o), "0 0\n1 2\n3 2\n4 0\n");
+}
+
+#[test]
+fn cli_never_prints_inf_or_nan() {
+    let huge = write(
+        "huge.txt",
+        "1.7e308 1.7e308\n1.7e308 -1.7e308\n-1.7e308 1.7e308\n1.7e308 1.6e308\n",
+    );
+    let zigzag = write("zigzag-tension.txt", ZIGZAG);
+    let mut cases: Vec<(&Path, Vec<&str>)> = Vec::new();
+    for flags in [
+        &["chaikin"][..],
+        &["bspline"],
+        &["bspline", "--degree", "1"],
+        &["four-point"],
+        &["jarek"],
+    ] {
+        for closed in [false, true] {
+            let mut f = flags.to_vec();
+            if closed {
+                f.push("--closed");
+            }
+            cases.push((&huge, f));
+        }
+    }
+    for tension in ["1e308", "1e300", "-1e300", "1e20"] {
+        cases.push((&zigzag, vec!["four-point", "--tension", tension]));
+    }
+    for (input, flags) in cases {
+        let mut args = vec!["curve", input.to_str().unwrap(), "--level", "4", "--scheme"];
+        args.extend(&flags);
+        let o = subdiv(&args);
+        let (out, err) = (stdout(&o), stderr(&o));
+        let lower = out.to_lowercase();
+        assert!(
+            !lower.contains("inf") && !lower.contains("nan"),
+            "{flags:?}"
+        );
+        match o.status.code() {
+            Some(0) => assert!(!out.is_empty(), "{flags:?}"),
+            Some(1) => {
+                assert!(out.is_empty(), "{flags:?}");
+                assert!(
+                    err.starts_with(&format!("subdiv: error: {}: level ", input.display()))
+                        && err.contains(" overflows: its point "),
+                    "{flags:?}: {err}"
+                );
+            }
+            code => panic!("{flags:?}: exit {code:?}: {err}"),
+        }
+    }
+    // The averaging schemes take any finite coordinates.
+    let o = subdiv(&[
+        "curve",
+        huge.to_str().unwrap(),
+        "--scheme",
+        "bspline",
+        "--level",
+        "4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = subdiv(&[
+        "curve",
+        zigzag.to_str().unwrap(),
+        "--scheme",
+        "four-point",
+        "--tension",
+        "1e308",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "subdiv: error: {}: level 1 of four-point with tension 1e308 overflows: its point 1 \
+             would have a coordinate beyond the range of f64 (the coordinates or the tension are \
+             too large)\n",
+            zigzag.display()
+        )
+    );
 }

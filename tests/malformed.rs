@@ -139,6 +139,14 @@ fn obj_errors() -> Vec<(&'static str, usize, ObjErrorKind, &'static str)> {
             ObjErrorKind::FaceTooSmall(0),
             "face has 0 corners; a face needs at least 3",
         ),
+        // The limit of mesh validation (OpenSubdiv's), found by the reader
+        // itself so that the error names the face's line.
+        (
+            "face_70000_corners.obj",
+            5,
+            ObjErrorKind::FaceTooLarge(70000),
+            "face has 70000 corners; at most 65535 are supported",
+        ),
         (
             "mixed_vt_in_face.obj",
             8,
@@ -181,12 +189,20 @@ fn obj_errors() -> Vec<(&'static str, usize, ObjErrorKind, &'static str)> {
             ObjErrorKind::NonFinite("v = NaN in a 'vt' statement".into()),
             "non-finite coordinate v = NaN in a 'vt' statement",
         ),
-        // Invalid UTF-8 is replaced; the NUL and \x01 of the field are quoted as they are.
+        // Invalid UTF-8 is replaced; the NUL and \x01 of the field are escaped.
         (
             "binary_garbage.obj",
             5,
-            syntax("'v' statement: x '\0\u{1}' is not a number"),
-            "syntax error: 'v' statement: x '\0\u{1}' is not a number",
+            syntax("'v' statement: x '\\0\\u{1}' is not a number"),
+            "syntax error: 'v' statement: x '\\0\\u{1}' is not a number",
+        ),
+        // Terminal escape sequences (a window title, clearing the screen) and
+        // a backslash are escaped: no message carries a control character.
+        (
+            "terminal_escapes.obj",
+            5,
+            syntax("'v' statement: z '\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\\\' is not a number"),
+            "syntax error: 'v' statement: z '\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\\\' is not a number",
         ),
         // CRLF: the error is on the right line and the message has no '\r'.
         (
@@ -523,6 +539,11 @@ fn every_malformed_obj_gets_its_exact_error() {
             "{name}"
         );
         assert!(!err.to_string().contains('\r'), "{name}");
+        assert!(
+            !err.to_string().chars().any(char::is_control),
+            "{name}: a control character in {:?}",
+            err.to_string()
+        );
         // Through the crate's error type as well.
         let err = Error::from(err);
         assert!(matches!(&err, Error::Obj(e) if e.line == line), "{name}");
@@ -566,7 +587,8 @@ fn cli_refine_names_file_and_line_and_writes_nothing() {
 /// Files that read without a syntax error but are no usable mesh.
 #[test]
 fn readable_but_unusable_files() {
-    // Empty, or nothing but comments: an empty mesh, refused by both engines.
+    // Empty, or nothing but comments: an empty mesh, refused by both engines
+    // with the same error, before OpenSubdiv sees it.
     for name in ["empty.obj", "comments_only.obj"] {
         let shape = read_obj(&malformed(name)).unwrap();
         assert_eq!(shape.mesh.vertex_count(), 0, "{name}");
@@ -575,25 +597,33 @@ fn readable_but_unusable_files() {
         assert!(shape.mesh.validate().is_ok(), "{name}");
         let err =
             refiner::refine(&shape.mesh, &shape.options(), UniformOptions::new(1)).unwrap_err();
-        assert!(
-            matches!(&err, Error::InvalidArgument(m) if m == "the mesh has no vertices or no faces"),
-            "{name}: {err:?}"
+        assert!(matches!(err, Error::EmptyMesh), "{name}: {err:?}");
+        assert_eq!(
+            err.to_string(),
+            "the mesh has no faces: there is nothing to refine"
         );
         #[cfg(feature = "osd")]
         {
             let err = subdiv::osd::refine(&shape.mesh, &shape.options(), UniformOptions::new(1))
                 .unwrap_err();
-            assert_eq!(
-                err.to_string(),
-                "OpenSubdiv: OpenSubdiv could not create the refiner: Failure in \
-                 TopologyRefinerFactory<>::Create() -- mesh contains no vertices.",
-                "{name}"
-            );
+            assert!(matches!(err, Error::EmptyMesh), "{name}: {err:?}");
         }
     }
-    // A face of 70000 corners reads, and validation refuses it (OpenSubdiv
-    // supports 65535).
-    let shape = read_obj(&malformed("face_70000_corners.obj")).unwrap();
+    // A face of 70000 corners (face_70000_corners.obj is refused by the
+    // reader): validation refuses it too, as OpenSubdiv supports 65535.
+    let shape = {
+        let mut mesh = subdiv::Mesh {
+            positions: vec![glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::Y],
+            ..subdiv::Mesh::default()
+        };
+        mesh.face_vertices = (0..70000).map(|i| i % 3).collect();
+        mesh.face_offsets = vec![0, 70000];
+        subdiv::io::ShapeFile {
+            mesh,
+            tags: Default::default(),
+            warnings: Vec::new(),
+        }
+    };
     assert_eq!(shape.mesh.face_sizes(), [70000]);
     let expected = MeshError::FaceTooLarge {
         face: 0,
@@ -636,7 +666,7 @@ fn readable_but_unusable_files() {
 
 #[test]
 fn cli_refuses_unusable_files_and_writes_nothing() {
-    for name in ["empty.obj", "comments_only.obj", "face_70000_corners.obj"] {
+    for name in ["empty.obj", "comments_only.obj"] {
         let path = malformed(name);
         for engine in engines() {
             let dir = scratch(&format!("unusable-{name}-{engine}"));
@@ -682,19 +712,11 @@ fn cli_refuses_unusable_files_and_writes_nothing() {
 
 #[test]
 fn cli_names_the_file_of_unusable_input() {
-    let empty = [
-        "invalid argument: the mesh has no vertices or no faces",
-        "OpenSubdiv: OpenSubdiv could not create the refiner: Failure in \
-         TopologyRefinerFactory<>::Create() -- mesh contains no vertices.",
-    ];
-    let too_large = "invalid mesh: face 0 has 70000 vertices; at most 65535 are supported";
-    for (name, messages) in [
-        ("empty.obj", empty),
-        ("comments_only.obj", empty),
-        ("face_70000_corners.obj", [too_large, too_large]),
-    ] {
+    // The same message from both engines.
+    let message = "the mesh has no faces: there is nothing to refine";
+    for name in ["empty.obj", "comments_only.obj"] {
         let path = malformed(name);
-        for (engine, message) in engines().iter().zip(messages) {
+        for engine in engines() {
             let o = subdiv(&["refine", path.to_str().unwrap(), "--engine", engine]);
             assert_eq!(o.status.code(), Some(1));
             assert_eq!(
@@ -707,8 +729,6 @@ fn cli_names_the_file_of_unusable_input() {
 }
 
 #[test]
-#[ignore = "bug: a face of more than 65535 corners is found by mesh validation and reported \
-            as 'FILE: invalid mesh: face 0 ...', without the line of the face (5)"]
 fn cli_names_the_line_of_a_face_too_large() {
     let path = malformed("face_70000_corners.obj");
     for engine in engines() {
@@ -719,6 +739,10 @@ fn cli_names_the_line_of_a_face_too_large() {
             stderr(&o).starts_with(&want),
             "({engine}): wanted '{want}...', got {}",
             stderr(&o)
+        );
+        assert_eq!(
+            stderr(&o),
+            format!("{want}face has 70000 corners; at most 65535 are supported\n")
         );
     }
 }
@@ -794,6 +818,16 @@ fn curve_errors() -> Vec<(&'static str, usize, PointsErrorKind, &'static str)> {
             PointsErrorKind::NotANumber("x".into()),
             "'x' is not a number",
         ),
+        // Bytes that are not UTF-8 (outside a comment): their line and column.
+        (
+            "curve_binary_garbage.txt",
+            3,
+            PointsErrorKind::InvalidUtf8 {
+                column: 1,
+                byte: 0xFF,
+            },
+            "invalid UTF-8 at column 1 (byte 0xFF): a points file must be text",
+        ),
     ]
 }
 
@@ -809,6 +843,7 @@ fn every_malformed_curve_gets_its_exact_error() {
             format!("{}:{line}: {message}", path.display()),
             "{name}"
         );
+        assert!(!err.to_string().chars().any(char::is_control), "{name}");
     }
 }
 
@@ -923,13 +958,15 @@ fn cli_curve_names_file_and_line_and_writes_nothing() {
 
 #[test]
 fn binary_curve_file_is_refused() {
-    // Today: refused as unreadable, without a line (see the ignored test below).
     let path = malformed("curve_binary_garbage.txt");
     let err = subdiv::curve::read_points(&path).unwrap_err();
-    assert_eq!(err.line, 0);
+    assert_eq!(err.line, 3);
     assert_eq!(
         err.kind,
-        PointsErrorKind::Io("stream did not contain valid UTF-8".into())
+        PointsErrorKind::InvalidUtf8 {
+            column: 1,
+            byte: 0xFF
+        }
     );
     let dir = scratch("curve-binary");
     let out = dir.join("out.txt");
@@ -945,8 +982,6 @@ fn binary_curve_file_is_refused() {
 }
 
 #[test]
-#[ignore = "bug: a curve file with invalid UTF-8 is an I/O error without a line \
-            (read_points uses read_to_string; read_obj replaces bad bytes and names the line)"]
 fn binary_curve_file_names_its_line() {
     let path = malformed("curve_binary_garbage.txt");
     let err = subdiv::curve::read_points(&path).unwrap_err();
@@ -1275,23 +1310,24 @@ mod osd_bridge {
                 "native, {mesh_error}: {err:?}"
             );
         }
-        // No vertices or no faces: OpenSubdiv's own refusal, caught in the shim.
-        let err = osd::Refiner::new(&Mesh::default(), &Options::default()).unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            "OpenSubdiv: OpenSubdiv could not create the refiner: Failure in \
-             TopologyRefinerFactory<>::Create() -- mesh contains no vertices."
-        );
+        // No faces (with or without vertices): refused as by the native
+        // engine, before OpenSubdiv; the shim refuses it as well.
         let points_only = Mesh {
             positions: vec![DVec3::ZERO; 3],
             ..Mesh::default()
         };
-        let err = osd::Refiner::new(&points_only, &Options::default()).unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            "OpenSubdiv: OpenSubdiv could not create the refiner: Failure in \
-             TopologyRefinerFactory<>::Create() -- meshes without faces not yet supported."
-        );
+        for mesh in [Mesh::default(), points_only] {
+            let err = osd::Refiner::new(&mesh, &Options::default()).unwrap_err();
+            assert!(matches!(err, Error::EmptyMesh), "{err:?}");
+            let err = Refiner::new(&mesh, &Options::default()).unwrap_err();
+            assert!(matches!(err, Error::EmptyMesh), "native: {err:?}");
+            let err = osd::Refiner::new_unvalidated(&mesh, &Options::default()).unwrap_err();
+            assert!(
+                matches!(&err, Error::InvalidArgument(m)
+                    if m == "the mesh has no faces: there is nothing to refine"),
+                "{err:?}"
+            );
+        }
     }
 
     /// Wrong buffers and levels are refused by the bridge, not passed on.
@@ -1343,7 +1379,7 @@ mod osd_bridge {
             let err = read_obj(&malformed(name)).unwrap_err();
             assert_eq!(err.line, line);
         }
-        for name in ["empty.obj", "comments_only.obj", "face_70000_corners.obj"] {
+        for name in ["empty.obj", "comments_only.obj"] {
             let shape = read_obj(&malformed(name)).unwrap();
             for level in 0..=2 {
                 assert!(

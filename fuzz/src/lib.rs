@@ -396,7 +396,10 @@ pub fn check_refinement(case: &MeshCase, r: &Refinement, engine: &str) {
 /// Is this an error a valid mesh may legitimately get (Loop on non-triangles,
 /// an empty mesh, a feature an engine lacks)?
 fn acceptable_for_valid_mesh(e: &Error) -> bool {
-    matches!(e, Error::InvalidArgument(_) | Error::Unavailable(_))
+    matches!(
+        e,
+        Error::InvalidArgument(_) | Error::Unavailable(_) | Error::EmptyMesh
+    )
 }
 
 /// The native engine on one case: `refine_with`, then the `Refiner` API
@@ -592,7 +595,10 @@ pub fn check_osd(case: &MeshCase) {
         (Ok(_), Err(e)) => assert!(
             matches!(
                 e,
-                Error::InvalidArgument(_) | Error::Unavailable(_) | Error::Osd(_)
+                Error::InvalidArgument(_)
+                    | Error::Unavailable(_)
+                    | Error::Osd(_)
+                    | Error::EmptyMesh
             ),
             "osd: valid mesh: {e:?}"
         ),
@@ -838,7 +844,8 @@ fn curve_scheme<P: Point>(
                     Err(CurveError::TooManyPoints
                         | CurveError::TooFewPoints { .. }
                         | CurveError::BadDegree { .. }
-                        | CurveError::BadTension(_))
+                        | CurveError::BadTension(_)
+                        | CurveError::Overflow { .. })
                 ),
                 "{scheme}: {:?}",
                 r.map(|v| v.len())
@@ -854,6 +861,21 @@ fn curve_scheme<P: Point>(
     }
     let all = match curve::refine_levels(points, scheme, closed, levels) {
         Ok(all) => all,
+        // The points are acceptable; a level overflows f64 (huge coordinates
+        // or tension): refused whole, and refine_once agrees on level 1.
+        Err(CurveError::Overflow { level, .. }) => {
+            assert!(
+                level >= 1 && level <= levels,
+                "{scheme}: overflow at level {level}"
+            );
+            if level == 1 {
+                assert!(matches!(
+                    curve::refine_once(points, scheme, closed),
+                    Err(CurveError::Overflow { level: 1, .. })
+                ));
+            }
+            return true;
+        }
         Err(e) => {
             assert!(
                 matches!(
@@ -877,15 +899,11 @@ fn curve_scheme<P: Point>(
             "{scheme}: level {k} size"
         );
         if k > 0 {
-            // refine_once checks its input, which refine_levels does not
-            // re-check between levels: compare only while the points are finite.
-            if all[k - 1].iter().all(|p| p.is_finite()) {
-                let once = curve::refine_once(&all[k - 1], scheme, closed).expect("one more level");
-                assert!(
-                    same_bits(level, &once),
-                    "{scheme}: refine_levels vs refine_once at level {k}"
-                );
-            }
+            let once = curve::refine_once(&all[k - 1], scheme, closed).expect("one more level");
+            assert!(
+                same_bits(level, &once),
+                "{scheme}: refine_levels vs refine_once at level {k}"
+            );
         }
     }
     let (lo, hi) = bbox(points);
@@ -911,15 +929,8 @@ fn curve_scheme<P: Point>(
         }
         _ => {}
     }
-    if tame {
-        if let CurveScheme::FourPoint { tension } = scheme {
-            if tension.abs() <= 1.0 {
-                assert!(all.iter().flatten().all(|p| p.is_finite()));
-            }
-        } else {
-            assert!(all.iter().flatten().all(|p| p.is_finite()));
-        }
-    }
+    // Whatever the input, a returned level is finite (an overflow is an error).
+    assert!(all.iter().flatten().all(|p| p.is_finite()));
     if let Some(degree) = scheme.limit_degree() {
         let curve = BSplineCurve::new(points.to_vec(), degree, closed).expect("valid B-spline");
         let (min, max) = curve.domain();

@@ -53,7 +53,7 @@
 //! including its tags, so that [`parse_obj`] gives the same mesh back.
 
 use crate::error::{Error, ObjError, ObjErrorKind};
-use crate::mesh::{Corner, Crease, FVarChannel, Mesh};
+use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
 use crate::options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options, TriangleSubdivision,
 };
@@ -231,11 +231,32 @@ struct Parser {
 /// At most this many characters of a field are quoted in a message.
 const QUOTE_LIMIT: usize = 40;
 
-/// A field of the file, shortened for a message.
+/// Text from a file made safe for a message: control characters and other
+/// unprintable ones are escaped as Rust writes them (`\0`, `\t`, `\u{1b}`...)
+/// and `\` is written `\\`, so that a message can never carry a terminal
+/// escape sequence or a line break. Quotes are kept as they are.
+pub(crate) fn escape(text: &str) -> Cow<'_, str> {
+    let plain = |c: char| c == '\'' || c == '"' || c.escape_debug().len() == 1;
+    if text.chars().all(plain) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if plain(c) {
+            out.push(c);
+        } else {
+            out.extend(c.escape_debug());
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// A field of the file for a message: at most [`QUOTE_LIMIT`] characters of
+/// it (then `...`), [`escape`]d.
 fn quote(field: &str) -> Cow<'_, str> {
     match field.char_indices().nth(QUOTE_LIMIT) {
-        Some((end, _)) => Cow::Owned(format!("{}...", &field[..end])),
-        None => Cow::Borrowed(field),
+        Some((end, _)) => Cow::Owned(format!("{}...", escape(&field[..end]))),
+        None => escape(field),
     }
 }
 
@@ -388,6 +409,9 @@ impl Parser {
         let size = fields.clone().count();
         if size < 3 {
             return Err(ObjErrorKind::FaceTooSmall(size));
+        }
+        if size > MAX_VALENCE {
+            return Err(ObjErrorKind::FaceTooLarge(size));
         }
         let vertex_count = self.mesh.positions.len();
         let uv_count = self.uv_values.len() / 2;
@@ -1362,5 +1386,29 @@ mod tests {
         let long = "x".repeat(100);
         assert_eq!(quote(&long).len(), QUOTE_LIMIT + 3);
         assert_eq!(quote("abc"), "abc");
+    }
+
+    #[test]
+    fn quoted_fields_escape_control_characters() {
+        assert!(matches!(
+            quote("plain 'text' \"é\" \u{fffd}"),
+            Cow::Borrowed(_)
+        ));
+        assert_eq!(quote("\u{1b}[2J"), "\\u{1b}[2J");
+        assert_eq!(quote("a\tb\0\r\u{7f}"), "a\\tb\\0\\r\\u{7f}");
+        assert_eq!(quote("back\\slash"), "back\\\\slash");
+        assert_eq!(quote("\u{202e}rtl"), "\\u{202e}rtl");
+        // The limit counts the field's characters, before escaping.
+        let long = "\u{1b}".repeat(100);
+        assert_eq!(
+            quote(&long),
+            format!("{}...", "\\u{1b}".repeat(QUOTE_LIMIT))
+        );
+        // Warnings quote the same way.
+        let shape = parse_obj("\u{1b}]0;title\u{7} 1 2\n", Path::new("<memory>")).unwrap();
+        assert_eq!(
+            shape.warnings[0].message,
+            "unknown statement '\\u{1b}]0;title\\u{7}'; the line is ignored"
+        );
     }
 }

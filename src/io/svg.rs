@@ -204,12 +204,25 @@ pub fn curve_svg<P: Point>(
 ) -> String {
     const WIDTH: f64 = 640.0;
     const PLOT: f64 = 560.0;
+    // Coordinates near f64::MAX would overflow the projection and the extent:
+    // draw such a figure at 2^-64 of its size (exact; the picture is the same).
+    let largest = layers
+        .iter()
+        .flat_map(|l| l.points)
+        .map(|p| p.to_dvec3().abs().max_element())
+        .filter(|m| m.is_finite())
+        .fold(0.0, f64::max);
+    let shrink = if largest > 1e300 {
+        f64::from_bits((1023 - 64) << 52)
+    } else {
+        1.0
+    };
     let projected: Vec<Vec<DVec2>> = layers
         .iter()
         .map(|l| {
             l.points
                 .iter()
-                .map(|p| projection.project(p.to_dvec3()))
+                .map(|p| projection.project(p.to_dvec3() * shrink))
                 .collect()
         })
         .collect();

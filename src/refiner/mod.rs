@@ -72,7 +72,8 @@ pub struct Refiner {
 }
 
 impl Refiner {
-    /// Builds the base level of a mesh (validated first).
+    /// Builds the base level of a mesh (validated first; a mesh without faces
+    /// is [`Error::EmptyMesh`], as in the `osd` engine).
     pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
         let validation = mesh.validate()?;
         if options.scheme == Scheme::Loop {
@@ -87,10 +88,8 @@ impl Refiner {
                 )));
             }
         }
-        if mesh.vertex_count() == 0 || mesh.face_count() == 0 {
-            return Err(Error::InvalidArgument(
-                "the mesh has no vertices or no faces".into(),
-            ));
+        if mesh.face_count() == 0 {
+            return Err(Error::EmptyMesh);
         }
         let base = build_base_level(mesh, options);
         if let Some(v) = crate::topology::unpaired_smooth_vertex(&base) {
