@@ -443,8 +443,12 @@ fn exercise_native_refiner(case: &MeshCase) {
             return;
         }
     };
-    r.refine_uniform(case.uniform())
-        .expect("refine_uniform of a valid mesh at a small level");
+    // A vertex named twice by a face may become smooth at a deeper level:
+    // refused with a typed error by both engines (OpenSubdiv would abort).
+    if let Err(e) = r.refine_uniform(case.uniform()) {
+        assert!(acceptable_for_valid_mesh(&e), "refine_uniform: {e:?}");
+        return;
+    }
     let max = r.max_level();
     assert_eq!(max, case.level);
     let base = flat(&mesh.positions);
