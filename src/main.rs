@@ -406,29 +406,108 @@ fn engine_name(engine: Engine) -> &'static str {
     }
 }
 
-fn summary(name: &str, engine: Engine, r: &Refinement, seconds: f64) -> String {
-    let counts = |f: fn(&subdiv::LevelTopology) -> usize| {
-        r.levels
+/// Vertex and face counts of every level of a refinement.
+fn refinement_counts(r: &Refinement) -> Vec<(usize, usize)> {
+    r.levels
+        .iter()
+        .map(|l| (l.vertex_count, l.face_count()))
+        .collect()
+}
+
+fn summary(
+    name: &str,
+    engine: Engine,
+    options: &Options,
+    precision: Precision,
+    counts: &[(usize, usize)],
+    limit: bool,
+    seconds: f64,
+) -> String {
+    let join = |f: fn(&(usize, usize)) -> usize| {
+        counts
             .iter()
-            .map(|l| f(l).to_string())
+            .map(|c| f(c).to_string())
             .collect::<Vec<_>>()
             .join("→")
     };
     format!(
         "{name}: {} level {} ({}, {}): vertices {}, faces {}{}; {:.3} ms",
-        r.options.scheme,
-        r.uniform.level,
+        options.scheme,
+        counts.len().saturating_sub(1),
         engine_name(engine),
-        r.precision,
-        counts(|l| l.vertex_count),
-        counts(|l| l.face_count()),
-        if r.limit.is_some() {
-            ", limit evaluated"
-        } else {
-            ""
-        },
+        precision,
+        join(|c| c.0),
+        join(|c| c.1),
+        if limit { ", limit evaluated" } else { "" },
         seconds * 1e3
     )
+}
+
+/// `refine` without an output file (and without limits or face-varying
+/// data): the topology of every level and the positions of the last, through
+/// the engine's own refiner, holding at most two levels of positions (the
+/// work the summary reports, without building output tables nobody reads).
+/// Returns the vertex and face counts of every level.
+fn refine_counts(
+    engine: Engine,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+) -> Result<Vec<(usize, usize)>, Failure> {
+    let flat64 = || -> Vec<f64> { mesh.positions.iter().flat_map(|p| p.to_array()).collect() };
+    let flat32 = || -> Vec<f32> {
+        mesh.positions
+            .iter()
+            .flat_map(|p| p.as_vec3().to_array())
+            .collect()
+    };
+    match engine {
+        Engine::Native => {
+            let run = || -> subdiv::Result<Vec<(usize, usize)>> {
+                let mut r = subdiv::refiner::Refiner::new(mesh, options)?;
+                r.refine_uniform(uniform)?;
+                let values = match precision {
+                    Precision::F64 => r.interpolate_last(3, &flat64())?.len(),
+                    Precision::F32 => r.interpolate_last(3, &flat32())?.len(),
+                };
+                debug_assert_eq!(values, 3 * r.internal_level(uniform.level)?.vertex_count);
+                (0..=uniform.level)
+                    .map(|l| {
+                        let level = r.internal_level(l)?;
+                        Ok((level.vertex_count, level.face_count()))
+                    })
+                    .collect()
+            };
+            match run() {
+                Ok(c) => Ok(c),
+                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
+                    "native engine: {msg}; use --engine osd"
+                ))),
+                Err(e) => Err(e.into()),
+            }
+        }
+        #[cfg(feature = "osd")]
+        Engine::Osd => {
+            let mut r = subdiv::osd::Refiner::new(mesh, options)?;
+            r.refine_uniform(uniform)?;
+            match precision {
+                Precision::F64 => drop(r.interpolate_last(3, &flat64())?),
+                Precision::F32 => drop(r.interpolate_last(3, &flat32())?),
+            }
+            Ok((0..=uniform.level)
+                .map(|l| r.level_counts(l).map(|c| (c.vertices, c.faces)))
+                .collect::<subdiv::Result<_>>()?)
+        }
+        #[cfg(not(feature = "osd"))]
+        Engine::Osd => {
+            let _ = (mesh, options, uniform, precision, flat64, flat32);
+            Err(Failure::Unavailable(
+                "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
+                    .into(),
+            ))
+        }
+    }
 }
 
 fn refine(args: &RefineArgs) -> Result<(), Failure> {
@@ -445,23 +524,47 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
     let uniform = UniformOptions::new(args.level).faces_first(args.mesh.faces_first);
     subdiv::refinement::check_level(&mesh, &options, args.level)?;
     let start = Instant::now();
-    let r = run_engine(
-        args.engine,
-        &mesh,
-        &options,
-        uniform,
-        args.mesh.precision,
-        args.limit,
-    )
-    .map_err(|f| match f {
-        // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
+    // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
+    let name_errors = |f: Failure| match f {
         Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
         other => other,
-    })?;
-    let seconds = start.elapsed().as_secs_f64();
-    match &args.output {
-        Some(path) => write_output(path, &r)?,
-        None => outln!("{}", summary(&name, args.engine, &r, seconds)),
+    };
+    let precision = args.mesh.precision;
+    if args.output.is_none() && !args.limit && mesh.fvar_channels.is_empty() {
+        let counts =
+            refine_counts(args.engine, &mesh, &options, uniform, precision).map_err(name_errors)?;
+        let seconds = start.elapsed().as_secs_f64();
+        outln!(
+            "{}",
+            summary(
+                &name,
+                args.engine,
+                &options,
+                precision,
+                &counts,
+                false,
+                seconds
+            )
+        );
+    } else {
+        let r = run_engine(args.engine, &mesh, &options, uniform, precision, args.limit)
+            .map_err(name_errors)?;
+        let seconds = start.elapsed().as_secs_f64();
+        match &args.output {
+            Some(path) => write_output(path, &r)?,
+            None => outln!(
+                "{}",
+                summary(
+                    &name,
+                    args.engine,
+                    &r.options,
+                    r.precision,
+                    &refinement_counts(&r),
+                    r.limit.is_some(),
+                    seconds
+                )
+            ),
+        }
     }
     if args.peak_memory {
         eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
@@ -524,7 +627,15 @@ fn demo() -> Result<(), Failure> {
             Ok(r) => {
                 outln!(
                     "{}",
-                    summary("builtin:cube", engine, &r, start.elapsed().as_secs_f64())
+                    summary(
+                        "builtin:cube",
+                        engine,
+                        &r.options,
+                        r.precision,
+                        &refinement_counts(&r),
+                        r.limit.is_some(),
+                        start.elapsed().as_secs_f64()
+                    )
                 );
                 ran += 1;
             }

@@ -707,6 +707,16 @@ impl Refiner {
         Ok(out)
     }
 
+    /// Interpolates vertex data through every level and returns the last
+    /// level's only, holding no more than two levels at a time.
+    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<T>> {
+        let mut current = base.to_vec();
+        for level in 1..=self.max_level() {
+            current = self.interpolate(level, width, &current)?;
+        }
+        Ok(current)
+    }
+
     /// Limit values and both tangents at the vertices of the last level, from
     /// data at that level (`PrimvarRefiner::Limit`). Needs full topology in the
     /// last level (or no refinement at all).

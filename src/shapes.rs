@@ -543,6 +543,11 @@ pub fn corpus() -> Vec<(String, Mesh)> {
         m.add_corner(18, 1.5);
         triangulate(&m)
     });
+    push("tri-grid-holes".into(), {
+        let mut m = triangulate(&grid(4, 4));
+        m.holes.extend([3, 10, 17]);
+        m
+    });
     push("fin".into(), fin());
     push("bowtie".into(), bowtie());
     push("inconsistent".into(), inconsistent());

@@ -175,38 +175,93 @@ fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, wi
     }
 }
 
-#[inline(always)]
-fn store<T: Real, W: Width>(dst: &mut [T], i: u32, acc: &[T; MAX_WIDTH], width: W) {
-    let n = width.get();
-    dst[i as usize * n..i as usize * n + n].copy_from_slice(&acc[..n]);
+/// Child vertices per parallel task.
+const CHUNK: usize = 4096;
+
+/// The three ranges of child vertices — of parent vertices, faces and edges —
+/// as disjoint mutable slices of `dst`, in that order.
+fn split_children<'a, T>(
+    dst: &'a mut [T],
+    refinement: &crate::topology::Refinement,
+    width: usize,
+) -> [&'a mut [T]; 3] {
+    let [nv, ne, nf] = refinement.parent_counts;
+    let mut parts: [(usize, usize, usize); 3] = [
+        (refinement.first_vertex_from_vertices as usize, nv, 0),
+        (refinement.first_vertex_from_faces as usize, nf, 1),
+        (refinement.first_vertex_from_edges as usize, ne, 2),
+    ];
+    parts.sort_unstable();
+    let mut out: [&mut [T]; 3] = [&mut [], &mut [], &mut []];
+    let mut rest = dst;
+    let mut at = 0;
+    for (start, len, slot) in parts {
+        let (_, tail) = rest.split_at_mut((start - at) * width);
+        let (part, tail) = tail.split_at_mut(len * width);
+        out[slot] = part;
+        rest = tail;
+        at = start + len;
+    }
+    out
 }
 
-fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &mut [T]) {
+/// Calls `body(index, slot, cache, scratch)` for every child vertex of one
+/// kind — `out` holds their values, `width` each — in parallel over chunks,
+/// each chunk with its own mask cache and scratch buffers.
+fn par_children<T: Real>(
+    out: &mut [T],
+    width: usize,
+    body: impl Fn(usize, &mut [T], &mut Cache<T>, &mut Scratch<T>) + Sync,
+) {
+    use rayon::prelude::*;
+    out.par_chunks_mut(CHUNK * width)
+        .enumerate()
+        .for_each(|(chunk, out)| {
+            let mut cache = Cache::<T>::new();
+            let mut scratch = Scratch::<T>::new();
+            for (k, slot) in out.chunks_exact_mut(width).enumerate() {
+                body(chunk * CHUNK + k, slot, &mut cache, &mut scratch);
+            }
+        });
+}
+
+fn run<T: Real, W: Width + Send + Sync>(
+    r: &Refiner,
+    level: usize,
+    width: W,
+    src: &[T],
+    dst: &mut [T],
+) {
     let parent: &Level = &r.levels[level - 1];
     let refinement = &r.refinements[level - 1];
     let scheme = r.options.scheme;
     let tri_smooth =
         scheme == Scheme::Catmark && r.options.triangles == TriangleSubdivision::Smooth;
-    let mut cache = Cache::<T>::new();
-    let mut scratch = Scratch::<T>::new();
     let zero = [T::ZERO; MAX_WIDTH];
+    let n = width.get();
+    let [vertex_points, face_points, edge_points] = split_children(dst, refinement, n);
+    let first_face_point = refinement.first_vertex_from_faces;
 
-    // Face points.
-    if refinement.has_face_points() {
-        for f in 0..parent.face_count() {
-            let verts = parent.face_verts(f);
-            let w = cache.face_weight(r, verts.len());
-            let mut acc = zero;
-            for &v in verts {
-                add(&mut acc, src, v, w, width);
-            }
-            store(dst, refinement.face_child(f), &acc, width);
+    // Face points: the parent face's vertices.
+    par_children(face_points, n, |f, slot, cache, _| {
+        let verts = parent.face_verts(f);
+        let w = cache.face_weight(r, verts.len());
+        let mut acc = zero;
+        for &v in verts {
+            add(&mut acc, src, v, w, width);
         }
-    }
+        slot.copy_from_slice(&acc[..n]);
+    });
+    // Edge and vertex points read face points (children of faces) only.
+    let face_points: &[T] = face_points;
+    let add_source = |acc: &mut [T; MAX_WIDTH], source: Source, w: T| match source {
+        Source::Parent(i) => add(acc, src, i, w, width),
+        Source::Child(i) => add(acc, face_points, i - first_face_point, w, width),
+    };
 
     // Edge points.
     let has_sharpness = !parent.edge_sharpness.is_empty();
-    for e in 0..parent.edge_count() {
+    par_children(edge_points, n, |e, slot, cache, scratch| {
         let faces = parent.edge_faces_of(e);
         let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
         let mut acc = zero;
@@ -221,7 +276,7 @@ fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &
             add(&mut acc, src, ev[1], mask.vertex[1], width);
             if mask.face_weights_for_centers {
                 for (&f, &w) in faces.iter().zip(&mask.face) {
-                    add(&mut acc, dst, refinement.face_child(f as usize), w, width);
+                    add(&mut acc, face_points, f, w, width);
                 }
             } else {
                 for (&f, &w) in faces.iter().zip(&mask.face) {
@@ -235,22 +290,19 @@ fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &
                 }
             }
         } else {
-            r.edge_terms(Kind::Vertex, level, e, &mut scratch);
+            r.edge_terms(Kind::Vertex, level, e, scratch);
             for &(source, w) in &scratch.terms {
-                match source {
-                    Source::Parent(i) => add(&mut acc, src, i, w, width),
-                    Source::Child(i) => add(&mut acc, dst, i, w, width),
-                }
+                add_source(&mut acc, source, w);
             }
         }
-        store(dst, refinement.edge_child(e), &acc, width);
-    }
+        slot.copy_from_slice(&acc[..n]);
+    });
 
     // Vertex points.
-    for v in 0..parent.vertex_count {
+    par_children(vertex_points, n, |v, slot, cache, scratch| {
         let faces = parent.vertex_faces_of(v);
         let edges = parent.vertex_edges_of(v);
-        let rule = parent.vertex_tags[v].rule;
+        let rule = parent.vertex_tags[v].rule();
         let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
             && faces.len() == edges.len()
             && !edges.is_empty();
@@ -258,7 +310,7 @@ fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &
         if smooth {
             let mask = cache.smooth_vertex(r, faces.len());
             for (&f, &w) in faces.iter().zip(&mask.face) {
-                add(&mut acc, dst, refinement.face_child(f as usize), w, width);
+                add(&mut acc, face_points, f, w, width);
             }
             for (&e, &w) in edges.iter().zip(&mask.edge) {
                 add(
@@ -271,14 +323,11 @@ fn run<T: Real, W: Width>(r: &Refiner, level: usize, width: W, src: &[T], dst: &
             }
             add(&mut acc, src, v as u32, mask.vertex[0], width);
         } else {
-            r.vertex_terms(Kind::Vertex, level, v, &mut scratch);
+            r.vertex_terms(Kind::Vertex, level, v, scratch);
             for &(source, w) in &scratch.terms {
-                match source {
-                    Source::Parent(i) => add(&mut acc, src, i, w, width),
-                    Source::Child(i) => add(&mut acc, dst, i, w, width),
-                }
+                add_source(&mut acc, source, w);
             }
         }
-        store(dst, refinement.vertex_child(v), &acc, width);
-    }
+        slot.copy_from_slice(&acc[..n]);
+    });
 }

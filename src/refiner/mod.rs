@@ -196,8 +196,8 @@ impl Refiner {
                     continue;
                 }
                 let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
-                if smooth(p.vertex_tags[v].rule)
-                    || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule)
+                if smooth(p.vertex_tags[v].rule())
+                    || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule())
                 {
                     return Err(Error::InvalidArgument(format!(
                         "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
@@ -234,15 +234,15 @@ impl Refiner {
         Ok(LevelTopology {
             vertex_count: l.vertex_count,
             edge_count: l.edge_count(),
-            face_offsets: l.face_vertices.offsets.clone(),
-            face_vertices: l.face_vertices.members.clone(),
+            face_offsets: l.face_vertices.offsets.to_vec(),
+            face_vertices: l.face_vertices.members.to_vec(),
             edge_vertices: if full {
-                l.edge_vertices.clone()
+                l.edge_vertices.to_vec()
             } else {
                 Vec::new()
             },
             edge_sharpness: if l.edge_sharpness.len() == l.edge_count() {
-                l.edge_sharpness.clone()
+                l.edge_sharpness.to_vec()
             } else {
                 // A minimal last level keeps no edge sharpness: recompute it.
                 let parent = &self.levels[level as usize - 1];
@@ -253,7 +253,7 @@ impl Refiner {
                     l.edge_count(),
                 )
             },
-            vertex_sharpness: l.vertex_sharpness.clone(),
+            vertex_sharpness: l.vertex_sharpness.to_vec(),
             face_holes: l.face_holes.clone(),
             fvar: self
                 .fvar
@@ -344,6 +344,29 @@ impl Refiner {
             out.push(next);
         }
         Ok(out)
+    }
+
+    /// Interpolates vertex data through every level and returns the last
+    /// level's only, holding no more than two levels at a time — what a
+    /// caller that wants just the refined result needs (OpenSubdiv's
+    /// tutorials keep a buffer for every level).
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(3))?;
+    /// let base: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
+    /// let last = r.interpolate_last(3, &base)?;
+    /// assert_eq!(&last, r.interpolate_all(3, &base)?.last().unwrap());
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<T>> {
+        let mut current = base.to_vec();
+        for level in 1..=self.max_level() {
+            current = self.interpolate(level, width, &current)?;
+        }
+        Ok(current)
     }
 
     /// Positions of every level, from base positions, in `f64`.
@@ -470,7 +493,7 @@ impl Refiner {
         } else {
             Rule::Smooth
         };
-        let c_rule = child.vertex_tags[r.edge_child(e) as usize].rule;
+        let c_rule = child.vertex_tags[r.edge_child(e) as usize].rule();
         self.rules
             .edge_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
         s.terms.push((Source::Parent(ev[0]), s.mask.vertex[0]));
@@ -524,8 +547,8 @@ impl Refiner {
             child_sharpness: child.vertex_sharpness[c],
             child_edge_sharpness: &s.child_edge_sharpness,
         };
-        let p_rule = parent.vertex_tags[v].rule;
-        let c_rule = child.vertex_tags[c].rule;
+        let p_rule = parent.vertex_tags[v].rule();
+        let c_rule = child.vertex_tags[c].rule();
         self.rules
             .vertex_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
         for (&f, &w) in faces.iter().zip(&s.mask.face) {

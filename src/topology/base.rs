@@ -1,6 +1,6 @@
 //! Building the base level from face-vertex lists and tags.
 
-use super::{EdgeTag, Level, Relation, VertexTag};
+use super::{Level, Relation, Table};
 use crate::mesh::Mesh;
 use crate::options::{BoundaryInterpolation, Options, Scheme};
 use crate::rules::crease;
@@ -84,7 +84,10 @@ impl Chains {
             members.extend(self.iter(e));
             offsets.push(members.len() as u32);
         }
-        Relation { offsets, members }
+        Relation {
+            offsets: offsets.into(),
+            members: members.into(),
+        }
     }
 }
 
@@ -93,8 +96,8 @@ impl Chains {
 fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     let nv = mesh.vertex_count();
     let face_vertices = Relation {
-        offsets: mesh.face_offsets.clone(),
-        members: mesh.face_vertices.clone(),
+        offsets: Table::from_slice(&mesh.face_offsets),
+        members: Table::from_slice(&mesh.face_vertices),
     };
     let corners = face_vertices.members.len();
     let mut face_edges = vec![0u32; corners];
@@ -168,32 +171,32 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         depth: 0,
         vertex_count: nv,
         face_vertices,
-        face_edges,
-        edge_vertices,
+        face_edges: face_edges.into(),
+        edge_vertices: edge_vertices.into(),
         edge_faces: edge_faces.into_relation(),
-        edge_face_local: Vec::new(),
+        edge_face_local: Table::new(),
         vertex_faces: Relation {
-            offsets: vf_offsets,
-            members: vf_members,
+            offsets: vf_offsets.into(),
+            members: vf_members.into(),
         },
-        vertex_face_local: Vec::new(),
+        vertex_face_local: Table::new(),
         vertex_edges: vertex_edges.into_relation(),
-        vertex_edge_local: Vec::new(),
+        vertex_edge_local: Table::new(),
         num_edges: ne,
-        edge_sharpness: vec![0.0; ne],
-        vertex_sharpness: vec![0.0; nv],
-        edge_tags: vec![EdgeTag::default(); ne],
-        vertex_tags: vec![VertexTag::default(); nv],
+        edge_sharpness: Table::zeroed(ne),
+        vertex_sharpness: Table::zeroed(nv),
+        edge_tags: Table::zeroed(ne),
+        vertex_tags: Table::zeroed(nv),
         face_holes: vec![false; mesh.face_count()],
         max_edge_faces: 0,
         max_valence: 0,
     };
     for &e in &non_manifold_edges {
         let e = e as usize;
-        level.edge_tags[e].non_manifold = true;
+        level.edge_tags[e].set_non_manifold(true);
         let [a, b] = level.edge_vertices[e];
-        level.vertex_tags[a as usize].non_manifold = true;
-        level.vertex_tags[b as usize].non_manifold = true;
+        level.vertex_tags[a as usize].set_non_manifold(true);
+        level.vertex_tags[b as usize].set_non_manifold(true);
     }
     orient_incident_components(&mut level);
     populate_local_indices(&mut level);
@@ -215,14 +218,14 @@ fn orient_incident_components(level: &mut Level) {
     let mut faces = Vec::new();
     let mut edges = Vec::new();
     for v in 0..level.vertex_count {
-        if level.vertex_tags[v].non_manifold {
+        if level.vertex_tags[v].non_manifold() {
             continue;
         }
         if order_vertex(level, v as u32, &mut faces, &mut edges) {
             level.vertex_faces.get_mut(v).copy_from_slice(&faces);
             level.vertex_edges.get_mut(v).copy_from_slice(&edges);
         } else {
-            level.vertex_tags[v].non_manifold = true;
+            level.vertex_tags[v].set_non_manifold(true);
         }
     }
 }
@@ -359,9 +362,9 @@ fn populate_local_indices(level: &mut Level) {
             last = f;
         }
     }
-    level.vertex_face_local = vfl;
-    level.vertex_edge_local = vel;
-    level.edge_face_local = efl;
+    level.vertex_face_local = vfl.into();
+    level.vertex_edge_local = vel.into();
+    level.edge_face_local = efl.into();
 }
 
 /// User sharpness and holes, then OpenSubdiv's boundary and non-manifold
@@ -384,7 +387,7 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     if options.boundary == BoundaryInterpolation::None && options.scheme != Scheme::Bilinear {
         for v in 0..level.vertex_count {
             let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
-            if nf == ne && !level.vertex_tags[v].non_manifold {
+            if nf == ne && !level.vertex_tags[v].non_manifold() {
                 continue;
             }
             let exclude = level.vertex_edges_of(v).iter().any(|&e| {
@@ -402,13 +405,13 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
 
     for e in 0..level.edge_count() {
         let tag = &mut level.edge_tags[e];
-        tag.boundary = level.edge_faces.count(e) < 2;
-        if tag.boundary || tag.non_manifold {
+        tag.set_boundary(level.edge_faces.count(e) < 2);
+        if tag.boundary() || tag.non_manifold() {
             level.edge_sharpness[e] = crate::rules::SHARPNESS_INFINITE;
         }
         let s = level.edge_sharpness[e];
-        tag.inf_sharp = crease::is_infinite(s);
-        tag.semi_sharp = crease::is_sharp(s) && !tag.inf_sharp;
+        tag.set_inf_sharp(crease::is_infinite(s));
+        tag.set_semi_sharp(crease::is_sharp(s) && !tag.inf_sharp());
     }
 
     let sharpen_corners = options.boundary == BoundaryInterpolation::EdgeAndCorner;
@@ -416,17 +419,17 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         let (mut boundary, mut inf, mut semi, mut non_manifold) = (0, 0, 0, 0);
         for &e in level.vertex_edges_of(v) {
             let t = level.edge_tags[e as usize];
-            boundary += t.boundary as usize;
-            inf += t.inf_sharp as usize;
-            semi += t.semi_sharp as usize;
-            non_manifold += t.non_manifold as usize;
+            boundary += t.boundary() as usize;
+            inf += t.inf_sharp() as usize;
+            semi += t.semi_sharp() as usize;
+            non_manifold += t.non_manifold() as usize;
         }
         let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
         let topological_corner = nf == 1 && ne == 2;
         let tag = &mut level.vertex_tags[v];
         if topological_corner && sharpen_corners {
             level.vertex_sharpness[v] = crate::rules::SHARPNESS_INFINITE;
-        } else if tag.non_manifold {
+        } else if tag.non_manifold() {
             // Interior non-manifold creases (two opposing non-manifold edges
             // with extra "fin" faces and no boundary) stay unsharpened.
             if !(non_manifold == 2 && boundary == 0 && nf > ne) {
@@ -434,12 +437,12 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
             }
         }
         let s = level.vertex_sharpness[v];
-        tag.inf_sharp = crease::is_infinite(s);
-        tag.semi_sharp = crease::is_semi_sharp(s);
-        tag.semi_sharp_edges = semi > 0;
-        tag.inf_sharp_edges = inf > 0;
-        tag.rule = crease::vertex_rule_from_sharp_edge_count(s, inf + semi);
-        tag.boundary = boundary > 0;
-        tag.corner = topological_corner && tag.inf_sharp;
+        tag.set_inf_sharp(crease::is_infinite(s));
+        tag.set_semi_sharp(crease::is_semi_sharp(s));
+        tag.set_semi_sharp_edges(semi > 0);
+        tag.set_inf_sharp_edges(inf > 0);
+        tag.set_rule(crease::vertex_rule_from_sharp_edge_count(s, inf + semi));
+        tag.set_boundary(boundary > 0);
+        tag.set_corner(topological_corner && tag.inf_sharp());
     }
 }

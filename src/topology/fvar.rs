@@ -359,10 +359,10 @@ impl FVarLevel {
             let other = level.edge_vertices[e as usize][1 - end as usize] as usize;
             let value = if self.vertex_value_count(other) == 1 {
                 self.vertex_value(other, 0)
-            } else if !tag.non_manifold {
+            } else if !tag.non_manifold() {
                 // Edge i leaves v inside face i, except the last edge of a
                 // boundary vertex, which closes face i - 1.
-                if tag.boundary && i + 1 == edges.len() {
+                if tag.boundary() && i + 1 == edges.len() {
                     let values = self.face_values_of(level, faces[i - 1] as usize);
                     let k = corners[i - 1] as usize;
                     values[if k == 0 { values.len() - 1 } else { k - 1 }]
@@ -465,9 +465,9 @@ impl Span {
         let e = e as usize;
         if fvar_tags[e].is_mismatch() {
             self.splits += 1;
-        } else if level.edge_tags[e].inf_sharp {
+        } else if level.edge_tags[e].inf_sharp() {
             self.inf_sharp_edges += 1;
-        } else if level.edge_tags[e].semi_sharp {
+        } else if level.edge_tags[e].semi_sharp() {
             self.semi_sharp_edges += 1;
         }
     }
@@ -535,11 +535,11 @@ pub fn build_base(
             t.set(EdgeTag::MISMATCH, true);
             t.set(EdgeTag::LINEAR, mode.linear_boundaries);
         };
-        if !tag.non_manifold {
+        if !tag.non_manifold() {
             // Around a manifold vertex, edge i separates faces i - 1 and i
             // (the first edge of a boundary vertex has only face 0).
             let n = faces.len();
-            for i in tag.boundary as usize..n {
+            for i in tag.boundary() as usize..n {
                 let prev = if i == 0 { n - 1 } else { i - 1 };
                 if around[i] != around[prev] {
                     split(edges[i], &mut fvar.edge_tags, &mut mismatch);
@@ -581,15 +581,15 @@ pub fn build_base(
         }
 
         // Boundaries of the mesh are boundaries of the channel too.
-        if tag.boundary && !mismatch[v] {
+        if tag.boundary() && !mismatch[v] {
             if mode.linear_boundaries && !faces.is_empty() {
                 mismatch[v] = true;
-                if !tag.non_manifold {
+                if !tag.non_manifold() {
                     fvar.edge_tags[edges[0] as usize].set(EdgeTag::LINEAR, true);
                     fvar.edge_tags[edges[edges.len() - 1] as usize].set(EdgeTag::LINEAR, true);
                 } else {
                     for &e in edges {
-                        if level.edge_tags[e as usize].boundary {
+                        if level.edge_tags[e as usize].boundary() {
                             fvar.edge_tags[e as usize].set(EdgeTag::LINEAR, true);
                         }
                     }
@@ -624,7 +624,7 @@ pub fn build_base(
             siblings.push(s);
         }
         // Non-manifold vertices can carry several values without a split edge.
-        if tag.non_manifold && !mismatch[v] {
+        if tag.non_manifold() && !mismatch[v] {
             mismatch[v] = unique.len() > 1;
         }
         fvar.value_offsets.push(total);
@@ -671,10 +671,10 @@ pub fn build_base(
 
         let vtag = level.vertex_tags[v];
         let mut all_sharp = mode.linear_boundaries
-            || vtag.inf_sharp
-            || vtag.non_manifold
+            || vtag.inf_sharp()
+            || vtag.non_manifold()
             || (mode.dependent_sharpness && count > 2)
-            || (sharpen_darts && count == 1 && !vtag.boundary);
+            || (sharpen_darts && count == 1 && !vtag.boundary());
 
         gather_spans(&fvar, level, v, &mut spans);
 
@@ -699,7 +699,7 @@ pub fn build_base(
             let inf_sharp =
                 all_sharp || span.inf_sharp_edges > 0 || (span.size == 1 && corners_sharp);
             if !inf_sharp {
-                vtag_i = if span.semi_sharp_edges > 0 || vtag.semi_sharp {
+                vtag_i = if span.semi_sharp_edges > 0 || vtag.semi_sharp() {
                     vtag_i.with(ValueTag::SEMI_SHARP)
                 } else if sharpen_dependents {
                     vtag_i.with(ValueTag::SEMI_SHARP).with(ValueTag::DEP_SHARP)
@@ -734,7 +734,7 @@ fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>
     let n = faces.len();
     let boundary = edges.len() > n;
 
-    if level.vertex_tags[v].non_manifold {
+    if level.vertex_tags[v].non_manifold() {
         // Spans around a non-manifold vertex are not analysed: all are split.
         for s in spans.iter_mut() {
             s.size = 0;
@@ -752,9 +752,9 @@ fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>
                 }
                 s.size = n as u16;
                 s.start = i as u16;
-            } else if level.edge_tags[e as usize].inf_sharp {
+            } else if level.edge_tags[e as usize].inf_sharp() {
                 s.inf_sharp_edges += 1;
-            } else if level.edge_tags[e as usize].semi_sharp {
+            } else if level.edge_tags[e as usize].semi_sharp() {
                 s.semi_sharp_edges += 1;
             }
         }
@@ -968,7 +968,7 @@ pub fn refine(
         }
         values
     } else {
-        child.face_vertices.members.clone()
+        child.face_vertices.members.to_vec()
     };
     fvar
 }
@@ -990,14 +990,14 @@ fn reclassify_semi_sharp(
             continue;
         }
         let ptag = parent.vertex_tags[v];
-        if !ptag.semi_sharp && !ptag.semi_sharp_edges {
+        if !ptag.semi_sharp() && !ptag.semi_sharp_edges() {
             continue;
         }
         let ctag = child.vertex_tags[c];
-        if ctag.semi_sharp || ctag.inf_sharp {
+        if ctag.semi_sharp() || ctag.inf_sharp() {
             continue;
         }
-        if !ctag.semi_sharp_edges {
+        if !ctag.semi_sharp_edges() {
             for t in &mut fvar.value_tags[range] {
                 if t.is_semi_sharp() {
                     *t = t.into_crease();
@@ -1006,7 +1006,7 @@ fn reclassify_semi_sharp(
             continue;
         }
         let c_edges = child.vertex_edges_of(c);
-        let semi = |k: usize| child.edge_tags[c_edges[k] as usize].semi_sharp;
+        let semi = |k: usize| child.edge_tags[c_edges[k] as usize].semi_sharp();
         for i in range.clone() {
             let t = fvar.value_tags[i];
             if !t.is_semi_sharp() || t.is_dep_sharp() {

@@ -20,9 +20,11 @@
 mod base;
 pub mod fvar;
 pub mod refine;
+mod table;
 
 pub use base::build_base_level;
 pub use refine::{Refinement, refine_level};
+pub use table::Table;
 
 use crate::rules::Rule;
 
@@ -32,57 +34,128 @@ use crate::rules::Rule;
 /// own assertion aborts on such a vertex), so both engines refuse the mesh.
 pub fn unpaired_smooth_vertex(level: &Level) -> Option<usize> {
     (0..level.vertex_count).find(|&v| {
-        matches!(level.vertex_tags[v].rule, Rule::Smooth | Rule::Dart)
+        matches!(level.vertex_tags[v].rule(), Rule::Smooth | Rule::Dart)
             && level.vertex_faces.count(v) != level.vertex_edges.count(v)
     })
 }
 
-/// Tags of an edge (OpenSubdiv's `ETag`, the parts refinement uses).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct EdgeTag {
-    /// More than two faces, a repeated or degenerate edge, or faces of opposite winding.
-    pub non_manifold: bool,
-    /// Fewer than two incident faces.
-    pub boundary: bool,
-    /// Infinitely sharp.
-    pub inf_sharp: bool,
-    /// Sharp but finite.
-    pub semi_sharp: bool,
-}
+/// Generates a getter and a setter for each bit of a packed tag.
+macro_rules! tag_bits {
+    ($ty:ty, $bits:ty; $($(#[$doc:meta])* $get:ident, $set:ident = $bit:expr;)*) => {
+        impl $ty {
+            $(
+                $(#[$doc])*
+                #[inline]
+                pub fn $get(self) -> bool {
+                    self.0 & $bit != 0
+                }
 
-/// Tags of a vertex (OpenSubdiv's `VTag`, the parts refinement uses).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct VertexTag {
-    /// Its incident faces and edges cannot be ordered around it.
-    pub non_manifold: bool,
-    /// On a boundary edge.
-    pub boundary: bool,
-    /// A topological corner (one face, two edges) that is infinitely sharp.
-    pub corner: bool,
-    /// Infinitely sharp.
-    pub inf_sharp: bool,
-    /// Sharp but finite.
-    pub semi_sharp: bool,
-    /// Has semi-sharp incident edges.
-    pub semi_sharp_edges: bool,
-    /// Has infinitely sharp incident edges.
-    pub inf_sharp_edges: bool,
-    /// The subdivision rule of the vertex.
-    pub rule: Rule,
-}
-
-impl Default for VertexTag {
-    fn default() -> Self {
-        VertexTag {
-            non_manifold: false,
-            boundary: false,
-            corner: false,
-            inf_sharp: false,
-            semi_sharp: false,
-            semi_sharp_edges: false,
-            inf_sharp_edges: false,
-            rule: Rule::Smooth,
+                #[doc = concat!("Sets [`Self::", stringify!($get), "`].")]
+                #[inline]
+                pub fn $set(&mut self, on: bool) {
+                    if on {
+                        self.0 |= $bit;
+                    } else {
+                        self.0 &= !($bit as $bits);
+                    }
+                }
+            )*
         }
+    };
+}
+
+/// Tags of an edge (OpenSubdiv's `ETag`, the parts refinement uses), packed
+/// in one byte; all clear by default.
+#[derive(Clone, Copy, PartialEq, Eq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(transparent)]
+pub struct EdgeTag(u8);
+
+tag_bits! {
+    EdgeTag, u8;
+    /// More than two faces, a repeated or degenerate edge, or faces of opposite winding.
+    non_manifold, set_non_manifold = 1;
+    /// Fewer than two incident faces.
+    boundary, set_boundary = 2;
+    /// Infinitely sharp.
+    inf_sharp, set_inf_sharp = 4;
+    /// Sharp but finite.
+    semi_sharp, set_semi_sharp = 8;
+}
+
+impl std::fmt::Debug for EdgeTag {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EdgeTag")
+            .field("non_manifold", &self.non_manifold())
+            .field("boundary", &self.boundary())
+            .field("inf_sharp", &self.inf_sharp())
+            .field("semi_sharp", &self.semi_sharp())
+            .finish()
+    }
+}
+
+/// Tags of a vertex (OpenSubdiv's `VTag`, the parts refinement uses), packed
+/// in two bytes; all clear and the rule [`Rule::Smooth`] by default.
+#[derive(Clone, Copy, PartialEq, Eq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(transparent)]
+pub struct VertexTag(u16);
+
+tag_bits! {
+    VertexTag, u16;
+    /// Its incident faces and edges cannot be ordered around it.
+    non_manifold, set_non_manifold = 1;
+    /// On a boundary edge.
+    boundary, set_boundary = 2;
+    /// A topological corner (one face, two edges) that is infinitely sharp.
+    corner, set_corner = 4;
+    /// Infinitely sharp.
+    inf_sharp, set_inf_sharp = 8;
+    /// Sharp but finite.
+    semi_sharp, set_semi_sharp = 16;
+    /// Has semi-sharp incident edges.
+    semi_sharp_edges, set_semi_sharp_edges = 32;
+    /// Has infinitely sharp incident edges.
+    inf_sharp_edges, set_inf_sharp_edges = 64;
+}
+
+impl VertexTag {
+    const RULE_SHIFT: u32 = 8;
+
+    /// The subdivision rule of the vertex.
+    #[inline]
+    pub fn rule(self) -> Rule {
+        match (self.0 >> Self::RULE_SHIFT) & 3 {
+            0 => Rule::Smooth,
+            1 => Rule::Dart,
+            2 => Rule::Crease,
+            _ => Rule::Corner,
+        }
+    }
+
+    /// Sets [`Self::rule`].
+    #[inline]
+    pub fn set_rule(&mut self, rule: Rule) {
+        let code = match rule {
+            Rule::Smooth => 0,
+            Rule::Dart => 1,
+            Rule::Crease => 2,
+            Rule::Corner => 3,
+        };
+        self.0 = (self.0 & !(3 << Self::RULE_SHIFT)) | (code << Self::RULE_SHIFT);
+    }
+}
+
+impl std::fmt::Debug for VertexTag {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VertexTag")
+            .field("non_manifold", &self.non_manifold())
+            .field("boundary", &self.boundary())
+            .field("corner", &self.corner())
+            .field("inf_sharp", &self.inf_sharp())
+            .field("semi_sharp", &self.semi_sharp())
+            .field("semi_sharp_edges", &self.semi_sharp_edges())
+            .field("inf_sharp_edges", &self.inf_sharp_edges())
+            .field("rule", &self.rule())
+            .finish()
     }
 }
 
@@ -91,32 +164,41 @@ impl Default for VertexTag {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Relation {
     /// `count + 1` offsets.
-    pub offsets: Vec<u32>,
+    pub offsets: Table<u32>,
     /// The members, concatenated.
-    pub members: Vec<u32>,
+    pub members: Table<u32>,
 }
 
 impl Relation {
     /// An empty relation over no elements.
     pub fn new() -> Self {
         Relation {
-            offsets: vec![0],
-            members: Vec::new(),
+            offsets: vec![0].into(),
+            members: Table::new(),
         }
+    }
+
+    /// A relation from its offsets (`count + 1`) and members.
+    pub fn from_parts(offsets: Table<u32>, members: Table<u32>) -> Self {
+        Relation { offsets, members }
     }
 
     /// A relation where every element has `size` members.
     pub fn uniform(count: usize, size: usize) -> Self {
+        let mut offsets = Table::zeroed(count + 1);
+        for (i, o) in offsets.iter_mut().enumerate() {
+            *o = (i * size) as u32;
+        }
         Relation {
-            offsets: (0..=count).map(|i| (i * size) as u32).collect(),
-            members: vec![0; count * size],
+            offsets,
+            members: Table::zeroed(count * size),
         }
     }
 
     /// Number of elements.
     #[inline]
     pub fn len(&self) -> usize {
-        self.offsets.len() - 1
+        self.offsets.len().saturating_sub(1)
     }
 
     /// Whether there is no element.
@@ -161,32 +243,32 @@ pub struct Level {
     /// Face → vertices.
     pub face_vertices: Relation,
     /// Face → edges (same offsets as `face_vertices`).
-    pub face_edges: Vec<u32>,
+    pub face_edges: Table<u32>,
     /// Edge → its two vertices.
-    pub edge_vertices: Vec<[u32; 2]>,
+    pub edge_vertices: Table<[u32; 2]>,
     /// Edge → faces.
     pub edge_faces: Relation,
     /// Position of the edge within each of its faces.
-    pub edge_face_local: Vec<u16>,
+    pub edge_face_local: Table<u16>,
     /// Vertex → faces.
     pub vertex_faces: Relation,
     /// Position of the vertex within each of its faces.
-    pub vertex_face_local: Vec<u16>,
+    pub vertex_face_local: Table<u16>,
     /// Vertex → edges.
     pub vertex_edges: Relation,
     /// Which end of each edge the vertex is (0 or 1).
-    pub vertex_edge_local: Vec<u16>,
+    pub vertex_edge_local: Table<u16>,
     /// Number of edges.
     pub num_edges: usize,
     /// Edge sharpness (empty in a minimal last level; see
     /// [`refine::child_edge_sharpness`]).
-    pub edge_sharpness: Vec<f32>,
+    pub edge_sharpness: Table<f32>,
     /// Vertex sharpness.
-    pub vertex_sharpness: Vec<f32>,
+    pub vertex_sharpness: Table<f32>,
     /// Edge tags (empty in a minimal last level).
-    pub edge_tags: Vec<EdgeTag>,
+    pub edge_tags: Table<EdgeTag>,
     /// Vertex tags.
-    pub vertex_tags: Vec<VertexTag>,
+    pub vertex_tags: Table<VertexTag>,
     /// Hole flag of each face.
     pub face_holes: Vec<bool>,
     /// Largest number of faces at any edge.

@@ -11,9 +11,10 @@
 //!   then of edges; with `order_vertices_from_faces_first`, faces, edges,
 //!   then vertices.
 
-use super::{EdgeTag, Level, Relation, VertexTag};
+use super::{EdgeTag, Level, Relation, Table, VertexTag};
 use crate::options::{CreasingMethod, Options, Scheme};
 use crate::rules::{Rule, SHARPNESS_INFINITE, crease};
+use rayon::prelude::*;
 
 /// The parent-to-child numbering of one refinement step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,24 +114,255 @@ pub fn refine_level(
         return refine_triangles(parent, options, faces_first, minimal);
     }
     let r = Refinement::new(parent, faces_first, true);
-    let (nv, ne, nf) = (
-        parent.vertex_count,
-        parent.edge_count(),
-        parent.face_count(),
-    );
+    let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
     let child_faces = corners;
     let child_edges = corners + 2 * ne;
     let child_vertices = r.child_vertex_count();
 
-    // Face-vertices and face-edges of the child quads.
-    let mut face_vertices = Relation::uniform(child_faces, 4);
-    let mut face_edges = if minimal {
-        Vec::new()
-    } else {
-        vec![0u32; child_faces * 4]
+    // Face-vertices and face-edges of the child quads, in parallel over
+    // chunks of parent faces: each chunk writes its own corners' children.
+    let faces_part = || {
+        let mut face_vertices = Relation::uniform(child_faces, 4);
+        let mut face_edges = if minimal {
+            Table::new()
+        } else {
+            Table::zeroed(child_faces * 4)
+        };
+        let fv_chunks = carve_by_faces(&mut face_vertices.members, parent, 4);
+        let fe_chunks = if minimal {
+            Vec::new()
+        } else {
+            carve_by_faces(&mut face_edges, parent, 4)
+        };
+        if minimal {
+            fv_chunks.into_par_iter().for_each(|(faces, fv_out)| {
+                split_quad_faces(parent, &r, faces, fv_out, None);
+            });
+        } else {
+            fv_chunks
+                .into_par_iter()
+                .zip(fe_chunks)
+                .for_each(|((faces, fv_out), (_, fe_out))| {
+                    split_quad_faces(parent, &r, faces, fv_out, Some(fe_out));
+                });
+        }
+        (face_vertices, face_edges)
     };
-    for f in 0..nf {
+
+    // Everything but the face-vertices is skipped for a minimal last level.
+    // Edge relations and vertex relations are built side by side.
+    let relations_part = || -> ChildRelations {
+        if minimal {
+            return Default::default();
+        }
+        let edges_part = || {
+            // Edge-vertices: face edges join the face point to an edge point; edge
+            // halves join the edge point to an end vertex's child.
+            let mut edge_vertices = Table::zeroed(child_edges);
+            for f in 0..nf {
+                let base = parent.face_vertices.offsets[f] as usize;
+                for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
+                    edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
+                }
+            }
+            for e in 0..ne {
+                let ev = parent.edge_vertices[e];
+                for j in 0..2 {
+                    edge_vertices[r.edge_child_edge(e, j) as usize] =
+                        [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+                }
+            }
+
+            // Edge-faces: two per edge inside a face, then the parent edge's
+            // faces for each half.
+            let mut ef = TableWriter::new(
+                child_edges,
+                2 * corners + 2 * parent.edge_faces.members.len(),
+            );
+            for f in 0..nf {
+                let base = parent.face_vertices.offsets[f] as usize;
+                let n = parent.face_vertices.count(f);
+                for j in 0..n {
+                    let jn = next(j, n);
+                    ef.push((base + j) as u32, if n == 4 { jn } else { 1 } as u16);
+                    ef.push(
+                        (base + jn) as u32,
+                        if n == 4 { (jn + 2) & 3 } else { 2 } as u16,
+                    );
+                    ef.end_element();
+                }
+            }
+            for e in 0..ne {
+                let ev = parent.edge_vertices[e];
+                for j in 0..2 {
+                    for (&f, &k) in parent
+                        .edge_faces_of(e)
+                        .iter()
+                        .zip(parent.edge_face_locals(e))
+                    {
+                        let (f, k) = (f as usize, k as usize);
+                        let n = parent.face_vertices.count(f);
+                        let of_edge = if ev[0] == ev[1] {
+                            j
+                        } else {
+                            (parent.face_verts(f)[k] != ev[j]) as usize
+                        };
+                        let mut in_face = k + of_edge;
+                        if in_face == n {
+                            in_face = 0;
+                        }
+                        let local = if n == 4 {
+                            k
+                        } else if of_edge == 1 {
+                            3
+                        } else {
+                            0
+                        };
+                        ef.push(
+                            parent.face_vertices.offsets[f] + in_face as u32,
+                            local as u16,
+                        );
+                    }
+                    ef.end_element();
+                }
+            }
+            let (ef_offsets, ef_members, ef_local) = ef.finish();
+            (edge_vertices, ef_offsets, ef_members, ef_local)
+        };
+        let vertices_part = || {
+            // Vertex-faces and vertex-edges, per child vertex, grouped by origin:
+            // a face point has one face and one edge per corner, an edge point
+            // two faces per parent face and two edges more.
+            let (
+                vf_offsets,
+                ve_offsets,
+                mut vf_members,
+                mut vf_local,
+                mut ve_members,
+                mut ve_local,
+            ) = vertex_relation_tables(
+                parent,
+                &r,
+                |f| {
+                    let n = parent.face_vertices.count(f) as u32;
+                    (n, n)
+                },
+                |e| {
+                    let n = parent.edge_faces.count(e) as u32;
+                    (2 * n, 2 + n)
+                },
+            );
+
+            for f in 0..nf {
+                let c = r.face_child(f) as usize;
+                let base = parent.face_vertices.offsets[f] as usize;
+                let n = parent.face_vertices.count(f);
+                let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+                for j in 0..n {
+                    vf_members[o + j] = (base + j) as u32;
+                    vf_local[o + j] = if n == 4 { (j + 2) & 3 } else { 2 } as u16;
+                    ve_members[oe + j] = (base + prev(j, n)) as u32;
+                    ve_local[oe + j] = 0;
+                }
+            }
+            let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
+            for e in 0..ne {
+                let c = r.edge_child(e) as usize;
+                let ev = parent.edge_vertices[e];
+                let (mut o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+                // The two halves first, then the edges inside each face; after the
+                // first face the edges are rotated into counter-clockwise order.
+                edge_list.clear();
+                edge_list.push((r.edge_child_edge(e, 0), 0u16));
+                edge_list.push((r.edge_child_edge(e, 1), 0u16));
+                for (i, (&f, &k)) in parent
+                    .edge_faces_of(e)
+                    .iter()
+                    .zip(parent.edge_face_locals(e))
+                    .enumerate()
+                {
+                    let (f, k) = (f as usize, k as usize);
+                    let n = parent.face_vertices.count(f);
+                    let base = parent.face_vertices.offsets[f];
+                    let (c0, c1) = (k, next(k, n));
+                    vf_members[o] = base + c1 as u32;
+                    vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
+                    vf_members[o + 1] = base + c0 as u32;
+                    vf_local[o + 1] = if n == 4 { c1 } else { 1 } as u16;
+                    o += 2;
+                    edge_list.push((base + k as u32, 1));
+                    if i == 0 {
+                        if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
+                            edge_list.swap(0, 1);
+                        }
+                        edge_list.swap(1, 2);
+                    }
+                }
+                for (i, &(m, l)) in edge_list.iter().enumerate() {
+                    ve_members[oe + i] = m;
+                    ve_local[oe + i] = l;
+                }
+            }
+            // A vertex's child sits in the child face at its corner: at the
+            // same position in a child of a quad, first in other children.
+            let vf = (&vf_offsets[..], &mut vf_members[..], &mut vf_local[..]);
+            let ve = (&ve_offsets[..], &mut ve_members[..], &mut ve_local[..]);
+            vertex_children_relations(parent, &r, vf, ve, |f, k| {
+                let n = parent.face_vertices.count(f as usize);
+                let local = if n == 4 { k } else { 0 };
+                (parent.face_vertices.offsets[f as usize] + k as u32, local)
+            });
+            (
+                vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local,
+            )
+        };
+        let (
+            (edge_vertices, ef_offsets, ef_members, ef_local),
+            (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
+        ) = rayon::join(edges_part, vertices_part);
+        ChildRelations {
+            edge_vertices,
+            edge_faces: Relation::from_parts(ef_offsets, ef_members),
+            edge_face_local: ef_local,
+            vertex_faces: Relation::from_parts(vf_offsets, vf_members),
+            vertex_face_local: vf_local,
+            vertex_edges: Relation::from_parts(ve_offsets, ve_members),
+            vertex_edge_local: ve_local,
+        }
+    };
+    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
+    let ((face_vertices, face_edges), (relations, tags)) =
+        rayon::join(faces_part, || rayon::join(relations_part, tags_part));
+
+    let child = assemble_child(
+        parent,
+        tags,
+        Parts {
+            vertex_count: child_vertices,
+            face_vertices,
+            face_edges,
+            relations,
+            num_edges: child_edges,
+            face_holes: child_holes(parent, child_faces, false),
+            max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
+        },
+    );
+    (r, child)
+}
+
+/// The child quads of parent faces `faces` (a contiguous range), written
+/// into `fv_out` (and `fe_out` unless the child is minimal): the children of
+/// the range's corners, four values each.
+fn split_quad_faces(
+    parent: &Level,
+    r: &Refinement,
+    faces: std::ops::Range<usize>,
+    fv_out: &mut [u32],
+    mut fe_out: Option<&mut [u32]>,
+) {
+    let first = parent.face_vertices.offsets[faces.start] as usize;
+    for f in faces {
         let base = parent.face_vertices.offsets[f] as usize;
         let verts = parent.face_verts(f);
         let edges = parent.face_edges_of(f);
@@ -138,276 +370,72 @@ pub fn refine_level(
         let fc = r.face_child(f);
         for j in 0..n {
             let jp = prev(j, n);
-            let c = base + j;
+            let c = base + j - first;
             let (e_prev, e_next) = (edges[jp] as usize, edges[j] as usize);
             let corner = verts[j];
             let ev_prev = parent.edge_vertices[e_prev];
             let ev_next = parent.edge_vertices[e_next];
-            let in_prev = if ev_prev[0] != ev_prev[1] {
-                (ev_prev[0] != corner) as usize
-            } else {
-                1
-            };
-            let in_next = if ev_next[0] != ev_next[1] {
-                (ev_next[0] != corner) as usize
-            } else {
-                0
-            };
             let v4 = [
                 r.vertex_child(corner as usize),
                 r.edge_child(e_next),
                 fc,
                 r.edge_child(e_prev),
             ];
-            let e4 = [
-                r.edge_child_edge(e_next, in_next),
-                (base + j) as u32,
-                (base + jp) as u32,
-                r.edge_child_edge(e_prev, in_prev),
-            ];
             // A child of a quad keeps the parent's orientation: its corner
             // vertex sits at position j. Children of other faces start there.
             let rot = if n == 4 { j } else { 0 };
             for (k, &v) in v4.iter().enumerate() {
-                face_vertices.members[4 * c + (rot + k) % 4] = v;
+                fv_out[4 * c + (rot + k) % 4] = v;
             }
-            if !minimal {
+            if let Some(fe_out) = fe_out.as_deref_mut() {
+                let in_prev = if ev_prev[0] != ev_prev[1] {
+                    (ev_prev[0] != corner) as usize
+                } else {
+                    1
+                };
+                let in_next = if ev_next[0] != ev_next[1] {
+                    (ev_next[0] != corner) as usize
+                } else {
+                    0
+                };
+                let e4 = [
+                    r.edge_child_edge(e_next, in_next),
+                    (base + j) as u32,
+                    (base + jp) as u32,
+                    r.edge_child_edge(e_prev, in_prev),
+                ];
                 for (k, &e) in e4.iter().enumerate() {
-                    face_edges[4 * c + (rot + k) % 4] = e;
+                    fe_out[4 * c + (rot + k) % 4] = e;
                 }
             }
         }
     }
+}
 
-    // Everything but the face-vertices is skipped for a minimal last level.
-    let (
-        edge_vertices,
-        ef_offsets,
-        ef_members,
-        ef_local,
-        vf_offsets,
-        vf_members,
-        vf_local,
-        ve_offsets,
-        ve_members,
-        ve_local,
-    ) = if minimal {
-        Default::default()
-    } else {
-        // Edge-vertices: face edges join the face point to an edge point; edge
-        // halves join the edge point to an end vertex's child.
-        let mut edge_vertices = vec![[0u32; 2]; child_edges];
-        for f in 0..nf {
-            let base = parent.face_vertices.offsets[f] as usize;
-            for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
-                edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
-            }
-        }
-        for e in 0..ne {
-            let ev = parent.edge_vertices[e];
-            for j in 0..2 {
-                edge_vertices[r.edge_child_edge(e, j) as usize] =
-                    [r.edge_child(e), r.vertex_child(ev[j] as usize)];
-            }
-        }
+/// Parent faces per parallel task.
+const FACE_CHUNK: usize = 2048;
 
-        // Edge-faces.
-        let mut ef_offsets = Vec::with_capacity(child_edges + 1);
-        let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
-        let mut ef_local = Vec::with_capacity(ef_members.capacity());
-        ef_offsets.push(0u32);
-        for f in 0..nf {
-            let base = parent.face_vertices.offsets[f] as usize;
-            let n = parent.face_vertices.count(f);
-            for j in 0..n {
-                let jn = next(j, n);
-                ef_members.push((base + j) as u32);
-                ef_local.push(if n == 4 { jn } else { 1 } as u16);
-                ef_members.push((base + jn) as u32);
-                ef_local.push(if n == 4 { (jn + 2) & 3 } else { 2 } as u16);
-                ef_offsets.push(ef_members.len() as u32);
-            }
-        }
-        for e in 0..ne {
-            let ev = parent.edge_vertices[e];
-            for j in 0..2 {
-                for (&f, &k) in parent
-                    .edge_faces_of(e)
-                    .iter()
-                    .zip(parent.edge_face_locals(e))
-                {
-                    let (f, k) = (f as usize, k as usize);
-                    let n = parent.face_vertices.count(f);
-                    let of_edge = if ev[0] == ev[1] {
-                        j
-                    } else {
-                        (parent.face_verts(f)[k] != ev[j]) as usize
-                    };
-                    let mut in_face = k + of_edge;
-                    if in_face == n {
-                        in_face = 0;
-                    }
-                    ef_members.push(parent.face_vertices.offsets[f] + in_face as u32);
-                    ef_local.push(if n == 4 {
-                        k
-                    } else if of_edge == 1 {
-                        3
-                    } else {
-                        0
-                    } as u16);
-                }
-                ef_offsets.push(ef_members.len() as u32);
-            }
-        }
-
-        // Vertex-faces and vertex-edges, per child vertex, grouped by origin.
-        let mut vf_count = vec![0u32; child_vertices];
-        let mut ve_count = vec![0u32; child_vertices];
-        for v in 0..nv {
-            let c = r.vertex_child(v) as usize;
-            vf_count[c] = parent.vertex_faces.count(v) as u32;
-            ve_count[c] = parent.vertex_edges.count(v) as u32;
-        }
-        for f in 0..nf {
-            let c = r.face_child(f) as usize;
-            vf_count[c] = parent.face_vertices.count(f) as u32;
-            ve_count[c] = parent.face_vertices.count(f) as u32;
-        }
-        for e in 0..ne {
-            let c = r.edge_child(e) as usize;
-            vf_count[c] = 2 * parent.edge_faces.count(e) as u32;
-            ve_count[c] = 2 + parent.edge_faces.count(e) as u32;
-        }
-        let vf_offsets = prefix_sums(&vf_count);
-        let ve_offsets = prefix_sums(&ve_count);
-        let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
-        let mut vf_local = vec![0u16; vf_members.len()];
-        let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
-        let mut ve_local = vec![0u16; ve_members.len()];
-
-        for f in 0..nf {
-            let c = r.face_child(f) as usize;
-            let base = parent.face_vertices.offsets[f] as usize;
-            let n = parent.face_vertices.count(f);
-            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-            for j in 0..n {
-                vf_members[o + j] = (base + j) as u32;
-                vf_local[o + j] = if n == 4 { (j + 2) & 3 } else { 2 } as u16;
-                ve_members[oe + j] = (base + prev(j, n)) as u32;
-                ve_local[oe + j] = 0;
-            }
-        }
-        let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
-        for e in 0..ne {
-            let c = r.edge_child(e) as usize;
-            let ev = parent.edge_vertices[e];
-            let (mut o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-            // The two halves first, then the edges inside each face; after the
-            // first face the edges are rotated into counter-clockwise order.
-            edge_list.clear();
-            edge_list.push((r.edge_child_edge(e, 0), 0u16));
-            edge_list.push((r.edge_child_edge(e, 1), 0u16));
-            for (i, (&f, &k)) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-                .enumerate()
-            {
-                let (f, k) = (f as usize, k as usize);
-                let n = parent.face_vertices.count(f);
-                let base = parent.face_vertices.offsets[f];
-                let (c0, c1) = (k, next(k, n));
-                vf_members[o] = base + c1 as u32;
-                vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
-                vf_members[o + 1] = base + c0 as u32;
-                vf_local[o + 1] = if n == 4 { c1 } else { 1 } as u16;
-                o += 2;
-                edge_list.push((base + k as u32, 1));
-                if i == 0 {
-                    if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
-                        edge_list.swap(0, 1);
-                    }
-                    edge_list.swap(1, 2);
-                }
-            }
-            for (i, &(m, l)) in edge_list.iter().enumerate() {
-                ve_members[oe + i] = m;
-                ve_local[oe + i] = l;
-            }
-        }
-        for v in 0..nv {
-            let c = r.vertex_child(v) as usize;
-            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-            for (i, (&f, &k)) in parent
-                .vertex_faces_of(v)
-                .iter()
-                .zip(parent.vertex_face_locals(v))
-                .enumerate()
-            {
-                let n = parent.face_vertices.count(f as usize);
-                vf_members[o + i] = parent.face_vertices.offsets[f as usize] + k as u32;
-                vf_local[o + i] = if n == 4 { k } else { 0 };
-            }
-            for (i, (&e, &l)) in parent
-                .vertex_edges_of(v)
-                .iter()
-                .zip(parent.vertex_edge_locals(v))
-                .enumerate()
-            {
-                ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
-                ve_local[oe + i] = 1;
-            }
-        }
-        (
-            edge_vertices,
-            ef_offsets,
-            ef_members,
-            ef_local,
-            vf_offsets,
-            vf_members,
-            vf_local,
-            ve_offsets,
-            ve_members,
-            ve_local,
-        )
-    };
-
-    let child = assemble_child(
-        parent,
-        &r,
-        options,
-        Parts {
-            vertex_count: child_vertices,
-            face_vertices,
-            face_edges,
-            edge_vertices,
-            edge_faces: Relation {
-                offsets: ef_offsets,
-                members: ef_members,
-            },
-            edge_face_local: ef_local,
-            vertex_faces: Relation {
-                offsets: vf_offsets,
-                members: vf_members,
-            },
-            vertex_face_local: vf_local,
-            vertex_edges: Relation {
-                offsets: ve_offsets,
-                members: ve_members,
-            },
-            vertex_edge_local: ve_local,
-            num_edges: child_edges,
-            face_holes: parent
-                .face_holes
-                .iter()
-                .enumerate()
-                .flat_map(|(f, &h)| std::iter::repeat_n(h, parent.face_vertices.count(f)))
-                .collect(),
-            max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
-        },
-        minimal,
-    );
-    (r, child)
+/// Splits `out`, holding `per_corner` values for every parent face corner,
+/// into chunks of consecutive parent faces: (face range, its values).
+fn carve_by_faces<'a, T>(
+    out: &'a mut [T],
+    parent: &Level,
+    per_corner: usize,
+) -> Vec<(std::ops::Range<usize>, &'a mut [T])> {
+    let nf = parent.face_count();
+    let offsets = &parent.face_vertices.offsets;
+    let mut chunks = Vec::with_capacity(nf.div_ceil(FACE_CHUNK));
+    let mut rest = out;
+    let mut f0 = 0;
+    while f0 < nf {
+        let f1 = (f0 + FACE_CHUNK).min(nf);
+        let len = (offsets[f1] - offsets[f0]) as usize * per_corner;
+        let (chunk, tail) = std::mem::take(&mut rest).split_at_mut(len);
+        chunks.push((f0..f1, chunk));
+        rest = tail;
+        f0 = f1;
+    }
+    chunks
 }
 
 /// Triangle split (Loop): child faces `4f..4f+4` of triangle `f` are the three
@@ -420,311 +448,490 @@ fn refine_triangles(
     minimal: bool,
 ) -> (Refinement, Level) {
     let r = Refinement::new(parent, faces_first, false);
-    let (nv, ne, nf) = (
-        parent.vertex_count,
-        parent.edge_count(),
-        parent.face_count(),
-    );
+    let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
     let child_faces = 4 * nf;
     let child_edges = corners + 2 * ne;
     let child_vertices = r.child_vertex_count();
     let inner_edge = |f: usize, j: usize| (3 * f + j) as u32;
 
-    let mut face_vertices = Relation::uniform(child_faces, 3);
-    // A minimal last level needs neither face-edges nor edge-vertices.
-    let (mut face_edges, mut edge_vertices) = if minimal {
-        (Vec::new(), Vec::new())
-    } else {
-        (vec![0u32; child_faces * 3], vec![[0u32; 2]; child_edges])
-    };
-    for f in 0..nf {
-        let fv = parent.face_verts(f);
-        let fe = parent.face_edges_of(f);
-        let ep = |j: usize| r.edge_child(fe[j] as usize);
-        let vp = |j: usize| r.vertex_child(fv[j] as usize);
-        let tris = [
-            [vp(0), ep(0), ep(2)],
-            [ep(0), vp(1), ep(1)],
-            [ep(2), ep(1), vp(2)],
-            [ep(1), ep(2), ep(0)],
-        ];
-        // The halves of each face edge, ordered along the face's direction.
-        let mut halves = [[0u32; 2]; 3];
-        for (i, h) in halves.iter_mut().enumerate() {
-            let e = fe[i] as usize;
-            let ev = parent.edge_vertices[e];
-            let reversed = (ev[0] != ev[1] && fv[i] != ev[0]) as usize;
-            *h = [
-                r.edge_child_edge(e, reversed),
-                r.edge_child_edge(e, 1 - reversed),
-            ];
-        }
-        let edges = [
-            [halves[0][0], inner_edge(f, 0), halves[2][1]],
-            [halves[0][1], halves[1][0], inner_edge(f, 1)],
-            [inner_edge(f, 2), halves[1][1], halves[2][0]],
-            [inner_edge(f, 2), inner_edge(f, 0), inner_edge(f, 1)],
-        ];
-        for (k, tri) in tris.iter().enumerate() {
-            face_vertices.members[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(tri);
-        }
+    // Child triangles (and the edges inside each parent face), in parallel
+    // over chunks of parent triangles; then the halves of parent edges.
+    let faces_part = || {
+        let mut face_vertices = Relation::uniform(child_faces, 3);
+        // A minimal last level needs neither face-edges nor edge-vertices.
+        let (mut face_edges, mut edge_vertices) = if minimal {
+            (Table::new(), Table::new())
+        } else {
+            (Table::zeroed(child_faces * 3), Table::zeroed(child_edges))
+        };
+        let split =
+            |f0: usize, fv_out: &mut [u32], mut rest: Option<(&mut [u32], &mut [[u32; 2]])>| {
+                for (i, tris_out) in fv_out.chunks_exact_mut(12).enumerate() {
+                    let f = f0 + i;
+                    let fv = parent.face_verts(f);
+                    let fe = parent.face_edges_of(f);
+                    let ep = |j: usize| r.edge_child(fe[j] as usize);
+                    let vp = |j: usize| r.vertex_child(fv[j] as usize);
+                    let tris = [
+                        [vp(0), ep(0), ep(2)],
+                        [ep(0), vp(1), ep(1)],
+                        [ep(2), ep(1), vp(2)],
+                        [ep(1), ep(2), ep(0)],
+                    ];
+                    tris_out.copy_from_slice(tris.as_flattened());
+                    let Some((fe_out, ev_out)) = rest.as_mut() else {
+                        continue;
+                    };
+                    // The halves of each face edge, ordered along the face's direction.
+                    let mut halves = [[0u32; 2]; 3];
+                    for (i, h) in halves.iter_mut().enumerate() {
+                        let e = fe[i] as usize;
+                        let ev = parent.edge_vertices[e];
+                        let reversed = (ev[0] != ev[1] && fv[i] != ev[0]) as usize;
+                        *h = [
+                            r.edge_child_edge(e, reversed),
+                            r.edge_child_edge(e, 1 - reversed),
+                        ];
+                    }
+                    let edges = [
+                        [halves[0][0], inner_edge(f, 0), halves[2][1]],
+                        [halves[0][1], halves[1][0], inner_edge(f, 1)],
+                        [inner_edge(f, 2), halves[1][1], halves[2][0]],
+                        [inner_edge(f, 2), inner_edge(f, 0), inner_edge(f, 1)],
+                    ];
+                    fe_out[12 * i..12 * i + 12].copy_from_slice(edges.as_flattened());
+                    ev_out[3 * i..3 * i + 3].copy_from_slice(&[
+                        [ep(0), ep(2)],
+                        [ep(1), ep(0)],
+                        [ep(2), ep(1)],
+                    ]);
+                }
+            };
+        const CHUNK: usize = FACE_CHUNK;
         if minimal {
-            continue;
-        }
-        for (k, e) in edges.iter().enumerate() {
-            face_edges[3 * (4 * f + k)..3 * (4 * f + k) + 3].copy_from_slice(e);
-        }
-        edge_vertices[3 * f] = [ep(0), ep(2)];
-        edge_vertices[3 * f + 1] = [ep(1), ep(0)];
-        edge_vertices[3 * f + 2] = [ep(2), ep(1)];
-    }
-    if !minimal {
-        for e in 0..ne {
-            let ev = parent.edge_vertices[e];
-            for j in 0..2 {
-                edge_vertices[r.edge_child_edge(e, j) as usize] =
-                    [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+            face_vertices
+                .members
+                .par_chunks_mut(12 * CHUNK)
+                .enumerate()
+                .for_each(|(k, fv_out)| split(k * CHUNK, fv_out, None));
+        } else {
+            let (inner, halves) = edge_vertices.split_at_mut(corners);
+            face_vertices
+                .members
+                .par_chunks_mut(12 * CHUNK)
+                .zip(face_edges.par_chunks_mut(12 * CHUNK))
+                .zip(inner.par_chunks_mut(3 * CHUNK))
+                .enumerate()
+                .for_each(|(k, ((fv_out, fe_out), ev_out))| {
+                    split(k * CHUNK, fv_out, Some((fe_out, ev_out)))
+                });
+            for e in 0..ne {
+                let ev = parent.edge_vertices[e];
+                for j in 0..2 {
+                    halves[2 * e + j] = [r.edge_child(e), r.vertex_child(ev[j] as usize)];
+                }
             }
         }
-    }
+        (face_vertices, face_edges, edge_vertices)
+    };
 
     // Everything but the face-vertices is skipped for a minimal last level.
-    let (
-        ef_offsets,
-        ef_members,
-        ef_local,
-        vf_offsets,
-        vf_members,
-        vf_local,
-        ve_offsets,
-        ve_members,
-        ve_local,
-    ) = if minimal {
-        Default::default()
-    } else {
-        // Edge-faces.
-        let mut ef_offsets = Vec::with_capacity(child_edges + 1);
-        let mut ef_members = Vec::with_capacity(2 * corners + 2 * parent.edge_faces.members.len());
-        let mut ef_local = Vec::with_capacity(ef_members.capacity());
-        ef_offsets.push(0u32);
-        for f in 0..nf {
-            for j in 0..3 {
-                let l = ((j + 1) % 3) as u16;
-                ef_members.extend([(4 * f + j) as u32, (4 * f + 3) as u32]);
-                ef_local.extend([l, l]);
-                ef_offsets.push(ef_members.len() as u32);
-            }
+    let relations_part = || -> ChildRelations {
+        if minimal {
+            return Default::default();
         }
-        for e in 0..ne {
-            let ev = parent.edge_vertices[e];
-            for j in 0..2 {
-                for (&f, &k) in parent
+        let edges_part = || {
+            // Edge-faces.
+            let mut ef = TableWriter::new(
+                child_edges,
+                2 * corners + 2 * parent.edge_faces.members.len(),
+            );
+            for f in 0..nf {
+                for j in 0..3 {
+                    let l = ((j + 1) % 3) as u16;
+                    ef.push((4 * f + j) as u32, l);
+                    ef.push((4 * f + 3) as u32, l);
+                    ef.end_element();
+                }
+            }
+            for e in 0..ne {
+                let ev = parent.edge_vertices[e];
+                for j in 0..2 {
+                    for (&f, &k) in parent
+                        .edge_faces_of(e)
+                        .iter()
+                        .zip(parent.edge_face_locals(e))
+                    {
+                        let (f, k) = (f as usize, k as usize);
+                        let of_edge = if ev[0] == ev[1] {
+                            j
+                        } else {
+                            (parent.face_verts(f)[k] != ev[j]) as usize
+                        };
+                        let in_face = (k + of_edge) % 3;
+                        ef.push((4 * f + in_face) as u32, k as u16);
+                    }
+                    ef.end_element();
+                }
+            }
+            let (ef_offsets, ef_members, ef_local) = ef.finish();
+            (ef_offsets, ef_members, ef_local)
+        };
+        let vertices_part = || {
+            // Vertex-faces and vertex-edges: an edge point has three child
+            // triangles and two inner edges per parent face, and two halves.
+            let (
+                vf_offsets,
+                ve_offsets,
+                mut vf_members,
+                mut vf_local,
+                mut ve_members,
+                mut ve_local,
+            ) = vertex_relation_tables(
+                parent,
+                &r,
+                |_| (0, 0),
+                |e| {
+                    let n = parent.edge_faces.count(e) as u32;
+                    (3 * n, 2 + 2 * n)
+                },
+            );
+            for e in 0..ne {
+                let c = r.edge_child(e) as usize;
+                let ev = parent.edge_vertices[e];
+                let (mut o, mut oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+                let mut last_half = None;
+                for (i, (&f, &k)) in parent
                     .edge_faces_of(e)
                     .iter()
                     .zip(parent.edge_face_locals(e))
+                    .enumerate()
                 {
                     let (f, k) = (f as usize, k as usize);
-                    let of_edge = if ev[0] == ev[1] {
-                        j
-                    } else {
-                        (parent.face_verts(f)[k] != ev[j]) as usize
-                    };
-                    let in_face = (k + of_edge) % 3;
-                    ef_members.push((4 * f + in_face) as u32);
-                    ef_local.push(k as u16);
-                }
-                ef_offsets.push(ef_members.len() as u32);
-            }
-        }
-
-        // Vertex-faces and vertex-edges.
-        let mut vf_count = vec![0u32; child_vertices];
-        let mut ve_count = vec![0u32; child_vertices];
-        for v in 0..nv {
-            let c = r.vertex_child(v) as usize;
-            vf_count[c] = parent.vertex_faces.count(v) as u32;
-            ve_count[c] = parent.vertex_edges.count(v) as u32;
-        }
-        for e in 0..ne {
-            let c = r.edge_child(e) as usize;
-            vf_count[c] = 3 * parent.edge_faces.count(e) as u32;
-            ve_count[c] = 2 + 2 * parent.edge_faces.count(e) as u32;
-        }
-        let vf_offsets = prefix_sums(&vf_count);
-        let ve_offsets = prefix_sums(&ve_count);
-        let mut vf_members = vec![0u32; *vf_offsets.last().unwrap() as usize];
-        let mut vf_local = vec![0u16; vf_members.len()];
-        let mut ve_members = vec![0u32; *ve_offsets.last().unwrap() as usize];
-        let mut ve_local = vec![0u16; ve_members.len()];
-        for e in 0..ne {
-            let c = r.edge_child(e) as usize;
-            let ev = parent.edge_vertices[e];
-            let (mut o, mut oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-            let mut last_half = None;
-            for (i, (&f, &k)) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-                .enumerate()
-            {
-                let (f, k) = (f as usize, k as usize);
-                // Leading, middle and trailing child triangles around the edge point.
-                for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
-                    vf_members[o] = (4 * f + child) as u32;
-                    vf_local[o] = local as u16;
-                    o += 1;
-                }
-                if i == 0 {
-                    let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
-                    let (first, second) = if reversed { (0, 1) } else { (1, 0) };
-                    ve_members[oe] = r.edge_child_edge(e, first);
-                    ve_local[oe] = 0;
-                    oe += 1;
-                    last_half = Some(r.edge_child_edge(e, second));
-                }
-                ve_members[oe] = inner_edge(f, (k + 1) % 3);
-                ve_local[oe] = 1;
-                ve_members[oe + 1] = inner_edge(f, k);
-                ve_local[oe + 1] = 0;
-                oe += 2;
-                if let Some(h) = last_half.take() {
-                    ve_members[oe] = h;
-                    ve_local[oe] = 0;
-                    oe += 1;
+                    // Leading, middle and trailing child triangles around the edge point.
+                    for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
+                        vf_members[o] = (4 * f + child) as u32;
+                        vf_local[o] = local as u16;
+                        o += 1;
+                    }
+                    if i == 0 {
+                        let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+                        let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+                        ve_members[oe] = r.edge_child_edge(e, first);
+                        ve_local[oe] = 0;
+                        oe += 1;
+                        last_half = Some(r.edge_child_edge(e, second));
+                    }
+                    ve_members[oe] = inner_edge(f, (k + 1) % 3);
+                    ve_local[oe] = 1;
+                    ve_members[oe + 1] = inner_edge(f, k);
+                    ve_local[oe + 1] = 0;
+                    oe += 2;
+                    if let Some(h) = last_half.take() {
+                        ve_members[oe] = h;
+                        ve_local[oe] = 0;
+                        oe += 1;
+                    }
                 }
             }
+            // A vertex's child sits in the corner triangle of each face.
+            let vf = (&vf_offsets[..], &mut vf_members[..], &mut vf_local[..]);
+            let ve = (&ve_offsets[..], &mut ve_members[..], &mut ve_local[..]);
+            vertex_children_relations(parent, &r, vf, ve, |f, k| (4 * f + k as u32, k));
+            (
+                vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local,
+            )
+        };
+        let (
+            (ef_offsets, ef_members, ef_local),
+            (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
+        ) = rayon::join(edges_part, vertices_part);
+        ChildRelations {
+            edge_vertices: Table::new(),
+            edge_faces: Relation::from_parts(ef_offsets, ef_members),
+            edge_face_local: ef_local,
+            vertex_faces: Relation::from_parts(vf_offsets, vf_members),
+            vertex_face_local: vf_local,
+            vertex_edges: Relation::from_parts(ve_offsets, ve_members),
+            vertex_edge_local: ve_local,
         }
-        for v in 0..nv {
-            let c = r.vertex_child(v) as usize;
-            let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-            for (i, (&f, &k)) in parent
-                .vertex_faces_of(v)
-                .iter()
-                .zip(parent.vertex_face_locals(v))
-                .enumerate()
-            {
-                vf_members[o + i] = 4 * f + k as u32;
-                vf_local[o + i] = k;
-            }
-            for (i, (&e, &l)) in parent
-                .vertex_edges_of(v)
-                .iter()
-                .zip(parent.vertex_edge_locals(v))
-                .enumerate()
-            {
-                ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
-                ve_local[oe + i] = 1;
-            }
-        }
-        (
-            ef_offsets, ef_members, ef_local, vf_offsets, vf_members, vf_local, ve_offsets,
-            ve_members, ve_local,
-        )
     };
+    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
+    let ((face_vertices, face_edges, edge_vertices), (mut relations, tags)) =
+        rayon::join(faces_part, || rayon::join(relations_part, tags_part));
+    // The triangle split writes edge-vertices with the faces.
+    relations.edge_vertices = edge_vertices;
 
     let child = assemble_child(
         parent,
-        &r,
-        options,
+        tags,
         Parts {
             vertex_count: child_vertices,
             face_vertices,
             face_edges,
-            edge_vertices,
-            edge_faces: Relation {
-                offsets: ef_offsets,
-                members: ef_members,
-            },
-            edge_face_local: ef_local,
-            vertex_faces: Relation {
-                offsets: vf_offsets,
-                members: vf_members,
-            },
-            vertex_face_local: vf_local,
-            vertex_edges: Relation {
-                offsets: ve_offsets,
-                members: ve_members,
-            },
-            vertex_edge_local: ve_local,
+            relations,
             num_edges: child_edges,
-            face_holes: parent.face_holes.iter().flat_map(|&h| [h; 4]).collect(),
+            face_holes: child_holes(parent, child_faces, true),
             max_valence: parent.max_valence.max(6).max(2 + 2 * parent.max_edge_faces),
         },
-        minimal,
     );
     (r, child)
+}
+
+/// The relations of a full child level beyond its faces (all empty in a
+/// minimal one).
+#[derive(Default)]
+struct ChildRelations {
+    edge_vertices: Table<[u32; 2]>,
+    edge_faces: Relation,
+    edge_face_local: Table<u16>,
+    vertex_faces: Relation,
+    vertex_face_local: Table<u16>,
+    vertex_edges: Relation,
+    vertex_edge_local: Table<u16>,
 }
 
 /// The tables of a child level built by a split, before tags and sharpness.
 struct Parts {
     vertex_count: usize,
     face_vertices: Relation,
-    face_edges: Vec<u32>,
-    edge_vertices: Vec<[u32; 2]>,
-    edge_faces: Relation,
-    edge_face_local: Vec<u16>,
-    vertex_faces: Relation,
-    vertex_face_local: Vec<u16>,
-    vertex_edges: Relation,
-    vertex_edge_local: Vec<u16>,
+    face_edges: Table<u32>,
+    relations: ChildRelations,
     num_edges: usize,
     face_holes: Vec<bool>,
     max_valence: usize,
 }
 
-/// The child level from its tables: tags and sharpness propagated from the
-/// parent. A minimal level keeps only face-vertices, vertex sharpness and tags.
-fn assemble_child(
-    parent: &Level,
-    r: &Refinement,
-    options: &Options,
-    p: Parts,
-    minimal: bool,
-) -> Level {
-    let mut child = Level {
+/// The sharpness and tags of a child level, propagated from its parent; built
+/// alongside (and independently of) the child's relations.
+pub(crate) struct ChildTags {
+    edge_sharpness: Table<f32>,
+    vertex_sharpness: Table<f32>,
+    edge_tags: Table<EdgeTag>,
+    vertex_tags: Table<VertexTag>,
+}
+
+impl ChildTags {
+    /// A minimal child stores no edge sharpness or tags.
+    fn new(
+        parent: &Level,
+        r: &Refinement,
+        options: &Options,
+        vertex_count: usize,
+        num_edges: usize,
+        minimal: bool,
+    ) -> Self {
+        // The propagation works on a level holding just these tables.
+        let mut child = Level {
+            depth: parent.depth + 1,
+            vertex_count,
+            num_edges,
+            edge_sharpness: if minimal {
+                Table::new()
+            } else {
+                Table::zeroed(num_edges)
+            },
+            vertex_sharpness: Table::zeroed(vertex_count),
+            edge_tags: if minimal {
+                Table::new()
+            } else {
+                Table::zeroed(num_edges)
+            },
+            vertex_tags: Table::zeroed(vertex_count),
+            ..Level::default()
+        };
+        propagate_tags(parent, &mut child, r);
+        subdivide_sharpness(parent, &mut child, r, options.creasing);
+        ChildTags {
+            edge_sharpness: child.edge_sharpness,
+            vertex_sharpness: child.vertex_sharpness,
+            edge_tags: child.edge_tags,
+            vertex_tags: child.vertex_tags,
+        }
+    }
+}
+
+/// The child level from its tables and its tags. A minimal level keeps only
+/// face-vertices, vertex sharpness and tags.
+fn assemble_child(parent: &Level, tags: ChildTags, p: Parts) -> Level {
+    Level {
         depth: parent.depth + 1,
         vertex_count: p.vertex_count,
         face_vertices: p.face_vertices,
-        face_edges: if minimal { Vec::new() } else { p.face_edges },
-        edge_vertices: if minimal { Vec::new() } else { p.edge_vertices },
-        edge_faces: p.edge_faces,
-        edge_face_local: p.edge_face_local,
-        vertex_faces: p.vertex_faces,
-        vertex_face_local: p.vertex_face_local,
-        vertex_edges: p.vertex_edges,
-        vertex_edge_local: p.vertex_edge_local,
+        face_edges: p.face_edges,
+        edge_vertices: p.relations.edge_vertices,
+        edge_faces: p.relations.edge_faces,
+        edge_face_local: p.relations.edge_face_local,
+        vertex_faces: p.relations.vertex_faces,
+        vertex_face_local: p.relations.vertex_face_local,
+        vertex_edges: p.relations.vertex_edges,
+        vertex_edge_local: p.relations.vertex_edge_local,
         num_edges: p.num_edges,
-        edge_sharpness: if minimal {
-            Vec::new()
-        } else {
-            vec![0.0; p.num_edges]
-        },
-        vertex_sharpness: vec![0.0; p.vertex_count],
-        edge_tags: if minimal {
-            Vec::new()
-        } else {
-            vec![EdgeTag::default(); p.num_edges]
-        },
-        vertex_tags: vec![VertexTag::default(); p.vertex_count],
+        edge_sharpness: tags.edge_sharpness,
+        vertex_sharpness: tags.vertex_sharpness,
+        edge_tags: tags.edge_tags,
+        vertex_tags: tags.vertex_tags,
         face_holes: p.face_holes,
         max_edge_faces: parent.max_edge_faces.max(2),
         max_valence: p.max_valence,
-    };
-    propagate_tags(parent, &mut child, r);
-    subdivide_sharpness(parent, &mut child, r, options.creasing);
-    child
+    }
 }
 
-fn prefix_sums(counts: &[u32]) -> Vec<u32> {
-    let mut offsets = Vec::with_capacity(counts.len() + 1);
-    offsets.push(0u32);
-    let mut acc = 0;
-    for &c in counts {
-        acc += c;
-        offsets.push(acc);
+/// Each child face inherits its parent's hole flag. Children come in parent
+/// order: one per parent corner (quad split) or four per triangle (Loop).
+fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<bool> {
+    let mut holes = vec![false; child_faces];
+    for (f, _) in parent.face_holes.iter().enumerate().filter(|(_, h)| **h) {
+        let range = if four_per_face {
+            4 * f..4 * f + 4
+        } else {
+            parent.face_vertices.range(f)
+        };
+        holes[range].fill(true);
     }
-    offsets
+    holes
+}
+
+/// Offsets and zeroed member and local-index tables of a child's
+/// vertex-faces and vertex-edges. Children of vertices keep their parent's
+/// counts; `face_point(f)` and `edge_point(e)` give the (faces, edges) counts
+/// of the children of face `f` (when the split has face points) and edge `e`.
+#[allow(clippy::type_complexity)]
+fn vertex_relation_tables(
+    parent: &Level,
+    r: &Refinement,
+    face_point: impl Fn(usize) -> (u32, u32),
+    edge_point: impl Fn(usize) -> (u32, u32),
+) -> (
+    Table<u32>,
+    Table<u32>,
+    Table<u32>,
+    Table<u16>,
+    Table<u32>,
+    Table<u16>,
+) {
+    let child_vertices = r.child_vertex_count();
+    // Counts at `c + 1`, turned into offsets in place.
+    let mut vf_offsets = Table::zeroed(child_vertices + 1);
+    let mut ve_offsets = Table::zeroed(child_vertices + 1);
+    let mut set = |c: u32, (faces, edges): (u32, u32)| {
+        vf_offsets[c as usize + 1] = faces;
+        ve_offsets[c as usize + 1] = edges;
+    };
+    for v in 0..parent.vertex_count {
+        set(
+            r.vertex_child(v),
+            (
+                parent.vertex_faces.count(v) as u32,
+                parent.vertex_edges.count(v) as u32,
+            ),
+        );
+    }
+    if r.has_face_points() {
+        for f in 0..parent.face_count() {
+            set(r.face_child(f), face_point(f));
+        }
+    }
+    for e in 0..parent.edge_count() {
+        set(r.edge_child(e), edge_point(e));
+    }
+    prefix_sums(&mut vf_offsets);
+    prefix_sums(&mut ve_offsets);
+    let vf_members = Table::zeroed(vf_offsets[child_vertices] as usize);
+    let vf_local = Table::zeroed(vf_members.len());
+    let ve_members = Table::zeroed(ve_offsets[child_vertices] as usize);
+    let ve_local = Table::zeroed(ve_members.len());
+    (
+        vf_offsets, ve_offsets, vf_members, vf_local, ve_members, ve_local,
+    )
+}
+
+/// One child relation being filled: offsets, members, local indices.
+type RelationOut<'a> = (&'a [u32], &'a mut [u32], &'a mut [u16]);
+
+/// The vertex-faces and vertex-edges of the children of parent vertices: the
+/// child faces at the vertex's corners (`child_face(f, k)` gives the child
+/// of face `f` at corner `k` and the vertex's position in it) and the halves
+/// of its edges at its end (where the child vertex is end 1).
+fn vertex_children_relations(
+    parent: &Level,
+    r: &Refinement,
+    (vf_offsets, vf_members, vf_local): RelationOut<'_>,
+    (ve_offsets, ve_members, ve_local): RelationOut<'_>,
+    child_face: impl Fn(u32, u16) -> (u32, u16),
+) {
+    for v in 0..parent.vertex_count {
+        let c = r.vertex_child(v) as usize;
+        let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
+        for (i, (&f, &k)) in parent
+            .vertex_faces_of(v)
+            .iter()
+            .zip(parent.vertex_face_locals(v))
+            .enumerate()
+        {
+            (vf_members[o + i], vf_local[o + i]) = child_face(f, k);
+        }
+        for (i, (&e, &l)) in parent
+            .vertex_edges_of(v)
+            .iter()
+            .zip(parent.vertex_edge_locals(v))
+            .enumerate()
+        {
+            ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
+            ve_local[oe + i] = 1;
+        }
+    }
+}
+
+/// Turns counts stored at `i + 1` into offsets (`offsets[0]` is 0).
+fn prefix_sums(offsets: &mut [u32]) {
+    let mut acc = 0;
+    for o in offsets.iter_mut() {
+        acc += *o;
+        *o = acc;
+    }
+}
+
+/// Fills a relation with known totals element by element: members and their
+/// local indices pushed in order, each element closed by `end_element`.
+struct TableWriter {
+    offsets: Table<u32>,
+    members: Table<u32>,
+    locals: Table<u16>,
+    element: usize,
+    len: usize,
+}
+
+impl TableWriter {
+    fn new(elements: usize, members: usize) -> Self {
+        TableWriter {
+            offsets: Table::zeroed(elements + 1),
+            members: Table::zeroed(members),
+            locals: Table::zeroed(members),
+            element: 0,
+            len: 0,
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, member: u32, local: u16) {
+        self.members[self.len] = member;
+        self.locals[self.len] = local;
+        self.len += 1;
+    }
+
+    #[inline]
+    fn end_element(&mut self) {
+        self.element += 1;
+        self.offsets[self.element] = self.len as u32;
+    }
+
+    fn finish(self) -> (Table<u32>, Table<u32>, Table<u16>) {
+        debug_assert_eq!(self.element + 1, self.offsets.len());
+        debug_assert_eq!(self.len, self.members.len());
+        (self.offsets, self.members, self.locals)
+    }
 }
 
 /// Child tags: faces inherit holes (done by the caller), edge halves inherit
@@ -739,15 +946,14 @@ fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement) {
             child.edge_tags[r.edge_child_edge(e, 0) as usize] = t;
             child.edge_tags[r.edge_child_edge(e, 1) as usize] = t;
         }
-        let sharp = t.semi_sharp || t.inf_sharp;
-        child.vertex_tags[r.edge_child(e) as usize] = VertexTag {
-            non_manifold: t.non_manifold,
-            boundary: t.boundary,
-            semi_sharp_edges: t.semi_sharp,
-            inf_sharp_edges: t.inf_sharp,
-            rule: if sharp { Rule::Crease } else { Rule::Smooth },
-            ..VertexTag::default()
-        };
+        let sharp = t.semi_sharp() || t.inf_sharp();
+        let mut tag = VertexTag::default();
+        tag.set_non_manifold(t.non_manifold());
+        tag.set_boundary(t.boundary());
+        tag.set_semi_sharp_edges(t.semi_sharp());
+        tag.set_inf_sharp_edges(t.inf_sharp());
+        tag.set_rule(if sharp { Rule::Crease } else { Rule::Smooth });
+        child.vertex_tags[r.edge_child(e) as usize] = tag;
     }
     for v in 0..parent.vertex_count {
         child.vertex_tags[r.vertex_child(v) as usize] = parent.vertex_tags[v];
@@ -765,10 +971,10 @@ pub fn child_edge(
     around: &mut Vec<f32>,
 ) -> (f32, EdgeTag) {
     let mut tag = parent.edge_tags[e];
-    if tag.inf_sharp {
+    if tag.inf_sharp() {
         return (SHARPNESS_INFINITE, tag);
     }
-    if !tag.semi_sharp {
+    if !tag.semi_sharp() {
         return (0.0, tag);
     }
     let ps = parent.edge_sharpness[e];
@@ -787,7 +993,7 @@ pub fn child_edge(
         }
     };
     if !crease::is_sharp(s) {
-        tag.semi_sharp = false;
+        tag.set_semi_sharp(false);
     }
     (s, tag)
 }
@@ -818,7 +1024,7 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
     let store_edges = !child.edge_tags.is_empty();
     if store_edges {
         for e in 0..parent.edge_count() {
-            if !parent.edge_tags[e].semi_sharp && !parent.edge_tags[e].inf_sharp {
+            if !parent.edge_tags[e].semi_sharp() && !parent.edge_tags[e].inf_sharp() {
                 continue;
             }
             for j in 0..2 {
@@ -839,38 +1045,38 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
     for v in 0..parent.vertex_count {
         let c = r.vertex_child(v) as usize;
         let tag = &mut child.vertex_tags[c];
-        if tag.inf_sharp {
+        if tag.inf_sharp() {
             child.vertex_sharpness[c] = SHARPNESS_INFINITE;
-        } else if tag.semi_sharp {
+        } else if tag.semi_sharp() {
             let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness[v]);
             child.vertex_sharpness[c] = s;
             if !crease::is_sharp(s) {
-                tag.semi_sharp = false;
+                tag.set_semi_sharp(false);
             }
         }
     }
     // Edge points of semi-sharp edges: Crease while a half stays sharp.
     for e in 0..parent.edge_count() {
         let c = r.edge_child(e) as usize;
-        if !child.vertex_tags[c].semi_sharp_edges {
+        if !child.vertex_tags[c].semi_sharp_edges() {
             continue;
         }
         let count = (0..2)
-            .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp)
+            .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp())
             .count();
         let tag = &mut child.vertex_tags[c];
-        tag.semi_sharp_edges = count > 0;
-        tag.rule = crease::vertex_rule_from_sharp_edge_count(0.0, count);
+        tag.set_semi_sharp_edges(count > 0);
+        tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, count));
     }
     // Children of vertices whose semi-sharp features may have decayed.
     for v in 0..parent.vertex_count {
         let p = parent.vertex_tags[v];
-        if !p.semi_sharp && !p.semi_sharp_edges {
+        if !p.semi_sharp() && !p.semi_sharp_edges() {
             continue;
         }
         let c = r.vertex_child(v) as usize;
-        let decayed = p.semi_sharp && !child.vertex_tags[c].semi_sharp;
-        if p.semi_sharp_edges || decayed {
+        let decayed = p.semi_sharp() && !child.vertex_tags[c].semi_sharp();
+        if p.semi_sharp_edges() || decayed {
             // The child's edges are the halves of the parent's edges at this
             // vertex (found through the parent: the child level may be minimal).
             let (mut inf, mut semi) = (0, 0);
@@ -880,13 +1086,13 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
                 .zip(parent.vertex_edge_locals(v))
             {
                 let t = edge_semi(e as usize, l as usize, &mut around, child);
-                inf += t.inf_sharp as usize;
-                semi += t.semi_sharp as usize;
+                inf += t.inf_sharp() as usize;
+                semi += t.semi_sharp() as usize;
             }
             let tag = &mut child.vertex_tags[c];
-            tag.semi_sharp_edges = semi > 0;
-            if !tag.semi_sharp && !tag.inf_sharp {
-                tag.rule = crease::vertex_rule_from_sharp_edge_count(0.0, inf + semi);
+            tag.set_semi_sharp_edges(semi > 0);
+            if !tag.semi_sharp() && !tag.inf_sharp() {
+                tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, inf + semi));
             }
         }
     }

@@ -1,0 +1,211 @@
+//! Flat tables of plain values whose large instances live in memory advised
+//! for transparent huge pages.
+//!
+//! Refining a mesh writes hundreds of megabytes of fresh tables at deep
+//! levels. With 4 KiB pages, the first touch of each page is a kernel page
+//! fault, and those faults were about half of the native engine's topology
+//! time (docs/PERFORMANCE.md). A [`Table`] of 2 MiB or more is instead an
+//! anonymous memory map advised with `MADV_HUGEPAGE` (through `memmap2`), so
+//! the kernel fills it with 2 MiB pages: one fault where there were 512.
+//! Smaller tables are ordinary `Vec`s. Where the advice is not available the
+//! map still works with ordinary pages.
+
+use bytemuck::Pod;
+use std::fmt;
+use std::ops::{Deref, DerefMut};
+
+/// Tables of at least this many bytes are memory maps advised for huge pages.
+const MAP_BYTES: usize = 2 << 20;
+
+/// The size of a transparent huge page on x86-64 and most aarch64 kernels.
+const HUGE_PAGE: usize = 2 << 20;
+
+/// A fixed-length table of plain values (`u32`, `[u32; 2]`, `f32`, tags…)
+/// that dereferences to a slice.
+///
+/// Refining a mesh writes hundreds of megabytes of fresh tables at deep
+/// levels; with 4 KiB pages the first touch of every page is a kernel page
+/// fault. A table of 2 MiB or more is therefore an anonymous memory map
+/// advised with `MADV_HUGEPAGE` (transparent huge pages: one fault where
+/// there were 512); smaller tables are ordinary `Vec`s.
+///
+/// ```
+/// use subdiv::topology::Table;
+/// let mut t: Table<u32> = Table::zeroed(4);
+/// t[2] = 7;
+/// assert_eq!(&t[..], &[0, 0, 7, 0]);
+/// let big: Table<u32> = Table::filled(1, 1 << 20);
+/// assert_eq!(big.iter().map(|&x| x as u64).sum::<u64>(), 1 << 20);
+/// ```
+pub struct Table<T: Pod> {
+    repr: Repr<T>,
+}
+
+enum Repr<T> {
+    Vec(Vec<T>),
+    Map { map: memmap2::MmapMut, len: usize },
+}
+
+impl<T: Pod> Table<T> {
+    /// An empty table.
+    pub const fn new() -> Self {
+        Table {
+            repr: Repr::Vec(Vec::new()),
+        }
+    }
+
+    /// `len` zeroed values (zero bits: `0`, `0.0`, default tags).
+    pub fn zeroed(len: usize) -> Self {
+        let bytes = len.saturating_mul(size_of::<T>());
+        if bytes >= MAP_BYTES {
+            // A whole number of huge pages: the kernel then aligns the map
+            // on a huge-page boundary, so every part of it can use them.
+            let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
+            if let Ok(map) = memmap2::MmapOptions::new().len(mapped).map_anon() {
+                // Only advice: without transparent huge pages the map keeps
+                // ordinary pages.
+                #[cfg(target_os = "linux")]
+                let _ = map.advise(memmap2::Advice::HugePage);
+                return Table {
+                    repr: Repr::Map { map, len },
+                };
+            }
+        }
+        Table {
+            repr: Repr::Vec(vec![T::zeroed(); len]),
+        }
+    }
+
+    /// `len` copies of `value`.
+    pub fn filled(value: T, len: usize) -> Self {
+        let mut t = Self::zeroed(len);
+        if bytemuck::bytes_of(&value).iter().any(|&b| b != 0) {
+            t.fill(value);
+        }
+        t
+    }
+
+    /// A table holding a copy of `values`.
+    pub fn from_slice(values: &[T]) -> Self {
+        let mut t = Self::zeroed(values.len());
+        t.copy_from_slice(values);
+        t
+    }
+
+    /// The values as a slice.
+    #[inline]
+    pub fn as_slice(&self) -> &[T] {
+        match &self.repr {
+            Repr::Vec(v) => v,
+            Repr::Map { map, len } => bytemuck::cast_slice(&map[..*len * size_of::<T>()]),
+        }
+    }
+
+    /// The values as a mutable slice.
+    #[inline]
+    pub fn as_mut_slice(&mut self) -> &mut [T] {
+        match &mut self.repr {
+            Repr::Vec(v) => v,
+            Repr::Map { map, len } => bytemuck::cast_slice_mut(&mut map[..*len * size_of::<T>()]),
+        }
+    }
+
+    /// Whether the table lives in a memory map (2 MiB or more).
+    pub fn is_mapped(&self) -> bool {
+        matches!(self.repr, Repr::Map { .. })
+    }
+}
+
+impl<T: Pod> Default for Table<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Pod> Deref for Table<T> {
+    type Target = [T];
+    #[inline]
+    fn deref(&self) -> &[T] {
+        self.as_slice()
+    }
+}
+
+impl<T: Pod> DerefMut for Table<T> {
+    #[inline]
+    fn deref_mut(&mut self) -> &mut [T] {
+        self.as_mut_slice()
+    }
+}
+
+impl<T: Pod> Clone for Table<T> {
+    fn clone(&self) -> Self {
+        match &self.repr {
+            Repr::Vec(v) => Table {
+                repr: Repr::Vec(v.clone()),
+            },
+            Repr::Map { .. } => Self::from_slice(self),
+        }
+    }
+}
+
+impl<T: Pod + PartialEq> PartialEq for Table<T> {
+    fn eq(&self, other: &Self) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
+impl<T: Pod + Eq> Eq for Table<T> {}
+
+impl<T: Pod + fmt::Debug> fmt::Debug for Table<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl<T: Pod> From<Vec<T>> for Table<T> {
+    /// Keeps the vector as it is (no copy, ordinary pages).
+    fn from(v: Vec<T>) -> Self {
+        Table { repr: Repr::Vec(v) }
+    }
+}
+
+impl<T: Pod> FromIterator<T> for Table<T> {
+    fn from_iter<I: IntoIterator<Item = T>>(iter: I) -> Self {
+        Vec::from_iter(iter).into()
+    }
+}
+
+impl<'a, T: Pod> IntoIterator for &'a Table<T> {
+    type Item = &'a T;
+    type IntoIter = std::slice::Iter<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.as_slice().iter()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_and_large_tables_behave_alike() {
+        for len in [0, 3, MAP_BYTES / 4 + 5] {
+            let mut t: Table<u32> = Table::filled(9, len);
+            assert_eq!(t.len(), len);
+            assert_eq!(t.is_mapped(), len * 4 >= MAP_BYTES);
+            assert!(t.iter().all(|&x| x == 9));
+            if len > 0 {
+                t[len - 1] = 1;
+                assert_eq!(t[len - 1], 1);
+            }
+            let c = t.clone();
+            assert_eq!(c, t);
+            assert_eq!(c.is_mapped(), t.is_mapped());
+        }
+        let pairs: Table<[u32; 2]> = Table::zeroed(MAP_BYTES);
+        assert!(pairs.is_mapped());
+        assert!(pairs.iter().all(|p| *p == [0, 0]));
+        let v: Table<u16> = (0..5u16).collect();
+        assert_eq!(&v[..], &[0, 1, 2, 3, 4]);
+    }
+}
