@@ -57,3 +57,19 @@ impl LevelTopology {
             .map(move |w| &self.face_vertices[w[0] as usize..w[1] as usize])
     }
 }
+
+/// Element counts of one level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LevelCounts {
+    /// Vertices.
+    pub vertices: usize,
+    /// Edges.
+    pub edges: usize,
+    /// Faces.
+    pub faces: usize,
+    /// Face corners (face-vertex incidences).
+    pub face_vertices: usize,
+    /// Whether the level has all topological relations; `false` for a last
+    /// level refined without full topology, which has no edge-vertex table.
+    pub full_topology: bool,
+}

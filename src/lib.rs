@@ -62,7 +62,7 @@ pub mod topology;
 pub mod osd;
 
 pub use error::{Error, ObjError, ObjErrorKind, Result};
-pub use level::{FVarLevel, LevelTopology};
+pub use level::{FVarLevel, LevelCounts, LevelTopology};
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
 pub use options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, MAX_LEVEL, Options, Scheme,

@@ -239,21 +239,7 @@ macro_rules! impl_real {
 impl_real!(f32, sdv_interpolate_f32, sdv_limit_f32, sdv_limit_fvar_f32);
 impl_real!(f64, sdv_interpolate_f64, sdv_limit_f64, sdv_limit_fvar_f64);
 
-/// Element counts of one level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct LevelCounts {
-    /// Vertices.
-    pub vertices: usize,
-    /// Edges.
-    pub edges: usize,
-    /// Faces.
-    pub faces: usize,
-    /// Face corners (face-vertex incidences).
-    pub face_vertices: usize,
-    /// Whether the level has all topological relations; `false` for a last
-    /// level refined without full topology, which has no edge-vertex table.
-    pub full_topology: bool,
-}
+pub use crate::level::LevelCounts;
 
 /// An OpenSubdiv `Far::TopologyRefiner`, owned.
 #[derive(Debug)]

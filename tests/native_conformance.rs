@@ -198,3 +198,43 @@ fn open_and_triangle_shapes() {
 fn non_manifold_shapes() {
     run_corpus(|n| matches!(n, "fin" | "bowtie" | "inconsistent" | "crease-without-edge"));
 }
+
+/// `refine_last` (levels released as it goes) gives the counts and last-level
+/// positions of a full refinement, bit for bit, and OpenSubdiv's.
+#[test]
+fn refine_last_equals_full_refinement_and_opensubdiv() {
+    for (name, mesh) in shapes::corpus() {
+        let options = subdiv::Options::shape_file_defaults();
+        let base: Vec<f64> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+        for level in 1..=3 {
+            let uniform = UniformOptions::new(level);
+            let mut full = refiner::Refiner::new(&mesh, &options).unwrap();
+            full.refine_uniform(uniform).unwrap();
+            let (counts, last) = refiner::refine_last(&mesh, &options, uniform, 3, &base).unwrap();
+            assert_eq!(
+                last,
+                full.interpolate_last(3, &base).unwrap(),
+                "{name} L{level}"
+            );
+            for (l, c) in counts.iter().enumerate() {
+                // (A full refinement keeps all of a last level's topology when
+                // the mesh has face-varying channels; refine_last does not.)
+                let f = full.level_counts(l as u32).unwrap();
+                let sizes =
+                    |c: &subdiv::LevelCounts| (c.vertices, c.edges, c.faces, c.face_vertices);
+                assert_eq!(sizes(c), sizes(&f), "{name} L{level} level {l}");
+            }
+            let mut o = osd::Refiner::new(&mesh, &options).unwrap();
+            o.refine_uniform(uniform).unwrap();
+            assert_eq!(
+                last,
+                o.interpolate_last(3, &base).unwrap(),
+                "{name} L{level} osd"
+            );
+            assert_eq!(
+                counts[level as usize].vertices,
+                o.level_counts(level).unwrap().vertices
+            );
+        }
+    }
+}

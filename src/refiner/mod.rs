@@ -13,7 +13,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::level::{FVarLevel, LevelTopology};
+use crate::level::{FVarLevel, LevelCounts, LevelTopology};
 use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
 use crate::real::Real;
@@ -189,24 +189,42 @@ impl Refiner {
         if self.options.scheme != Scheme::Catmark {
             return Ok(());
         }
-        for (l, r) in self.refinements.iter().enumerate() {
-            let (p, c) = (&self.levels[l], &self.levels[l + 1]);
-            for v in 0..p.vertex_count {
-                if p.vertex_faces.count(v) == p.vertex_edges.count(v) {
-                    continue;
-                }
-                let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
-                if smooth(p.vertex_tags[v].rule())
-                    || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule())
-                {
-                    return Err(Error::InvalidArgument(format!(
-                        "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
-                         (a face names it twice): OpenSubdiv cannot refine it"
-                    )));
-                }
+        (0..self.refinements.len()).try_for_each(|l| self.check_unpaired_smooth_step(l))
+    }
+
+    /// [`Refiner::check_unpaired_smooth`] for the step from level `l` to `l + 1`.
+    fn check_unpaired_smooth_step(&self, l: usize) -> Result<()> {
+        if self.options.scheme != Scheme::Catmark {
+            return Ok(());
+        }
+        let (p, c, r) = (&self.levels[l], &self.levels[l + 1], &self.refinements[l]);
+        for v in 0..p.vertex_count {
+            if p.vertex_faces.count(v) == p.vertex_edges.count(v) {
+                continue;
+            }
+            let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
+            if smooth(p.vertex_tags[v].rule())
+                || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule())
+            {
+                return Err(Error::InvalidArgument(format!(
+                    "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
+                     (a face names it twice): OpenSubdiv cannot refine it"
+                )));
             }
         }
         Ok(())
+    }
+
+    /// Element counts of `level` (`TopologyLevel::GetNumVertices` and friends).
+    pub fn level_counts(&self, level: u32) -> Result<LevelCounts> {
+        let l = self.internal_level(level)?;
+        Ok(LevelCounts {
+            vertices: l.vertex_count,
+            edges: l.edge_count(),
+            faces: l.face_count(),
+            face_vertices: l.face_vertices.members.len(),
+            full_topology: l.has_full_topology(),
+        })
     }
 
     /// The deepest refined level.
@@ -560,6 +578,63 @@ impl Refiner {
         }
         s.terms.push((Source::Parent(v as u32), s.mask.vertex[0]));
     }
+}
+
+/// Refines `mesh` to `uniform.level` and interpolates `base` (vertex data of
+/// `width` components per base vertex) along the way, releasing each level's
+/// topology and data as soon as the next level's data exists: the smallest
+/// memory footprint for "just the last level's values". Returns the element
+/// counts of every level and the last level's values (equal to
+/// [`Refiner::interpolate_last`] after [`Refiner::refine_uniform`]).
+/// Face-varying channels of `mesh` are not refined.
+///
+/// ```
+/// use subdiv::{refiner, shapes, Options, UniformOptions};
+/// let torus = shapes::torus(8, 6);
+/// let base: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+/// let (counts, last) = refiner::refine_last(&torus, &Options::default(), UniformOptions::new(3), 3, &base)?;
+/// assert_eq!(counts.len(), 4);
+/// assert_eq!(last.len(), 3 * counts[3].vertices);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn refine_last<T: Real>(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    width: usize,
+    base: &[T],
+) -> Result<(Vec<LevelCounts>, Vec<T>)> {
+    check_level(mesh, options, uniform.level)?;
+    let mut r = Refiner::new(mesh, options)?;
+    r.fvar.clear();
+    if width == 0 || base.len() != r.levels[0].vertex_count * width {
+        return Err(Error::InvalidArgument(format!(
+            "base data of {} values does not fit {} vertices of width {width}",
+            base.len(),
+            r.levels[0].vertex_count
+        )));
+    }
+    let mut counts = vec![r.level_counts(0)?];
+    let mut data = base.to_vec();
+    for level in 1..=uniform.level as usize {
+        let minimal = level == uniform.level as usize && !uniform.full_topology_in_last_level;
+        let (refinement, child) = refine_level(
+            &r.levels[level - 1],
+            &r.options,
+            uniform.order_vertices_from_faces_first,
+            minimal,
+        );
+        r.refinements.push(refinement);
+        r.levels.push(child);
+        r.check_unpaired_smooth_step(level - 1)?;
+        counts.push(r.level_counts(level as u32)?);
+        let mut next = vec![T::ZERO; r.levels[level].vertex_count * width];
+        r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
+        data = next;
+        // Nothing reads the parent any more: only this local refiner held it.
+        r.levels[level - 1] = Level::default();
+    }
+    Ok((counts, data))
 }
 
 /// Refines a mesh uniformly with the native engine and interpolates positions

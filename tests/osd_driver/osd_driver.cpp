@@ -7,7 +7,8 @@
 //
 // Usage:
 //   osd_driver INPUT.obj OUTPUT.obj [--level N] [--scheme catmark|loop|bilinear]
-//   (OUTPUT "-" refines without writing anything, for whole-process benchmarks)
+//   (OUTPUT "-" refines without writing anything, for whole-process benchmarks,
+//   and prints the process's peak memory as "peak_memory_bytes N" on stderr)
 //       [--boundary none|edge-only|edge-and-corner]
 //       [--fvar none|corners-only|corners-plus1|corners-plus2|boundaries|all]
 //       [--creasing uniform|chaikin] [--triangles catmark|smooth]
@@ -379,6 +380,20 @@ void usage() {
                  "       [--creasing uniform|chaikin] [--triangles catmark|smooth]\n");
 }
 
+// The process's peak resident memory (VmHWM), as `subdiv refine --peak-memory`
+// reports its own.
+void printPeakMemory() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.compare(0, 6, "VmHWM:") == 0) {
+            long long kib = std::atoll(line.c_str() + 6);
+            std::fprintf(stderr, "peak_memory_bytes %lld\n", kib * 1024);
+            return;
+        }
+    }
+}
+
 int run(int argc, char **argv) {
     std::vector<std::string> positional;
     Settings s;
@@ -522,7 +537,10 @@ int run(int argc, char **argv) {
     if ((int)pos.size() != last.GetNumVertices()) fail("vertex count mismatch");
 
     // OUTPUT "-" skips writing: the refinement alone, for benchmarks.
-    if (positional[1] == "-") return 0;
+    if (positional[1] == "-") {
+        printPeakMemory();
+        return 0;
+    }
 
     std::string out;
     out.reserve(pos.size() * 64 + (size_t)last.GetNumFaces() * 32);
