@@ -208,13 +208,13 @@ impl Relation {
     }
 
     /// The range of element `i`'s members.
-    #[inline]
+    #[inline(always)]
     pub fn range(&self, i: usize) -> std::ops::Range<usize> {
         self.offsets[i] as usize..self.offsets[i + 1] as usize
     }
 
     /// The members of element `i`.
-    #[inline]
+    #[inline(always)]
     pub fn get(&self, i: usize) -> &[u32] {
         &self.members[self.range(i)]
     }
@@ -227,7 +227,7 @@ impl Relation {
     }
 
     /// Number of members of element `i`.
-    #[inline]
+    #[inline(always)]
     pub fn count(&self, i: usize) -> usize {
         (self.offsets[i + 1] - self.offsets[i]) as usize
     }
@@ -301,49 +301,49 @@ impl Level {
     }
 
     /// The vertices of face `f`.
-    #[inline]
+    #[inline(always)]
     pub fn face_verts(&self, f: usize) -> &[u32] {
         self.face_vertices.get(f)
     }
 
     /// The edges of face `f`.
-    #[inline]
+    #[inline(always)]
     pub fn face_edges_of(&self, f: usize) -> &[u32] {
         &self.face_edges[self.face_vertices.range(f)]
     }
 
     /// The faces of edge `e`.
-    #[inline]
+    #[inline(always)]
     pub fn edge_faces_of(&self, e: usize) -> &[u32] {
         self.edge_faces.get(e)
     }
 
     /// The position of edge `e` within each of its faces.
-    #[inline]
+    #[inline(always)]
     pub fn edge_face_locals(&self, e: usize) -> &[u16] {
         &self.edge_face_local[self.edge_faces.range(e)]
     }
 
     /// The faces of vertex `v`.
-    #[inline]
+    #[inline(always)]
     pub fn vertex_faces_of(&self, v: usize) -> &[u32] {
         self.vertex_faces.get(v)
     }
 
     /// The position of vertex `v` within each of its faces.
-    #[inline]
+    #[inline(always)]
     pub fn vertex_face_locals(&self, v: usize) -> &[u16] {
         &self.vertex_face_local[self.vertex_faces.range(v)]
     }
 
     /// The edges of vertex `v`.
-    #[inline]
+    #[inline(always)]
     pub fn vertex_edges_of(&self, v: usize) -> &[u32] {
         self.vertex_edges.get(v)
     }
 
     /// Which end of each of its edges vertex `v` is.
-    #[inline]
+    #[inline(always)]
     pub fn vertex_edge_locals(&self, v: usize) -> &[u16] {
         &self.vertex_edge_local[self.vertex_edges.range(v)]
     }

@@ -373,8 +373,6 @@ fn split_quad_faces(
             let c = base + j - first;
             let (e_prev, e_next) = (edges[jp] as usize, edges[j] as usize);
             let corner = verts[j];
-            let ev_prev = parent.edge_vertices[e_prev];
-            let ev_next = parent.edge_vertices[e_next];
             let v4 = [
                 r.vertex_child(corner as usize),
                 r.edge_child(e_next),
@@ -388,6 +386,8 @@ fn split_quad_faces(
                 fv_out[4 * c + (rot + k) % 4] = v;
             }
             if let Some(fe_out) = fe_out.as_deref_mut() {
+                let ev_prev = parent.edge_vertices[e_prev];
+                let ev_next = parent.edge_vertices[e_next];
                 let in_prev = if ev_prev[0] != ev_prev[1] {
                     (ev_prev[0] != corner) as usize
                 } else {

@@ -20,6 +20,13 @@ const MAP_BYTES: usize = 2 << 20;
 /// The size of a transparent huge page on x86-64 and most aarch64 kernels.
 const HUGE_PAGE: usize = 2 << 20;
 
+/// Whether large tables use huge-page-advised maps: yes unless the
+/// environment variable `SUBDIV_HUGE_PAGES` is `0` (read once).
+fn huge_pages_enabled() -> bool {
+    static ENABLED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ENABLED.get_or_init(|| std::env::var_os("SUBDIV_HUGE_PAGES").is_none_or(|v| v != "0"))
+}
+
 /// A fixed-length table of plain values (`u32`, `[u32; 2]`, `f32`, tags…)
 /// that dereferences to a slice.
 ///
@@ -27,7 +34,9 @@ const HUGE_PAGE: usize = 2 << 20;
 /// levels; with 4 KiB pages the first touch of every page is a kernel page
 /// fault. A table of 2 MiB or more is therefore an anonymous memory map
 /// advised with `MADV_HUGEPAGE` (transparent huge pages: one fault where
-/// there were 512); smaller tables are ordinary `Vec`s.
+/// there were 512); smaller tables are ordinary `Vec`s. Set the environment
+/// variable `SUBDIV_HUGE_PAGES=0` to make every table a `Vec` (for machines
+/// where huge pages are slow to obtain, such as some virtual machines).
 ///
 /// ```
 /// use subdiv::topology::Table;
@@ -57,7 +66,7 @@ impl<T: Pod> Table<T> {
     /// `len` zeroed values (zero bits: `0`, `0.0`, default tags).
     pub fn zeroed(len: usize) -> Self {
         let bytes = len.saturating_mul(size_of::<T>());
-        if bytes >= MAP_BYTES {
+        if bytes >= MAP_BYTES && huge_pages_enabled() {
             // A whole number of huge pages: the kernel then aligns the map
             // on a huge-page boundary, so every part of it can use them.
             let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
@@ -192,7 +201,7 @@ mod tests {
         for len in [0, 3, MAP_BYTES / 4 + 5] {
             let mut t: Table<u32> = Table::filled(9, len);
             assert_eq!(t.len(), len);
-            assert_eq!(t.is_mapped(), len * 4 >= MAP_BYTES);
+            assert_eq!(t.is_mapped(), len * 4 >= MAP_BYTES && huge_pages_enabled());
             assert!(t.iter().all(|&x| x == 9));
             if len > 0 {
                 t[len - 1] = 1;
@@ -203,7 +212,7 @@ mod tests {
             assert_eq!(c.is_mapped(), t.is_mapped());
         }
         let pairs: Table<[u32; 2]> = Table::zeroed(MAP_BYTES);
-        assert!(pairs.is_mapped());
+        assert_eq!(pairs.is_mapped(), huge_pages_enabled());
         assert!(pairs.iter().all(|p| *p == [0, 0]));
         let v: Table<u16> = (0..5u16).collect();
         assert_eq!(&v[..], &[0, 1, 2, 3, 4]);
