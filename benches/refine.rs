@@ -75,15 +75,13 @@ fn engines(c: &mut Criterion) {
                 group.bench_function("osd/stencil build", |b| {
                     b.iter(|| osd::StencilEvaluator::new(&o).unwrap())
                 });
-                let table = n.stencil_table().unwrap();
+                // The same stencils as OpenSubdiv's float table (built in
+                // f32), applied to the same f32 frame.
+                let table = n.stencil_table_f32().unwrap();
                 let evaluator = osd::StencilEvaluator::new(&o).unwrap();
                 let mut out = vec![0f32; table.len() * 3];
                 group.bench_function("native/stencil apply", |b| {
-                    b.iter(|| {
-                        table
-                            .apply_par_f32_into(3, black_box(&base), &mut out)
-                            .unwrap()
-                    })
+                    b.iter(|| table.apply_into(3, black_box(&base), &mut out).unwrap())
                 });
                 let mut out = vec![0f32; evaluator.len() * 3];
                 group.bench_function("osd/stencil apply", |b| {

@@ -70,7 +70,7 @@ pub use options::{
 };
 pub use real::Real;
 pub use refinement::{Limit, Precision, Refinement};
-pub use stencil::{LimitStencilTable, StencilTable};
+pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(all(doctest, feature = "osd"))]

@@ -1,6 +1,15 @@
 //! Stencil tables: each refined (or limit) value as a weighted sum of base values.
+//!
+//! [`StencilTable`] is the general form (`f64` weights, any row order).
+//! [`StencilTableF32`] is the per-frame form, as OpenSubdiv's float
+//! `Far::StencilTable`: `f32` weights, rows stored one after the other,
+//! checked once when it is built, applied by a kernel specialised for 1 to 4
+//! components per vertex. Its results equal `Osd::CpuEvaluator::EvalStencils`
+//! on the same table bit for bit (same products, same order of additions, no
+//! fused multiply-add).
 
 use crate::error::{Error, Result};
+use glam::Vec4;
 
 /// A stencil table in compressed-sparse-row form: row `i` is
 /// `sum(weights[k] * base[indices[k]])` for `k` in `offsets[i]..offsets[i] + sizes[i]`.
@@ -66,40 +75,74 @@ impl StencilTable {
     }
 
     /// As [`StencilTable::apply_par`] for `f32` data (weights rounded to `f32`
-    /// as they are applied), into a caller's buffer: the per-frame path.
+    /// as they are applied), into a caller's buffer. It reads the `f64`
+    /// weights and checks every index on each call: for many frames, convert
+    /// the table once with [`StencilTable::to_f32`] and use
+    /// [`StencilTableF32::apply_into`], which gives the same values faster.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let table = r.stencil_table()?;
+    /// let base: Vec<f32> = cube.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+    /// let mut out = vec![0.0; table.len() * 3];
+    /// table.apply_par_f32_into(3, &base, &mut out)?;
+    /// assert_eq!(out, table.to_f32().apply(3, &base)?);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
     pub fn apply_par_f32_into(&self, width: usize, base: &[f32], out: &mut [f32]) -> Result<()> {
-        use rayon::prelude::*;
-        let count = base.len().checked_div(width).unwrap_or(0);
-        if width == 0 || base.len() % width != 0 || out.len() != self.len() * width {
-            return Err(Error::InvalidArgument(format!(
-                "buffers of {} and {} values do not fit {} stencils of width {width}",
-                base.len(),
-                out.len(),
-                self.len()
-            )));
-        }
+        check_buffers(self.len(), width, base.len(), out.len())?;
+        let count = base.len() / width;
         if self.indices.iter().any(|&v| v as usize >= count) {
             return Err(Error::InvalidArgument(format!(
                 "the stencils refer to base vertices beyond the {count} given"
             )));
         }
-        const BLOCK: usize = 1024;
-        out.par_chunks_mut(width * BLOCK)
-            .enumerate()
-            .for_each(|(block, chunk)| {
-                for (k, dst) in chunk.chunks_exact_mut(width).enumerate() {
-                    dst.fill(0.0);
-                    let (idx, w) = self.row(block * BLOCK + k);
-                    for (&v, &w) in idx.iter().zip(w) {
-                        let v = v as usize * width;
-                        let w = w as f32;
-                        for (d, s) in dst.iter_mut().zip(&base[v..v + width]) {
-                            *d += w * s;
-                        }
-                    }
-                }
-            });
+        if self.offsets.len() != self.len()
+            || (0..self.len()).any(|i| {
+                self.offsets[i] as usize + self.sizes[i] as usize
+                    > self.indices.len().min(self.weights.len())
+            })
+        {
+            return Err(Error::InvalidArgument(
+                "the table's sizes and offsets do not fit its indices and weights".into(),
+            ));
+        }
+        apply_rows(width, base, out, self.indices.len(), |r| self.row(r));
         Ok(())
+    }
+
+    /// The same table with `f32` weights (each rounded to nearest), laid out
+    /// for fast repeated application: see [`StencilTableF32`]. The rows keep
+    /// their order, indices and weight order.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(1))?;
+    /// let table = r.stencil_table()?;
+    /// let fast = table.to_f32();
+    /// assert_eq!(fast.len(), table.len());
+    /// let (i, w) = fast.row(0);
+    /// assert_eq!(i, table.row(0).0);
+    /// assert_eq!(w[0], table.row(0).1[0] as f32);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If a row lies outside `indices` or `weights` (a table not built by
+    /// this crate and left inconsistent), or has more than `u32::MAX` terms
+    /// in all.
+    pub fn to_f32(&self) -> StencilTableF32 {
+        let mut t = StencilTableF32::with_capacity(self.len(), self.indices.len());
+        for i in 0..self.len() {
+            let (idx, w) = self.row(i);
+            t.push_row(idx, w.iter().map(|&w| w as f32));
+        }
+        t
     }
 
     /// Checks that `base` fits the table; returns its vertex count.
@@ -141,6 +184,575 @@ impl StencilTable {
         }
         Ok(out)
     }
+}
+
+/// A stencil table with `f32` weights, for applying the same stencils to
+/// many frames of `f32` data: the counterpart of OpenSubdiv's float
+/// `Far::StencilTable` and `Osd::CpuEvaluator::EvalStencils`.
+///
+/// Rows are stored one after the other: `offsets` has `len() + 1` entries and
+/// row `i` is `indices[offsets[i]..offsets[i + 1]]` with the weights at the
+/// same positions. A pass reads 8 bytes per term (a `u32` index and an `f32`
+/// weight) and 4 per row, and the largest index is known from construction,
+/// so applying it checks the buffers in constant time.
+///
+/// Each output value is accumulated from zero, one product `weight * value`
+/// and one addition per term, in the row's order, exactly as
+/// `Osd::CpuEvaluator::EvalStencils` does: with the same weights, the results
+/// are bit for bit OpenSubdiv's. Build it with
+/// [`Refiner::stencil_table_f32`](crate::refiner::Refiner::stencil_table_f32)
+/// (weights computed in `f32`, as OpenSubdiv's float stencil factory does) or
+/// [`StencilTable::to_f32`] (weights computed in `f64`, then rounded).
+///
+/// ```
+/// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+/// let torus = shapes::torus(8, 6);
+/// let mut r = Refiner::new(&torus, &Options::default())?;
+/// r.refine_uniform(UniformOptions::new(3))?;
+/// let stencils = r.stencil_table_f32()?; // once
+/// let frame: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+/// let mut refined = vec![0.0; stencils.len() * 3];
+/// stencils.apply_into(3, &frame, &mut refined)?; // per frame
+/// assert_eq!(refined.len(), r.internal_level(3)?.vertex_count * 3);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct StencilTableF32 {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f32>,
+    /// One more than the largest index (0 without terms).
+    base_count: usize,
+}
+
+impl Default for StencilTableF32 {
+    fn default() -> Self {
+        StencilTableF32 {
+            offsets: vec![0],
+            indices: Vec::new(),
+            weights: Vec::new(),
+            base_count: 0,
+        }
+    }
+}
+
+impl StencilTableF32 {
+    pub(crate) fn with_capacity(rows: usize, terms: usize) -> Self {
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        StencilTableF32 {
+            offsets,
+            indices: Vec::with_capacity(terms),
+            weights: Vec::with_capacity(terms),
+            base_count: 0,
+        }
+    }
+
+    /// Appends a row.
+    ///
+    /// # Panics
+    /// If the table would have more than `u32::MAX` terms.
+    pub(crate) fn push_row(&mut self, indices: &[u32], weights: impl IntoIterator<Item = f32>) {
+        self.indices.extend_from_slice(indices);
+        self.weights.extend(weights);
+        assert_eq!(
+            self.indices.len(),
+            self.weights.len(),
+            "one weight per index"
+        );
+        let end = u32::try_from(self.indices.len()).expect("at most u32::MAX stencil terms");
+        self.offsets.push(end);
+        if let Some(&m) = indices.iter().max() {
+            self.base_count = self.base_count.max(m as usize + 1);
+        }
+    }
+
+    /// A table from its arrays: `offsets` (`rows + 1` non-decreasing values
+    /// from 0 to `indices.len()`), the base-vertex `indices` and their
+    /// `weights`. Checked once here, so that applying it needs no per-term
+    /// validation.
+    ///
+    /// ```
+    /// use subdiv::stencil::StencilTableF32;
+    /// // Two rows: 0.25 * v0 + 0.75 * v1, and v1.
+    /// let t = StencilTableF32::from_parts(vec![0, 2, 3], vec![0, 1, 1], vec![0.25, 0.75, 1.0])?;
+    /// assert_eq!(t.apply(2, &[0.0, 4.0, 8.0, 0.0])?, vec![6.0, 1.0, 8.0, 0.0]);
+    /// assert!(StencilTableF32::from_parts(vec![0, 2], vec![0], vec![1.0]).is_err());
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn from_parts(offsets: Vec<u32>, indices: Vec<u32>, weights: Vec<f32>) -> Result<Self> {
+        let bad = |what: &str| Err(Error::InvalidArgument(format!("stencil table: {what}")));
+        if indices.len() != weights.len() {
+            return bad(&format!(
+                "{} indices but {} weights",
+                indices.len(),
+                weights.len()
+            ));
+        }
+        if offsets.first() != Some(&0) {
+            return bad("offsets must start at 0");
+        }
+        if offsets.windows(2).any(|w| w[0] > w[1]) {
+            return bad("offsets must not decrease");
+        }
+        if offsets.last().map(|&o| o as usize) != Some(indices.len()) {
+            return bad("the last offset must be the number of terms");
+        }
+        let base_count = indices.iter().max().map_or(0, |&m| m as usize + 1);
+        Ok(StencilTableF32 {
+            offsets,
+            indices,
+            weights,
+            base_count,
+        })
+    }
+
+    /// Number of stencils (rows).
+    pub fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Whether the table has no stencil.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Number of terms (index and weight pairs) over all rows.
+    pub fn term_count(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// The fewest base vertices the table can be applied to: one more than
+    /// its largest index (0 when it has no term).
+    pub fn min_base_count(&self) -> usize {
+        self.base_count
+    }
+
+    /// Start of each row in [`indices`](Self::indices) and
+    /// [`weights`](Self::weights), and the end of the last row.
+    pub fn offsets(&self) -> &[u32] {
+        &self.offsets
+    }
+
+    /// The base-vertex index of every term.
+    pub fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// The weight of every term.
+    pub fn weights(&self) -> &[f32] {
+        &self.weights
+    }
+
+    /// The indices and weights of stencil `i`.
+    ///
+    /// # Panics
+    /// If `i >= len()`.
+    pub fn row(&self, i: usize) -> (&[u32], &[f32]) {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+
+    /// Applies the table to `base`, `width` values per vertex (at least
+    /// [`min_base_count`](Self::min_base_count) vertices), writing
+    /// `len() * width` values into `out`. Large tables are applied in
+    /// parallel by rayon, in the pool the call runs in
+    /// (`ThreadPool::install`) or the global one.
+    ///
+    /// ```
+    /// use subdiv::stencil::StencilTableF32;
+    /// let t = StencilTableF32::from_parts(vec![0, 2], vec![0, 1], vec![0.5, 0.5])?;
+    /// let mut mid = [0.0; 3];
+    /// t.apply_into(3, &[0.0, 0.0, 0.0, 2.0, 4.0, 6.0], &mut mid)?;
+    /// assert_eq!(mid, [1.0, 2.0, 3.0]);
+    /// assert!(t.apply_into(3, &[0.0, 0.0, 0.0], &mut mid).is_err()); // vertex 1 missing
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn apply_into(&self, width: usize, base: &[f32], out: &mut [f32]) -> Result<()> {
+        check_buffers(self.len(), width, base.len(), out.len())?;
+        let count = base.len() / width;
+        if count < self.base_count {
+            return Err(Error::InvalidArgument(format!(
+                "the stencils refer to base vertex {}, but only {count} were given",
+                self.base_count - 1
+            )));
+        }
+        apply_f32(self, width, base, out);
+        Ok(())
+    }
+
+    /// As [`apply_into`](Self::apply_into), into a new vector.
+    ///
+    /// ```
+    /// use subdiv::stencil::StencilTableF32;
+    /// let t = StencilTableF32::from_parts(vec![0, 1, 3], vec![1, 0, 1], vec![1.0, 0.5, 0.5])?;
+    /// assert_eq!(t.apply(1, &[2.0, 4.0])?, vec![4.0, 3.0]);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn apply(&self, width: usize, base: &[f32]) -> Result<Vec<f32>> {
+        let len = self.len().checked_mul(width).ok_or_else(|| {
+            Error::InvalidArgument(format!("{} stencils of width {width}", self.len()))
+        })?;
+        let mut out = vec![0.0; len];
+        self.apply_into(width, base, &mut out)?;
+        Ok(out)
+    }
+}
+
+/// Checks the buffer lengths of an `f32` apply.
+fn check_buffers(rows: usize, width: usize, base: usize, out: usize) -> Result<()> {
+    if width == 0 || base % width != 0 || Some(out) != rows.checked_mul(width) {
+        return Err(Error::InvalidArgument(format!(
+            "buffers of {base} and {out} values do not fit {rows} stencils of width {width}"
+        )));
+    }
+    Ok(())
+}
+
+/// A weight as stored: `f32`, or `f64` rounded to `f32` as it is applied.
+trait Weight: Copy + Sync {
+    fn get(self) -> f32;
+}
+
+impl Weight for f32 {
+    #[inline(always)]
+    fn get(self) -> f32 {
+        self
+    }
+}
+
+impl Weight for f64 {
+    #[inline(always)]
+    fn get(self) -> f32 {
+        self as f32
+    }
+}
+
+/// The values of one vertex with `W` components, held in registers while a
+/// stencil is accumulated, and how they are read from the base.
+trait Lanes<const W: usize>: Copy {
+    /// The element type of the base as the kernel reads it.
+    type Src: Sync;
+    const ZERO: Self;
+    /// Vertex `i` of the base (checked: one comparison per term).
+    fn load(src: &[Self::Src], i: u32) -> Self;
+    /// `self + w * s`: one rounded product and one rounded sum per component,
+    /// as `Osd::CpuEvaluator::EvalStencils`.
+    fn add_scaled(self, w: f32, s: Self) -> Self;
+    fn store(self) -> [f32; W];
+}
+
+impl Lanes<1> for f32 {
+    type Src = f32;
+    const ZERO: Self = 0.0;
+    #[inline(always)]
+    fn load(src: &[f32], i: u32) -> Self {
+        src[i as usize]
+    }
+    #[inline(always)]
+    fn add_scaled(self, w: f32, s: Self) -> Self {
+        self + w * s
+    }
+    #[inline(always)]
+    fn store(self) -> [f32; 1] {
+        [self]
+    }
+}
+
+impl Lanes<2> for [f32; 2] {
+    type Src = f32;
+    const ZERO: Self = [0.0; 2];
+    #[inline(always)]
+    fn load(src: &[f32], i: u32) -> Self {
+        let v = i as usize * 2;
+        let s = &src[v..v + 2];
+        [s[0], s[1]]
+    }
+    #[inline(always)]
+    fn add_scaled(self, w: f32, s: Self) -> Self {
+        [self[0] + w * s[0], self[1] + w * s[1]]
+    }
+    #[inline(always)]
+    fn store(self) -> [f32; 2] {
+        self
+    }
+}
+
+/// Three components read from the caller's base as it is (tables with fewer
+/// terms than base vertices, and [`StencilTable::apply_par_f32_into`]).
+impl Lanes<3> for [f32; 3] {
+    type Src = f32;
+    const ZERO: Self = [0.0; 3];
+    #[inline(always)]
+    fn load(src: &[f32], i: u32) -> Self {
+        let v = i as usize * 3;
+        let s = &src[v..v + 3];
+        [s[0], s[1], s[2]]
+    }
+    #[inline(always)]
+    fn add_scaled(self, w: f32, s: Self) -> Self {
+        [self[0] + w * s[0], self[1] + w * s[1], self[2] + w * s[2]]
+    }
+    #[inline(always)]
+    fn store(self) -> [f32; 3] {
+        self
+    }
+}
+
+/// Three components in a 4-lane vector (the fourth is zero and ignored), read
+/// from a copy of the base padded to 16 bytes per vertex: one aligned load,
+/// one multiply and one add per term.
+impl Lanes<3> for Vec4 {
+    type Src = Vec4;
+    const ZERO: Self = Vec4::ZERO;
+    #[inline(always)]
+    fn load(src: &[Vec4], i: u32) -> Self {
+        src[i as usize]
+    }
+    #[inline(always)]
+    fn add_scaled(self, w: f32, s: Self) -> Self {
+        self + Vec4::splat(w) * s
+    }
+    #[inline(always)]
+    fn store(self) -> [f32; 3] {
+        self.truncate().to_array()
+    }
+}
+
+impl Lanes<4> for Vec4 {
+    type Src = f32;
+    const ZERO: Self = Vec4::ZERO;
+    #[inline(always)]
+    fn load(src: &[f32], i: u32) -> Self {
+        let v = i as usize * 4;
+        Vec4::from_slice(&src[v..v + 4])
+    }
+    #[inline(always)]
+    fn add_scaled(self, w: f32, s: Self) -> Self {
+        self + Vec4::splat(w) * s
+    }
+    #[inline(always)]
+    fn store(self) -> [f32; 4] {
+        self.to_array()
+    }
+}
+
+/// Stencils per parallel task (about 15 000 terms for level-4 Catmull-Clark
+/// stencils).
+const BLOCK: usize = 1024;
+/// Tables with fewer terms are applied on the calling thread.
+const SERIAL_TERMS: usize = 1 << 16;
+
+/// Applies a [`StencilTableF32`] (buffers checked by the caller).
+fn apply_f32(t: &StencilTableF32, width: usize, base: &[f32], out: &mut [f32]) {
+    let terms = t.term_count();
+    match width {
+        1 => in_blocks(out, 1, terms, |first, chunk| {
+            block::<1, f32>(t, first, base, chunk)
+        }),
+        2 => in_blocks(out, 2, terms, |first, chunk| {
+            block::<2, [f32; 2]>(t, first, base, chunk)
+        }),
+        // Pad the base to 16 bytes per vertex when the table reads it at
+        // least once per vertex on average: the copy costs less than the
+        // loads it saves.
+        3 if terms >= base.len() / 3 => {
+            let padded = pad3(base, terms);
+            in_blocks(out, 3, terms, |first, chunk| {
+                block::<3, Vec4>(t, first, &padded, chunk)
+            })
+        }
+        // Few terms over a large base: read it as it is.
+        3 => apply_rows(3, base, out, terms, |r| t.row(r)),
+        4 => in_blocks(out, 4, terms, |first, chunk| {
+            block::<4, Vec4>(t, first, base, chunk)
+        }),
+        _ => apply_rows(width, base, out, terms, |r| t.row(r)),
+    }
+}
+
+/// Applies the rows `row(r)` gives (any layout, weights of any [`Weight`]
+/// type) to `base`, `width` values per vertex, into `out`: the path of
+/// [`StencilTable::apply_par_f32_into`] and of the widths without a
+/// specialised kernel. The caller has checked the buffers: `out` holds whole
+/// rows and every index is below `base.len() / width`.
+fn apply_rows<'a, Wt: Weight + 'a>(
+    width: usize,
+    base: &[f32],
+    out: &mut [f32],
+    terms: usize,
+    row: impl Fn(usize) -> (&'a [u32], &'a [Wt]) + Sync,
+) {
+    fn rows<'a, const W: usize, L: Lanes<W>, Wt: Weight + 'a>(
+        src: &[L::Src],
+        out: &mut [f32],
+        terms: usize,
+        row: impl Fn(usize) -> (&'a [u32], &'a [Wt]) + Sync,
+    ) {
+        in_blocks(out, W, terms, |first, chunk| {
+            for (r, dst) in chunk.chunks_exact_mut(W).enumerate() {
+                let (idx, w) = row(first + r);
+                let mut acc = L::ZERO;
+                for (&i, &w) in idx.iter().zip(w) {
+                    acc = acc.add_scaled(w.get(), L::load(src, i));
+                }
+                dst.copy_from_slice(&acc.store());
+            }
+        });
+    }
+    match width {
+        1 => rows::<1, f32, Wt>(base, out, terms, row),
+        2 => rows::<2, [f32; 2], Wt>(base, out, terms, row),
+        3 => rows::<3, [f32; 3], Wt>(base, out, terms, row),
+        4 => rows::<4, Vec4, Wt>(base, out, terms, row),
+        _ => in_blocks(out, width, terms, |first, chunk| {
+            for (r, dst) in chunk.chunks_exact_mut(width).enumerate() {
+                let (idx, w) = row(first + r);
+                dst.fill(0.0);
+                for (&i, &w) in idx.iter().zip(w) {
+                    let (w, v) = (w.get(), i as usize * width);
+                    for (d, &s) in dst.iter_mut().zip(&base[v..v + width]) {
+                        *d += w * s;
+                    }
+                }
+            }
+        }),
+    }
+}
+
+/// The base with each 3-component vertex in its own 16-byte vector.
+fn pad3(base: &[f32], terms: usize) -> Vec<Vec4> {
+    use rayon::prelude::*;
+    let pad = |v: &[f32]| Vec4::new(v[0], v[1], v[2], 0.0);
+    if terms < SERIAL_TERMS || rayon::current_num_threads() == 1 {
+        base.chunks_exact(3).map(pad).collect()
+    } else {
+        base.par_chunks_exact(3)
+            .with_min_len(1 << 12)
+            .map(pad)
+            .collect()
+    }
+}
+
+/// Runs `block(first_row, rows)` over `out` (rows of `width` values) in
+/// blocks of [`BLOCK`] rows, in parallel unless the work is small or the
+/// current rayon pool has a single thread.
+fn in_blocks(
+    out: &mut [f32],
+    width: usize,
+    terms: usize,
+    block: impl Fn(usize, &mut [f32]) + Sync,
+) {
+    use rayon::prelude::*;
+    if terms < SERIAL_TERMS || rayon::current_num_threads() == 1 {
+        block(0, out);
+    } else {
+        out.par_chunks_mut(BLOCK * width)
+            .enumerate()
+            .for_each(|(b, chunk)| block(b * BLOCK, chunk));
+    }
+}
+
+/// The rows of `t` from `first` on into `out` (whole rows of `W` values),
+/// two rows at a time: two independent chains of additions for the
+/// processor to overlap, each still in its row's order.
+fn block<const W: usize, L: Lanes<W>>(
+    t: &StencilTableF32,
+    first: usize,
+    src: &[L::Src],
+    out: &mut [f32],
+) {
+    let n = out.len() / W;
+    let offsets = &t.offsets[first..=first + n];
+    let start = offsets[0] as usize;
+    let (mut idx, mut wts) = (&t.indices[start..], &t.weights[start..]);
+    let mut pairs = out.chunks_exact_mut(2 * W);
+    for (dst, o) in (&mut pairs).zip(offsets.windows(3).step_by(2)) {
+        let (n0, n) = ((o[1] - o[0]) as usize, (o[2] - o[0]) as usize);
+        let (i, rest) = idx.split_at(n);
+        idx = rest;
+        let (w, rest) = wts.split_at(n);
+        wts = rest;
+        let (a, b) = pair::<W, L>(n0, i, w, src);
+        let (da, db) = dst.split_at_mut(W);
+        da.copy_from_slice(&a.store());
+        db.copy_from_slice(&b.store());
+    }
+    let last = pairs.into_remainder();
+    if !last.is_empty() {
+        let n = (offsets[n] - offsets[n - 1]) as usize;
+        last.copy_from_slice(&one::<W, L>(&idx[..n], &wts[..n], src).store());
+    }
+}
+
+/// Two consecutive rows, the first of `n0` terms, together in `i` and `w`.
+/// Rows of the same common size (the usual case: neighbouring vertices of a
+/// level have the same valence) are accumulated in one unrolled loop.
+#[inline(always)]
+fn pair<const W: usize, L: Lanes<W>>(n0: usize, i: &[u32], w: &[f32], src: &[L::Src]) -> (L, L) {
+    macro_rules! same_size {
+        ($($n:literal)*) => {
+            match n0 {
+                $($n => if let Some(ab) = fixed2::<$n, W, L>(i, w, src) {
+                    return ab;
+                },)*
+                _ => {}
+            }
+        };
+    }
+    if 2 * n0 == i.len() {
+        same_size!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
+    }
+    let (i0, i1) = i.split_at(n0);
+    let (w0, w1) = w.split_at(n0);
+    (one::<W, L>(i0, w0, src), one::<W, L>(i1, w1, src))
+}
+
+/// One row: common sizes get a fully unrolled loop (no loop counter, no
+/// trip-count misprediction); the order of accumulation is the same.
+#[inline(always)]
+fn one<const W: usize, L: Lanes<W>>(i: &[u32], w: &[f32], src: &[L::Src]) -> L {
+    macro_rules! unrolled {
+        ($($n:literal)*) => {
+            match i.len() {
+                $($n => if let (Ok(i), Ok(w)) = (<&[u32; $n]>::try_from(i), <&[f32; $n]>::try_from(w)) {
+                    return terms(L::ZERO, i, w, src);
+                },)*
+                _ => {}
+            }
+        };
+    }
+    unrolled!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
+    terms(L::ZERO, i, w, src)
+}
+
+/// Two rows of `N` terms each, one after the other in `i` and `w`.
+#[inline(always)]
+fn fixed2<const N: usize, const W: usize, L: Lanes<W>>(
+    i: &[u32],
+    w: &[f32],
+    src: &[L::Src],
+) -> Option<(L, L)> {
+    let ((i0, i1), (w0, w1)) = (i.split_first_chunk::<N>()?, w.split_first_chunk::<N>()?);
+    let (i1, w1) = (
+        <&[u32; N]>::try_from(i1).ok()?,
+        <&[f32; N]>::try_from(w1).ok()?,
+    );
+    let (mut a, mut b) = (L::ZERO, L::ZERO);
+    for (((&ia, &wa), &ib), &wb) in i0.iter().zip(w0).zip(i1).zip(w1) {
+        a = a.add_scaled(wa, L::load(src, ia));
+        b = b.add_scaled(wb, L::load(src, ib));
+    }
+    Some((a, b))
+}
+
+/// `acc` plus the terms, in order.
+#[inline(always)]
+fn terms<const W: usize, L: Lanes<W>>(mut acc: L, i: &[u32], w: &[f32], src: &[L::Src]) -> L {
+    for (&i, &w) in i.iter().zip(w) {
+        acc = acc.add_scaled(w, L::load(src, i));
+    }
+    acc
 }
 
 /// Stencils for limit positions and both tangents at the vertices of one level.

@@ -4,25 +4,28 @@
 use super::limit::LimitMasks;
 use super::{Kind, Refiner, Source};
 use crate::error::Result;
-use crate::stencil::{LimitStencilTable, StencilTable};
+use crate::real::Real;
+use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
 /// Sparse rows under construction, merged through a dense scratch array.
-struct RowBuilder {
-    dense: Vec<f64>,
+struct RowBuilder<T> {
+    dense: Vec<T>,
     touched: Vec<u32>,
     seen: Vec<bool>,
 }
 
-impl RowBuilder {
+impl<T: Real> RowBuilder<T> {
     fn new(base: usize) -> Self {
         RowBuilder {
-            dense: vec![0.0; base],
+            dense: vec![T::ZERO; base],
             touched: Vec::new(),
             seen: vec![false; base],
         }
     }
 
-    fn add_row(&mut self, indices: &[u32], weights: &[f64], w: f64) {
+    /// Adds `w` times a row: each weight becomes `dense += x * w`, as
+    /// OpenSubdiv's stencil builder accumulates (in the row's precision).
+    fn add_row(&mut self, indices: &[u32], weights: &[T], w: T) {
         for (&i, &x) in indices.iter().zip(weights) {
             let iu = i as usize;
             if !self.seen[iu] {
@@ -33,37 +36,67 @@ impl RowBuilder {
         }
     }
 
-    /// Moves the accumulated row into `table`, in order of first contribution.
-    fn finish_into(&mut self, table: &mut StencilTable) {
-        table.offsets.push(table.indices.len() as u32);
-        table.sizes.push(self.touched.len() as u32);
+    /// Moves the accumulated row to the end of `indices` and `weights`, in
+    /// order of first contribution.
+    fn finish(&mut self, indices: &mut Vec<u32>, weights: &mut Vec<T>) {
         for &i in &self.touched {
             let iu = i as usize;
-            table.indices.push(i);
-            table.weights.push(self.dense[iu]);
-            self.dense[iu] = 0.0;
+            indices.push(i);
+            weights.push(self.dense[iu]);
+            self.dense[iu] = T::ZERO;
             self.seen[iu] = false;
         }
         self.touched.clear();
     }
 }
 
-/// Rows stored in the order they are produced, with a map from vertex to row.
-struct Rows {
-    table: StencilTable,
+impl RowBuilder<f64> {
+    /// Moves the accumulated row into `table`.
+    fn finish_into(&mut self, table: &mut StencilTable) {
+        table.offsets.push(table.indices.len() as u32);
+        table.sizes.push(self.touched.len() as u32);
+        self.finish(&mut table.indices, &mut table.weights);
+    }
+}
+
+/// Rows stored in the order they are produced (`offsets` has one entry more
+/// than there are rows), with a map from vertex to row.
+struct Rows<T> {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<T>,
     row_of: Vec<u32>,
 }
 
-impl Rows {
-    fn get(&self, v: u32) -> (&[u32], &[f64]) {
-        self.table.row(self.row_of[v as usize] as usize)
+impl<T: Real> Rows<T> {
+    fn get(&self, v: u32) -> (&[u32], &[T]) {
+        let r = self.row_of[v as usize] as usize;
+        let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+        (&self.indices[a..b], &self.weights[a..b])
     }
 
+    /// Number of vertices.
+    fn len(&self) -> usize {
+        self.row_of.len()
+    }
+
+    /// Number of terms over all rows.
+    fn terms(&self) -> usize {
+        self.indices.len()
+    }
+}
+
+impl Rows<f64> {
     /// The same rows in vertex order.
     fn into_table(self) -> StencilTable {
-        let mut out = StencilTable::default();
-        for &r in &self.row_of {
-            let (i, w) = self.table.row(r as usize);
+        let mut out = StencilTable {
+            sizes: Vec::with_capacity(self.len()),
+            offsets: Vec::with_capacity(self.len()),
+            indices: Vec::with_capacity(self.terms()),
+            weights: Vec::with_capacity(self.terms()),
+        };
+        for v in 0..self.len() as u32 {
+            let (i, w) = self.get(v);
             out.offsets.push(out.indices.len() as u32);
             out.sizes.push(i.len() as u32);
             out.indices.extend_from_slice(i);
@@ -74,29 +107,35 @@ impl Rows {
 }
 
 impl Refiner {
-    fn rows_of_level(&self, level: usize) -> Rows {
+    fn rows_of_level<T: Real>(&self, level: usize) -> Rows<T> {
         let base = self.levels[0].vertex_count;
         if level == 0 {
-            let table = StencilTable {
-                sizes: vec![1; base],
-                offsets: (0..base as u32).collect(),
-                indices: (0..base as u32).collect(),
-                weights: vec![1.0; base],
-            };
             return Rows {
-                table,
+                offsets: (0..=base as u32).collect(),
+                indices: (0..base as u32).collect(),
+                weights: vec![T::ONE; base],
                 row_of: (0..base as u32).collect(),
             };
         }
-        let prev = self.rows_of_level(level - 1);
+        let prev = self.rows_of_level::<T>(level - 1);
         let n = self.levels[level].vertex_count;
         let mut rows = Rows {
-            table: StencilTable::default(),
+            offsets: Vec::with_capacity(n + 1),
+            indices: Vec::new(),
+            weights: Vec::new(),
             row_of: vec![0; n],
         };
-        let mut builder = RowBuilder::new(base);
-        self.walk_masks::<f64>(Kind::Vertex, level, |child, terms| {
+        rows.offsets.push(0);
+        let mut builder = RowBuilder::<T>::new(base);
+        self.walk_masks::<T>(Kind::Vertex, level, |child, terms| {
             for &(source, w) in terms {
+                // As OpenSubdiv's stencil builder, skip terms of zero weight
+                // (crease and boundary masks have them): they add nothing,
+                // but would put their vertices earlier in the row and so
+                // change the order in which the row is applied.
+                if w == T::ZERO {
+                    continue;
+                }
                 match source {
                     Source::Parent(p) => {
                         let (i, x) = prev.get(p);
@@ -108,8 +147,9 @@ impl Refiner {
                     }
                 }
             }
-            rows.row_of[child as usize] = rows.table.sizes.len() as u32;
-            builder.finish_into(&mut rows.table);
+            rows.row_of[child as usize] = (rows.offsets.len() - 1) as u32;
+            builder.finish(&mut rows.indices, &mut rows.weights);
+            rows.offsets.push(rows.indices.len() as u32);
         });
         rows
     }
@@ -118,7 +158,39 @@ impl Refiner {
     /// level (as `Far::StencilTableFactory` with vertex interpolation and no
     /// intermediate levels). Weights are computed in `f64`.
     pub fn stencil_table(&self) -> Result<StencilTable> {
-        Ok(self.rows_of_level(self.levels.len() - 1).into_table())
+        Ok(self
+            .rows_of_level::<f64>(self.levels.len() - 1)
+            .into_table())
+    }
+
+    /// The same stencils with weights computed in `f32` all along, as
+    /// OpenSubdiv's float `Far::StencilTableFactory` computes them (same
+    /// masks, same products, same order of accumulation), in the layout
+    /// [`StencilTableF32::apply_into`] applies fastest: applied to `f32` data,
+    /// it gives `Osd::CpuEvaluator::EvalStencils`' results bit for bit.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let torus = shapes::torus_triangles(6, 4);
+    /// let mut r = Refiner::new(&torus, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let stencils = r.stencil_table_f32()?;
+    /// assert_eq!(stencils.len(), r.stencil_table()?.len());
+    /// let base: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+    /// let refined = stencils.apply(3, &base)?;
+    /// let by_levels = r.interpolate_all(3, &base)?.pop().unwrap();
+    /// let off = refined.iter().zip(&by_levels).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+    /// assert!(off < 1e-5); // the same points, up to f32 rounding
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn stencil_table_f32(&self) -> Result<StencilTableF32> {
+        let rows = self.rows_of_level::<f32>(self.levels.len() - 1);
+        let mut out = StencilTableF32::with_capacity(rows.len(), rows.terms());
+        for v in 0..rows.len() as u32 {
+            let (i, w) = rows.get(v);
+            out.push_row(i, w.iter().copied());
+        }
+        Ok(out)
     }
 
     /// Stencils of the limit positions and both tangents at the vertices of
@@ -130,11 +202,11 @@ impl Refiner {
                 "limit stencils need full topology in the last level (refine with full_topology_in_last_level)".into(),
             ));
         }
-        let rows = self.rows_of_level(last).into_table();
+        let rows = self.rows_of_level::<f64>(last);
         let level = &self.levels[last];
         let base = self.levels[0].vertex_count;
         let mut builders = [
-            RowBuilder::new(base),
+            RowBuilder::<f64>::new(base),
             RowBuilder::new(base),
             RowBuilder::new(base),
         ];
@@ -147,17 +219,17 @@ impl Refiner {
                 if has_masks {
                     let mask = [&masks.pos, &masks.tan1, &masks.tan2][k];
                     for (&p, &w) in masks.face_points.iter().zip(&mask.face) {
-                        let (i, x) = rows.row(p as usize);
+                        let (i, x) = rows.get(p);
                         builder.add_row(i, x, w);
                     }
                     for (&p, &w) in masks.edge_points.iter().zip(&mask.edge) {
-                        let (i, x) = rows.row(p as usize);
+                        let (i, x) = rows.get(p);
                         builder.add_row(i, x, w);
                     }
-                    let (i, x) = rows.row(v);
+                    let (i, x) = rows.get(v as u32);
                     builder.add_row(i, x, mask.vertex[0]);
                 } else if k == 0 {
-                    let (i, x) = rows.row(v);
+                    let (i, x) = rows.get(v as u32);
                     builder.add_row(i, x, 1.0);
                 }
                 builder.finish_into(table);
@@ -246,18 +318,22 @@ impl<T: crate::Real> FactorizedStencils<T> {
             out.copy_from_slice(base);
             return Ok(());
         }
-        let mut src: Vec<T> = base.to_vec();
-        let mut tmp: Vec<T> = Vec::new();
+        // Two scratch levels used in turn; the first step reads `base` and
+        // the last writes `out` directly.
+        let (mut even, mut odd): (Vec<T>, Vec<T>) = (Vec::new(), Vec::new());
         for (k, step) in self.steps.iter().enumerate() {
-            let last = k + 1 == self.steps.len();
-            if !last {
-                tmp.clear();
-                tmp.resize(step.child_count * width, T::ZERO);
-            }
-            let dst: &mut [T] = if last { &mut *out } else { &mut tmp };
-            apply_step(step, width, &src, dst);
-            if !last {
-                std::mem::swap(&mut src, &mut tmp);
+            let (write, read) = if k % 2 == 0 {
+                (&mut even, &odd)
+            } else {
+                (&mut odd, &even)
+            };
+            let src: &[T] = if k == 0 { base } else { read };
+            if k + 1 == self.steps.len() {
+                apply_step(step, width, src, out);
+            } else {
+                write.clear();
+                write.resize(step.child_count * width, T::ZERO);
+                apply_step(step, width, src, write);
             }
         }
         Ok(())
@@ -266,30 +342,10 @@ impl<T: crate::Real> FactorizedStencils<T> {
 
 /// One step: face-point rows first (they only read the parent), then edge
 /// and vertex rows, which may read face points. Rows are independent within
-/// a phase and write disjoint blocks, so each phase runs in parallel.
+/// a phase and write disjoint blocks, so each phase runs in parallel (in
+/// chunks of rows, unless the current rayon pool has one thread).
 fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut [T]) {
-    use rayon::prelude::*;
-    const GRAIN: usize = 2048;
     let [(f0, nf), (e0, ne), (v0, nv)] = step.blocks;
-    let row = |r: usize, faces: &[T], out: &mut [T]| {
-        out.fill(T::ZERO);
-        let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
-        for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
-            let (data, i) = if s & CHILD_BIT != 0 {
-                (faces, (s & !CHILD_BIT) as usize - f0)
-            } else {
-                (src, s as usize)
-            };
-            for (x, &v) in out.iter_mut().zip(&data[i * width..i * width + width]) {
-                *x += v * w;
-            }
-        }
-    };
-    dst[f0 * width..(f0 + nf) * width]
-        .par_chunks_mut(width)
-        .with_min_len(GRAIN)
-        .enumerate()
-        .for_each(|(k, out)| row(k, &[], out));
     // Split the child level into its three blocks to read the face points
     // while writing the edge and vertex points.
     let mut blocks: Vec<(usize, usize, usize)> = vec![(f0, nf, 0), (e0, ne, 1), (v0, nv, 2)];
@@ -305,17 +361,97 @@ fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut
         at = start + count;
     }
     let [faces, edges, verts] = parts;
+    let phase = |first_row: usize, faces: &[T], out: &mut [T]| match width {
+        1 => step_rows::<1, T>(step, first_row, src, faces, out),
+        2 => step_rows::<2, T>(step, first_row, src, faces, out),
+        3 => step_rows::<3, T>(step, first_row, src, faces, out),
+        4 => step_rows::<4, T>(step, first_row, src, faces, out),
+        _ => step_rows_any(step, width, first_row, src, faces, out),
+    };
+    phase(0, &[], faces);
     let faces: &[T] = faces;
-    edges
-        .par_chunks_mut(width)
-        .with_min_len(GRAIN)
-        .enumerate()
-        .for_each(|(k, out)| row(nf + k, faces, out));
-    verts
-        .par_chunks_mut(width)
-        .with_min_len(GRAIN)
-        .enumerate()
-        .for_each(|(k, out)| row(nf + ne + k, faces, out));
+    phase(nf, faces, edges);
+    phase(nf + ne, faces, verts);
+}
+
+/// Rows `first_row..` of a step into `out` (whole rows of `W` values), in
+/// parallel chunks.
+fn step_rows<const W: usize, T: crate::Real>(
+    step: &Step<T>,
+    first_row: usize,
+    src: &[T],
+    faces: &[T],
+    out: &mut [T],
+) {
+    let f0 = step.blocks[0].0;
+    let rows = |first: usize, out: &mut [T]| {
+        for (r, o) in out.chunks_exact_mut(W).enumerate() {
+            let r = first + r;
+            let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
+            let mut acc = [T::ZERO; W];
+            for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
+                let (data, i) = if s & CHILD_BIT != 0 {
+                    (faces, (s & !CHILD_BIT) as usize - f0)
+                } else {
+                    (src, s as usize)
+                };
+                for (x, &v) in acc.iter_mut().zip(&data[i * W..i * W + W]) {
+                    *x += v * w;
+                }
+            }
+            o.copy_from_slice(&acc);
+        }
+    };
+    in_chunks(out, W, first_row, rows);
+}
+
+/// As [`step_rows`] for any width.
+fn step_rows_any<T: crate::Real>(
+    step: &Step<T>,
+    width: usize,
+    first_row: usize,
+    src: &[T],
+    faces: &[T],
+    out: &mut [T],
+) {
+    let f0 = step.blocks[0].0;
+    let rows = |first: usize, out: &mut [T]| {
+        for (r, o) in out.chunks_exact_mut(width).enumerate() {
+            let r = first + r;
+            o.fill(T::ZERO);
+            let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
+            for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
+                let (data, i) = if s & CHILD_BIT != 0 {
+                    (faces, (s & !CHILD_BIT) as usize - f0)
+                } else {
+                    (src, s as usize)
+                };
+                for (x, &v) in o.iter_mut().zip(&data[i * width..i * width + width]) {
+                    *x += v * w;
+                }
+            }
+        }
+    };
+    in_chunks(out, width, first_row, rows);
+}
+
+/// Calls `rows(first_row, chunk)` over `out` in chunks of rows of `width`
+/// values, in parallel when there is enough work and more than one thread.
+fn in_chunks<T: crate::Real>(
+    out: &mut [T],
+    width: usize,
+    first_row: usize,
+    rows: impl Fn(usize, &mut [T]) + Sync,
+) {
+    use rayon::prelude::*;
+    const GRAIN: usize = 4096;
+    if out.len() <= GRAIN * width || rayon::current_num_threads() == 1 {
+        rows(first_row, out);
+    } else {
+        out.par_chunks_mut(GRAIN * width)
+            .enumerate()
+            .for_each(|(c, chunk)| rows(first_row + c * GRAIN, chunk));
+    }
 }
 
 impl Refiner {
