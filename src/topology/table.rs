@@ -20,11 +20,11 @@ const MAP_BYTES: usize = 2 << 20;
 /// The size of a transparent huge page on x86-64 and most aarch64 kernels.
 const HUGE_PAGE: usize = 2 << 20;
 
-/// Whether large tables use huge-page-advised maps: yes unless the
-/// environment variable `SUBDIV_HUGE_PAGES` is `0` (read once).
+/// Whether large tables use huge-page-advised maps: only when the
+/// environment variable `SUBDIV_HUGE_PAGES` is `1` (read once).
 fn huge_pages_enabled() -> bool {
     static ENABLED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *ENABLED.get_or_init(|| std::env::var_os("SUBDIV_HUGE_PAGES").is_none_or(|v| v != "0"))
+    *ENABLED.get_or_init(|| std::env::var_os("SUBDIV_HUGE_PAGES").is_some_and(|v| v == "1"))
 }
 
 /// A fixed-length table of plain values (`u32`, `[u32; 2]`, `f32`, tags…)
@@ -32,18 +32,19 @@ fn huge_pages_enabled() -> bool {
 ///
 /// Refining a mesh writes hundreds of megabytes of fresh tables at deep
 /// levels; with 4 KiB pages the first touch of every page is a kernel page
-/// fault. A table of 2 MiB or more is therefore an anonymous memory map
-/// advised with `MADV_HUGEPAGE` (transparent huge pages: one fault where
-/// there were 512); smaller tables are ordinary `Vec`s. Set the environment
-/// variable `SUBDIV_HUGE_PAGES=0` to make every table a `Vec` (for machines
-/// where huge pages are slow to obtain, such as some virtual machines).
+/// fault. With the environment variable `SUBDIV_HUGE_PAGES=1`, a table of
+/// 2 MiB or more is an anonymous memory map advised with `MADV_HUGEPAGE`
+/// (transparent huge pages: one fault where there were 512); otherwise, and
+/// for smaller tables, it is an ordinary `Vec`. Huge pages are off by default
+/// because on the virtual machines this was measured on they made fresh
+/// processes slower and timings erratic (docs/PERFORMANCE.md).
 ///
 /// ```
 /// use subdiv::topology::Table;
 /// let mut t: Table<u32> = Table::zeroed(4);
 /// t[2] = 7;
 /// assert_eq!(&t[..], &[0, 0, 7, 0]);
-/// let big: Table<u32> = Table::filled(1, 1 << 20);
+/// let big: Table<u32> = Table::filled(1, 1 << 20); // a map with SUBDIV_HUGE_PAGES=1
 /// assert_eq!(big.iter().map(|&x| x as u64).sum::<u64>(), 1 << 20);
 /// ```
 pub struct Table<T: Pod> {
@@ -65,8 +66,13 @@ impl<T: Pod> Table<T> {
 
     /// `len` zeroed values (zero bits: `0`, `0.0`, default tags).
     pub fn zeroed(len: usize) -> Self {
+        Self::zeroed_in(len, huge_pages_enabled())
+    }
+
+    /// [`Table::zeroed`], in a huge-page map when `huge` and large enough.
+    fn zeroed_in(len: usize, huge: bool) -> Self {
         let bytes = len.saturating_mul(size_of::<T>());
-        if bytes >= MAP_BYTES && huge_pages_enabled() {
+        if bytes >= MAP_BYTES && huge {
             // A whole number of huge pages: the kernel then aligns the map
             // on a huge-page boundary, so every part of it can use them.
             let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
@@ -198,22 +204,27 @@ mod tests {
 
     #[test]
     fn small_and_large_tables_behave_alike() {
-        for len in [0, 3, MAP_BYTES / 4 + 5] {
-            let mut t: Table<u32> = Table::filled(9, len);
-            assert_eq!(t.len(), len);
-            assert_eq!(t.is_mapped(), len * 4 >= MAP_BYTES && huge_pages_enabled());
-            assert!(t.iter().all(|&x| x == 9));
-            if len > 0 {
-                t[len - 1] = 1;
-                assert_eq!(t[len - 1], 1);
+        for huge in [false, true] {
+            for len in [0, 3, MAP_BYTES / 4 + 5] {
+                let mut t: Table<u32> = Table::zeroed_in(len, huge);
+                t.fill(9);
+                assert_eq!(t.len(), len);
+                assert_eq!(t.is_mapped(), huge && len * 4 >= MAP_BYTES);
+                assert!(t.iter().all(|&x| x == 9));
+                if len > 0 {
+                    t[len - 1] = 1;
+                    assert_eq!(t[len - 1], 1);
+                }
+                let c = t.clone();
+                assert_eq!(c, t);
+                assert_eq!(c.is_mapped(), t.is_mapped() && huge_pages_enabled());
             }
-            let c = t.clone();
-            assert_eq!(c, t);
-            assert_eq!(c.is_mapped(), t.is_mapped());
+            let pairs: Table<[u32; 2]> = Table::zeroed_in(MAP_BYTES, huge);
+            assert_eq!(pairs.is_mapped(), huge);
+            assert!(pairs.iter().all(|p| *p == [0, 0]));
         }
-        let pairs: Table<[u32; 2]> = Table::zeroed(MAP_BYTES);
-        assert_eq!(pairs.is_mapped(), huge_pages_enabled());
-        assert!(pairs.iter().all(|p| *p == [0, 0]));
+        let f: Table<f32> = Table::filled(0.5, 10);
+        assert!(f.iter().all(|&x| x == 0.5));
         let v: Table<u16> = (0..5u16).collect();
         assert_eq!(&v[..], &[0, 1, 2, 3, 4]);
     }
