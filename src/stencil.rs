@@ -89,7 +89,7 @@ impl StencilTable {
     /// let base: Vec<f32> = cube.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
     /// let mut out = vec![0.0; table.len() * 3];
     /// table.apply_par_f32_into(3, &base, &mut out)?;
-    /// assert_eq!(out, table.to_f32().apply(3, &base)?);
+    /// assert_eq!(out, table.to_f32()?.apply(3, &base)?);
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn apply_par_f32_into(&self, width: usize, base: &[f32], out: &mut [f32]) -> Result<()> {
@@ -100,16 +100,7 @@ impl StencilTable {
                 "the stencils refer to base vertices beyond the {count} given"
             )));
         }
-        if self.offsets.len() != self.len()
-            || (0..self.len()).any(|i| {
-                self.offsets[i] as usize + self.sizes[i] as usize
-                    > self.indices.len().min(self.weights.len())
-            })
-        {
-            return Err(Error::InvalidArgument(
-                "the table's sizes and offsets do not fit its indices and weights".into(),
-            ));
-        }
+        self.check_rows()?;
         apply_rows(width, base, out, self.indices.len(), |r| self.row(r));
         Ok(())
     }
@@ -124,7 +115,7 @@ impl StencilTable {
     /// let mut r = Refiner::new(&cube, &Options::default())?;
     /// r.refine_uniform(UniformOptions::new(1))?;
     /// let table = r.stencil_table()?;
-    /// let fast = table.to_f32();
+    /// let fast = table.to_f32()?;
     /// assert_eq!(fast.len(), table.len());
     /// let (i, w) = fast.row(0);
     /// assert_eq!(i, table.row(0).0);
@@ -132,17 +123,38 @@ impl StencilTable {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     ///
-    /// # Panics
-    /// If a row lies outside `indices` or `weights` (a table not built by
-    /// this crate and left inconsistent), or has more than `u32::MAX` terms
-    /// in all.
-    pub fn to_f32(&self) -> StencilTableF32 {
+    /// A table whose rows lie outside its `indices` or `weights` (built by
+    /// hand and left inconsistent), or that has more than `u32::MAX` terms,
+    /// is an [`Error::InvalidArgument`].
+    pub fn to_f32(&self) -> Result<StencilTableF32> {
+        self.check_rows()?;
+        if self.indices.len() > u32::MAX as usize {
+            return Err(Error::InvalidArgument(format!(
+                "{} stencil terms do not fit 32-bit offsets",
+                self.indices.len()
+            )));
+        }
         let mut t = StencilTableF32::with_capacity(self.len(), self.indices.len());
         for i in 0..self.len() {
             let (idx, w) = self.row(i);
             t.push_row(idx, w.iter().map(|&w| w as f32));
         }
-        t
+        Ok(t)
+    }
+
+    /// Checks that every row lies inside `indices` and `weights`.
+    fn check_rows(&self) -> Result<()> {
+        if self.offsets.len() != self.len()
+            || (0..self.len()).any(|i| {
+                self.offsets[i] as usize + self.sizes[i] as usize
+                    > self.indices.len().min(self.weights.len())
+            })
+        {
+            return Err(Error::InvalidArgument(
+                "the table's sizes and offsets do not fit its indices and weights".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// Checks that `base` fits the table; returns its vertex count.

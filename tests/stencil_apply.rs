@@ -151,7 +151,7 @@ fn converted_tables_and_thread_pools() {
     let mesh = shapes::torus(12, 10);
     let r = refiner(&mesh, Scheme::Catmark, 3);
     let table: StencilTable = r.stencil_table().unwrap();
-    let fast = table.to_f32();
+    let fast = table.to_f32().unwrap();
     assert_eq!(fast.len(), table.len());
     assert_eq!(fast.term_count(), table.indices.len());
     for i in [0, table.len() / 2, table.len() - 1] {

@@ -1,20 +1,20 @@
-//! Flat tables of plain values whose large instances live in memory advised
-//! for transparent huge pages.
+//! Flat tables of plain values; with `SUBDIV_HUGE_PAGES=1`, the large ones
+//! live in memory advised for transparent huge pages.
 //!
 //! Refining a mesh writes hundreds of megabytes of fresh tables at deep
 //! levels. With 4 KiB pages, the first touch of each page is a kernel page
-//! fault, and those faults were about half of the native engine's topology
-//! time (docs/PERFORMANCE.md). A [`Table`] of 2 MiB or more is instead an
+//! fault. With `SUBDIV_HUGE_PAGES=1`, a [`Table`] of 2 MiB or more is an
 //! anonymous memory map advised with `MADV_HUGEPAGE` (through `memmap2`), so
 //! the kernel fills it with 2 MiB pages: one fault where there were 512.
-//! Smaller tables are ordinary `Vec`s. Where the advice is not available the
-//! map still works with ordinary pages.
+//! Otherwise, and for smaller tables, a table is an ordinary `Vec`. Where the
+//! advice is not available the map still works with ordinary pages.
 
 use bytemuck::Pod;
 use std::fmt;
 use std::ops::{Deref, DerefMut};
 
-/// Tables of at least this many bytes are memory maps advised for huge pages.
+/// With huge pages on, tables of at least this many bytes are memory maps
+/// advised for them.
 const MAP_BYTES: usize = 2 << 20;
 
 /// The size of a transparent huge page on x86-64 and most aarch64 kernels.
@@ -125,7 +125,8 @@ impl<T: Pod> Table<T> {
         }
     }
 
-    /// Whether the table lives in a memory map (2 MiB or more).
+    /// Whether the table lives in a memory map (2 MiB or more, with
+    /// `SUBDIV_HUGE_PAGES=1`).
     pub fn is_mapped(&self) -> bool {
         matches!(self.repr, Repr::Map { .. })
     }
