@@ -304,6 +304,41 @@ void limit(const sdv_refiner *r, int32_t width, const T *src, size_t src_len, T 
     }
 }
 
+// OpenSubdiv 3.5's LimitFaceVarying looks up the tag of a vertex's first
+// value with the value's index, as if it were an index into the channel's
+// per-vertex values. After refinement the two coincide; in an unrefined base
+// level they are the caller's indices, and one at or beyond the number of
+// per-vertex values (one per vertex, plus one per extra distinct value at a
+// vertex) is read past the end of OpenSubdiv's tag array. Refuse those.
+void check_base_fvar_values_for_limit(const Far::TopologyRefiner &refiner, int channel) {
+    const Far::TopologyLevel &l = refiner.GetLevel(0);
+    long long vertex_values = 0;
+    std::vector<Far::Index> distinct;
+    for (int v = 0; v < l.GetNumVertices(); ++v) {
+        Far::ConstIndexArray faces = l.GetVertexFaces(v);
+        Far::ConstLocalIndexArray corners = l.GetVertexFaceLocalIndices(v);
+        distinct.clear();
+        for (int i = 0; i < faces.size(); ++i) {
+            Far::ConstIndexArray values = l.GetFaceFVarValues(faces[i], channel);
+            if (corners[i] < values.size()) distinct.push_back(values[corners[i]]);
+        }
+        std::sort(distinct.begin(), distinct.end());
+        long long n = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
+        vertex_values += std::max(1LL, n);
+    }
+    for (int f = 0; f < l.GetNumFaces(); ++f) {
+        Far::ConstIndexArray values = l.GetFaceFVarValues(f, channel);
+        for (int k = 0; k < values.size(); ++k) {
+            if (values[k] >= vertex_values) {
+                fail("face-varying channel " + str(channel) + ": value " + str(values[k]) + " of face " + str(f) +
+                     " is beyond the " + str(vertex_values) +
+                     " per-vertex values of the unrefined level; OpenSubdiv's LimitFaceVarying would read out of "
+                     "bounds there (refine at least one level, or number the values vertex by vertex)");
+            }
+        }
+    }
+}
+
 template <class T>
 void limit_fvar(const sdv_refiner *r, int32_t channel, int32_t width, const T *src, size_t src_len, T *dst,
                 size_t dst_len) {
@@ -315,6 +350,7 @@ void limit_fvar(const sdv_refiner *r, int32_t channel, int32_t width, const T *s
     long long n = rr.refiner->GetLevel(rr.refiner->GetMaxLevel()).GetNumFVarValues(channel);
     check_len(src_len, n * width, "source face-varying buffer");
     check_len(dst_len, n * width, "limit buffer");
+    if (rr.refiner->GetMaxLevel() == 0) check_base_fvar_values_for_limit(*rr.refiner, channel);
     Far::PrimvarRefinerReal<T> pr(*rr.refiner);
     Buf<T> s{const_cast<T *>(src), width};
     Buf<T> d{dst, width};

@@ -489,3 +489,37 @@ fn refiner_is_send_and_sync() {
         }
     });
 }
+
+/// OpenSubdiv's LimitFaceVarying on an unrefined level reads a value's tag by
+/// its value index: a value numbered beyond the level's per-vertex values
+/// (found by fuzzing: a heap overflow under AddressSanitizer) is refused by
+/// the shim with an error naming it; the native engine computes the limit.
+#[test]
+fn base_level_fvar_limit_with_values_beyond_the_vertex_values_is_refused() {
+    let mut mesh = subdiv::shapes::grid(1, 1);
+    mesh.fvar_channels = vec![subdiv::FVarChannel {
+        width: 1,
+        values: vec![0.0, 0.25, 0.5, 0.75, 1.0, 2.0, 3.0, 4.0],
+        indices: vec![7, 6, 5, 4],
+    }];
+    let options = Options::shape_file_defaults().with_scheme(subdiv::Scheme::Catmark);
+    let uniform = UniformOptions::new(0);
+    let err = osd::refine_with(&mesh, &options, uniform, Precision::F64, true).unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("value 7 of face 0 is beyond the 4 per-vertex values"),
+        "{msg}"
+    );
+    assert!(subdiv::refiner::refine_with(&mesh, &options, uniform, Precision::F64, true).is_ok());
+    // Refined once, the values are renumbered and OpenSubdiv's limit is fine.
+    assert!(
+        osd::refine_with(
+            &mesh,
+            &options,
+            UniformOptions::new(1),
+            Precision::F64,
+            true
+        )
+        .is_ok()
+    );
+}
