@@ -1044,6 +1044,7 @@ fn bench(args: &BenchArgs) -> Result<(), Failure> {
     let mut text = report.markdown(&date);
     if args.inputs.is_empty() {
         text.push_str(&whole_process(&inputs[0], args.quick, args.threads));
+        text.push_str(&obj_writer_rate(&inputs[0]));
     }
     text.push_str(&targets(&report));
     outln!("{text}");
@@ -1139,6 +1140,41 @@ fn targets(report: &subdiv::bench::Report) -> String {
         );
     }
     s
+}
+
+/// The OBJ writer's speed on the deepest level of `input` (what `subdiv
+/// refine -o` writes), against the 200 MB/s target: the best of three writes.
+fn obj_writer_rate(input: &subdiv::bench::BenchInput) -> String {
+    let options = Options::default().with_scheme(input.scheme);
+    let uniform = UniformOptions::new(input.max_level);
+    let r =
+        match subdiv::refiner::refine_with(&input.mesh, &options, uniform, Precision::F64, false) {
+            Ok(r) => r,
+            Err(e) => return format!("\nOBJ writer: skipped ({e})\n"),
+        };
+    let dir = match tempfile::tempdir() {
+        Ok(d) => d,
+        Err(e) => return format!("\nOBJ writer: skipped: no temporary directory ({e})\n"),
+    };
+    let path = dir.path().join("out.obj");
+    let mut best = f64::MAX;
+    for _ in 0..3 {
+        let t = Instant::now();
+        if write_output(&path, &r).is_err() {
+            return "\nOBJ writer: skipped (the temporary file could not be written)\n".into();
+        }
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    let bytes = std::fs::metadata(&path).map_or(0, |m| m.len());
+    let rate = bytes as f64 / best / 1e6;
+    format!(
+        "\nOBJ writer ({}, level {}, f64 positions, {:.0} MB): {:.0} MB/s (target 200 MB/s) {}\n",
+        input.name,
+        input.max_level,
+        bytes as f64 / 1e6,
+        rate,
+        if rate >= 200.0 { "met" } else { "NOT MET" }
+    )
 }
 
 /// Whole-process time and peak memory: `subdiv refine` (native and osd) and,
