@@ -1144,6 +1144,7 @@ fn targets(report: &subdiv::bench::Report) -> String {
 
 /// The OBJ writer's speed on the deepest level of `input` (what `subdiv
 /// refine -o` writes), against the 200 MB/s target: the best of three writes.
+#[cfg(feature = "osd")]
 fn obj_writer_rate(input: &subdiv::bench::BenchInput) -> String {
     let options = Options::default().with_scheme(input.scheme);
     let uniform = UniformOptions::new(input.max_level);
