@@ -298,6 +298,24 @@ impl Mesh {
         &self.face_vertices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
     }
 
+    /// The schemes that can refine this mesh: Catmull-Clark and bilinear
+    /// always, Loop too when every face is a triangle.
+    ///
+    /// ```
+    /// use subdiv::{shapes, Scheme};
+    /// assert_eq!(shapes::cube().applicable_schemes(), &[Scheme::Catmark, Scheme::Bilinear]);
+    /// let tris = shapes::triangulate(&shapes::cube());
+    /// assert!(tris.applicable_schemes().contains(&Scheme::Loop));
+    /// ```
+    pub fn applicable_schemes(&self) -> &'static [crate::options::Scheme] {
+        use crate::options::Scheme;
+        if self.faces().all(|f| f.len() == 3) {
+            &[Scheme::Catmark, Scheme::Bilinear, Scheme::Loop]
+        } else {
+            &[Scheme::Catmark, Scheme::Bilinear]
+        }
+    }
+
     /// Iterates over the faces' vertex lists (stops early if the offsets are malformed).
     pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
         self.face_offsets.windows(2).map_while(move |w| {

@@ -73,14 +73,8 @@ fn check(
 
 fn options_for(mesh: &Mesh) -> Vec<Options> {
     let has_triangles = mesh.faces().any(|f| f.len() == 3);
-    let all_triangles = mesh.faces().all(|f| f.len() == 3);
     let mut out = Vec::new();
-    let schemes: &[Scheme] = if all_triangles {
-        &[Scheme::Catmark, Scheme::Bilinear, Scheme::Loop]
-    } else {
-        &[Scheme::Catmark, Scheme::Bilinear]
-    };
-    for &scheme in schemes {
+    for &scheme in mesh.applicable_schemes() {
         for &boundary in BoundaryInterpolation::ALL {
             for &creasing in CreasingMethod::ALL {
                 for &triangles in TriangleSubdivision::ALL {

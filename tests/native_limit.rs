@@ -155,13 +155,7 @@ fn limit_and_stencils_match_opensubdiv() {
     let mut checked = 0;
     for (name, mut mesh) in shapes::corpus() {
         mesh.fvar_channels.clear();
-        let all_triangles = mesh.faces().all(|f| f.len() == 3);
-        let schemes: &[Scheme] = if all_triangles {
-            &[Scheme::Catmark, Scheme::Loop, Scheme::Bilinear]
-        } else {
-            &[Scheme::Catmark, Scheme::Bilinear]
-        };
-        for &scheme in schemes {
+        for &scheme in mesh.applicable_schemes() {
             for boundary in [
                 BoundaryInterpolation::EdgeOnly,
                 BoundaryInterpolation::EdgeAndCorner,
@@ -259,13 +253,7 @@ fn limit_face_varying_matches_opensubdiv() {
 fn factorized_stencils_equal_interpolation() {
     for (name, mut mesh) in shapes::corpus() {
         mesh.fvar_channels.clear();
-        let all_triangles = mesh.faces().all(|f| f.len() == 3);
-        let schemes: &[Scheme] = if all_triangles {
-            &[Scheme::Catmark, Scheme::Loop]
-        } else {
-            &[Scheme::Catmark, Scheme::Bilinear]
-        };
-        for &scheme in schemes {
+        for &scheme in mesh.applicable_schemes() {
             for faces_first in [false, true] {
                 let options = Options::default()
                     .with_scheme(scheme)

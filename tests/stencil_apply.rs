@@ -287,13 +287,7 @@ mod opensubdiv {
     fn equal_to_opensubdiv_on_the_corpus() {
         for (name, mut mesh) in shapes::corpus() {
             mesh.fvar_channels.clear();
-            let all_triangles = mesh.faces().all(|f| f.len() == 3);
-            let schemes: &[Scheme] = if all_triangles {
-                &[Scheme::Catmark, Scheme::Loop]
-            } else {
-                &[Scheme::Catmark, Scheme::Bilinear]
-            };
-            for &scheme in schemes {
+            for &scheme in mesh.applicable_schemes() {
                 check(&name, &mesh, scheme, 2);
             }
         }
