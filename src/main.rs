@@ -540,6 +540,8 @@ fn refine(args: &RefineArgs) -> Result<(), Failure> {
                 seconds
             )
         );
+    } else if let (Engine::Native, false, Some(path)) = (args.engine, args.limit, &args.output) {
+        write_native_last(path, &mesh, &options, uniform, precision).map_err(name_errors)?;
     } else {
         let r = run_engine(args.engine, &mesh, &options, uniform, precision, args.limit)
             .map_err(name_errors)?;
@@ -571,6 +573,80 @@ fn peak_memory() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     Some(line.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
+}
+
+/// `refine -o` natively without `--limit`: only the last level's positions
+/// and face-varying values are kept (each level's data is dropped once the
+/// next exists) and the last level's faces are written straight from the
+/// refiner, instead of [`subdiv::refiner::refine_with`]'s copies of every
+/// level. The file is the same, byte for byte.
+fn write_native_last(
+    path: &Path,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+) -> Result<(), Failure> {
+    fn last_values<T: subdiv::Real>(
+        r: &subdiv::refiner::Refiner,
+        mesh: &Mesh,
+    ) -> subdiv::Result<(Vec<T>, Option<Vec<T>>)> {
+        let base: Vec<T> = mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.to_array())
+            .map(T::from_f64)
+            .collect();
+        let positions = r.interpolate_last(3, &base)?;
+        // Only the first face-varying channel is written.
+        let uv = match mesh.fvar_channels.first() {
+            Some(channel) => {
+                let mut values: Vec<T> = channel.values.iter().map(|&v| T::from_f64(v)).collect();
+                for level in 1..=r.max_level() {
+                    values = r.interpolate_face_varying(0, level, channel.width, &values)?;
+                }
+                Some(values)
+            }
+            None => None,
+        };
+        Ok((positions, uv))
+    }
+    let mut r = subdiv::refiner::Refiner::new(mesh, options)?;
+    r.refine_uniform(uniform)?;
+    let (positions, uv_values) = match precision {
+        Precision::F64 => last_values::<f64>(&r, mesh)?,
+        Precision::F32 => {
+            let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+            let (positions, uv) = last_values::<f32>(&r, mesh)?;
+            (widen(positions), uv.map(widen))
+        }
+    };
+    let faces = r.faces(uniform.level)?;
+    let uv = match (
+        &uv_values,
+        faces.fvar_face_values.first(),
+        mesh.fvar_channels.first(),
+    ) {
+        (Some(values), Some(face_values), Some(channel)) => Some(UvOutput {
+            width: channel.width,
+            values,
+            face_values,
+        }),
+        _ => None,
+    };
+    subdiv::io::write_obj(
+        path,
+        &ObjOutput {
+            // Flat f64 triples are DVec3s: no second copy of the positions.
+            positions: bytemuck::cast_slice(&positions),
+            face_offsets: faces.offsets,
+            face_vertices: faces.vertices,
+            holes: faces.holes,
+            uv,
+            precision,
+        },
+    )?;
+    Ok(())
 }
 
 /// Writes the last level (or its limit) in OpenSubdiv's order; holes are left out.

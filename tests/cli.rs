@@ -38,28 +38,52 @@ f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n";
 
 #[test]
 fn native_engine_writes_the_same_file_as_opensubdiv() {
-    let input = write("native.obj", QUAD_GRID);
     let native = tmp("native-out.obj");
     let osd = tmp("native-osd-out.obj");
-    for (engine, out) in [("native", &native), ("osd", &osd)] {
-        let o = subdiv(&[
-            "refine",
-            input.to_str().unwrap(),
-            "--level",
-            "3",
-            "--engine",
-            engine,
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{engine}: {}", stderr(&o));
+    // The grid with a UV per vertex (`f a/a ...`): the native engine writes
+    // `-o` without --limit from the last level only.
+    let mut with_uvs: String = QUAD_GRID
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| format!("{l}\nvt{}\n", &l[1..l.rfind(' ').unwrap()]))
+        .collect();
+    for l in QUAD_GRID.lines().filter(|l| l.starts_with("f ")) {
+        let corners: Vec<String> = l[2..].split(' ').map(|i| format!("{i}/{i}")).collect();
+        with_uvs += &format!("f {}\n", corners.join(" "));
     }
-    let (a, b) = (
-        std::fs::read_to_string(&native).unwrap(),
-        std::fs::read_to_string(&osd).unwrap(),
-    );
-    assert_eq!(a.lines().filter(|l| l.starts_with("f ")).count(), 256);
-    assert_eq!(a, b, "native and OpenSubdiv output differ");
+    let holed = format!("{QUAD_GRID}t hole 1/0/0 3\n");
+    for (name, text, extra, faces) in [
+        ("native.obj", QUAD_GRID, &[][..], 256),
+        ("native-uv.obj", &with_uvs, &["--precision", "f32"][..], 256),
+        ("native-hole.obj", &holed, &["--faces-first"][..], 192),
+    ] {
+        let input = write(name, text);
+        for (engine, out) in [("native", &native), ("osd", &osd)] {
+            let mut args = vec![
+                "refine",
+                input.to_str().unwrap(),
+                "--level",
+                "3",
+                "--engine",
+                engine,
+                "-o",
+                out.to_str().unwrap(),
+            ];
+            args.extend(extra);
+            let o = subdiv(&args);
+            assert!(o.status.success(), "{name} {engine}: {}", stderr(&o));
+        }
+        let (a, b) = (
+            std::fs::read_to_string(&native).unwrap(),
+            std::fs::read_to_string(&osd).unwrap(),
+        );
+        assert_eq!(a.lines().filter(|l| l.starts_with("f ")).count(), faces);
+        if name == "native-uv.obj" {
+            assert_eq!(a.lines().filter(|l| l.starts_with("vt ")).count(), 289);
+        }
+        assert_eq!(a, b, "{name}: native and OpenSubdiv output differ");
+    }
+    let input = write("native.obj", QUAD_GRID);
     // The same for limit positions.
     for (engine, out) in [("native", &native), ("osd", &osd)] {
         let o = subdiv(&[
