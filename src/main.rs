@@ -639,7 +639,7 @@ fn write_native_last(
         &ObjOutput {
             // Flat f64 triples are DVec3s: no second copy of the positions.
             positions: bytemuck::cast_slice(&positions),
-            face_offsets: faces.offsets,
+            face_offsets: &faces.offsets,
             face_vertices: faces.vertices,
             holes: faces.holes,
             uv,

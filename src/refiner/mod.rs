@@ -252,7 +252,7 @@ impl Refiner {
         Ok(LevelTopology {
             vertex_count: l.vertex_count,
             edge_count: l.edge_count(),
-            face_offsets: l.face_vertices.offsets.to_vec(),
+            face_offsets: l.face_vertices.offsets_slice().into_owned(),
             face_vertices: l.face_vertices.members.to_vec(),
             edge_vertices: if full {
                 l.edge_vertices.to_vec()
@@ -302,7 +302,7 @@ impl Refiner {
         let l = self.internal_level(level)?;
         let holes = &l.face_holes[..];
         Ok(Faces {
-            offsets: &l.face_vertices.offsets,
+            offsets: l.face_vertices.offsets_slice(),
             vertices: &l.face_vertices.members,
             holes: holes.contains(&true).then_some(holes),
             fvar_face_values: self
@@ -612,8 +612,9 @@ impl Refiner {
 /// The faces of one level, borrowed from a [`Refiner`] ([`Refiner::faces`]).
 #[derive(Debug, Clone)]
 pub struct Faces<'a> {
-    /// Start of each face in `vertices`, plus one final entry.
-    pub offsets: &'a [u32],
+    /// Start of each face in `vertices`, plus one final entry (built here
+    /// when the level's faces all have the same size and store no offsets).
+    pub offsets: std::borrow::Cow<'a, [u32]>,
     /// The vertices of every face, concatenated.
     pub vertices: &'a [u32],
     /// One flag per face (`true`: a hole), or `None` when no face is a hole.

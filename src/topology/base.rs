@@ -84,10 +84,7 @@ impl Chains {
             members.extend(self.iter(e));
             offsets.push(members.len() as u32);
         }
-        Relation {
-            offsets: offsets.into(),
-            members: members.into(),
-        }
+        Relation::from_parts(offsets.into(), members.into()).compact()
     }
 }
 
@@ -95,10 +92,11 @@ impl Chains {
 /// with non-manifold detection, orientation and local indices.
 fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     let nv = mesh.vertex_count();
-    let face_vertices = Relation {
-        offsets: Table::from_slice(&mesh.face_offsets),
-        members: Table::from_slice(&mesh.face_vertices),
-    };
+    let face_vertices = Relation::from_parts(
+        Table::from_slice(&mesh.face_offsets),
+        Table::from_slice(&mesh.face_vertices),
+    )
+    .compact();
     let corners = face_vertices.members.len();
     let mut face_edges = vec![0u32; corners];
     let mut edge_vertices: Vec<[u32; 2]> = Vec::with_capacity(2 * nv);
@@ -175,10 +173,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         edge_vertices: edge_vertices.into(),
         edge_faces: edge_faces.into_relation(),
         edge_face_local: Table::new(),
-        vertex_faces: Relation {
-            offsets: vf_offsets.into(),
-            members: vf_members.into(),
-        },
+        vertex_faces: Relation::from_parts(vf_offsets.into(), vf_members.into()),
         vertex_face_local: Table::new(),
         vertex_edges: vertex_edges.into_relation(),
         vertex_edge_local: Table::new(),

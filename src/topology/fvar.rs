@@ -215,13 +215,7 @@ impl Split {
     /// The parent face of a child face.
     fn parent_face(self, parent: &Level, child_face: u32) -> u32 {
         match self {
-            Split::Quads => {
-                (parent
-                    .face_vertices
-                    .offsets
-                    .partition_point(|&o| o <= child_face)
-                    - 1) as u32
-            }
+            Split::Quads => parent.face_vertices.element_of(child_face as usize) as u32,
             Split::Triangles => child_face / 4,
         }
     }
@@ -520,7 +514,7 @@ pub fn build_base(
                 .iter()
                 .zip(level.vertex_face_locals(v))
                 .map(|(&f, &k)| {
-                    fvar.face_values[level.face_vertices.offsets[f as usize] as usize + k as usize]
+                    fvar.face_values[level.face_vertices.start(f as usize) + k as usize]
                 }),
         );
         let edges = level.vertex_edges_of(v);
@@ -648,8 +642,7 @@ pub fn build_base(
         let faces = level.vertex_faces_of(v);
         let corners = level.vertex_face_locals(v);
         let corner_value = |i: usize| {
-            fvar.face_values
-                [level.face_vertices.offsets[faces[i] as usize] as usize + corners[i] as usize]
+            fvar.face_values[level.face_vertices.start(faces[i] as usize) + corners[i] as usize]
         };
         let o = fvar.value_offsets[v] as usize;
         let count = fvar.vertex_value_count(v);
@@ -960,8 +953,7 @@ pub fn refine(
                 let s = fvar.face_siblings[i];
                 if s != 0 {
                     let f = child.vertex_faces.members[i] as usize;
-                    let corner = child.face_vertices.offsets[f] as usize
-                        + child.vertex_face_local[i] as usize;
+                    let corner = child.face_vertices.start(f) + child.vertex_face_local[i] as usize;
                     values[corner] += s as u32;
                 }
             }

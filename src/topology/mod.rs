@@ -159,38 +159,67 @@ impl std::fmt::Debug for VertexTag {
     }
 }
 
+/// Where the members of each element of a [`Relation`] start.
+#[derive(Debug, Clone)]
+pub enum Offsets {
+    /// `len` elements of `size` members each: element `i` starts at
+    /// `i * size`, and no table is stored (the faces of every refined
+    /// Catmull-Clark or Loop level).
+    Uniform {
+        /// Number of elements.
+        len: usize,
+        /// Members per element.
+        size: usize,
+    },
+    /// The start of every element, plus one final entry.
+    Table(Table<u32>),
+}
+
+impl Default for Offsets {
+    fn default() -> Self {
+        Offsets::Uniform { len: 0, size: 0 }
+    }
+}
+
 /// A compressed relation: the members of element `i` are
-/// `members[offsets[i]..offsets[i + 1]]`.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+/// `members[start(i)..start(i + 1)]`.
+#[derive(Debug, Clone, Default)]
 pub struct Relation {
-    /// `count + 1` offsets.
-    pub offsets: Table<u32>,
+    /// Where each element starts.
+    pub offsets: Offsets,
     /// The members, concatenated.
     pub members: Table<u32>,
 }
 
+impl PartialEq for Relation {
+    fn eq(&self, other: &Self) -> bool {
+        self.len() == other.len()
+            && self.members == other.members
+            && (0..=self.len()).all(|i| self.start(i) == other.start(i))
+    }
+}
+
+impl Eq for Relation {}
+
 impl Relation {
     /// An empty relation over no elements.
     pub fn new() -> Self {
-        Relation {
-            offsets: vec![0].into(),
-            members: Table::new(),
-        }
+        Relation::default()
     }
 
     /// A relation from its offsets (`count + 1`) and members.
     pub fn from_parts(offsets: Table<u32>, members: Table<u32>) -> Self {
-        Relation { offsets, members }
+        Relation {
+            offsets: Offsets::Table(offsets),
+            members,
+        }
     }
 
-    /// A relation where every element has `size` members.
+    /// A relation where every element has `size` members (zeroed), with
+    /// implicit offsets.
     pub fn uniform(count: usize, size: usize) -> Self {
-        let mut offsets = Table::zeroed(count + 1);
-        for (i, o) in offsets.iter_mut().enumerate() {
-            *o = (i * size) as u32;
-        }
         Relation {
-            offsets,
+            offsets: Offsets::Uniform { len: count, size },
             members: Table::zeroed(count * size),
         }
     }
@@ -198,7 +227,10 @@ impl Relation {
     /// Number of elements.
     #[inline]
     pub fn len(&self) -> usize {
-        self.offsets.len().saturating_sub(1)
+        match &self.offsets {
+            Offsets::Uniform { len, .. } => *len,
+            Offsets::Table(t) => t.len().saturating_sub(1),
+        }
     }
 
     /// Whether there is no element.
@@ -207,10 +239,22 @@ impl Relation {
         self.len() == 0
     }
 
+    /// Where element `i`'s members start (`i == len()`: the end of the last).
+    #[inline(always)]
+    pub fn start(&self, i: usize) -> usize {
+        match &self.offsets {
+            Offsets::Uniform { size, .. } => i * size,
+            Offsets::Table(t) => t[i] as usize,
+        }
+    }
+
     /// The range of element `i`'s members.
     #[inline(always)]
     pub fn range(&self, i: usize) -> std::ops::Range<usize> {
-        self.offsets[i] as usize..self.offsets[i + 1] as usize
+        match &self.offsets {
+            Offsets::Uniform { size, .. } => i * size..(i + 1) * size,
+            Offsets::Table(t) => t[i] as usize..t[i + 1] as usize,
+        }
     }
 
     /// The members of element `i`.
@@ -229,7 +273,61 @@ impl Relation {
     /// Number of members of element `i`.
     #[inline(always)]
     pub fn count(&self, i: usize) -> usize {
-        (self.offsets[i + 1] - self.offsets[i]) as usize
+        match &self.offsets {
+            Offsets::Uniform { size, .. } => *size,
+            Offsets::Table(t) => (t[i + 1] - t[i]) as usize,
+        }
+    }
+
+    /// The member count of every element when it is the same for all and the
+    /// offsets are implicit.
+    #[inline]
+    pub fn uniform_size(&self) -> Option<usize> {
+        match self.offsets {
+            Offsets::Uniform { size, .. } => Some(size),
+            Offsets::Table(_) => None,
+        }
+    }
+
+    /// The same relation with implicit offsets when every element has the
+    /// same number of members.
+    pub fn compact(self) -> Self {
+        match &self.offsets {
+            Offsets::Table(t) if t.len() > 1 => {
+                let size = (t[1] - t[0]) as usize;
+                if t.windows(2).all(|w| (w[1] - w[0]) as usize == size) && t[0] == 0 {
+                    Relation {
+                        offsets: Offsets::Uniform {
+                            len: t.len() - 1,
+                            size,
+                        },
+                        members: self.members,
+                    }
+                } else {
+                    self
+                }
+            }
+            _ => self,
+        }
+    }
+
+    /// The element whose members include position `member` of `members`.
+    pub fn element_of(&self, member: usize) -> usize {
+        match &self.offsets {
+            Offsets::Uniform { size, .. } => member / size,
+            Offsets::Table(t) => t.partition_point(|&o| o as usize <= member) - 1,
+        }
+    }
+
+    /// The offsets as a slice: borrowed when stored, built when implicit.
+    pub fn offsets_slice(&self) -> std::borrow::Cow<'_, [u32]> {
+        match &self.offsets {
+            Offsets::Uniform { len, size } => (0..=*len)
+                .map(|i| (i * size) as u32)
+                .collect::<Vec<_>>()
+                .into(),
+            Offsets::Table(t) => std::borrow::Cow::Borrowed(&t[..]),
+        }
     }
 }
 
@@ -369,5 +467,37 @@ impl Level {
                 ev[0] == ev[1]
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod relation_tests {
+    use super::*;
+
+    #[test]
+    fn implicit_offsets_read_like_a_table() {
+        let members: Table<u32> = (0..12).collect::<Vec<u32>>().into();
+        let stored = Relation::from_parts(vec![0, 4, 8, 12].into(), members.clone());
+        let compact = stored.clone().compact();
+        assert_eq!(compact.uniform_size(), Some(4));
+        assert!(stored.uniform_size().is_none());
+        assert_eq!(compact, stored);
+        for r in [&stored, &compact] {
+            assert_eq!(r.len(), 3);
+            assert_eq!(r.get(1), &[4, 5, 6, 7]);
+            assert_eq!(r.count(2), 4);
+            assert_eq!((r.start(2), r.start(3)), (8, 12));
+            assert_eq!(r.element_of(7), 1);
+            assert_eq!(r.element_of(8), 2);
+            assert_eq!(&*r.offsets_slice(), &[0, 4, 8, 12]);
+        }
+        // Mixed sizes keep their table; the two forms of different sizes differ.
+        let mixed = Relation::from_parts(vec![0, 3, 7].into(), (0..7).collect::<Vec<u32>>().into());
+        let mixed = mixed.compact();
+        assert!(mixed.uniform_size().is_none());
+        assert_eq!(mixed.element_of(3), 1);
+        assert_ne!(Relation::uniform(2, 3), Relation::uniform(3, 2));
+        assert_eq!(Relation::uniform(2, 3).members.len(), 6);
+        assert!(Relation::new().is_empty());
     }
 }

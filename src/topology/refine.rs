@@ -11,7 +11,7 @@
 //!   then of edges; with `order_vertices_from_faces_first`, faces, edges,
 //!   then vertices.
 
-use super::{EdgeTag, Level, Relation, Table, VertexTag};
+use super::{EdgeTag, Level, Offsets, Relation, Table, VertexTag};
 use crate::options::{CreasingMethod, Options, Scheme};
 use crate::rules::{Rule, SHARPNESS_INFINITE, crease};
 use rayon::prelude::*;
@@ -161,7 +161,7 @@ pub fn refine_level(
             // halves join the edge point to an end vertex's child.
             let mut edge_vertices = Table::zeroed(child_edges);
             for f in 0..nf {
-                let base = parent.face_vertices.offsets[f] as usize;
+                let base = parent.face_vertices.start(f);
                 for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
                     edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
                 }
@@ -179,9 +179,11 @@ pub fn refine_level(
             let mut ef = TableWriter::new(
                 child_edges,
                 2 * corners + 2 * parent.edge_faces.members.len(),
+                // Edges inside a face have two faces, halves their parent's.
+                (parent.edge_faces.uniform_size() == Some(2)).then_some(2),
             );
             for f in 0..nf {
-                let base = parent.face_vertices.offsets[f] as usize;
+                let base = parent.face_vertices.start(f);
                 let n = parent.face_vertices.count(f);
                 for j in 0..n {
                     let jn = next(j, n);
@@ -220,15 +222,15 @@ pub fn refine_level(
                             0
                         };
                         ef.push(
-                            parent.face_vertices.offsets[f] + in_face as u32,
+                            (parent.face_vertices.start(f) + in_face) as u32,
                             local as u16,
                         );
                     }
                     ef.end_element();
                 }
             }
-            let (ef_offsets, ef_members, ef_local) = ef.finish();
-            (edge_vertices, ef_offsets, ef_members, ef_local)
+            let (edge_faces, ef_local) = ef.finish();
+            (edge_vertices, edge_faces, ef_local)
         };
         let vertices_part = || {
             // Vertex-faces and vertex-edges, per child vertex, grouped by origin:
@@ -256,7 +258,7 @@ pub fn refine_level(
 
             for f in 0..nf {
                 let c = r.face_child(f) as usize;
-                let base = parent.face_vertices.offsets[f] as usize;
+                let base = parent.face_vertices.start(f);
                 let n = parent.face_vertices.count(f);
                 let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
                 for j in 0..n {
@@ -284,7 +286,7 @@ pub fn refine_level(
                 {
                     let (f, k) = (f as usize, k as usize);
                     let n = parent.face_vertices.count(f);
-                    let base = parent.face_vertices.offsets[f];
+                    let base = parent.face_vertices.start(f) as u32;
                     let (c0, c1) = (k, next(k, n));
                     vf_members[o] = base + c1 as u32;
                     vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
@@ -311,19 +313,22 @@ pub fn refine_level(
             vertex_children_relations(parent, &r, vf, ve, |f, k| {
                 let n = parent.face_vertices.count(f as usize);
                 let local = if n == 4 { k } else { 0 };
-                (parent.face_vertices.offsets[f as usize] + k as u32, local)
+                (
+                    parent.face_vertices.start(f as usize) as u32 + k as u32,
+                    local,
+                )
             });
             (
                 vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local,
             )
         };
         let (
-            (edge_vertices, ef_offsets, ef_members, ef_local),
+            (edge_vertices, edge_faces, ef_local),
             (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
         ) = rayon::join(edges_part, vertices_part);
         ChildRelations {
             edge_vertices,
-            edge_faces: Relation::from_parts(ef_offsets, ef_members),
+            edge_faces,
             edge_face_local: ef_local,
             vertex_faces: Relation::from_parts(vf_offsets, vf_members),
             vertex_face_local: vf_local,
@@ -361,9 +366,9 @@ fn split_quad_faces(
     fv_out: &mut [u32],
     mut fe_out: Option<&mut [u32]>,
 ) {
-    let first = parent.face_vertices.offsets[faces.start] as usize;
+    let first = parent.face_vertices.start(faces.start);
     for f in faces {
-        let base = parent.face_vertices.offsets[f] as usize;
+        let base = parent.face_vertices.start(f);
         let verts = parent.face_verts(f);
         let edges = parent.face_edges_of(f);
         let n = verts.len();
@@ -423,13 +428,13 @@ fn carve_by_faces<'a, T>(
     per_corner: usize,
 ) -> Vec<(std::ops::Range<usize>, &'a mut [T])> {
     let nf = parent.face_count();
-    let offsets = &parent.face_vertices.offsets;
+    let faces = &parent.face_vertices;
     let mut chunks = Vec::with_capacity(nf.div_ceil(FACE_CHUNK));
     let mut rest = out;
     let mut f0 = 0;
     while f0 < nf {
         let f1 = (f0 + FACE_CHUNK).min(nf);
-        let len = (offsets[f1] - offsets[f0]) as usize * per_corner;
+        let len = (faces.start(f1) - faces.start(f0)) * per_corner;
         let (chunk, tail) = std::mem::take(&mut rest).split_at_mut(len);
         chunks.push((f0..f1, chunk));
         rest = tail;
@@ -546,6 +551,8 @@ fn refine_triangles(
             let mut ef = TableWriter::new(
                 child_edges,
                 2 * corners + 2 * parent.edge_faces.members.len(),
+                // Edges inside a face have two faces, halves their parent's.
+                (parent.edge_faces.uniform_size() == Some(2)).then_some(2),
             );
             for f in 0..nf {
                 for j in 0..3 {
@@ -575,8 +582,7 @@ fn refine_triangles(
                     ef.end_element();
                 }
             }
-            let (ef_offsets, ef_members, ef_local) = ef.finish();
-            (ef_offsets, ef_members, ef_local)
+            ef.finish()
         };
         let vertices_part = || {
             // Vertex-faces and vertex-edges: an edge point has three child
@@ -644,12 +650,12 @@ fn refine_triangles(
             )
         };
         let (
-            (ef_offsets, ef_members, ef_local),
+            (edge_faces, ef_local),
             (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
         ) = rayon::join(edges_part, vertices_part);
         ChildRelations {
             edge_vertices: Table::new(),
-            edge_faces: Relation::from_parts(ef_offsets, ef_members),
+            edge_faces,
             edge_face_local: ef_local,
             vertex_faces: Relation::from_parts(vf_offsets, vf_members),
             vertex_face_local: vf_local,
@@ -894,9 +900,11 @@ fn prefix_sums(offsets: &mut [u32]) {
 }
 
 /// Fills a relation with known totals element by element: members and their
-/// local indices pushed in order, each element closed by `end_element`.
+/// local indices pushed in order, each element closed by `end_element`. With
+/// a `uniform` size (every element has that many members) no offsets are
+/// stored.
 struct TableWriter {
-    offsets: Table<u32>,
+    offsets: Offsets,
     members: Table<u32>,
     locals: Table<u16>,
     element: usize,
@@ -904,9 +912,15 @@ struct TableWriter {
 }
 
 impl TableWriter {
-    fn new(elements: usize, members: usize) -> Self {
+    fn new(elements: usize, members: usize, uniform: Option<usize>) -> Self {
         TableWriter {
-            offsets: Table::zeroed(elements + 1),
+            offsets: match uniform {
+                Some(size) => Offsets::Uniform {
+                    len: elements,
+                    size,
+                },
+                None => Offsets::Table(Table::zeroed(elements + 1)),
+            },
             members: Table::zeroed(members),
             locals: Table::zeroed(members),
             element: 0,
@@ -924,13 +938,20 @@ impl TableWriter {
     #[inline]
     fn end_element(&mut self) {
         self.element += 1;
-        self.offsets[self.element] = self.len as u32;
+        match &mut self.offsets {
+            Offsets::Table(t) => t[self.element] = self.len as u32,
+            Offsets::Uniform { size, .. } => debug_assert_eq!(self.len, self.element * *size),
+        }
     }
 
-    fn finish(self) -> (Table<u32>, Table<u32>, Table<u16>) {
-        debug_assert_eq!(self.element + 1, self.offsets.len());
-        debug_assert_eq!(self.len, self.members.len());
-        (self.offsets, self.members, self.locals)
+    fn finish(self) -> (Relation, Table<u16>) {
+        let relation = Relation {
+            offsets: self.offsets,
+            members: self.members,
+        };
+        debug_assert_eq!(self.element, relation.len());
+        debug_assert_eq!(self.len, relation.members.len());
+        (relation, self.locals)
     }
 }
 
