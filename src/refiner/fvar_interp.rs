@@ -154,7 +154,7 @@ impl Refiner {
                         .iter()
                         .map(|&f| parent.face_vertices.count(f as usize) as u32),
                 );
-                let s = parent.edge_sharpness[e];
+                let s = parent.edge_sharpness_at(e);
                 let hood = EdgeNeighborhood {
                     sharpness: s,
                     face_sizes: &face_sizes,
@@ -205,7 +205,7 @@ impl Refiner {
                 let edges = parent.vertex_edges_of(v);
                 let faces = parent.vertex_faces_of(v);
                 edge_sharpness.clear();
-                edge_sharpness.extend(edges.iter().map(|&e| parent.edge_sharpness[e as usize]));
+                edge_sharpness.extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
                 child_edge_sharpness.resize(edges.len(), 0.0);
                 crease::subdivide_edge_sharpnesses_around_vertex(
                     self.options.creasing,
@@ -213,10 +213,10 @@ impl Refiner {
                     &mut child_edge_sharpness,
                 );
                 let hood = VertexNeighborhood {
-                    sharpness: parent.vertex_sharpness[v],
+                    sharpness: parent.vertex_sharpness_at(v),
                     edge_sharpness: &edge_sharpness,
                     face_count: faces.len(),
-                    child_sharpness: child.vertex_sharpness[c],
+                    child_sharpness: child.vertex_sharpness_at(c),
                     child_edge_sharpness: &child_edge_sharpness,
                 };
                 let p_rule = parent.vertex_tags[v].rule();
@@ -342,13 +342,13 @@ impl Refiner {
             let tags = fvar.vertex_value_tags(v);
             if !tags[0].is_mismatch() {
                 edge_sharpness.clear();
-                edge_sharpness.extend(edges.iter().map(|&e| level.edge_sharpness[e as usize]));
+                edge_sharpness.extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
                 let faces = level.vertex_faces_of(v);
                 let hood = crate::rules::VertexNeighborhood {
-                    sharpness: level.vertex_sharpness[v],
+                    sharpness: level.vertex_sharpness_at(v),
                     edge_sharpness: &edge_sharpness,
                     face_count: faces.len(),
-                    child_sharpness: level.vertex_sharpness[v],
+                    child_sharpness: level.vertex_sharpness_at(v),
                     child_edge_sharpness: &[],
                 };
                 self.rules.vertex_limit_position_mask(

@@ -260,6 +260,8 @@ fn run<T: Real, W: Width + Send + Sync>(
     };
 
     // Edge points.
+    // Empty edge sharpness: every parent edge is smooth (what
+    // `Level::edge_sharpness_at` reads, tested once here).
     let has_sharpness = !parent.edge_sharpness.is_empty();
     par_children(edge_points, n, |e, slot, cache, scratch| {
         let faces = parent.edge_faces_of(e);

@@ -44,13 +44,13 @@ impl<T: Real> LimitMasks<T> {
         }
         self.edge_sharpness.clear();
         self.edge_sharpness
-            .extend(edges.iter().map(|&e| level.edge_sharpness[e as usize]));
+            .extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
         let faces = level.vertex_faces_of(v);
         let hood = VertexNeighborhood {
-            sharpness: level.vertex_sharpness[v],
+            sharpness: level.vertex_sharpness_at(v),
             edge_sharpness: &self.edge_sharpness,
             face_count: faces.len(),
-            child_sharpness: level.vertex_sharpness[v],
+            child_sharpness: level.vertex_sharpness_at(v),
             child_edge_sharpness: &[],
         };
         let rule = level.vertex_tags[v].rule();

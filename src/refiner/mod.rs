@@ -259,8 +259,11 @@ impl Refiner {
             } else {
                 Vec::new()
             },
-            edge_sharpness: if l.edge_sharpness.len() == l.edge_count() {
+            // Tables of default values are stored empty: expand them.
+            edge_sharpness: if !l.edge_sharpness.is_empty() {
                 l.edge_sharpness.to_vec()
+            } else if l.has_full_topology() {
+                vec![0.0; l.edge_count()]
             } else {
                 // A minimal last level keeps no edge sharpness: recompute it.
                 let parent = &self.levels[level as usize - 1];
@@ -271,8 +274,10 @@ impl Refiner {
                     l.edge_count(),
                 )
             },
-            vertex_sharpness: l.vertex_sharpness.to_vec(),
-            face_holes: l.face_holes.clone(),
+            vertex_sharpness: (0..l.vertex_count)
+                .map(|v| l.vertex_sharpness_at(v))
+                .collect(),
+            face_holes: (0..l.face_count()).map(|f| l.is_hole(f)).collect(),
             fvar: self
                 .fvar
                 .iter()
@@ -530,7 +535,7 @@ impl Refiner {
                 .iter()
                 .map(|&f| parent.face_vertices.count(f as usize) as u32),
         );
-        let sharpness = parent.edge_sharpness[e];
+        let sharpness = parent.edge_sharpness_at(e);
         let hood = EdgeNeighborhood {
             sharpness,
             face_sizes: &s.face_sizes,
@@ -580,7 +585,7 @@ impl Refiner {
         let faces = parent.vertex_faces_of(v);
         s.edge_sharpness.clear();
         s.edge_sharpness
-            .extend(edges.iter().map(|&e| parent.edge_sharpness[e as usize]));
+            .extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
         s.child_edge_sharpness.resize(edges.len(), 0.0);
         crease::subdivide_edge_sharpnesses_around_vertex(
             self.options.creasing,
@@ -588,10 +593,10 @@ impl Refiner {
             &mut s.child_edge_sharpness,
         );
         let hood = VertexNeighborhood {
-            sharpness: parent.vertex_sharpness[v],
+            sharpness: parent.vertex_sharpness_at(v),
             edge_sharpness: &s.edge_sharpness,
             face_count: faces.len(),
-            child_sharpness: child.vertex_sharpness[c],
+            child_sharpness: child.vertex_sharpness_at(c),
             child_edge_sharpness: &s.child_edge_sharpness,
         };
         let p_rule = parent.vertex_tags[v].rule();

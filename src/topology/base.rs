@@ -178,11 +178,13 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         vertex_edges: vertex_edges.into_relation(),
         vertex_edge_local: Table::new(),
         num_edges: ne,
-        edge_sharpness: Table::zeroed(ne),
-        vertex_sharpness: Table::zeroed(nv),
+        // Sharpness and holes are allocated by the first value that is not
+        // the default (`assign_tags`).
+        edge_sharpness: Table::new(),
+        vertex_sharpness: Table::new(),
         edge_tags: Table::zeroed(ne),
         vertex_tags: Table::zeroed(nv),
-        face_holes: vec![false; mesh.face_count()],
+        face_holes: Vec::new(),
         max_edge_faces: 0,
         max_valence: 0,
     };
@@ -367,14 +369,18 @@ fn populate_local_indices(level: &mut Level) {
 fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     for c in &mesh.creases {
         if let Some(e) = level.find_edge(c.vertices[0], c.vertices[1]) {
-            level.edge_sharpness[e as usize] = c.sharpness;
+            level.set_edge_sharpness(e as usize, c.sharpness);
         }
     }
     for c in &mesh.corners {
-        level.vertex_sharpness[c.vertex as usize] = c.sharpness;
+        level.set_vertex_sharpness(c.vertex as usize, c.sharpness);
     }
+    // A later crease or corner may have set a value back to 0.0; only
+    // boundary sharpening (never 0.0) writes sharpness after this.
+    super::drop_if_default(&mut level.edge_sharpness);
+    super::drop_if_default(&mut level.vertex_sharpness);
     for &f in &mesh.holes {
-        level.face_holes[f as usize] = true;
+        level.set_hole(f as usize);
     }
 
     // Boundary faces become holes with no boundary interpolation — except for
@@ -387,26 +393,27 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
             }
             let exclude = level.vertex_edges_of(v).iter().any(|&e| {
                 level.edge_faces.count(e as usize) == 1
-                    && !crease::is_infinite(level.edge_sharpness[e as usize])
+                    && !crease::is_infinite(level.edge_sharpness_at(e as usize))
             });
             if exclude {
                 for i in level.vertex_faces.range(v) {
                     let f = level.vertex_faces.members[i];
-                    level.face_holes[f as usize] = true;
+                    level.set_hole(f as usize);
                 }
             }
         }
     }
 
     for e in 0..level.edge_count() {
-        let tag = &mut level.edge_tags[e];
+        let mut tag = level.edge_tags[e];
         tag.set_boundary(level.edge_faces.count(e) < 2);
         if tag.boundary() || tag.non_manifold() {
-            level.edge_sharpness[e] = crate::rules::SHARPNESS_INFINITE;
+            level.set_edge_sharpness(e, crate::rules::SHARPNESS_INFINITE);
         }
-        let s = level.edge_sharpness[e];
+        let s = level.edge_sharpness_at(e);
         tag.set_inf_sharp(crease::is_infinite(s));
         tag.set_semi_sharp(crease::is_sharp(s) && !tag.inf_sharp());
+        level.edge_tags[e] = tag;
     }
 
     let sharpen_corners = options.boundary == BoundaryInterpolation::EdgeAndCorner;
@@ -421,17 +428,17 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         }
         let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
         let topological_corner = nf == 1 && ne == 2;
-        let tag = &mut level.vertex_tags[v];
+        let mut tag = level.vertex_tags[v];
         if topological_corner && sharpen_corners {
-            level.vertex_sharpness[v] = crate::rules::SHARPNESS_INFINITE;
+            level.set_vertex_sharpness(v, crate::rules::SHARPNESS_INFINITE);
         } else if tag.non_manifold() {
             // Interior non-manifold creases (two opposing non-manifold edges
             // with extra "fin" faces and no boundary) stay unsharpened.
             if !(non_manifold == 2 && boundary == 0 && nf > ne) {
-                level.vertex_sharpness[v] = crate::rules::SHARPNESS_INFINITE;
+                level.set_vertex_sharpness(v, crate::rules::SHARPNESS_INFINITE);
             }
         }
-        let s = level.vertex_sharpness[v];
+        let s = level.vertex_sharpness_at(v);
         tag.set_inf_sharp(crease::is_infinite(s));
         tag.set_semi_sharp(crease::is_semi_sharp(s));
         tag.set_semi_sharp_edges(semi > 0);
@@ -439,5 +446,6 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         tag.set_rule(crease::vertex_rule_from_sharp_edge_count(s, inf + semi));
         tag.set_boundary(boundary > 0);
         tag.set_corner(topological_corner && tag.inf_sharp());
+        level.vertex_tags[v] = tag;
     }
 }

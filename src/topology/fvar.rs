@@ -420,8 +420,8 @@ impl FVarLevel {
         let mut c_sharpness = Vec::with_capacity(p_edges.len());
         // The edges strictly inside the span: between its consecutive faces.
         let mut take = |i: usize| {
-            p_sharpness.push(parent.edge_sharpness[p_edges[i] as usize]);
-            c_sharpness.push(child.edge_sharpness[c_edges[i] as usize]);
+            p_sharpness.push(parent.edge_sharpness_at(p_edges[i] as usize));
+            c_sharpness.push(child.edge_sharpness_at(c_edges[i] as usize));
         };
         if end > start {
             (start + 1..=end).for_each(&mut take);
@@ -434,8 +434,8 @@ impl FVarLevel {
             CreasingMethod::Chaikin => Some(c_sharpness.as_slice()),
         };
         crease::fractional_weight_at_vertex(
-            parent.vertex_sharpness[v],
-            child.vertex_sharpness[c],
+            parent.vertex_sharpness_at(v),
+            child.vertex_sharpness_at(c),
             &p_sharpness,
             child_edges,
         )

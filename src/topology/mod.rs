@@ -39,6 +39,40 @@ pub fn unpaired_smooth_vertex(level: &Level) -> Option<usize> {
     })
 }
 
+/// Whether a sharpness is the default `0.0` a table need not store (by its
+/// bits: `-0.0` and NaN are kept).
+#[inline(always)]
+fn is_default_sharpness(s: f32) -> bool {
+    s.to_bits() == 0
+}
+
+/// Entry `i` of a sharpness table, `0.0` when the table is stored empty.
+#[inline(always)]
+fn sparse_at(table: &[f32], i: usize) -> f32 {
+    if table.is_empty() { 0.0 } else { table[i] }
+}
+
+/// Sets entry `i` of a sharpness table of `len` entries stored empty while
+/// they are all `0.0`: the first other value allocates it.
+#[inline]
+fn set_sparse(table: &mut Table<f32>, len: usize, i: usize, s: f32) {
+    if table.is_empty() {
+        if is_default_sharpness(s) {
+            return;
+        }
+        *table = Table::zeroed(len);
+    }
+    table[i] = s;
+}
+
+/// Empties a sharpness table whose entries are all `0.0` (a value set and
+/// later overwritten with `0.0`).
+fn drop_if_default(table: &mut Table<f32>) {
+    if table.iter().all(|&s| is_default_sharpness(s)) {
+        *table = Table::new();
+    }
+}
+
 /// Generates a getter and a setter for each bit of a packed tag.
 macro_rules! tag_bits {
     ($ty:ty, $bits:ty; $($(#[$doc:meta])* $get:ident, $set:ident = $bit:expr;)*) => {
@@ -358,16 +392,19 @@ pub struct Level {
     pub vertex_edge_local: Table<u16>,
     /// Number of edges.
     pub num_edges: usize,
-    /// Edge sharpness (empty in a minimal last level; see
-    /// [`refine::child_edge_sharpness`]).
+    /// Edge sharpness, empty when every edge is smooth (sharpness `0.0`) and
+    /// in a minimal last level (see [`refine::child_edge_sharpness`]); read
+    /// it through [`Level::edge_sharpness_at`].
     pub edge_sharpness: Table<f32>,
-    /// Vertex sharpness.
+    /// Vertex sharpness, empty when every vertex is smooth (sharpness `0.0`);
+    /// read it through [`Level::vertex_sharpness_at`].
     pub vertex_sharpness: Table<f32>,
     /// Edge tags (empty in a minimal last level).
     pub edge_tags: Table<EdgeTag>,
     /// Vertex tags.
     pub vertex_tags: Table<VertexTag>,
-    /// Hole flag of each face.
+    /// Hole flag of each face, empty when no face is a hole; read it through
+    /// [`Level::is_hole`].
     pub face_holes: Vec<bool>,
     /// Largest number of faces at any edge.
     pub max_edge_faces: usize,
@@ -389,13 +426,55 @@ impl Level {
     }
 
     /// Whether all relations are present. A last level refined with minimal
-    /// topology (OpenSubdiv's default) has only its face-vertices, sharpness
-    /// and tags.
+    /// topology (OpenSubdiv's default) has only its face-vertices, vertex
+    /// sharpness and vertex tags.
     #[inline]
     pub fn has_full_topology(&self) -> bool {
-        self.edge_vertices.len() == self.num_edges
-            && self.edge_sharpness.len() == self.num_edges
-            && self.vertex_faces.len() == self.vertex_count
+        self.edge_vertices.len() == self.num_edges && self.vertex_faces.len() == self.vertex_count
+    }
+
+    /// The sharpness of edge `e`: `0.0` when the level stores no edge
+    /// sharpness (every edge smooth). A minimal last level stores none
+    /// either, whatever its edges' sharpness: there it is recomputed from the
+    /// parent by [`refine::child_edge_sharpness`].
+    #[inline(always)]
+    pub fn edge_sharpness_at(&self, e: usize) -> f32 {
+        sparse_at(&self.edge_sharpness, e)
+    }
+
+    /// The sharpness of vertex `v`: `0.0` when the level stores no vertex
+    /// sharpness (every vertex smooth).
+    #[inline(always)]
+    pub fn vertex_sharpness_at(&self, v: usize) -> f32 {
+        sparse_at(&self.vertex_sharpness, v)
+    }
+
+    /// Whether face `f` is a hole: `false` when the level stores no hole
+    /// flags (no face is a hole).
+    #[inline(always)]
+    pub fn is_hole(&self, f: usize) -> bool {
+        !self.face_holes.is_empty() && self.face_holes[f]
+    }
+
+    /// Sets the sharpness of edge `e`. The table stays empty while every
+    /// value is `0.0`: the first other value allocates it.
+    #[inline]
+    pub(crate) fn set_edge_sharpness(&mut self, e: usize, s: f32) {
+        set_sparse(&mut self.edge_sharpness, self.num_edges, e, s);
+    }
+
+    /// Sets the sharpness of vertex `v`, as [`Level::set_edge_sharpness`] does.
+    #[inline]
+    pub(crate) fn set_vertex_sharpness(&mut self, v: usize, s: f32) {
+        set_sparse(&mut self.vertex_sharpness, self.vertex_count, v, s);
+    }
+
+    /// Makes face `f` a hole, allocating the hole flags at the first hole.
+    pub(crate) fn set_hole(&mut self, f: usize) {
+        if self.face_holes.is_empty() {
+            self.face_holes = vec![false; self.face_count()];
+        }
+        self.face_holes[f] = true;
     }
 
     /// The vertices of face `f`.
@@ -499,5 +578,109 @@ mod relation_tests {
         assert_ne!(Relation::uniform(2, 3), Relation::uniform(3, 2));
         assert_eq!(Relation::uniform(2, 3).members.len(), 6);
         assert!(Relation::new().is_empty());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::mesh::Mesh;
+    use crate::options::{CreasingMethod, Options, UniformOptions};
+    use crate::refiner::Refiner;
+    use crate::shapes;
+
+    /// `mesh` refined to `depth` under each scheme that applies, with full
+    /// topology in the last level or not.
+    fn refiners(mesh: &Mesh, depth: u32, full: bool) -> Vec<Refiner> {
+        mesh.applicable_schemes()
+            .iter()
+            .map(|&scheme| {
+                let options = Options::default()
+                    .with_scheme(scheme)
+                    .with_creasing(CreasingMethod::Uniform);
+                let mut r = Refiner::new(mesh, &options).unwrap();
+                r.refine_uniform(UniformOptions::new(depth).full_topology(full))
+                    .unwrap();
+                r
+            })
+            .collect()
+    }
+
+    /// Which of edge sharpness, vertex sharpness and holes each level
+    /// stores, after checking that the accessors read what
+    /// `Refiner::level` reports.
+    fn stored(r: &Refiner) -> Vec<[bool; 3]> {
+        (0..=r.max_level())
+            .map(|l| {
+                let level = r.internal_level(l).unwrap();
+                let topo = r.level(l).unwrap();
+                assert_eq!(topo.edge_sharpness.len(), level.edge_count());
+                assert_eq!(topo.vertex_sharpness.len(), level.vertex_count);
+                assert_eq!(topo.face_holes.len(), level.face_count());
+                if level.has_full_topology() {
+                    for (e, &s) in topo.edge_sharpness.iter().enumerate() {
+                        assert_eq!(level.edge_sharpness_at(e).to_bits(), s.to_bits());
+                    }
+                }
+                for (v, &s) in topo.vertex_sharpness.iter().enumerate() {
+                    assert_eq!(level.vertex_sharpness_at(v).to_bits(), s.to_bits());
+                }
+                for (f, &h) in topo.face_holes.iter().enumerate() {
+                    assert_eq!(level.is_hole(f), h);
+                }
+                [
+                    !level.edge_sharpness.is_empty(),
+                    !level.vertex_sharpness.is_empty(),
+                    !level.face_holes.is_empty(),
+                ]
+            })
+            .collect()
+    }
+
+    /// The values above 0.
+    fn sharp(values: &[f32]) -> Vec<f32> {
+        values.iter().copied().filter(|&s| s > 0.0).collect()
+    }
+
+    #[test]
+    fn smooth_closed_levels_store_no_sharpness_or_holes() {
+        for mesh in [shapes::torus(6, 5), shapes::torus_triangles(6, 5)] {
+            for full in [false, true] {
+                for r in refiners(&mesh, 3, full) {
+                    assert_eq!(stored(&r), vec![[false; 3]; 4], "{:?}", r.options.scheme);
+                    assert!(r.internal_level(3).unwrap().has_full_topology() == full);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sharpness_is_stored_until_it_decays_to_zero() {
+        for mut mesh in [shapes::torus(6, 5), shapes::torus_triangles(6, 5)] {
+            mesh.add_crease(0, 1, 2.0);
+            mesh.add_corner(10, 1.5);
+            mesh.holes.push(5);
+            for full in [false, true] {
+                for r in refiners(&mesh, 3, full) {
+                    let scheme = r.options.scheme;
+                    // A crease of 2 decays to 1, then 0; a corner of 1.5 to
+                    // 0.5, then 0; children of holes are holes.
+                    let expected = [[true, true, true], [true, true, true], [false, false, true]];
+                    assert_eq!(
+                        stored(&r),
+                        [expected[0], expected[1], expected[2], expected[2]],
+                        "{scheme:?} full {full}"
+                    );
+                    let l1 = r.level(1).unwrap();
+                    assert_eq!(sharp(&l1.edge_sharpness), [1.0, 1.0], "{scheme:?}");
+                    assert_eq!(sharp(&l1.vertex_sharpness), [0.5], "{scheme:?}");
+                }
+            }
+            // A minimal last level stores no edge sharpness; `Refiner::level`
+            // recomputes it from the parent.
+            for r in refiners(&mesh, 1, false) {
+                assert!(r.internal_level(1).unwrap().edge_sharpness.is_empty());
+                assert_eq!(sharp(&r.level(1).unwrap().edge_sharpness), [1.0, 1.0]);
+            }
+        }
     }
 }

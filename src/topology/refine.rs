@@ -728,17 +728,12 @@ impl ChildTags {
         num_edges: usize,
         minimal: bool,
     ) -> Self {
-        // The propagation works on a level holding just these tables.
+        // The propagation works on a level holding just these tables; the
+        // sharpness tables stay empty unless a value other than 0.0 is set.
         let mut child = Level {
             depth: parent.depth + 1,
             vertex_count,
             num_edges,
-            edge_sharpness: if minimal {
-                Table::new()
-            } else {
-                Table::zeroed(num_edges)
-            },
-            vertex_sharpness: Table::zeroed(vertex_count),
             edge_tags: if minimal {
                 Table::new()
             } else {
@@ -786,17 +781,24 @@ fn assemble_child(parent: &Level, tags: ChildTags, p: Parts) -> Level {
 
 /// Each child face inherits its parent's hole flag. Children come in parent
 /// order: one per parent corner (quad split) or four per triangle (Loop).
+/// Empty (no hole) when the parent stores no hole flags or its holes have
+/// no children.
 fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<bool> {
+    if parent.face_holes.is_empty() {
+        return Vec::new();
+    }
     let mut holes = vec![false; child_faces];
+    let mut any = false;
     for (f, _) in parent.face_holes.iter().enumerate().filter(|(_, h)| **h) {
         let range = if four_per_face {
             4 * f..4 * f + 4
         } else {
             parent.face_vertices.range(f)
         };
+        any |= !range.is_empty();
         holes[range].fill(true);
     }
-    holes
+    if any { holes } else { Vec::new() }
 }
 
 /// Offsets and zeroed member and local-index tables of a child's
@@ -998,7 +1000,7 @@ pub fn child_edge(
     if !tag.semi_sharp() {
         return (0.0, tag);
     }
-    let ps = parent.edge_sharpness[e];
+    let ps = parent.edge_sharpness_at(e);
     let s = match method {
         CreasingMethod::Uniform => crease::subdivide_uniform_sharpness(ps),
         CreasingMethod::Chaikin => {
@@ -1008,7 +1010,7 @@ pub fn child_edge(
                 parent
                     .vertex_edges_of(pv)
                     .iter()
-                    .map(|&x| parent.edge_sharpness[x as usize]),
+                    .map(|&x| parent.edge_sharpness_at(x as usize)),
             );
             crease::subdivide_edge_sharpness_at_vertex(method, ps, around)
         }
@@ -1028,6 +1030,10 @@ pub fn child_edge_sharpness(
     child_edges: usize,
 ) -> Vec<f32> {
     let mut out = vec![0.0; child_edges];
+    if parent.edge_sharpness.is_empty() {
+        // Every parent edge is smooth, so are its halves.
+        return out;
+    }
     let mut around = Vec::new();
     for e in 0..parent.edge_count() {
         for j in 0..2 {
@@ -1040,10 +1046,20 @@ pub fn child_edge_sharpness(
 /// Edge and vertex sharpness of the child level, then the rules of child
 /// vertices whose neighbourhood was semi-sharp. A minimal child stores no
 /// edge sharpness or tags: they are recomputed where the rules need them.
+///
+/// Sharp and semi-sharp tags go with stored sharpness (a value other than
+/// 0.0), so a parent storing no edge (vertex) sharpness has no sharp edges
+/// (vertices) and the passes over them are skipped; the child's tables are
+/// allocated only by a value other than 0.0.
 fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method: CreasingMethod) {
+    let sharp_edges = !parent.edge_sharpness.is_empty();
+    let sharp_vertices = !parent.vertex_sharpness.is_empty();
+    if !sharp_edges && !sharp_vertices {
+        return;
+    }
     let mut around = Vec::new();
     let store_edges = !child.edge_tags.is_empty();
-    if store_edges {
+    if store_edges && sharp_edges {
         for e in 0..parent.edge_count() {
             if !parent.edge_tags[e].semi_sharp() && !parent.edge_tags[e].inf_sharp() {
                 continue;
@@ -1051,7 +1067,7 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
             for j in 0..2 {
                 let c = r.edge_child_edge(e, j) as usize;
                 let (s, tag) = child_edge(parent, e, j, method, &mut around);
-                child.edge_sharpness[c] = s;
+                child.set_edge_sharpness(c, s);
                 child.edge_tags[c] = tag;
             }
         }
@@ -1063,31 +1079,35 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
             child_edge(parent, e, j, method, around).1
         }
     };
-    for v in 0..parent.vertex_count {
-        let c = r.vertex_child(v) as usize;
-        let tag = &mut child.vertex_tags[c];
-        if tag.inf_sharp() {
-            child.vertex_sharpness[c] = SHARPNESS_INFINITE;
-        } else if tag.semi_sharp() {
-            let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness[v]);
-            child.vertex_sharpness[c] = s;
-            if !crease::is_sharp(s) {
-                tag.set_semi_sharp(false);
+    if sharp_vertices {
+        for v in 0..parent.vertex_count {
+            let c = r.vertex_child(v) as usize;
+            let tag = child.vertex_tags[c];
+            if tag.inf_sharp() {
+                child.set_vertex_sharpness(c, SHARPNESS_INFINITE);
+            } else if tag.semi_sharp() {
+                let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness_at(v));
+                child.set_vertex_sharpness(c, s);
+                if !crease::is_sharp(s) {
+                    child.vertex_tags[c].set_semi_sharp(false);
+                }
             }
         }
     }
     // Edge points of semi-sharp edges: Crease while a half stays sharp.
-    for e in 0..parent.edge_count() {
-        let c = r.edge_child(e) as usize;
-        if !child.vertex_tags[c].semi_sharp_edges() {
-            continue;
+    if sharp_edges {
+        for e in 0..parent.edge_count() {
+            let c = r.edge_child(e) as usize;
+            if !child.vertex_tags[c].semi_sharp_edges() {
+                continue;
+            }
+            let count = (0..2)
+                .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp())
+                .count();
+            let tag = &mut child.vertex_tags[c];
+            tag.set_semi_sharp_edges(count > 0);
+            tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, count));
         }
-        let count = (0..2)
-            .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp())
-            .count();
-        let tag = &mut child.vertex_tags[c];
-        tag.set_semi_sharp_edges(count > 0);
-        tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, count));
     }
     // Children of vertices whose semi-sharp features may have decayed.
     for v in 0..parent.vertex_count {
