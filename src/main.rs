@@ -1105,7 +1105,8 @@ fn bench(args: &BenchArgs) -> Result<(), Failure> {
         }
         v
     };
-    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 8).sum();
+    // Per input: one step per level and eight tasks; then the two parallel-use steps.
+    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 8).sum::<u64>() + 2;
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
