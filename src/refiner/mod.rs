@@ -22,7 +22,7 @@ use crate::refinement::{
 };
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::FVarLevel as FVarChannelLevel;
-use crate::topology::{Level, Refinement, build_base_level, fvar, refine_level};
+use crate::topology::{Build, Level, Refinement, build_base_level, fvar, refine_level};
 
 mod fvar_interp;
 use glam::{DVec3, Vec3};
@@ -152,14 +152,12 @@ impl Refiner {
             // Like OpenSubdiv, the last level gets only what interpolation
             // needs unless full topology is asked for (or face-varying
             // channels need the rest).
-            let minimal = level == uniform.level
-                && !uniform.full_topology_in_last_level
-                && self.fvar.is_empty();
+            let minimal = !uniform.full_topology_in_last_level && self.fvar.is_empty();
             let (r, child) = refine_level(
                 parent,
                 &self.options,
                 uniform.order_vertices_from_faces_first,
-                minimal,
+                Build::for_level(level as usize, uniform.level as usize, minimal),
             );
             for channel in &mut self.fvar {
                 let parent_fvar = channel.last().expect("base channel");
@@ -666,12 +664,15 @@ pub fn refine_last<T: Real>(
     let mut counts = vec![r.level_counts(0)?];
     let mut data = base.to_vec();
     for level in 1..=uniform.level as usize {
-        let minimal = level == uniform.level as usize && !uniform.full_topology_in_last_level;
         let (refinement, child) = refine_level(
             &r.levels[level - 1],
             &r.options,
             uniform.order_vertices_from_faces_first,
-            minimal,
+            Build::for_level(
+                level,
+                uniform.level as usize,
+                !uniform.full_topology_in_last_level,
+            ),
         );
         r.refinements.push(refinement);
         r.levels.push(child);

@@ -23,7 +23,7 @@ pub mod refine;
 mod table;
 
 pub use base::build_base_level;
-pub use refine::{Refinement, refine_level};
+pub use refine::{Build, Refinement, refine_level};
 pub use table::Table;
 
 use crate::rules::Rule;
@@ -380,11 +380,13 @@ pub struct Level {
     pub edge_vertices: Table<[u32; 2]>,
     /// Edge → faces.
     pub edge_faces: Relation,
-    /// Position of the edge within each of its faces.
+    /// Position of the edge within each of its faces (empty in a level
+    /// built as [`Build::Relations`]).
     pub edge_face_local: Table<u16>,
     /// Vertex → faces.
     pub vertex_faces: Relation,
-    /// Position of the vertex within each of its faces.
+    /// Position of the vertex within each of its faces (empty in a level
+    /// built as [`Build::Relations`]).
     pub vertex_face_local: Table<u16>,
     /// Vertex → edges.
     pub vertex_edges: Relation,
@@ -496,18 +498,31 @@ impl Level {
     }
 
     /// The position of edge `e` within each of its faces.
+    ///
+    /// # Panics
+    /// If the level keeps no local indices ([`Level::has_local_indices`]).
     #[inline(always)]
     pub fn edge_face_locals(&self, e: usize) -> &[u16] {
         &self.edge_face_local[self.edge_faces.range(e)]
     }
 
+    /// Whether the level keeps the positions of its edges and vertices within
+    /// their faces: false only for a level built as [`Build::Relations`] (the
+    /// level before a minimal last level).
+    pub fn has_local_indices(&self) -> bool {
+        self.vertex_face_local.len() == self.vertex_faces.members.len()
+            && self.edge_face_local.len() == self.edge_faces.members.len()
+    }
+
     /// The faces of vertex `v`.
-    #[inline(always)]
     pub fn vertex_faces_of(&self, v: usize) -> &[u32] {
         self.vertex_faces.get(v)
     }
 
     /// The position of vertex `v` within each of its faces.
+    ///
+    /// # Panics
+    /// If the level keeps no local indices ([`Level::has_local_indices`]).
     #[inline(always)]
     pub fn vertex_face_locals(&self, v: usize) -> &[u16] {
         &self.vertex_face_local[self.vertex_faces.range(v)]
@@ -639,6 +654,29 @@ mod tests {
     /// The values above 0.
     fn sharp(values: &[f32]) -> Vec<f32> {
         values.iter().copied().filter(|&s| s > 0.0).collect()
+    }
+
+    #[test]
+    fn the_level_before_a_minimal_last_level_keeps_no_face_local_indices() {
+        for mesh in [shapes::torus(6, 4), shapes::torus_triangles(6, 4)] {
+            for full in [false, true] {
+                for r in refiners(&mesh, 3, full) {
+                    let kept: Vec<bool> = (0..=3)
+                        .map(|l| r.internal_level(l).unwrap().has_local_indices())
+                        .collect();
+                    let level2 = r.internal_level(2).unwrap();
+                    assert!(!level2.vertex_edge_local.is_empty());
+                    if full {
+                        assert_eq!(kept, [true; 4]);
+                    } else {
+                        // Level 3 is minimal: nothing to keep, trivially true.
+                        assert_eq!(kept, [true, true, false, true]);
+                        assert!(level2.vertex_face_local.is_empty());
+                        assert!(level2.edge_face_local.is_empty());
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -97,21 +97,52 @@ fn next(j: usize, n: usize) -> usize {
     if j + 1 == n { 0 } else { j + 1 }
 }
 
+/// How much of a child level [`refine_level`] builds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Build {
+    /// Every relation, with local indices: a level that is refined further
+    /// into a full level, or that face-varying channels or limit evaluation
+    /// read.
+    Full,
+    /// Every relation but the positions of edges and vertices within their
+    /// faces (`edge_face_local` and `vertex_face_local` stay empty): a level
+    /// whose only child is a minimal last level. Interpolation does not read
+    /// them; only building a full child, face-varying refinement and limit
+    /// evaluation do. (`vertex_edge_local` stays: sharpness decay reads it.)
+    Relations,
+    /// Only the face-vertices (with sharpness, tags and holes): what a last
+    /// level needs for interpolation, as OpenSubdiv builds it unless asked
+    /// for full topology.
+    Minimal,
+}
+
+impl Build {
+    /// What level `level` of a refinement to `last` builds, when the last
+    /// level is `minimal` or not.
+    pub fn for_level(level: usize, last: usize, minimal: bool) -> Build {
+        if level == last && minimal {
+            Build::Minimal
+        } else if level + 1 == last && minimal {
+            Build::Relations
+        } else {
+            Build::Full
+        }
+    }
+}
+
 /// Splits `parent` once — Catmull-Clark and bilinear: every face into quads;
-/// Loop: every triangle into four — and returns the child level with all
-/// relations, sharpness and tags.
-///
-/// With `minimal`, only the face-vertices of the child are built (with its
-/// sharpness, tags and holes): what a last level needs for interpolation,
-/// as OpenSubdiv builds it unless asked for full topology.
+/// Loop: every triangle into four — and returns the child level with as
+/// much topology as `build` says, its sharpness and tags.
 pub fn refine_level(
     parent: &Level,
     options: &Options,
     faces_first: bool,
-    minimal: bool,
+    build: Build,
 ) -> (Refinement, Level) {
+    let minimal = build == Build::Minimal;
+    let locals = build == Build::Full;
     if options.scheme == Scheme::Loop {
-        return refine_triangles(parent, options, faces_first, minimal);
+        return refine_triangles(parent, options, faces_first, minimal, locals);
     }
     let r = Refinement::new(parent, faces_first, true);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -181,6 +212,7 @@ pub fn refine_level(
                 2 * corners + 2 * parent.edge_faces.members.len(),
                 // Edges inside a face have two faces, halves their parent's.
                 (parent.edge_faces.uniform_size() == Some(2)).then_some(2),
+                locals,
             );
             for f in 0..nf {
                 let base = parent.face_vertices.start(f);
@@ -254,6 +286,7 @@ pub fn refine_level(
                     let n = parent.edge_faces.count(e) as u32;
                     (2 * n, 2 + n)
                 },
+                locals,
             );
 
             for f in 0..nf {
@@ -263,7 +296,11 @@ pub fn refine_level(
                 let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
                 for j in 0..n {
                     vf_members[o + j] = (base + j) as u32;
-                    vf_local[o + j] = if n == 4 { (j + 2) & 3 } else { 2 } as u16;
+                    put(
+                        &mut vf_local,
+                        o + j,
+                        if n == 4 { (j + 2) & 3 } else { 2 } as u16,
+                    );
                     ve_members[oe + j] = (base + prev(j, n)) as u32;
                     ve_local[oe + j] = 0;
                 }
@@ -289,9 +326,9 @@ pub fn refine_level(
                     let base = parent.face_vertices.start(f) as u32;
                     let (c0, c1) = (k, next(k, n));
                     vf_members[o] = base + c1 as u32;
-                    vf_local[o] = if n == 4 { c0 } else { 3 } as u16;
+                    put(&mut vf_local, o, if n == 4 { c0 } else { 3 } as u16);
                     vf_members[o + 1] = base + c0 as u32;
-                    vf_local[o + 1] = if n == 4 { c1 } else { 1 } as u16;
+                    put(&mut vf_local, o + 1, if n == 4 { c1 } else { 1 } as u16);
                     o += 2;
                     edge_list.push((base + k as u32, 1));
                     if i == 0 {
@@ -451,6 +488,7 @@ fn refine_triangles(
     options: &Options,
     faces_first: bool,
     minimal: bool,
+    locals: bool,
 ) -> (Refinement, Level) {
     let r = Refinement::new(parent, faces_first, false);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -553,6 +591,7 @@ fn refine_triangles(
                 2 * corners + 2 * parent.edge_faces.members.len(),
                 // Edges inside a face have two faces, halves their parent's.
                 (parent.edge_faces.uniform_size() == Some(2)).then_some(2),
+                locals,
             );
             for f in 0..nf {
                 for j in 0..3 {
@@ -602,6 +641,7 @@ fn refine_triangles(
                     let n = parent.edge_faces.count(e) as u32;
                     (3 * n, 2 + 2 * n)
                 },
+                locals,
             );
             for e in 0..ne {
                 let c = r.edge_child(e) as usize;
@@ -618,7 +658,7 @@ fn refine_triangles(
                     // Leading, middle and trailing child triangles around the edge point.
                     for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
                         vf_members[o] = (4 * f + child) as u32;
-                        vf_local[o] = local as u16;
+                        put(&mut vf_local, o, local as u16);
                         o += 1;
                     }
                     if i == 0 {
@@ -802,7 +842,8 @@ fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<b
 }
 
 /// Offsets and zeroed member and local-index tables of a child's
-/// vertex-faces and vertex-edges. Children of vertices keep their parent's
+/// vertex-faces and vertex-edges (the vertex-face local indices empty unless
+/// `locals`). Children of vertices keep their parent's
 /// counts; `face_point(f)` and `edge_point(e)` give the (faces, edges) counts
 /// of the children of face `f` (when the split has face points) and edge `e`.
 #[allow(clippy::type_complexity)]
@@ -811,6 +852,7 @@ fn vertex_relation_tables(
     r: &Refinement,
     face_point: impl Fn(usize) -> (u32, u32),
     edge_point: impl Fn(usize) -> (u32, u32),
+    locals: bool,
 ) -> (
     Table<u32>,
     Table<u32>,
@@ -847,9 +889,14 @@ fn vertex_relation_tables(
     prefix_sums(&mut vf_offsets);
     prefix_sums(&mut ve_offsets);
     let vf_members = Table::zeroed(vf_offsets[child_vertices] as usize);
-    let vf_local = Table::zeroed(vf_members.len());
     let ve_members = Table::zeroed(ve_offsets[child_vertices] as usize);
-    let ve_local = Table::zeroed(ve_members.len());
+    let local_table = |len: usize| Table::zeroed(if locals { len } else { 0 });
+    // Which end of its edges a vertex is stays: sharpness decay reads it
+    // while building a minimal child.
+    let (vf_local, ve_local) = (
+        local_table(vf_members.len()),
+        Table::zeroed(ve_members.len()),
+    );
     (
         vf_offsets, ve_offsets, vf_members, vf_local, ve_members, ve_local,
     )
@@ -878,7 +925,9 @@ fn vertex_children_relations(
             .zip(parent.vertex_face_locals(v))
             .enumerate()
         {
-            (vf_members[o + i], vf_local[o + i]) = child_face(f, k);
+            let (member, local) = child_face(f, k);
+            vf_members[o + i] = member;
+            put(vf_local, o + i, local);
         }
         for (i, (&e, &l)) in parent
             .vertex_edges_of(v)
@@ -889,6 +938,16 @@ fn vertex_children_relations(
             ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
             ve_local[oe + i] = 1;
         }
+    }
+}
+
+/// Writes local index `value` at `i`, unless the level keeps no such local
+/// indices (`locals` is empty; see [`Build::Relations`]).
+#[inline(always)]
+fn put(locals: &mut [u16], i: usize, value: u16) {
+    debug_assert!(locals.is_empty() || i < locals.len());
+    if let Some(slot) = locals.get_mut(i) {
+        *slot = value;
     }
 }
 
@@ -914,7 +973,7 @@ struct TableWriter {
 }
 
 impl TableWriter {
-    fn new(elements: usize, members: usize, uniform: Option<usize>) -> Self {
+    fn new(elements: usize, members: usize, uniform: Option<usize>, locals: bool) -> Self {
         TableWriter {
             offsets: match uniform {
                 Some(size) => Offsets::Uniform {
@@ -924,7 +983,7 @@ impl TableWriter {
                 None => Offsets::Table(Table::zeroed(elements + 1)),
             },
             members: Table::zeroed(members),
-            locals: Table::zeroed(members),
+            locals: Table::zeroed(if locals { members } else { 0 }),
             element: 0,
             len: 0,
         }
@@ -933,7 +992,7 @@ impl TableWriter {
     #[inline]
     fn push(&mut self, member: u32, local: u16) {
         self.members[self.len] = member;
-        self.locals[self.len] = local;
+        put(&mut self.locals, self.len, local);
         self.len += 1;
     }
 
