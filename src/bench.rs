@@ -265,36 +265,40 @@ pub fn run(
         progress(&label("base topology", level));
         push(
             "base topology",
-            interleaved(
-                reps,
-                || {
-                    drop(black_box(
-                        refiner::Refiner::new(&input.mesh, &options).expect("native"),
-                    ))
-                },
-                || {
-                    drop(black_box(
-                        osd::Refiner::new(&input.mesh, &options).expect("osd"),
-                    ))
-                },
-            ),
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        drop(black_box(
+                            refiner::Refiner::new(&input.mesh, &options).expect("native"),
+                        ))
+                    },
+                    || {
+                        drop(black_box(
+                            osd::Refiner::new(&input.mesh, &options).expect("osd"),
+                        ))
+                    },
+                )
+            }),
         );
         progress(&label("topology refinement", level));
         push(
             "topology refinement",
-            interleaved(
-                reps,
-                || {
-                    let mut r = refiner::Refiner::new(&input.mesh, &options).expect("native");
-                    r.refine_uniform(uniform).expect("native");
-                    black_box(r);
-                },
-                || {
-                    let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd");
-                    r.refine_uniform(uniform).expect("osd");
-                    black_box(r);
-                },
-            ),
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        let mut r = refiner::Refiner::new(&input.mesh, &options).expect("native");
+                        r.refine_uniform(uniform).expect("native");
+                        black_box(r);
+                    },
+                    || {
+                        let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd");
+                        r.refine_uniform(uniform).expect("osd");
+                        black_box(r);
+                    },
+                )
+            }),
         );
         progress(&label("positions (f32)", level));
         push(
@@ -316,20 +320,24 @@ pub fn run(
         let last = nf.interpolate_all(3, &base)?.pop().unwrap_or_default();
         push(
             "limit (f32)",
-            interleaved(
-                reps,
-                || drop(black_box(nf.limit(3, &last).expect("native"))),
-                || drop(black_box(of.limit(3, &last).expect("osd"))),
-            ),
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || drop(black_box(nf.limit(3, &last).expect("native"))),
+                    || drop(black_box(of.limit(3, &last).expect("osd"))),
+                )
+            }),
         );
         progress(&label("stencil table", level));
         push(
             "stencil table",
-            interleaved(
-                reps.min(3),
-                || drop(black_box(n.stencil_table().expect("native"))),
-                || drop(black_box(osd::StencilEvaluator::new(&o).expect("osd"))),
-            ),
+            pool.install(|| {
+                interleaved(
+                    reps.min(3),
+                    || drop(black_box(n.stencil_table().expect("native"))),
+                    || drop(black_box(osd::StencilEvaluator::new(&o).expect("osd"))),
+                )
+            }),
         );
         progress(&label("stencil apply", level));
         // The same stencils on both sides: the native table is built in f32
