@@ -92,8 +92,8 @@ fn main() -> Result<(), Error> {
     let edge_faces = full.edge_faces_of(0); // GetEdgeFaces(0)
     let face_edges = full.face_edges_of(3); // GetFaceEdges(3)
     let edge = full.find_edge(v0, v1); // FindEdge(v0, v1), None for INDEX_INVALID
-    let boundary = full.vertex_tags[0].boundary(); // IsVertexBoundary(0)
-    let rule = full.vertex_tags[0].rule(); // GetVertexRule(0)
+    let boundary = full.vertex_tag(0).boundary(); // IsVertexBoundary(0)
+    let rule = full.vertex_tag(0).rule(); // GetVertexRule(0)
     // [end]
     println!(
         "vertex 0: faces {vertex_faces:?}, edges {vertex_edges:?}, boundary {boundary}, rule {rule:?}; \

@@ -161,7 +161,7 @@ impl Refiner {
                 };
                 let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
                 self.rules
-                    .edge_vertex_mask(&hood, p_rule, child.vertex_tags[c].rule(), &mut mask);
+                    .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
             }
             let [a, b] = pf.edge_face_values(parent, e, 0);
             acc.fill(T::ZERO);
@@ -219,8 +219,8 @@ impl Refiner {
                     child_sharpness: child.vertex_sharpness_at(c),
                     child_edge_sharpness: &child_edge_sharpness,
                 };
-                let p_rule = parent.vertex_tags[v].rule();
-                let c_rule = child.vertex_tags[c].rule();
+                let p_rule = parent.vertex_tag(v).rule();
+                let c_rule = child.vertex_tag(c).rule();
                 self.rules
                     .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
                 for (&f, &w) in faces.iter().zip(&mask.face) {
@@ -351,11 +351,8 @@ impl Refiner {
                     child_sharpness: level.vertex_sharpness_at(v),
                     child_edge_sharpness: &[],
                 };
-                self.rules.vertex_limit_position_mask(
-                    &hood,
-                    level.vertex_tags[v].rule(),
-                    &mut mask,
-                );
+                self.rules
+                    .vertex_limit_position_mask(&hood, level.vertex_tag(v).rule(), &mut mask);
                 let value = fvar.vertex_value(v, 0);
                 acc.fill(T::ZERO);
                 if !mask.face.is_empty() {

@@ -301,10 +301,17 @@ fn run<T: Real, W: Width + Send + Sync>(
     });
 
     // Vertex points.
+    // Empty vertex tags: every parent vertex is smooth (what
+    // `Level::vertex_tag` reads, tested once here).
+    let has_tags = !parent.vertex_tags.is_empty();
     par_children(vertex_points, n, |v, slot, cache, scratch| {
         let faces = parent.vertex_faces_of(v);
         let edges = parent.vertex_edges_of(v);
-        let rule = parent.vertex_tags[v].rule();
+        let rule = if has_tags {
+            parent.vertex_tags[v].rule()
+        } else {
+            Rule::Smooth
+        };
         let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
             && faces.len() == edges.len()
             && !edges.is_empty();

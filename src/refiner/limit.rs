@@ -53,7 +53,7 @@ impl<T: Real> LimitMasks<T> {
             child_sharpness: level.vertex_sharpness_at(v),
             child_edge_sharpness: &[],
         };
-        let rule = level.vertex_tags[v].rule();
+        let rule = level.vertex_tag(v).rule();
         let smooth = matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
             && faces.len() == edges.len();
         if smooth {

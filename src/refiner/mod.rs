@@ -201,8 +201,8 @@ impl Refiner {
                 continue;
             }
             let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
-            if smooth(p.vertex_tags[v].rule())
-                || smooth(c.vertex_tags[r.vertex_child(v) as usize].rule())
+            if smooth(p.vertex_tag(v).rule())
+                || smooth(c.vertex_tag(r.vertex_child(v) as usize).rule())
             {
                 return Err(Error::InvalidArgument(format!(
                     "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
@@ -543,7 +543,7 @@ impl Refiner {
         } else {
             Rule::Smooth
         };
-        let c_rule = child.vertex_tags[r.edge_child(e) as usize].rule();
+        let c_rule = child.vertex_tag(r.edge_child(e) as usize).rule();
         self.rules
             .edge_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
         s.terms.push((Source::Parent(ev[0]), s.mask.vertex[0]));
@@ -597,8 +597,8 @@ impl Refiner {
             child_sharpness: child.vertex_sharpness_at(c),
             child_edge_sharpness: &s.child_edge_sharpness,
         };
-        let p_rule = parent.vertex_tags[v].rule();
-        let c_rule = child.vertex_tags[c].rule();
+        let p_rule = parent.vertex_tag(v).rule();
+        let c_rule = child.vertex_tag(c).rule();
         self.rules
             .vertex_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
         for (&f, &w) in faces.iter().zip(&s.mask.face) {

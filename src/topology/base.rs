@@ -178,22 +178,24 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         vertex_edges: vertex_edges.into_relation(),
         vertex_edge_local: Table::new(),
         num_edges: ne,
-        // Sharpness and holes are allocated by the first value that is not
-        // the default (`assign_tags`).
+        // Sharpness, tags and holes are allocated by the first value that
+        // is not the default (non-manifold features, `assign_tags`).
         edge_sharpness: Table::new(),
         vertex_sharpness: Table::new(),
-        edge_tags: Table::zeroed(ne),
-        vertex_tags: Table::zeroed(nv),
+        edge_tags: Table::new(),
+        vertex_tags: Table::new(),
         face_holes: Vec::new(),
         max_edge_faces: 0,
         max_valence: 0,
     };
     for &e in &non_manifold_edges {
         let e = e as usize;
-        level.edge_tags[e].set_non_manifold(true);
-        let [a, b] = level.edge_vertices[e];
-        level.vertex_tags[a as usize].set_non_manifold(true);
-        level.vertex_tags[b as usize].set_non_manifold(true);
+        let mut tag = level.edge_tag(e);
+        tag.set_non_manifold(true);
+        level.set_edge_tag(e, tag);
+        for v in level.edge_vertices[e] {
+            level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
+        }
     }
     orient_incident_components(&mut level);
     populate_local_indices(&mut level);
@@ -215,14 +217,14 @@ fn orient_incident_components(level: &mut Level) {
     let mut faces = Vec::new();
     let mut edges = Vec::new();
     for v in 0..level.vertex_count {
-        if level.vertex_tags[v].non_manifold() {
+        if level.vertex_tag(v).non_manifold() {
             continue;
         }
         if order_vertex(level, v as u32, &mut faces, &mut edges) {
             level.vertex_faces.get_mut(v).copy_from_slice(&faces);
             level.vertex_edges.get_mut(v).copy_from_slice(&edges);
         } else {
-            level.vertex_tags[v].set_non_manifold(true);
+            level.update_vertex_tag(v, |t| t.set_non_manifold(true));
         }
     }
 }
@@ -388,7 +390,7 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     if options.boundary == BoundaryInterpolation::None && options.scheme != Scheme::Bilinear {
         for v in 0..level.vertex_count {
             let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
-            if nf == ne && !level.vertex_tags[v].non_manifold() {
+            if nf == ne && !level.vertex_tag(v).non_manifold() {
                 continue;
             }
             let exclude = level.vertex_edges_of(v).iter().any(|&e| {
@@ -405,7 +407,7 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     }
 
     for e in 0..level.edge_count() {
-        let mut tag = level.edge_tags[e];
+        let mut tag = level.edge_tag(e);
         tag.set_boundary(level.edge_faces.count(e) < 2);
         if tag.boundary() || tag.non_manifold() {
             level.set_edge_sharpness(e, crate::rules::SHARPNESS_INFINITE);
@@ -413,14 +415,14 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         let s = level.edge_sharpness_at(e);
         tag.set_inf_sharp(crease::is_infinite(s));
         tag.set_semi_sharp(crease::is_sharp(s) && !tag.inf_sharp());
-        level.edge_tags[e] = tag;
+        level.set_edge_tag(e, tag);
     }
 
     let sharpen_corners = options.boundary == BoundaryInterpolation::EdgeAndCorner;
     for v in 0..level.vertex_count {
         let (mut boundary, mut inf, mut semi, mut non_manifold) = (0, 0, 0, 0);
         for &e in level.vertex_edges_of(v) {
-            let t = level.edge_tags[e as usize];
+            let t = level.edge_tag(e as usize);
             boundary += t.boundary() as usize;
             inf += t.inf_sharp() as usize;
             semi += t.semi_sharp() as usize;
@@ -428,7 +430,7 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         }
         let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
         let topological_corner = nf == 1 && ne == 2;
-        let mut tag = level.vertex_tags[v];
+        let mut tag = level.vertex_tag(v);
         if topological_corner && sharpen_corners {
             level.set_vertex_sharpness(v, crate::rules::SHARPNESS_INFINITE);
         } else if tag.non_manifold() {
@@ -446,6 +448,6 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         tag.set_rule(crease::vertex_rule_from_sharp_edge_count(s, inf + semi));
         tag.set_boundary(boundary > 0);
         tag.set_corner(topological_corner && tag.inf_sharp());
-        level.vertex_tags[v] = tag;
+        level.set_vertex_tag(v, tag);
     }
 }

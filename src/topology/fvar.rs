@@ -348,7 +348,7 @@ impl FVarLevel {
         let ends = level.vertex_edge_locals(v);
         let faces = level.vertex_faces_of(v);
         let corners = level.vertex_face_locals(v);
-        let tag = level.vertex_tags[v];
+        let tag = level.vertex_tag(v);
         for (i, (&e, &end)) in edges.iter().zip(ends).enumerate() {
             let other = level.edge_vertices[e as usize][1 - end as usize] as usize;
             let value = if self.vertex_value_count(other) == 1 {
@@ -459,9 +459,9 @@ impl Span {
         let e = e as usize;
         if fvar_tags[e].is_mismatch() {
             self.splits += 1;
-        } else if level.edge_tags[e].inf_sharp() {
+        } else if level.edge_tag(e).inf_sharp() {
             self.inf_sharp_edges += 1;
-        } else if level.edge_tags[e].semi_sharp() {
+        } else if level.edge_tag(e).semi_sharp() {
             self.semi_sharp_edges += 1;
         }
     }
@@ -518,7 +518,7 @@ pub fn build_base(
                 }),
         );
         let edges = level.vertex_edges_of(v);
-        let tag = level.vertex_tags[v];
+        let tag = level.vertex_tag(v);
         let split = |e: u32, edge_tags: &mut [EdgeTag], mismatch: &mut [bool]| {
             let [a, b] = level.edge_vertices[e as usize];
             mismatch[a as usize] = true;
@@ -583,7 +583,7 @@ pub fn build_base(
                     fvar.edge_tags[edges[edges.len() - 1] as usize].set(EdgeTag::LINEAR, true);
                 } else {
                     for &e in edges {
-                        if level.edge_tags[e as usize].boundary() {
+                        if level.edge_tag(e as usize).boundary() {
                             fvar.edge_tags[e as usize].set(EdgeTag::LINEAR, true);
                         }
                     }
@@ -662,7 +662,7 @@ pub fn build_base(
             }
         }
 
-        let vtag = level.vertex_tags[v];
+        let vtag = level.vertex_tag(v);
         let mut all_sharp = mode.linear_boundaries
             || vtag.inf_sharp()
             || vtag.non_manifold()
@@ -727,7 +727,7 @@ fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>
     let n = faces.len();
     let boundary = edges.len() > n;
 
-    if level.vertex_tags[v].non_manifold() {
+    if level.vertex_tag(v).non_manifold() {
         // Spans around a non-manifold vertex are not analysed: all are split.
         for s in spans.iter_mut() {
             s.size = 0;
@@ -745,9 +745,9 @@ fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>
                 }
                 s.size = n as u16;
                 s.start = i as u16;
-            } else if level.edge_tags[e as usize].inf_sharp() {
+            } else if level.edge_tag(e as usize).inf_sharp() {
                 s.inf_sharp_edges += 1;
-            } else if level.edge_tags[e as usize].semi_sharp() {
+            } else if level.edge_tag(e as usize).semi_sharp() {
                 s.semi_sharp_edges += 1;
             }
         }
@@ -981,11 +981,11 @@ fn reclassify_semi_sharp(
         if !fvar.value_tags[range.start].is_mismatch() {
             continue;
         }
-        let ptag = parent.vertex_tags[v];
+        let ptag = parent.vertex_tag(v);
         if !ptag.semi_sharp() && !ptag.semi_sharp_edges() {
             continue;
         }
-        let ctag = child.vertex_tags[c];
+        let ctag = child.vertex_tag(c);
         if ctag.semi_sharp() || ctag.inf_sharp() {
             continue;
         }
@@ -998,7 +998,7 @@ fn reclassify_semi_sharp(
             continue;
         }
         let c_edges = child.vertex_edges_of(c);
-        let semi = |k: usize| child.edge_tags[c_edges[k] as usize].semi_sharp();
+        let semi = |k: usize| child.edge_tag(c_edges[k] as usize).semi_sharp();
         for i in range.clone() {
             let t = fvar.value_tags[i];
             if !t.is_semi_sharp() || t.is_dep_sharp() {

@@ -27,6 +27,7 @@ pub use refine::{Build, Refinement, refine_level};
 pub use table::Table;
 
 use crate::rules::Rule;
+use bytemuck::Pod;
 
 /// The first vertex whose rule is smooth (or dart) although its faces and
 /// edges do not pair up — possible when a face names the vertex twice without
@@ -34,41 +35,47 @@ use crate::rules::Rule;
 /// own assertion aborts on such a vertex), so both engines refuse the mesh.
 pub fn unpaired_smooth_vertex(level: &Level) -> Option<usize> {
     (0..level.vertex_count).find(|&v| {
-        matches!(level.vertex_tags[v].rule(), Rule::Smooth | Rule::Dart)
+        matches!(level.vertex_tag(v).rule(), Rule::Smooth | Rule::Dart)
             && level.vertex_faces.count(v) != level.vertex_edges.count(v)
     })
 }
 
-/// Whether a sharpness is the default `0.0` a table need not store (by its
-/// bits: `-0.0` and NaN are kept).
+/// Whether `x` is the default value a sparse table need not store: all zero
+/// bits (a sharpness of `0.0` but not `-0.0` or NaN; a tag with every flag
+/// clear and the smooth rule).
 #[inline(always)]
-fn is_default_sharpness(s: f32) -> bool {
-    s.to_bits() == 0
+fn is_default<T: Pod>(x: T) -> bool {
+    bytemuck::bytes_of(&x).iter().all(|&b| b == 0)
 }
 
-/// Entry `i` of a sharpness table, `0.0` when the table is stored empty.
+/// Entry `i` of a sparse table (sharpness, tags), the default when the table
+/// is stored empty.
 #[inline(always)]
-fn sparse_at(table: &[f32], i: usize) -> f32 {
-    if table.is_empty() { 0.0 } else { table[i] }
-}
-
-/// Sets entry `i` of a sharpness table of `len` entries stored empty while
-/// they are all `0.0`: the first other value allocates it.
-#[inline]
-fn set_sparse(table: &mut Table<f32>, len: usize, i: usize, s: f32) {
+fn sparse_at<T: Pod>(table: &[T], i: usize) -> T {
     if table.is_empty() {
-        if is_default_sharpness(s) {
+        T::zeroed()
+    } else {
+        table[i]
+    }
+}
+
+/// Sets entry `i` of a table of `len` entries stored empty while they are
+/// all the default: the first other value allocates it.
+#[inline]
+fn set_sparse<T: Pod>(table: &mut Table<T>, len: usize, i: usize, x: T) {
+    if table.is_empty() {
+        if is_default(x) {
             return;
         }
         *table = Table::zeroed(len);
     }
-    table[i] = s;
+    table[i] = x;
 }
 
-/// Empties a sharpness table whose entries are all `0.0` (a value set and
-/// later overwritten with `0.0`).
-fn drop_if_default(table: &mut Table<f32>) {
-    if table.iter().all(|&s| is_default_sharpness(s)) {
+/// Empties a table whose entries are all the default (values set and later
+/// overwritten with the default, or decayed to it).
+fn drop_if_default<T: Pod>(table: &mut Table<T>) {
+    if table.iter().all(|&x| is_default(x)) {
         *table = Table::new();
     }
 }
@@ -401,9 +408,12 @@ pub struct Level {
     /// Vertex sharpness, empty when every vertex is smooth (sharpness `0.0`);
     /// read it through [`Level::vertex_sharpness_at`].
     pub vertex_sharpness: Table<f32>,
-    /// Edge tags (empty in a minimal last level).
+    /// Edge tags, empty when every tag is the default and in a minimal last
+    /// level; read them through [`Level::edge_tag`].
     pub edge_tags: Table<EdgeTag>,
-    /// Vertex tags.
+    /// Vertex tags, empty when every tag is the default (every vertex smooth:
+    /// no boundary, sharp or non-manifold feature); read them through
+    /// [`Level::vertex_tag`].
     pub vertex_tags: Table<VertexTag>,
     /// Hole flag of each face, empty when no face is a hole; read it through
     /// [`Level::is_hole`].
@@ -456,6 +466,49 @@ impl Level {
     #[inline(always)]
     pub fn is_hole(&self, f: usize) -> bool {
         !self.face_holes.is_empty() && self.face_holes[f]
+    }
+
+    /// The tags of edge `e`: the default when the level stores no edge tags
+    /// (every edge smooth and manifold, with two faces). A minimal last level
+    /// stores none either, whatever its edges' tags.
+    #[inline(always)]
+    pub fn edge_tag(&self, e: usize) -> EdgeTag {
+        sparse_at(&self.edge_tags, e)
+    }
+
+    /// The tags of vertex `v`, with its rule: the default (rule
+    /// [`Rule::Smooth`], no flag) when the level stores no vertex tags.
+    #[inline(always)]
+    pub fn vertex_tag(&self, v: usize) -> VertexTag {
+        sparse_at(&self.vertex_tags, v)
+    }
+
+    /// Sets the tags of edge `e`. The table stays empty while every tag is
+    /// the default: the first other tag allocates it.
+    #[inline]
+    pub(crate) fn set_edge_tag(&mut self, e: usize, tag: EdgeTag) {
+        set_sparse(&mut self.edge_tags, self.num_edges, e, tag);
+    }
+
+    /// Sets the tags of vertex `v`, as [`Level::set_edge_tag`] does.
+    #[inline]
+    pub(crate) fn set_vertex_tag(&mut self, v: usize, tag: VertexTag) {
+        set_sparse(&mut self.vertex_tags, self.vertex_count, v, tag);
+    }
+
+    /// Changes the tags of vertex `v` with `f`, as [`Level::set_vertex_tag`]
+    /// sets them.
+    #[inline]
+    pub(crate) fn update_vertex_tag(&mut self, v: usize, f: impl FnOnce(&mut VertexTag)) {
+        let mut tag = self.vertex_tag(v);
+        f(&mut tag);
+        self.set_vertex_tag(v, tag);
+    }
+
+    /// Empties the tag tables whose tags are all the default.
+    pub(crate) fn drop_default_tags(&mut self) {
+        drop_if_default(&mut self.edge_tags);
+        drop_if_default(&mut self.vertex_tags);
     }
 
     /// Sets the sharpness of edge `e`. The table stays empty while every
@@ -598,19 +651,32 @@ mod relation_tests {
 
 #[cfg(test)]
 mod tests {
+    use super::{EdgeTag, VertexTag};
     use crate::mesh::Mesh;
-    use crate::options::{CreasingMethod, Options, UniformOptions};
+    use crate::options::{BoundaryInterpolation, CreasingMethod, Options, UniformOptions};
     use crate::refiner::Refiner;
+    use crate::rules::{Rule, crease};
     use crate::shapes;
 
     /// `mesh` refined to `depth` under each scheme that applies, with full
     /// topology in the last level or not.
     fn refiners(mesh: &Mesh, depth: u32, full: bool) -> Vec<Refiner> {
+        refiners_with(mesh, depth, full, BoundaryInterpolation::None)
+    }
+
+    /// [`refiners`] with another boundary interpolation.
+    fn refiners_with(
+        mesh: &Mesh,
+        depth: u32,
+        full: bool,
+        boundary: BoundaryInterpolation,
+    ) -> Vec<Refiner> {
         mesh.applicable_schemes()
             .iter()
             .map(|&scheme| {
                 let options = Options::default()
                     .with_scheme(scheme)
+                    .with_boundary(boundary)
                     .with_creasing(CreasingMethod::Uniform);
                 let mut r = Refiner::new(mesh, &options).unwrap();
                 r.refine_uniform(UniformOptions::new(depth).full_topology(full))
@@ -649,6 +715,149 @@ mod tests {
                 ]
             })
             .collect()
+    }
+
+    /// Which of edge tags and vertex tags each level of `r` stores, after
+    /// checking the tags read through the accessors: the same vertex tags at
+    /// every level as `full` (the same refinement with full topology in its
+    /// last level), the same edge tags where `r` keeps them, and at full
+    /// levels tags that match the topology and sharpness (boundary edges and
+    /// vertices, sharp flags, rules from the sharp edge count).
+    fn stored_tags(r: &Refiner, full: &Refiner) -> Vec<[bool; 2]> {
+        (0..=r.max_level())
+            .map(|l| {
+                let (level, f) = (
+                    r.internal_level(l).unwrap(),
+                    full.internal_level(l).unwrap(),
+                );
+                for v in 0..level.vertex_count {
+                    assert_eq!(level.vertex_tag(v), f.vertex_tag(v), "level {l} vertex {v}");
+                }
+                if level.has_full_topology() {
+                    for e in 0..level.edge_count() {
+                        let tag = level.edge_tag(e);
+                        assert_eq!(tag, f.edge_tag(e), "level {l} edge {e}");
+                        assert_eq!(tag.boundary(), level.edge_faces.count(e) < 2);
+                        let s = level.edge_sharpness_at(e);
+                        assert_eq!(tag.inf_sharp(), crease::is_infinite(s));
+                        assert_eq!(tag.semi_sharp(), crease::is_sharp(s) && !tag.inf_sharp());
+                    }
+                    for v in 0..level.vertex_count {
+                        let tag = level.vertex_tag(v);
+                        let edges = level
+                            .vertex_edges_of(v)
+                            .iter()
+                            .map(|&e| level.edge_tag(e as usize));
+                        let sharp = edges.clone().filter(|t| t.inf_sharp() || t.semi_sharp());
+                        let s = level.vertex_sharpness_at(v);
+                        assert_eq!(tag.boundary(), edges.clone().any(|t| t.boundary()));
+                        assert_eq!(tag.inf_sharp(), crease::is_infinite(s));
+                        assert_eq!(
+                            tag.semi_sharp_edges(),
+                            edges.clone().any(|t| t.semi_sharp())
+                        );
+                        assert_eq!(tag.inf_sharp_edges(), edges.clone().any(|t| t.inf_sharp()));
+                        assert_eq!(
+                            tag.rule(),
+                            crease::vertex_rule_from_sharp_edge_count(s, sharp.count()),
+                            "level {l} vertex {v}"
+                        );
+                    }
+                }
+                [!level.edge_tags.is_empty(), !level.vertex_tags.is_empty()]
+            })
+            .collect()
+    }
+
+    /// [`stored_tags`] of each refinement of `mesh` to level 3, with and
+    /// without full topology in the last level, by scheme.
+    fn stored_tags_by_scheme(
+        mesh: &Mesh,
+        boundary: BoundaryInterpolation,
+    ) -> Vec<(bool, Vec<[bool; 2]>)> {
+        let full = refiners_with(mesh, 3, true, boundary);
+        [false, true]
+            .into_iter()
+            .flat_map(|f| {
+                let full = &full;
+                refiners_with(mesh, 3, f, boundary)
+                    .into_iter()
+                    .zip(full)
+                    .map(move |(r, rf)| (f, stored_tags(&r, rf)))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn smooth_closed_levels_store_no_tags() {
+        for mesh in [shapes::torus(6, 5), shapes::torus_triangles(6, 5)] {
+            for (_, stored) in stored_tags_by_scheme(&mesh, BoundaryInterpolation::None) {
+                assert_eq!(stored, vec![[false; 2]; 4]);
+            }
+            for r in refiners(&mesh, 2, true) {
+                let level = r.internal_level(1).unwrap();
+                assert_eq!(level.vertex_tag(0), VertexTag::default());
+                assert_eq!(level.vertex_tag(0).rule(), Rule::Smooth);
+                assert_eq!(level.edge_tag(0), EdgeTag::default());
+            }
+        }
+    }
+
+    #[test]
+    fn boundaries_creases_corners_and_darts_store_tags() {
+        // Boundaries (and their corners) stay at every level; a minimal last
+        // level (none with face-varying data) stores no edge tags.
+        let mut grid = shapes::grid(3, 2);
+        grid.fvar_channels.clear();
+        for boundary in [
+            BoundaryInterpolation::None,
+            BoundaryInterpolation::EdgeAndCorner,
+        ] {
+            for (full, stored) in stored_tags_by_scheme(&grid, boundary) {
+                assert_eq!(
+                    stored,
+                    [[true, true], [true, true], [true, true], [full, true]]
+                );
+            }
+        }
+        for r in refiners_with(&grid, 1, true, BoundaryInterpolation::EdgeAndCorner) {
+            let level = r.internal_level(0).unwrap();
+            assert!(level.edge_tag(0).boundary() && level.edge_tag(0).inf_sharp());
+            let corner = level.vertex_tag(0);
+            assert!(corner.corner() && corner.boundary() && corner.inf_sharp());
+            assert_eq!(corner.rule(), Rule::Corner);
+            assert_eq!(level.vertex_tag(1).rule(), Rule::Crease);
+            assert_eq!(level.vertex_tag(5).rule(), Rule::Smooth);
+        }
+        // A crease of 2 and a corner of 1.5 decay to 0 after two levels:
+        // their tags go back to the default and are not stored.
+        for mut mesh in [shapes::torus(6, 5), shapes::torus_triangles(6, 5)] {
+            mesh.add_crease(0, 1, 2.0);
+            mesh.add_corner(10, 1.5);
+            for (_, stored) in stored_tags_by_scheme(&mesh, BoundaryInterpolation::None) {
+                assert_eq!(stored, [[true, true], [true, true], [false; 2], [false; 2]]);
+            }
+            for r in refiners(&mesh, 1, true) {
+                let level = r.internal_level(0).unwrap();
+                assert_eq!(level.vertex_tag(0).rule(), Rule::Dart);
+                assert!(level.vertex_tag(0).semi_sharp_edges());
+                assert_eq!(level.vertex_tag(10).rule(), Rule::Corner);
+                assert!(level.vertex_tag(10).semi_sharp());
+                assert!(
+                    level
+                        .edge_tag(level.find_edge(0, 1).unwrap() as usize)
+                        .semi_sharp()
+                );
+            }
+            // An infinitely sharp crease (darts at its ends) stays.
+            mesh.add_crease(0, 1, crate::rules::SHARPNESS_INFINITE);
+            for (full, stored) in stored_tags_by_scheme(&mesh, BoundaryInterpolation::None) {
+                assert_eq!(
+                    stored,
+                    [[true, true], [true, true], [true, true], [full, true]]
+                );
+            }
+        }
     }
 
     /// The values above 0.

@@ -759,7 +759,10 @@ pub(crate) struct ChildTags {
 }
 
 impl ChildTags {
-    /// A minimal child stores no edge sharpness or tags.
+    /// A minimal child stores no edge sharpness or tags. Like sharpness, the
+    /// tag tables stay empty while every tag is the default: a parent storing
+    /// no tags (a smooth closed mesh) passes none on, and tags that decay
+    /// back to the default are dropped.
     fn new(
         parent: &Level,
         r: &Refinement,
@@ -768,22 +771,17 @@ impl ChildTags {
         num_edges: usize,
         minimal: bool,
     ) -> Self {
-        // The propagation works on a level holding just these tables; the
-        // sharpness tables stay empty unless a value other than 0.0 is set.
+        // The propagation works on a level holding just these tables; they
+        // stay empty unless a value other than the default is set.
         let mut child = Level {
             depth: parent.depth + 1,
             vertex_count,
             num_edges,
-            edge_tags: if minimal {
-                Table::new()
-            } else {
-                Table::zeroed(num_edges)
-            },
-            vertex_tags: Table::zeroed(vertex_count),
             ..Level::default()
         };
-        propagate_tags(parent, &mut child, r);
-        subdivide_sharpness(parent, &mut child, r, options.creasing);
+        propagate_tags(parent, &mut child, r, !minimal);
+        subdivide_sharpness(parent, &mut child, r, options.creasing, !minimal);
+        child.drop_default_tags();
         ChildTags {
             edge_sharpness: child.edge_sharpness,
             vertex_sharpness: child.vertex_sharpness,
@@ -1019,14 +1017,17 @@ impl TableWriter {
 /// Child tags: faces inherit holes (done by the caller), edge halves inherit
 /// their parent edge's tags, edges inside faces are smooth, face points are
 /// smooth, edge points take their rule from the parent edge, and children of
-/// vertices inherit their parent's tags.
-fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement) {
-    let store_edges = !child.edge_tags.is_empty();
-    for e in 0..parent.edge_count() {
-        let t = parent.edge_tags[e];
+/// vertices inherit their parent's tags. Edge tags are stored when
+/// `store_edges` (not in a minimal child).
+///
+/// Default edge tags give default child tags, so a parent storing no edge
+/// (vertex) tags skips the pass over its edges (vertices), and the child's
+/// tables are allocated only by a tag other than the default.
+fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement, store_edges: bool) {
+    for (e, &t) in parent.edge_tags.iter().enumerate() {
         if store_edges {
-            child.edge_tags[r.edge_child_edge(e, 0) as usize] = t;
-            child.edge_tags[r.edge_child_edge(e, 1) as usize] = t;
+            child.set_edge_tag(r.edge_child_edge(e, 0) as usize, t);
+            child.set_edge_tag(r.edge_child_edge(e, 1) as usize, t);
         }
         let sharp = t.semi_sharp() || t.inf_sharp();
         let mut tag = VertexTag::default();
@@ -1035,10 +1036,10 @@ fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement) {
         tag.set_semi_sharp_edges(t.semi_sharp());
         tag.set_inf_sharp_edges(t.inf_sharp());
         tag.set_rule(if sharp { Rule::Crease } else { Rule::Smooth });
-        child.vertex_tags[r.edge_child(e) as usize] = tag;
+        child.set_vertex_tag(r.edge_child(e) as usize, tag);
     }
-    for v in 0..parent.vertex_count {
-        child.vertex_tags[r.vertex_child(v) as usize] = parent.vertex_tags[v];
+    for (v, &tag) in parent.vertex_tags.iter().enumerate() {
+        child.set_vertex_tag(r.vertex_child(v) as usize, tag);
     }
 }
 
@@ -1052,7 +1053,7 @@ pub fn child_edge(
     method: CreasingMethod,
     around: &mut Vec<f32>,
 ) -> (f32, EdgeTag) {
-    let mut tag = parent.edge_tags[e];
+    let mut tag = parent.edge_tag(e);
     if tag.inf_sharp() {
         return (SHARPNESS_INFINITE, tag);
     }
@@ -1103,37 +1104,44 @@ pub fn child_edge_sharpness(
 }
 
 /// Edge and vertex sharpness of the child level, then the rules of child
-/// vertices whose neighbourhood was semi-sharp. A minimal child stores no
-/// edge sharpness or tags: they are recomputed where the rules need them.
+/// vertices whose neighbourhood was semi-sharp. A minimal child (not
+/// `store_edges`) stores no edge sharpness or tags: they are recomputed where
+/// the rules need them.
 ///
 /// Sharp and semi-sharp tags go with stored sharpness (a value other than
 /// 0.0), so a parent storing no edge (vertex) sharpness has no sharp edges
 /// (vertices) and the passes over them are skipped; the child's tables are
 /// allocated only by a value other than 0.0.
-fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method: CreasingMethod) {
+fn subdivide_sharpness(
+    parent: &Level,
+    child: &mut Level,
+    r: &Refinement,
+    method: CreasingMethod,
+    store_edges: bool,
+) {
     let sharp_edges = !parent.edge_sharpness.is_empty();
     let sharp_vertices = !parent.vertex_sharpness.is_empty();
     if !sharp_edges && !sharp_vertices {
         return;
     }
     let mut around = Vec::new();
-    let store_edges = !child.edge_tags.is_empty();
     if store_edges && sharp_edges {
         for e in 0..parent.edge_count() {
-            if !parent.edge_tags[e].semi_sharp() && !parent.edge_tags[e].inf_sharp() {
+            let t = parent.edge_tag(e);
+            if !t.semi_sharp() && !t.inf_sharp() {
                 continue;
             }
             for j in 0..2 {
                 let c = r.edge_child_edge(e, j) as usize;
                 let (s, tag) = child_edge(parent, e, j, method, &mut around);
                 child.set_edge_sharpness(c, s);
-                child.edge_tags[c] = tag;
+                child.set_edge_tag(c, tag);
             }
         }
     }
     let edge_semi = |e: usize, j: usize, around: &mut Vec<f32>, child: &Level| -> EdgeTag {
         if store_edges {
-            child.edge_tags[r.edge_child_edge(e, j) as usize]
+            child.edge_tag(r.edge_child_edge(e, j) as usize)
         } else {
             child_edge(parent, e, j, method, around).1
         }
@@ -1141,14 +1149,14 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
     if sharp_vertices {
         for v in 0..parent.vertex_count {
             let c = r.vertex_child(v) as usize;
-            let tag = child.vertex_tags[c];
+            let tag = child.vertex_tag(c);
             if tag.inf_sharp() {
                 child.set_vertex_sharpness(c, SHARPNESS_INFINITE);
             } else if tag.semi_sharp() {
                 let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness_at(v));
                 child.set_vertex_sharpness(c, s);
                 if !crease::is_sharp(s) {
-                    child.vertex_tags[c].set_semi_sharp(false);
+                    child.update_vertex_tag(c, |t| t.set_semi_sharp(false));
                 }
             }
         }
@@ -1157,25 +1165,26 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
     if sharp_edges {
         for e in 0..parent.edge_count() {
             let c = r.edge_child(e) as usize;
-            if !child.vertex_tags[c].semi_sharp_edges() {
+            if !child.vertex_tag(c).semi_sharp_edges() {
                 continue;
             }
             let count = (0..2)
                 .filter(|&j| edge_semi(e, j, &mut around, child).semi_sharp())
                 .count();
-            let tag = &mut child.vertex_tags[c];
-            tag.set_semi_sharp_edges(count > 0);
-            tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, count));
+            child.update_vertex_tag(c, |tag| {
+                tag.set_semi_sharp_edges(count > 0);
+                tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, count));
+            });
         }
     }
     // Children of vertices whose semi-sharp features may have decayed.
     for v in 0..parent.vertex_count {
-        let p = parent.vertex_tags[v];
+        let p = parent.vertex_tag(v);
         if !p.semi_sharp() && !p.semi_sharp_edges() {
             continue;
         }
         let c = r.vertex_child(v) as usize;
-        let decayed = p.semi_sharp() && !child.vertex_tags[c].semi_sharp();
+        let decayed = p.semi_sharp() && !child.vertex_tag(c).semi_sharp();
         if p.semi_sharp_edges() || decayed {
             // The child's edges are the halves of the parent's edges at this
             // vertex (found through the parent: the child level may be minimal).
@@ -1189,11 +1198,12 @@ fn subdivide_sharpness(parent: &Level, child: &mut Level, r: &Refinement, method
                 inf += t.inf_sharp() as usize;
                 semi += t.semi_sharp() as usize;
             }
-            let tag = &mut child.vertex_tags[c];
-            tag.set_semi_sharp_edges(semi > 0);
-            if !tag.semi_sharp() && !tag.inf_sharp() {
-                tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, inf + semi));
-            }
+            child.update_vertex_tag(c, |tag| {
+                tag.set_semi_sharp_edges(semi > 0);
+                if !tag.semi_sharp() && !tag.inf_sharp() {
+                    tag.set_rule(crease::vertex_rule_from_sharp_edge_count(0.0, inf + semi));
+                }
+            });
         }
     }
 }
