@@ -138,10 +138,18 @@ impl ParallelRow {
 
 /// Runs `a` and `b` alternately (the order swapping every repetition) and
 /// returns their median times in seconds.
+///
+/// Every timed run comes right after an untimed run of the same closure, as
+/// criterion's warm-up does: both engines share this process's allocator,
+/// and without it each engine would be timed in the heap the other just left
+/// (OpenSubdiv's frees trim the heap the native engine then faults in again,
+/// and the reverse), which measures their interaction more than either. The
+/// order still alternates, so the drift of this machine cancels out.
 pub fn interleaved(reps: usize, mut a: impl FnMut(), mut b: impl FnMut()) -> (f64, f64) {
     let (mut ta, mut tb) = (Vec::with_capacity(reps), Vec::with_capacity(reps));
     for i in 0..reps.max(1) {
         let time = |f: &mut dyn FnMut()| {
+            f();
             let t = Instant::now();
             f();
             t.elapsed().as_secs_f64()
@@ -196,7 +204,8 @@ pub fn run(
     threads: usize,
     mut progress: impl FnMut(&str),
 ) -> Result<Report> {
-    let reps = if quick { 3 } else { 7 };
+    // Each repetition runs both engines twice (see `interleaved`).
+    let reps = if quick { 3 } else { 5 };
     let mut rows = Vec::new();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.max(1))
