@@ -336,7 +336,8 @@ impl Relation {
         match &self.offsets {
             Offsets::Table(t) if t.len() > 1 => {
                 let size = (t[1] - t[0]) as usize;
-                if t.windows(2).all(|w| (w[1] - w[0]) as usize == size) && t[0] == 0 {
+                // Size 0 stays a table: `element_of` divides by the size.
+                if size > 0 && t[0] == 0 && t.windows(2).all(|w| (w[1] - w[0]) as usize == size) {
                     Relation {
                         offsets: Offsets::Uniform {
                             len: t.len() - 1,
@@ -646,6 +647,10 @@ mod relation_tests {
         assert_ne!(Relation::uniform(2, 3), Relation::uniform(3, 2));
         assert_eq!(Relation::uniform(2, 3).members.len(), 6);
         assert!(Relation::new().is_empty());
+        // Elements without members keep their table (no division by zero).
+        let empty = Relation::from_parts(vec![0, 0, 0].into(), Table::new()).compact();
+        assert!(empty.uniform_size().is_none());
+        assert_eq!((empty.len(), empty.count(1)), (2, 0));
     }
 }
 
