@@ -471,42 +471,24 @@ impl Lanes<1> for f32 {
     }
 }
 
-impl Lanes<2> for [f32; 2] {
+/// Two or three components (`[f32; 2]`, `[f32; 3]`) read from the caller's
+/// base as it is (three: tables with fewer terms than base vertices, and
+/// [`StencilTable::apply_par_f32_into`]).
+impl<const W: usize> Lanes<W> for [f32; W] {
     type Src = f32;
-    const ZERO: Self = [0.0; 2];
+    const ZERO: Self = [0.0; W];
     #[inline(always)]
     fn load(src: &[f32], i: u32) -> Self {
-        let v = i as usize * 2;
-        let s = &src[v..v + 2];
-        [s[0], s[1]]
+        let v = i as usize * W;
+        let s = &src[v..v + W];
+        std::array::from_fn(|k| s[k])
     }
     #[inline(always)]
     fn add_scaled(self, w: f32, s: Self) -> Self {
-        [self[0] + w * s[0], self[1] + w * s[1]]
+        std::array::from_fn(|k| self[k] + w * s[k])
     }
     #[inline(always)]
-    fn store(self) -> [f32; 2] {
-        self
-    }
-}
-
-/// Three components read from the caller's base as it is (tables with fewer
-/// terms than base vertices, and [`StencilTable::apply_par_f32_into`]).
-impl Lanes<3> for [f32; 3] {
-    type Src = f32;
-    const ZERO: Self = [0.0; 3];
-    #[inline(always)]
-    fn load(src: &[f32], i: u32) -> Self {
-        let v = i as usize * 3;
-        let s = &src[v..v + 3];
-        [s[0], s[1], s[2]]
-    }
-    #[inline(always)]
-    fn add_scaled(self, w: f32, s: Self) -> Self {
-        [self[0] + w * s[0], self[1] + w * s[1], self[2] + w * s[2]]
-    }
-    #[inline(always)]
-    fn store(self) -> [f32; 3] {
+    fn store(self) -> [f32; W] {
         self
     }
 }

@@ -303,11 +303,11 @@ impl Refiner {
     /// ```
     pub fn faces(&self, level: u32) -> Result<Faces<'_>> {
         let l = self.internal_level(level)?;
-        let holes = &l.face_holes[..];
         Ok(Faces {
             offsets: l.face_vertices.offsets_slice(),
             vertices: &l.face_vertices.members,
-            holes: holes.contains(&true).then_some(holes),
+            // Stored only when some face is a hole.
+            holes: (!l.face_holes.is_empty()).then_some(&l.face_holes[..]),
             fvar_face_values: self
                 .fvar
                 .iter()

@@ -374,6 +374,19 @@ fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut
     phase(nf + ne, faces, verts);
 }
 
+/// The values a step's term `s` reads: a parent vertex of `src`, or (with
+/// [`CHILD_BIT`]) a face point of this step, `faces` holding those from
+/// child vertex `f0` on.
+#[inline(always)]
+fn source_row<'a, T>(s: u32, src: &'a [T], faces: &'a [T], f0: usize, width: usize) -> &'a [T] {
+    let (data, i) = if s & CHILD_BIT != 0 {
+        (faces, (s & !CHILD_BIT) as usize - f0)
+    } else {
+        (src, s as usize)
+    };
+    &data[i * width..i * width + width]
+}
+
 /// Rows `first_row..` of a step into `out` (whole rows of `W` values), in
 /// parallel chunks.
 fn step_rows<const W: usize, T: crate::Real>(
@@ -390,12 +403,7 @@ fn step_rows<const W: usize, T: crate::Real>(
             let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
             let mut acc = [T::ZERO; W];
             for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
-                let (data, i) = if s & CHILD_BIT != 0 {
-                    (faces, (s & !CHILD_BIT) as usize - f0)
-                } else {
-                    (src, s as usize)
-                };
-                for (x, &v) in acc.iter_mut().zip(&data[i * W..i * W + W]) {
+                for (x, &v) in acc.iter_mut().zip(source_row(s, src, faces, f0, W)) {
                     *x += v * w;
                 }
             }
@@ -421,12 +429,7 @@ fn step_rows_any<T: crate::Real>(
             o.fill(T::ZERO);
             let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
             for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
-                let (data, i) = if s & CHILD_BIT != 0 {
-                    (faces, (s & !CHILD_BIT) as usize - f0)
-                } else {
-                    (src, s as usize)
-                };
-                for (x, &v) in o.iter_mut().zip(&data[i * width..i * width + width]) {
+                for (x, &v) in o.iter_mut().zip(source_row(s, src, faces, f0, width)) {
                     *x += v * w;
                 }
             }

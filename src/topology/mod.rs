@@ -416,7 +416,7 @@ pub struct Level {
     /// no boundary, sharp or non-manifold feature); read them through
     /// [`Level::vertex_tag`].
     pub vertex_tags: Table<VertexTag>,
-    /// Hole flag of each face, empty when no face is a hole; read it through
+    /// Hole flag of each face, empty exactly when no face is a hole; read it through
     /// [`Level::is_hole`].
     pub face_holes: Vec<bool>,
     /// Largest number of faces at any edge.
