@@ -189,13 +189,6 @@ pub fn measure_bandwidth() -> f64 {
     (2 * n * 8) as f64 / best
 }
 
-fn flat32(mesh: &Mesh) -> Vec<f32> {
-    mesh.positions
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .collect()
-}
-
 /// Runs every comparison on `inputs`; `progress` is called once per step
 /// with a description.
 pub fn run(
@@ -217,7 +210,7 @@ pub fn run(
     let mut stencil_bandwidth = None;
     for input in inputs {
         let options = Options::default().with_scheme(input.scheme);
-        let base = flat32(&input.mesh);
+        let base = input.mesh.flat_positions::<f32>();
         let label =
             |task: &str, level: u32| format!("{} {} L{level}: {task}", input.name, input.scheme);
         for level in 1..=input.max_level {
@@ -586,7 +579,7 @@ pub fn meshes_row(
             (
                 &m.mesh,
                 Options::default().with_scheme(m.scheme),
-                flat32(&m.mesh),
+                m.mesh.flat_positions::<f32>(),
             )
         })
         .collect();

@@ -456,20 +456,17 @@ fn refine_counts(
     uniform: UniformOptions,
     precision: Precision,
 ) -> Result<Vec<(usize, usize)>, Failure> {
-    let flat64 = || -> Vec<f64> { mesh.positions.iter().flat_map(|p| p.to_array()).collect() };
-    let flat32 = || -> Vec<f32> {
-        mesh.positions
-            .iter()
-            .flat_map(|p| p.as_vec3().to_array())
-            .collect()
-    };
     match engine {
         Engine::Native => {
             let run = || -> subdiv::Result<Vec<(usize, usize)>> {
                 use subdiv::refiner::refine_last;
                 let counts = match precision {
-                    Precision::F64 => refine_last(mesh, options, uniform, 3, &flat64())?.0,
-                    Precision::F32 => refine_last(mesh, options, uniform, 3, &flat32())?.0,
+                    Precision::F64 => {
+                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f64>())?.0
+                    }
+                    Precision::F32 => {
+                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f32>())?.0
+                    }
                 };
                 Ok(counts.iter().map(|c| (c.vertices, c.faces)).collect())
             };
@@ -486,8 +483,8 @@ fn refine_counts(
             let mut r = subdiv::osd::Refiner::new(mesh, options)?;
             r.refine_uniform(uniform)?;
             match precision {
-                Precision::F64 => drop(r.interpolate_last(3, &flat64())?),
-                Precision::F32 => drop(r.interpolate_last(3, &flat32())?),
+                Precision::F64 => drop(r.interpolate_last(3, &mesh.flat_positions::<f64>())?),
+                Precision::F32 => drop(r.interpolate_last(3, &mesh.flat_positions::<f32>())?),
             }
             Ok((0..=uniform.level)
                 .map(|l| r.level_counts(l).map(|c| (c.vertices, c.faces)))
@@ -495,7 +492,7 @@ fn refine_counts(
         }
         #[cfg(not(feature = "osd"))]
         Engine::Osd => {
-            let _ = (mesh, options, uniform, precision, flat64, flat32);
+            let _ = (mesh, options, uniform, precision);
             Err(Failure::Unavailable(
                 "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
                     .into(),
@@ -591,13 +588,7 @@ fn write_native_last(
         r: &subdiv::refiner::Refiner,
         mesh: &Mesh,
     ) -> subdiv::Result<(Vec<T>, Option<Vec<T>>)> {
-        let base: Vec<T> = mesh
-            .positions
-            .iter()
-            .flat_map(|p| p.to_array())
-            .map(T::from_f64)
-            .collect();
-        let positions = r.interpolate_last(3, &base)?;
+        let positions = r.interpolate_last(3, &mesh.flat_positions::<T>())?;
         // Only the first face-varying channel is written.
         let uv = match mesh.fvar_channels.first() {
             Some(channel) => {

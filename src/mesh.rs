@@ -280,6 +280,23 @@ impl Mesh {
         self.corners.push(Corner { vertex, sharpness });
     }
 
+    /// The positions as flat `x, y, z` values in `T` (rounded to the nearest
+    /// `f32` for `f32`): the vertex data the refiners interpolate.
+    ///
+    /// ```
+    /// let cube = subdiv::shapes::cube();
+    /// let flat: Vec<f32> = cube.flat_positions();
+    /// assert_eq!(flat.len(), 3 * cube.vertex_count());
+    /// assert_eq!(flat[..3], [cube.positions[0].x as f32, cube.positions[0].y as f32, cube.positions[0].z as f32]);
+    /// ```
+    pub fn flat_positions<T: crate::Real>(&self) -> Vec<T> {
+        self.positions
+            .iter()
+            .flat_map(|p| p.to_array())
+            .map(T::from_f64)
+            .collect()
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

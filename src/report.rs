@@ -895,7 +895,7 @@ fn compare_limit(n: &Refinement, o: &Refinement, tolerance: f64) -> Option<Limit
 }
 
 fn time_level(mesh: &Mesh, options: &Options, level: u32, quick: bool) -> Result<Timing> {
-    let base: Vec<f64> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+    let base: Vec<f64> = mesh.flat_positions();
     let uniform = UniformOptions::new(level);
     let native = || -> Result<usize> {
         let mut r = refiner::Refiner::new(mesh, options)?;
