@@ -410,6 +410,22 @@ fn split_quad_faces(
         let edges = parent.face_edges_of(f);
         let n = verts.len();
         let fc = r.face_child(f);
+        if let (Ok(verts), Ok(edges)) = (<&[u32; 4]>::try_from(verts), <&[u32; 4]>::try_from(edges))
+        {
+            // Quads, the common case: the same values, written a whole
+            // face (four children) at a time.
+            let at = 4 * (base - first);
+            split_quad(
+                parent,
+                r,
+                f,
+                verts,
+                edges,
+                &mut fv_out[at..at + 16],
+                fe_out.as_deref_mut().map(|fe| &mut fe[at..at + 16]),
+            );
+            continue;
+        }
         for j in 0..n {
             let jp = prev(j, n);
             let c = base + j - first;
@@ -428,30 +444,97 @@ fn split_quad_faces(
                 fv_out[4 * c + (rot + k) % 4] = v;
             }
             if let Some(fe_out) = fe_out.as_deref_mut() {
-                let ev_prev = parent.edge_vertices[e_prev];
-                let ev_next = parent.edge_vertices[e_next];
-                let in_prev = if ev_prev[0] != ev_prev[1] {
-                    (ev_prev[0] != corner) as usize
-                } else {
-                    1
-                };
-                let in_next = if ev_next[0] != ev_next[1] {
-                    (ev_next[0] != corner) as usize
-                } else {
-                    0
-                };
-                let e4 = [
-                    r.edge_child_edge(e_next, in_next),
-                    (base + j) as u32,
-                    (base + jp) as u32,
-                    r.edge_child_edge(e_prev, in_prev),
-                ];
+                let e4 = corner_child_edges(parent, r, corner, [e_prev, e_next], base, j, jp);
                 for (k, &e) in e4.iter().enumerate() {
                     fe_out[4 * c + (rot + k) % 4] = e;
                 }
             }
         }
     }
+}
+
+/// The children of quad `f`: what
+/// [`split_quad_faces`] writes for any face, with the face size known.
+#[inline(always)]
+fn split_quad(
+    parent: &Level,
+    r: &Refinement,
+    f: usize,
+    verts: &[u32; 4],
+    edges: &[u32; 4],
+    fv_out: &mut [u32],
+    fe_out: Option<&mut [u32]>,
+) {
+    let fc = r.face_child(f);
+    let base = parent.face_vertices.start(f);
+    let vc = verts.map(|v| r.vertex_child(v as usize));
+    let ec = edges.map(|e| r.edge_child(e as usize));
+    // Child j keeps the parent's orientation: its corner vertex at position j.
+    let mut fv = [0u32; 16];
+    for j in 0..4 {
+        let jp = (j + 3) & 3;
+        let v4 = [vc[j], ec[j], fc, ec[jp]];
+        for (k, &v) in v4.iter().enumerate() {
+            fv[4 * j + ((j + k) & 3)] = v;
+        }
+    }
+    fv_out.copy_from_slice(&fv);
+    if let Some(fe_out) = fe_out {
+        let mut fe = [0u32; 16];
+        for j in 0..4 {
+            let jp = (j + 3) & 3;
+            let e4 = corner_child_edges(
+                parent,
+                r,
+                verts[j],
+                [edges[jp] as usize, edges[j] as usize],
+                base,
+                j,
+                jp,
+            );
+            for (k, &e) in e4.iter().enumerate() {
+                fe[4 * j + ((j + k) & 3)] = e;
+            }
+        }
+        fe_out.copy_from_slice(&fe);
+    }
+}
+
+/// The edges of the child of face corner `j` (vertex `corner`, between
+/// face edges `[e_prev, e_next]`; `jp` is the corner before, `base` the
+/// face's first corner), in the order of the child's vertices from the
+/// corner: the half of `e_next` at the corner, the two edges inside the
+/// face, the half of `e_prev` at the corner.
+#[inline(always)]
+fn corner_child_edges(
+    parent: &Level,
+    r: &Refinement,
+    corner: u32,
+    [e_prev, e_next]: [usize; 2],
+    base: usize,
+    j: usize,
+    jp: usize,
+) -> [u32; 4] {
+    let ev_prev = parent.edge_vertices[e_prev];
+    let ev_next = parent.edge_vertices[e_next];
+    // Of a degenerate edge (both ends the same vertex), the corner takes the
+    // first half of the edge leaving it and the second of the edge reaching it.
+    let in_prev = if ev_prev[0] != ev_prev[1] {
+        (ev_prev[0] != corner) as usize
+    } else {
+        1
+    };
+    let in_next = if ev_next[0] != ev_next[1] {
+        (ev_next[0] != corner) as usize
+    } else {
+        0
+    };
+    [
+        r.edge_child_edge(e_next, in_next),
+        (base + j) as u32,
+        (base + jp) as u32,
+        r.edge_child_edge(e_prev, in_prev),
+    ]
 }
 
 /// Parent faces per parallel task.
