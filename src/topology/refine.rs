@@ -190,20 +190,25 @@ pub fn refine_level(
         let edges_part = || {
             // Edge-vertices: face edges join the face point to an edge point; edge
             // halves join the edge point to an end vertex's child.
-            let mut edge_vertices = Table::zeroed(child_edges);
+            // Both kinds are pushed in the order of their indices (corners
+            // of faces, then two halves per parent edge).
+            let mut edge_vertices = Vec::with_capacity(child_edges);
             for f in 0..nf {
-                let base = parent.face_vertices.start(f);
-                for (j, &e) in parent.face_edges_of(f).iter().enumerate() {
-                    edge_vertices[base + j] = [r.face_child(f), r.edge_child(e as usize)];
-                }
+                let fc = r.face_child(f);
+                edge_vertices.extend(
+                    parent
+                        .face_edges_of(f)
+                        .iter()
+                        .map(|&e| [fc, r.edge_child(e as usize)]),
+                );
             }
-            for e in 0..ne {
-                let ev = parent.edge_vertices[e];
-                for j in 0..2 {
-                    edge_vertices[r.edge_child_edge(e, j) as usize] =
-                        [r.edge_child(e), r.vertex_child(ev[j] as usize)];
-                }
+            debug_assert_eq!(edge_vertices.len(), r.edge_child_edge(0, 0) as usize);
+            for (e, ev) in parent.edge_vertices.iter().enumerate() {
+                let c = r.edge_child(e);
+                edge_vertices.push([c, r.vertex_child(ev[0] as usize)]);
+                edge_vertices.push([c, r.vertex_child(ev[1] as usize)]);
             }
+            let edge_vertices = Table::from(edge_vertices);
 
             // Edge-faces: two per edge inside a face, then the parent edge's
             // faces for each half.
@@ -1045,55 +1050,69 @@ fn prefix_sums(offsets: &mut [u32]) {
 /// local indices pushed in order, each element closed by `end_element`. With
 /// a `uniform` size (every element has that many members) no offsets are
 /// stored.
+///
+/// The values are pushed into vectors reserved at their final size rather
+/// than written into zeroed tables: nothing is written twice (a zeroed
+/// allocation that reuses freed memory is cleared first).
 struct TableWriter {
-    offsets: Offsets,
-    members: Table<u32>,
-    locals: Table<u16>,
-    element: usize,
-    len: usize,
+    starts: Starts,
+    members: Vec<u32>,
+    locals: Option<Vec<u16>>,
+}
+
+/// Where the elements of a [`TableWriter`] start.
+enum Starts {
+    /// The offsets written so far, starting with 0.
+    Table(Vec<u32>),
+    /// Every element has `size` members.
+    Uniform { len: usize, size: usize },
 }
 
 impl TableWriter {
     fn new(elements: usize, members: usize, uniform: Option<usize>, locals: bool) -> Self {
         TableWriter {
-            offsets: match uniform {
-                Some(size) => Offsets::Uniform {
+            starts: match uniform {
+                Some(size) => Starts::Uniform {
                     len: elements,
                     size,
                 },
-                None => Offsets::Table(Table::zeroed(elements + 1)),
+                None => {
+                    let mut offsets = Vec::with_capacity(elements + 1);
+                    offsets.push(0);
+                    Starts::Table(offsets)
+                }
             },
-            members: Table::zeroed(members),
-            locals: Table::zeroed(if locals { members } else { 0 }),
-            element: 0,
-            len: 0,
+            members: Vec::with_capacity(members),
+            locals: locals.then(|| Vec::with_capacity(members)),
         }
     }
 
     #[inline]
     fn push(&mut self, member: u32, local: u16) {
-        self.members[self.len] = member;
-        put(&mut self.locals, self.len, local);
-        self.len += 1;
+        self.members.push(member);
+        if let Some(locals) = &mut self.locals {
+            locals.push(local);
+        }
     }
 
     #[inline]
     fn end_element(&mut self) {
-        self.element += 1;
-        match &mut self.offsets {
-            Offsets::Table(t) => t[self.element] = self.len as u32,
-            Offsets::Uniform { size, .. } => debug_assert_eq!(self.len, self.element * *size),
+        if let Starts::Table(offsets) = &mut self.starts {
+            offsets.push(self.members.len() as u32);
         }
     }
 
     fn finish(self) -> (Relation, Table<u16>) {
-        let relation = Relation {
-            offsets: self.offsets,
-            members: self.members,
+        let offsets = match self.starts {
+            Starts::Table(offsets) => Offsets::Table(offsets.into()),
+            Starts::Uniform { len, size } => Offsets::Uniform { len, size },
         };
-        debug_assert_eq!(self.element, relation.len());
-        debug_assert_eq!(self.len, relation.members.len());
-        (relation, self.locals)
+        let relation = Relation {
+            offsets,
+            members: self.members.into(),
+        };
+        debug_assert_eq!(relation.start(relation.len()), relation.members.len());
+        (relation, self.locals.unwrap_or_default().into())
     }
 }
 
