@@ -551,6 +551,18 @@ impl Level {
         self.edge_faces.get(e)
     }
 
+    /// The faces of edge `e` with the edge's position in each, as `usize`s.
+    ///
+    /// # Panics
+    /// If the level keeps no local indices ([`Level::has_local_indices`]).
+    #[inline(always)]
+    pub fn edge_faces_at(&self, e: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.edge_faces_of(e)
+            .iter()
+            .zip(self.edge_face_locals(e))
+            .map(|(&f, &k)| (f as usize, k as usize))
+    }
+
     /// The position of edge `e` within each of its faces.
     ///
     /// # Panics

@@ -235,12 +235,7 @@ pub fn refine_level(
             for e in 0..ne {
                 let ev = parent.edge_vertices[e];
                 for j in 0..2 {
-                    for (&f, &k) in parent
-                        .edge_faces_of(e)
-                        .iter()
-                        .zip(parent.edge_face_locals(e))
-                    {
-                        let (f, k) = (f as usize, k as usize);
+                    for (f, k) in parent.edge_faces_at(e) {
                         let n = parent.face_vertices.count(f);
                         let of_edge = if ev[0] == ev[1] {
                             j
@@ -270,112 +265,87 @@ pub fn refine_level(
             (edge_vertices, edge_faces, ef_local)
         };
         let vertices_part = || {
-            // Vertex-faces and vertex-edges, per child vertex, grouped by origin:
-            // a face point has one face and one edge per corner, an edge point
+            // Vertex-faces and vertex-edges, per child vertex, by origin: a
+            // face point has one face and one edge per corner, an edge point
             // two faces per parent face and two edges more.
-            let (
-                vf_offsets,
-                ve_offsets,
-                mut vf_members,
-                mut vf_local,
-                mut ve_members,
-                mut ve_local,
-            ) = vertex_relation_tables(
-                parent,
+            let ef_members = parent.edge_faces.members.len();
+            let (vf, ve) = vertex_relation_writers(
                 &r,
-                |f| {
-                    let n = parent.face_vertices.count(f) as u32;
-                    (n, n)
-                },
-                |e| {
-                    let n = parent.edge_faces.count(e) as u32;
-                    (2 * n, 2 + n)
-                },
+                parent.vertex_faces.members.len() + corners + 2 * ef_members,
+                parent.vertex_edges.members.len() + corners + 2 * ne + ef_members,
                 locals,
             );
-
-            for f in 0..nf {
-                let c = r.face_child(f) as usize;
-                let base = parent.face_vertices.start(f);
-                let n = parent.face_vertices.count(f);
-                let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-                for j in 0..n {
-                    vf_members[o + j] = (base + j) as u32;
-                    put(
-                        &mut vf_local,
-                        o + j,
-                        if n == 4 { (j + 2) & 3 } else { 2 } as u16,
-                    );
-                    ve_members[oe + j] = (base + prev(j, n)) as u32;
-                    ve_local[oe + j] = 0;
-                }
-            }
-            let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
-            for e in 0..ne {
-                let c = r.edge_child(e) as usize;
-                let ev = parent.edge_vertices[e];
-                let (mut o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-                // The two halves first, then the edges inside each face; after the
-                // first face the edges are rotated into counter-clockwise order.
-                edge_list.clear();
-                edge_list.push((r.edge_child_edge(e, 0), 0u16));
-                edge_list.push((r.edge_child_edge(e, 1), 0u16));
-                for (i, (&f, &k)) in parent
-                    .edge_faces_of(e)
-                    .iter()
-                    .zip(parent.edge_face_locals(e))
-                    .enumerate()
-                {
-                    let (f, k) = (f as usize, k as usize);
+            let face_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
+                for f in 0..nf {
+                    let base = parent.face_vertices.start(f);
                     let n = parent.face_vertices.count(f);
-                    let base = parent.face_vertices.start(f) as u32;
-                    let (c0, c1) = (k, next(k, n));
-                    vf_members[o] = base + c1 as u32;
-                    put(&mut vf_local, o, if n == 4 { c0 } else { 3 } as u16);
-                    vf_members[o + 1] = base + c0 as u32;
-                    put(&mut vf_local, o + 1, if n == 4 { c1 } else { 1 } as u16);
-                    o += 2;
-                    edge_list.push((base + k as u32, 1));
-                    if i == 0 {
-                        if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
-                            edge_list.swap(0, 1);
-                        }
-                        edge_list.swap(1, 2);
+                    for j in 0..n {
+                        vf.push(
+                            (base + j) as u32,
+                            if n == 4 { (j + 2) & 3 } else { 2 } as u16,
+                        );
+                        ve.push((base + prev(j, n)) as u32, 0);
                     }
+                    vf.end_element();
+                    ve.end_element();
                 }
-                for (i, &(m, l)) in edge_list.iter().enumerate() {
-                    ve_members[oe + i] = m;
-                    ve_local[oe + i] = l;
+            };
+            let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
+                let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
+                for e in 0..ne {
+                    let ev = parent.edge_vertices[e];
+                    // The two halves first, then the edges inside each face; after the
+                    // first face the edges are rotated into counter-clockwise order.
+                    edge_list.clear();
+                    edge_list.push((r.edge_child_edge(e, 0), 0u16));
+                    edge_list.push((r.edge_child_edge(e, 1), 0u16));
+                    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
+                        let n = parent.face_vertices.count(f);
+                        let base = parent.face_vertices.start(f) as u32;
+                        let (c0, c1) = (k, next(k, n));
+                        vf.push(base + c1 as u32, if n == 4 { c0 } else { 3 } as u16);
+                        vf.push(base + c0 as u32, if n == 4 { c1 } else { 1 } as u16);
+                        edge_list.push((base + k as u32, 1));
+                        if i == 0 {
+                            if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
+                                edge_list.swap(0, 1);
+                            }
+                            edge_list.swap(1, 2);
+                        }
+                    }
+                    for &(m, l) in &edge_list {
+                        ve.push(m, l);
+                    }
+                    vf.end_element();
+                    ve.end_element();
                 }
-            }
+            };
             // A vertex's child sits in the child face at its corner: at the
             // same position in a child of a quad, first in other children.
-            let vf = (&vf_offsets[..], &mut vf_members[..], &mut vf_local[..]);
-            let ve = (&ve_offsets[..], &mut ve_members[..], &mut ve_local[..]);
-            vertex_children_relations(parent, &r, vf, ve, |f, k| {
-                let n = parent.face_vertices.count(f as usize);
-                let local = if n == 4 { k } else { 0 };
-                (
-                    parent.face_vertices.start(f as usize) as u32 + k as u32,
-                    local,
-                )
-            });
-            (
-                vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local,
-            )
+            let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
+                vertex_children_relations(parent, &r, vf, ve, |f, k| {
+                    let n = parent.face_vertices.count(f as usize);
+                    let local = if n == 4 { k } else { 0 };
+                    (
+                        parent.face_vertices.start(f as usize) as u32 + k as u32,
+                        local,
+                    )
+                })
+            };
+            fill_vertex_relations(&r, vf, ve, face_children, edge_children, vertex_children)
         };
         let (
             (edge_vertices, edge_faces, ef_local),
-            (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
+            ((vertex_faces, vertex_face_local), (vertex_edges, vertex_edge_local)),
         ) = rayon::join(edges_part, vertices_part);
         ChildRelations {
             edge_vertices,
             edge_faces,
             edge_face_local: ef_local,
-            vertex_faces: Relation::from_parts(vf_offsets, vf_members),
-            vertex_face_local: vf_local,
-            vertex_edges: Relation::from_parts(ve_offsets, ve_members),
-            vertex_edge_local: ve_local,
+            vertex_faces,
+            vertex_face_local,
+            vertex_edges,
+            vertex_edge_local,
         }
     };
     let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
@@ -692,12 +662,7 @@ fn refine_triangles(
             for e in 0..ne {
                 let ev = parent.edge_vertices[e];
                 for j in 0..2 {
-                    for (&f, &k) in parent
-                        .edge_faces_of(e)
-                        .iter()
-                        .zip(parent.edge_face_locals(e))
-                    {
-                        let (f, k) = (f as usize, k as usize);
+                    for (f, k) in parent.edge_faces_at(e) {
                         let of_edge = if ev[0] == ev[1] {
                             j
                         } else {
@@ -714,81 +679,57 @@ fn refine_triangles(
         let vertices_part = || {
             // Vertex-faces and vertex-edges: an edge point has three child
             // triangles and two inner edges per parent face, and two halves.
-            let (
-                vf_offsets,
-                ve_offsets,
-                mut vf_members,
-                mut vf_local,
-                mut ve_members,
-                mut ve_local,
-            ) = vertex_relation_tables(
-                parent,
+            let ef_members = parent.edge_faces.members.len();
+            let (vf, ve) = vertex_relation_writers(
                 &r,
-                |_| (0, 0),
-                |e| {
-                    let n = parent.edge_faces.count(e) as u32;
-                    (3 * n, 2 + 2 * n)
-                },
+                parent.vertex_faces.members.len() + 3 * ef_members,
+                parent.vertex_edges.members.len() + 2 * ne + 2 * ef_members,
                 locals,
             );
-            for e in 0..ne {
-                let c = r.edge_child(e) as usize;
-                let ev = parent.edge_vertices[e];
-                let (mut o, mut oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-                let mut last_half = None;
-                for (i, (&f, &k)) in parent
-                    .edge_faces_of(e)
-                    .iter()
-                    .zip(parent.edge_face_locals(e))
-                    .enumerate()
-                {
-                    let (f, k) = (f as usize, k as usize);
-                    // Leading, middle and trailing child triangles around the edge point.
-                    for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
-                        vf_members[o] = (4 * f + child) as u32;
-                        put(&mut vf_local, o, local as u16);
-                        o += 1;
+            let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
+                for e in 0..ne {
+                    let ev = parent.edge_vertices[e];
+                    let mut last_half = None;
+                    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
+                        // Leading, middle and trailing child triangles around the edge point.
+                        for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)]
+                        {
+                            vf.push((4 * f + child) as u32, local as u16);
+                        }
+                        if i == 0 {
+                            let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+                            let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+                            ve.push(r.edge_child_edge(e, first), 0);
+                            last_half = Some(r.edge_child_edge(e, second));
+                        }
+                        ve.push(inner_edge(f, (k + 1) % 3), 1);
+                        ve.push(inner_edge(f, k), 0);
+                        if let Some(h) = last_half.take() {
+                            ve.push(h, 0);
+                        }
                     }
-                    if i == 0 {
-                        let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
-                        let (first, second) = if reversed { (0, 1) } else { (1, 0) };
-                        ve_members[oe] = r.edge_child_edge(e, first);
-                        ve_local[oe] = 0;
-                        oe += 1;
-                        last_half = Some(r.edge_child_edge(e, second));
-                    }
-                    ve_members[oe] = inner_edge(f, (k + 1) % 3);
-                    ve_local[oe] = 1;
-                    ve_members[oe + 1] = inner_edge(f, k);
-                    ve_local[oe + 1] = 0;
-                    oe += 2;
-                    if let Some(h) = last_half.take() {
-                        ve_members[oe] = h;
-                        ve_local[oe] = 0;
-                        oe += 1;
-                    }
+                    vf.end_element();
+                    ve.end_element();
                 }
-            }
+            };
             // A vertex's child sits in the corner triangle of each face.
-            let vf = (&vf_offsets[..], &mut vf_members[..], &mut vf_local[..]);
-            let ve = (&ve_offsets[..], &mut ve_members[..], &mut ve_local[..]);
-            vertex_children_relations(parent, &r, vf, ve, |f, k| (4 * f + k as u32, k));
-            (
-                vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local,
-            )
+            let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
+                vertex_children_relations(parent, &r, vf, ve, |f, k| (4 * f + k as u32, k))
+            };
+            fill_vertex_relations(&r, vf, ve, |_, _| {}, edge_children, vertex_children)
         };
         let (
             (edge_faces, ef_local),
-            (vf_offsets, vf_members, vf_local, ve_offsets, ve_members, ve_local),
+            ((vertex_faces, vertex_face_local), (vertex_edges, vertex_edge_local)),
         ) = rayon::join(edges_part, vertices_part);
         ChildRelations {
             edge_vertices: Table::new(),
             edge_faces,
             edge_face_local: ef_local,
-            vertex_faces: Relation::from_parts(vf_offsets, vf_members),
-            vertex_face_local: vf_local,
-            vertex_edges: Relation::from_parts(ve_offsets, ve_members),
-            vertex_edge_local: ve_local,
+            vertex_faces,
+            vertex_face_local,
+            vertex_edges,
+            vertex_edge_local,
         }
     };
     let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
@@ -927,69 +868,52 @@ fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<b
     if any { holes } else { Vec::new() }
 }
 
-/// Offsets and zeroed member and local-index tables of a child's
-/// vertex-faces and vertex-edges (the vertex-face local indices empty unless
-/// `locals`). Children of vertices keep their parent's
-/// counts; `face_point(f)` and `edge_point(e)` give the (faces, edges) counts
-/// of the children of face `f` (when the split has face points) and edge `e`.
-#[allow(clippy::type_complexity)]
-fn vertex_relation_tables(
-    parent: &Level,
+/// The writers of a child level's vertex-faces and vertex-edges (`vf` and
+/// `ve` members in all), filled one child vertex after the other by
+/// [`fill_vertex_relations`]. Vertex-face local indices are kept when
+/// `locals`; which end of its edges a vertex is stays in any case, as
+/// sharpness decay reads it while building a minimal child.
+fn vertex_relation_writers(
     r: &Refinement,
-    face_point: impl Fn(usize) -> (u32, u32),
-    edge_point: impl Fn(usize) -> (u32, u32),
+    vf: usize,
+    ve: usize,
     locals: bool,
-) -> (
-    Table<u32>,
-    Table<u32>,
-    Table<u32>,
-    Table<u16>,
-    Table<u32>,
-    Table<u16>,
-) {
-    let child_vertices = r.child_vertex_count();
-    // Counts at `c + 1`, turned into offsets in place.
-    let mut vf_offsets = Table::zeroed(child_vertices + 1);
-    let mut ve_offsets = Table::zeroed(child_vertices + 1);
-    let mut set = |c: u32, (faces, edges): (u32, u32)| {
-        vf_offsets[c as usize + 1] = faces;
-        ve_offsets[c as usize + 1] = edges;
-    };
-    for v in 0..parent.vertex_count {
-        set(
-            r.vertex_child(v),
-            (
-                parent.vertex_faces.count(v) as u32,
-                parent.vertex_edges.count(v) as u32,
-            ),
-        );
-    }
-    if r.has_face_points() {
-        for f in 0..parent.face_count() {
-            set(r.face_child(f), face_point(f));
-        }
-    }
-    for e in 0..parent.edge_count() {
-        set(r.edge_child(e), edge_point(e));
-    }
-    prefix_sums(&mut vf_offsets);
-    prefix_sums(&mut ve_offsets);
-    let vf_members = Table::zeroed(vf_offsets[child_vertices] as usize);
-    let ve_members = Table::zeroed(ve_offsets[child_vertices] as usize);
-    let local_table = |len: usize| Table::zeroed(if locals { len } else { 0 });
-    // Which end of its edges a vertex is stays: sharpness decay reads it
-    // while building a minimal child.
-    let (vf_local, ve_local) = (
-        local_table(vf_members.len()),
-        Table::zeroed(ve_members.len()),
-    );
+) -> (TableWriter, TableWriter) {
+    let n = r.child_vertex_count();
     (
-        vf_offsets, ve_offsets, vf_members, vf_local, ve_members, ve_local,
+        TableWriter::new(n, vf, None, locals),
+        TableWriter::new(n, ve, None, true),
     )
 }
 
-/// One child relation being filled: offsets, members, local indices.
-type RelationOut<'a> = (&'a [u32], &'a mut [u32], &'a mut [u16]);
+/// A child level's vertex-faces and vertex-edges, with their local indices:
+/// the children of parent faces, edges and vertices — each filler closing
+/// one element of both writers per child, in the order of its parents — are
+/// written in the order of the child vertices' indices.
+fn fill_vertex_relations(
+    r: &Refinement,
+    mut vf: TableWriter,
+    mut ve: TableWriter,
+    mut face_children: impl FnMut(&mut TableWriter, &mut TableWriter),
+    mut edge_children: impl FnMut(&mut TableWriter, &mut TableWriter),
+    mut vertex_children: impl FnMut(&mut TableWriter, &mut TableWriter),
+) -> ((Relation, Table<u16>), (Relation, Table<u16>)) {
+    let mut origins = [
+        (r.first_vertex_from_faces, 0),
+        (r.first_vertex_from_edges, 1),
+        (r.first_vertex_from_vertices, 2),
+    ];
+    // Equal starts only come with empty ranges; the order then does not matter.
+    origins.sort_unstable();
+    for (_, origin) in origins {
+        match origin {
+            0 => face_children(&mut vf, &mut ve),
+            1 => edge_children(&mut vf, &mut ve),
+            _ => vertex_children(&mut vf, &mut ve),
+        }
+    }
+    (vf.finish(), ve.finish())
+}
 
 /// The vertex-faces and vertex-edges of the children of parent vertices: the
 /// child faces at the vertex's corners (`child_face(f, k)` gives the child
@@ -998,51 +922,28 @@ type RelationOut<'a> = (&'a [u32], &'a mut [u32], &'a mut [u16]);
 fn vertex_children_relations(
     parent: &Level,
     r: &Refinement,
-    (vf_offsets, vf_members, vf_local): RelationOut<'_>,
-    (ve_offsets, ve_members, ve_local): RelationOut<'_>,
+    vf: &mut TableWriter,
+    ve: &mut TableWriter,
     child_face: impl Fn(u32, u16) -> (u32, u16),
 ) {
     for v in 0..parent.vertex_count {
-        let c = r.vertex_child(v) as usize;
-        let (o, oe) = (vf_offsets[c] as usize, ve_offsets[c] as usize);
-        for (i, (&f, &k)) in parent
+        for (&f, &k) in parent
             .vertex_faces_of(v)
             .iter()
             .zip(parent.vertex_face_locals(v))
-            .enumerate()
         {
             let (member, local) = child_face(f, k);
-            vf_members[o + i] = member;
-            put(vf_local, o + i, local);
+            vf.push(member, local);
         }
-        for (i, (&e, &l)) in parent
+        for (&e, &l) in parent
             .vertex_edges_of(v)
             .iter()
             .zip(parent.vertex_edge_locals(v))
-            .enumerate()
         {
-            ve_members[oe + i] = r.edge_child_edge(e as usize, l as usize);
-            ve_local[oe + i] = 1;
+            ve.push(r.edge_child_edge(e as usize, l as usize), 1);
         }
-    }
-}
-
-/// Writes local index `value` at `i`, unless the level keeps no such local
-/// indices (`locals` is empty; see [`Build::Relations`]).
-#[inline(always)]
-fn put(locals: &mut [u16], i: usize, value: u16) {
-    debug_assert!(locals.is_empty() || i < locals.len());
-    if let Some(slot) = locals.get_mut(i) {
-        *slot = value;
-    }
-}
-
-/// Turns counts stored at `i + 1` into offsets (`offsets[0]` is 0).
-fn prefix_sums(offsets: &mut [u32]) {
-    let mut acc = 0;
-    for o in offsets.iter_mut() {
-        acc += *o;
-        *o = acc;
+        vf.end_element();
+        ve.end_element();
     }
 }
 
