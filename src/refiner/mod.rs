@@ -37,6 +37,17 @@ pub use stencils::FactorizedStencils;
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
 #[inline]
 pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
+    if let &[a, b, c] = level.face_verts(f)
+        && a != b
+        && b != c
+        && a != c
+    {
+        // Three distinct corners: edge `e` joins two of them, and the third
+        // is what remains of the five once the pairs cancel. No search for
+        // the edge in the face (whose branch is a coin toss per face).
+        let [u, v] = level.edge_vertices[e];
+        return a ^ b ^ c ^ u ^ v;
+    }
     let f_edges = level.face_edges_of(f);
     let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
     level.face_verts(f)[(k + 2) % f_edges.len()]
