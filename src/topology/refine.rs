@@ -385,8 +385,10 @@ fn split_quad_faces(
         let edges = parent.face_edges_of(f);
         let n = verts.len();
         let fc = r.face_child(f);
-        if let (Ok(verts), Ok(edges)) = (<&[u32; 4]>::try_from(verts), <&[u32; 4]>::try_from(edges))
-        {
+        let quad = <&[u32; 4]>::try_from(verts)
+            .ok()
+            .zip(<&[u32; 4]>::try_from(edges).ok());
+        if let Some((verts, edges)) = quad {
             // Quads, the common case: the same values, written a whole
             // face (four children) at a time.
             let at = 4 * (base - first);
@@ -428,8 +430,9 @@ fn split_quad_faces(
     }
 }
 
-/// The children of quad `f`: what
-/// [`split_quad_faces`] writes for any face, with the face size known.
+/// The four children of quad `f` (`fv_out` and `fe_out` hold 16 values
+/// each): what [`split_quad_faces`] writes for any face, with the face size
+/// known.
 #[inline(always)]
 fn split_quad(
     parent: &Level,
@@ -959,6 +962,8 @@ struct TableWriter {
     starts: Starts,
     members: Vec<u32>,
     locals: Option<Vec<u16>>,
+    /// The element and member counts given to `new` (checked by `finish`).
+    expected: (usize, usize),
 }
 
 /// Where the elements of a [`TableWriter`] start.
@@ -985,6 +990,7 @@ impl TableWriter {
             },
             members: Vec::with_capacity(members),
             locals: locals.then(|| Vec::with_capacity(members)),
+            expected: (elements, members),
         }
     }
 
@@ -1012,6 +1018,7 @@ impl TableWriter {
             offsets,
             members: self.members.into(),
         };
+        debug_assert_eq!((relation.len(), relation.members.len()), self.expected);
         debug_assert_eq!(relation.start(relation.len()), relation.members.len());
         (relation, self.locals.unwrap_or_default().into())
     }
