@@ -542,25 +542,20 @@ pub fn build_base(
         } else if !faces.is_empty() {
             // No order to rely on: compare the value at v in every face of each edge.
             for (&e, &end) in edges.iter().zip(level.vertex_edge_locals(v)) {
-                let e_faces = level.edge_faces_of(e as usize);
-                if e_faces.len() < 2 {
+                if level.edge_faces_of(e as usize).len() < 2 {
                     continue;
                 }
                 let ev = level.edge_vertices[e as usize];
                 let mut first = 0;
                 let mut differs = false;
-                for (j, (&f, &k)) in e_faces
-                    .iter()
-                    .zip(level.edge_face_locals(e as usize))
-                    .enumerate()
-                {
-                    let verts = level.face_verts(f as usize);
-                    let reversed = ev[0] != verts[k as usize];
-                    let mut corner = k as usize + ((end != 0) != reversed) as usize;
+                for (j, (f, k)) in level.edge_faces_at(e as usize).enumerate() {
+                    let verts = level.face_verts(f);
+                    let reversed = ev[0] != verts[k];
+                    let mut corner = k + ((end != 0) != reversed) as usize;
                     if corner == verts.len() {
                         corner = 0;
                     }
-                    let value = fvar.face_values_of(level, f as usize)[corner];
+                    let value = fvar.face_values_of(level, f)[corner];
                     if j == 0 {
                         first = value;
                     } else if value != first {
