@@ -581,6 +581,7 @@ impl Level {
     }
 
     /// The faces of vertex `v`.
+    #[inline(always)]
     pub fn vertex_faces_of(&self, v: usize) -> &[u32] {
         self.vertex_faces.get(v)
     }
