@@ -175,6 +175,16 @@ fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, wi
     }
 }
 
+/// Writes the first `width` values of `acc` to `slot` (`width` values long).
+/// The width is read from `W` here, not captured from the caller: a
+/// captured length turns the copy into a call to `memcpy` and keeps `acc` in
+/// memory instead of registers.
+#[inline(always)]
+fn store<T: Real, W: Width>(slot: &mut [T], acc: &[T; MAX_WIDTH], width: W) {
+    let n = width.get();
+    slot[..n].copy_from_slice(&acc[..n]);
+}
+
 /// Child vertices per parallel task.
 const CHUNK: usize = 4096;
 
@@ -250,7 +260,7 @@ fn run<T: Real, W: Width + Send + Sync>(
         for &v in verts {
             add(&mut acc, src, v, w, width);
         }
-        slot.copy_from_slice(&acc[..n]);
+        store(slot, &acc, width);
     });
     // Edge and vertex points read face points (children of faces) only.
     let face_points: &[T] = face_points;
@@ -297,7 +307,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                 add_source(&mut acc, source, w);
             }
         }
-        slot.copy_from_slice(&acc[..n]);
+        store(slot, &acc, width);
     });
 
     // Vertex points.
@@ -337,6 +347,6 @@ fn run<T: Real, W: Width + Send + Sync>(
                 add_source(&mut acc, source, w);
             }
         }
-        slot.copy_from_slice(&acc[..n]);
+        store(slot, &acc, width);
     });
 }

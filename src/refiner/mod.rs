@@ -35,7 +35,7 @@ pub(crate) use kernel::Scratch;
 pub use stencils::FactorizedStencils;
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
-#[inline]
+#[inline(always)]
 pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
     if let &[a, b, c] = level.face_verts(f)
         && a != b
