@@ -100,23 +100,46 @@ fn general<T: Real>(r: &Refiner, kind: Kind, level: usize, width: usize, src: &[
     });
 }
 
+/// The mask of a smooth edge between two faces: the weights of its ends and
+/// of its two faces (none under the bilinear rule), which apply to their
+/// face points or, when not `centers`, to the faces' vertices opposite the
+/// edge (Loop).
+#[derive(Clone, Copy)]
+struct EdgeWeights<T> {
+    ends: [T; 2],
+    faces: Option<[T; 2]>,
+    centers: bool,
+}
+
 /// Masks of regular neighbourhoods, computed on first use.
 struct Cache<T> {
     face: Vec<Option<T>>,
-    edge: [Option<Mask<T>>; 4],
-    vertex: Vec<Option<Mask<T>>>,
+    /// Indexed by which of the two faces are triangles; `None` until filled.
+    edge: [Option<Option<EdgeWeights<T>>>; 4],
+    /// Indexed by valence; an entry without a vertex weight is not filled.
+    vertex: Vec<Mask<T>>,
 }
 
 impl<T: Real> Cache<T> {
     fn new() -> Self {
         Cache {
             face: Vec::new(),
-            edge: [None, None, None, None],
+            edge: [None; 4],
             vertex: Vec::new(),
         }
     }
 
+    #[inline(always)]
     fn face_weight(&mut self, r: &Refiner, n: usize) -> T {
+        match self.face.get(n) {
+            Some(&Some(w)) => w,
+            _ => self.fill_face_weight(r, n),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn fill_face_weight(&mut self, r: &Refiner, n: usize) -> T {
         if self.face.len() <= n {
             self.face.resize(n + 1, None);
         }
@@ -127,42 +150,74 @@ impl<T: Real> Cache<T> {
         })
     }
 
-    /// The smooth mask of an edge between two faces; `tri` says which are
-    /// triangles under the smooth-triangle rule.
-    fn smooth_edge(&mut self, r: &Refiner, tri: [bool; 2]) -> &Mask<T> {
+    /// The weights of a smooth edge between two faces; `tri` says which
+    /// are triangles under the smooth-triangle rule. `None` for a mask of
+    /// another shape (then the general path computes the edge).
+    #[inline(always)]
+    fn smooth_edge(&mut self, r: &Refiner, tri: [bool; 2]) -> Option<EdgeWeights<T>> {
         let key = tri[0] as usize | (tri[1] as usize) << 1;
-        self.edge[key].get_or_insert_with(|| {
-            let sizes = [if tri[0] { 3 } else { 4 }, if tri[1] { 3 } else { 4 }];
-            let hood = EdgeNeighborhood {
-                sharpness: 0.0,
-                face_sizes: &sizes,
-            };
-            let mut m = Mask::new();
-            r.rules
-                .edge_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut m);
-            m
-        })
+        match self.edge[key] {
+            Some(w) => w,
+            None => self.fill_smooth_edge(r, key, tri),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn fill_smooth_edge(
+        &mut self,
+        r: &Refiner,
+        key: usize,
+        tri: [bool; 2],
+    ) -> Option<EdgeWeights<T>> {
+        let sizes = [if tri[0] { 3 } else { 4 }, if tri[1] { 3 } else { 4 }];
+        let hood = EdgeNeighborhood {
+            sharpness: 0.0,
+            face_sizes: &sizes,
+        };
+        let mut m = Mask::new();
+        r.rules
+            .edge_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut m);
+        let weights = (|| {
+            Some(EdgeWeights {
+                ends: <[T; 2]>::try_from(&m.vertex[..]).ok()?,
+                faces: match m.face.len() {
+                    0 => None,
+                    _ => Some(<[T; 2]>::try_from(&m.face[..]).ok()?),
+                },
+                centers: m.face_weights_for_centers,
+            })
+        })();
+        self.edge[key] = Some(weights);
+        weights
     }
 
     /// The smooth mask of an interior vertex with `n` faces and `n` edges.
+    #[inline(always)]
     fn smooth_vertex(&mut self, r: &Refiner, n: usize) -> &Mask<T> {
-        if self.vertex.len() <= n {
-            self.vertex.resize(n + 1, None);
+        // A filled mask has its vertex weight; the empty ones are unfilled.
+        if self.vertex.get(n).is_none_or(|m| m.vertex.is_empty()) {
+            self.fill_smooth_vertex(r, n);
         }
-        self.vertex[n].get_or_insert_with(|| {
-            let zeros = vec![0.0f32; n];
-            let hood = VertexNeighborhood {
-                sharpness: 0.0,
-                edge_sharpness: &zeros,
-                face_count: n,
-                child_sharpness: 0.0,
-                child_edge_sharpness: &zeros,
-            };
-            let mut m = Mask::new();
-            r.rules
-                .vertex_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut m);
-            m
-        })
+        &self.vertex[n]
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn fill_smooth_vertex(&mut self, r: &Refiner, n: usize) {
+        if self.vertex.len() <= n {
+            self.vertex.resize_with(n + 1, Mask::new);
+        }
+        let zeros = vec![0.0f32; n];
+        let hood = VertexNeighborhood {
+            sharpness: 0.0,
+            edge_sharpness: &zeros,
+            face_count: n,
+            child_sharpness: 0.0,
+            child_edge_sharpness: &zeros,
+        };
+        r.rules
+            .vertex_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut self.vertex[n]);
     }
 }
 
@@ -172,6 +227,87 @@ fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, wi
     let row = &data[i as usize * n..i as usize * n + n];
     for k in 0..n {
         acc[k] += row[k] * w;
+    }
+}
+
+/// The sum of `terms` (an irregular child vertex), reading parent vertices
+/// from `src` and face points from `face_points` (child vertex
+/// `first_face_point` first). Cold, out of line and returning the sum by
+/// value: the irregular path's loop stays out of the regular path's code.
+#[cold]
+#[inline(never)]
+fn sum_terms<T: Real, W: Width>(
+    terms: &[(Source, T)],
+    src: &[T],
+    face_points: &[T],
+    first_face_point: u32,
+    width: W,
+) -> [T; MAX_WIDTH] {
+    let mut acc = [T::ZERO; MAX_WIDTH];
+    for &(source, w) in terms {
+        match source {
+            Source::Parent(i) => add(&mut acc, src, i, w, width),
+            Source::Child(i) => add(&mut acc, face_points, i - first_face_point, w, width),
+        }
+    }
+    acc
+}
+
+/// A smooth vertex of the parent level, with its faces, edges and mask.
+struct SmoothVertex<'a, T> {
+    parent: &'a Level,
+    v: usize,
+    faces: &'a [u32],
+    edges: &'a [u32],
+    mask: &'a Mask<T>,
+}
+
+impl<T: Real> SmoothVertex<'_, T> {
+    /// Adds the terms of the vertex's child, in mask order: its faces' face
+    /// points, its edges' far ends, itself.
+    #[inline(always)]
+    fn add<W: Width>(&self, acc: &mut [T; MAX_WIDTH], src: &[T], face_points: &[T], width: W) {
+        for (&f, &w) in self.faces.iter().zip(&self.mask.face) {
+            add(acc, face_points, f, w, width);
+        }
+        for (&e, &w) in self.edges.iter().zip(&self.mask.edge) {
+            let far = self.parent.other_vertex(e as usize, self.v as u32);
+            add(acc, src, far, w, width);
+        }
+        add(acc, src, self.v as u32, self.mask.vertex[0], width);
+    }
+
+    /// As [`add`](Self::add) for a vertex of `N` faces and edges whose mask
+    /// weighs `N` edges and `N` face points or none (Loop): the same terms in
+    /// the same order. False, with nothing added, for any other shape.
+    #[inline(always)]
+    fn add_fixed<const N: usize, W: Width>(
+        &self,
+        acc: &mut [T; MAX_WIDTH],
+        src: &[T],
+        face_points: &[T],
+        width: W,
+    ) -> bool {
+        let (Ok(faces), Ok(edges), Ok(edge_weights)) = (
+            <&[u32; N]>::try_from(self.faces),
+            <&[u32; N]>::try_from(self.edges),
+            <&[T; N]>::try_from(&self.mask.edge[..]),
+        ) else {
+            return false;
+        };
+        if let Ok(face_weights) = <&[T; N]>::try_from(&self.mask.face[..]) {
+            for k in 0..N {
+                add(acc, face_points, faces[k], face_weights[k], width);
+            }
+        } else if !self.mask.face.is_empty() {
+            return false;
+        }
+        for k in 0..N {
+            let far = self.parent.other_vertex(edges[k] as usize, self.v as u32);
+            add(acc, src, far, edge_weights[k], width);
+        }
+        add(acc, src, self.v as u32, self.mask.vertex[0], width);
+        true
     }
 }
 
@@ -264,10 +400,9 @@ fn run<T: Real, W: Width + Send + Sync>(
     });
     // Edge and vertex points read face points (children of faces) only.
     let face_points: &[T] = face_points;
-    let add_source = |acc: &mut [T; MAX_WIDTH], source: Source, w: T| match source {
-        Source::Parent(i) => add(acc, src, i, w, width),
-        Source::Child(i) => add(acc, face_points, i - first_face_point, w, width),
-    };
+    // Sums the terms of an irregular child vertex (in `scratch.terms`).
+    let irregular =
+        |scratch: &Scratch<T>| sum_terms(&scratch.terms, src, face_points, first_face_point, width);
 
     // Edge points.
     // Empty edge sharpness: every parent edge is smooth (what
@@ -277,35 +412,35 @@ fn run<T: Real, W: Width + Send + Sync>(
         let faces = parent.edge_faces_of(e);
         let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
         let mut acc = zero;
-        let ev = parent.edge_vertices[e];
-        if smooth {
-            let tri = [
-                tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
-                tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
-            ];
-            let mask = cache.smooth_edge(r, tri);
-            add(&mut acc, src, ev[0], mask.vertex[0], width);
-            add(&mut acc, src, ev[1], mask.vertex[1], width);
-            if mask.face_weights_for_centers {
-                for (&f, &w) in faces.iter().zip(&mask.face) {
-                    add(&mut acc, face_points, f, w, width);
-                }
-            } else {
-                for (&f, &w) in faces.iter().zip(&mask.face) {
-                    add(
-                        &mut acc,
-                        src,
-                        opposite_vertex(parent, f as usize, e),
-                        w,
-                        width,
-                    );
+        let weights = if smooth {
+            cache.smooth_edge(
+                r,
+                [
+                    tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
+                    tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
+                ],
+            )
+        } else {
+            None
+        };
+        if let Some(w) = weights {
+            let ev = parent.edge_vertices[e];
+            add(&mut acc, src, ev[0], w.ends[0], width);
+            add(&mut acc, src, ev[1], w.ends[1], width);
+            if let Some(fw) = w.faces {
+                for k in 0..2 {
+                    let f = faces[k];
+                    if w.centers {
+                        add(&mut acc, face_points, f, fw[k], width);
+                    } else {
+                        let far = opposite_vertex(parent, f as usize, e);
+                        add(&mut acc, src, far, fw[k], width);
+                    }
                 }
             }
         } else {
             r.edge_terms(Kind::Vertex, level, e, scratch);
-            for &(source, w) in &scratch.terms {
-                add_source(&mut acc, source, w);
-            }
+            acc = irregular(scratch);
         }
         store(slot, &acc, width);
     });
@@ -328,24 +463,27 @@ fn run<T: Real, W: Width + Send + Sync>(
         let mut acc = zero;
         if smooth {
             let mask = cache.smooth_vertex(r, faces.len());
-            for (&f, &w) in faces.iter().zip(&mask.face) {
-                add(&mut acc, face_points, f, w, width);
+            let hood = SmoothVertex {
+                parent,
+                v,
+                faces,
+                edges,
+                mask,
+            };
+            // The usual valences in unrolled loops (no trip counts).
+            let done = match faces.len() {
+                3 => hood.add_fixed::<3, W>(&mut acc, src, face_points, width),
+                4 => hood.add_fixed::<4, W>(&mut acc, src, face_points, width),
+                5 => hood.add_fixed::<5, W>(&mut acc, src, face_points, width),
+                6 => hood.add_fixed::<6, W>(&mut acc, src, face_points, width),
+                _ => false,
+            };
+            if !done {
+                hood.add(&mut acc, src, face_points, width);
             }
-            for (&e, &w) in edges.iter().zip(&mask.edge) {
-                add(
-                    &mut acc,
-                    src,
-                    parent.other_vertex(e as usize, v as u32),
-                    w,
-                    width,
-                );
-            }
-            add(&mut acc, src, v as u32, mask.vertex[0], width);
         } else {
             r.vertex_terms(Kind::Vertex, level, v, scratch);
-            for &(source, w) in &scratch.terms {
-                add_source(&mut acc, source, w);
-            }
+            acc = irregular(scratch);
         }
         store(slot, &acc, width);
     });
