@@ -393,8 +393,15 @@ fn run<T: Real, W: Width + Send + Sync>(
         let verts = parent.face_verts(f);
         let w = cache.face_weight(r, verts.len());
         let mut acc = zero;
-        for &v in verts {
-            add(&mut acc, src, v, w, width);
+        // Quads (every face after the first level) in an unrolled loop.
+        if let Ok(quad) = <&[u32; 4]>::try_from(verts) {
+            for &v in quad {
+                add(&mut acc, src, v, w, width);
+            }
+        } else {
+            for &v in verts {
+                add(&mut acc, src, v, w, width);
+            }
         }
         store(slot, &acc, width);
     });
