@@ -10,9 +10,9 @@ use crate::topology::Level;
 
 /// The limit masks of one vertex, with the vertices they apply to.
 pub(crate) struct LimitMasks<T> {
-    pub pos: Mask<T>,
-    pub tan1: Mask<T>,
-    pub tan2: Mask<T>,
+    pos: Mask<T>,
+    tan1: Mask<T>,
+    tan2: Mask<T>,
     /// The far end of each incident edge.
     pub edge_points: Vec<u32>,
     /// The vertex two places after this one in each incident face.
@@ -20,6 +20,9 @@ pub(crate) struct LimitMasks<T> {
     edge_sharpness: Vec<f32>,
     /// Masks of smooth interior vertices by valence: they depend on nothing else.
     smooth: Vec<Option<[Mask<T>; 3]>>,
+    /// The valence whose smooth masks apply to the last computed vertex, if
+    /// it was smooth (then `pos`, `tan1` and `tan2` are not written).
+    smooth_valence: Option<usize>,
 }
 
 impl<T: Real> LimitMasks<T> {
@@ -32,6 +35,17 @@ impl<T: Real> LimitMasks<T> {
             face_points: Vec::new(),
             edge_sharpness: Vec::new(),
             smooth: Vec::new(),
+            smooth_valence: None,
+        }
+    }
+
+    /// The position, first and second tangent masks of the last vertex
+    /// computed (the tangent masks only when it was computed with tangents).
+    #[inline]
+    pub fn masks(&self) -> [&Mask<T>; 3] {
+        match self.smooth_valence.and_then(|n| self.smooth[n].as_ref()) {
+            Some([p, t1, t2]) => [p, t1, t2],
+            None => [&self.pos, &self.tan1, &self.tan2],
         }
     }
 
@@ -42,51 +56,47 @@ impl<T: Real> LimitMasks<T> {
         if edges.is_empty() {
             return false;
         }
-        self.edge_sharpness.clear();
-        self.edge_sharpness
-            .extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
         let faces = level.vertex_faces_of(v);
-        let hood = VertexNeighborhood {
-            sharpness: level.vertex_sharpness_at(v),
-            edge_sharpness: &self.edge_sharpness,
-            face_count: faces.len(),
-            child_sharpness: level.vertex_sharpness_at(v),
-            child_edge_sharpness: &[],
-        };
         let rule = level.vertex_tag(v).rule();
         let smooth = matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
             && faces.len() == edges.len();
-        if smooth {
-            let n = faces.len();
-            if self.smooth.len() <= n {
-                self.smooth.resize(n + 1, None);
-            }
-            if self.smooth[n].is_none() {
+        let n = faces.len();
+        self.smooth_valence = smooth.then_some(n);
+        // A smooth vertex's masks depend on its valence alone: the
+        // neighbourhood is only read when they are not cached yet.
+        if !smooth || self.smooth.get(n).is_none_or(Option::is_none) {
+            self.edge_sharpness.clear();
+            self.edge_sharpness
+                .extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
+            let hood = VertexNeighborhood {
+                sharpness: level.vertex_sharpness_at(v),
+                edge_sharpness: &self.edge_sharpness,
+                face_count: n,
+                child_sharpness: level.vertex_sharpness_at(v),
+                child_edge_sharpness: &[],
+            };
+            if smooth {
+                if self.smooth.len() <= n {
+                    self.smooth.resize(n + 1, None);
+                }
                 let (mut p, mut t1, mut t2) = (Mask::new(), Mask::new(), Mask::new());
                 refiner
                     .rules
                     .vertex_limit_masks(&hood, rule, &mut p, &mut t1, &mut t2);
                 self.smooth[n] = Some([p, t1, t2]);
+            } else if tangents {
+                refiner.rules.vertex_limit_masks(
+                    &hood,
+                    rule,
+                    &mut self.pos,
+                    &mut self.tan1,
+                    &mut self.tan2,
+                );
+            } else {
+                refiner
+                    .rules
+                    .vertex_limit_position_mask(&hood, rule, &mut self.pos);
             }
-            if let Some([p, t1, t2]) = &self.smooth[n] {
-                self.pos.clone_from(p);
-                if tangents {
-                    self.tan1.clone_from(t1);
-                    self.tan2.clone_from(t2);
-                }
-            }
-        } else if tangents {
-            refiner.rules.vertex_limit_masks(
-                &hood,
-                rule,
-                &mut self.pos,
-                &mut self.tan1,
-                &mut self.tan2,
-            );
-        } else {
-            refiner
-                .rules
-                .vertex_limit_position_mask(&hood, rule, &mut self.pos);
         }
         self.edge_points.clear();
         self.edge_points.extend(
@@ -95,7 +105,8 @@ impl<T: Real> LimitMasks<T> {
                 .map(|&e| level.other_vertex(e as usize, v as u32)),
         );
         self.face_points.clear();
-        if !self.pos.face.is_empty() || (tangents && !self.tan1.face.is_empty()) {
+        let [pos, tan1, _] = self.masks();
+        if !pos.face.is_empty() || (tangents && !tan1.face.is_empty()) {
             for (&f, &k) in faces.iter().zip(level.vertex_face_locals(v)) {
                 let verts = level.face_verts(f as usize);
                 self.face_points.push(verts[(k as usize + 2) % verts.len()]);
@@ -105,7 +116,8 @@ impl<T: Real> LimitMasks<T> {
     }
 }
 
-/// Accumulates `mask` over `src` rows: faces, then edges, then the vertex.
+/// Accumulates `mask` over `src` rows of `width` values into `out`: faces,
+/// then edges, then the vertex.
 fn apply<T: Real>(
     mask: &Mask<T>,
     masks: &LimitMasks<T>,
@@ -114,11 +126,45 @@ fn apply<T: Real>(
     src: &[T],
     out: &mut [T],
 ) {
-    out.fill(T::ZERO);
+    match width {
+        1 => apply_fixed::<T, 1>(mask, masks, v, src, out),
+        2 => apply_fixed::<T, 2>(mask, masks, v, src, out),
+        3 => apply_fixed::<T, 3>(mask, masks, v, src, out),
+        4 => apply_fixed::<T, 4>(mask, masks, v, src, out),
+        _ => {
+            out.fill(T::ZERO);
+            let mut add = |i: u32, w: T| {
+                let row = &src[i as usize * width..(i as usize + 1) * width];
+                for (o, &s) in out.iter_mut().zip(row) {
+                    *o += s * w;
+                }
+            };
+            for (&i, &w) in masks.face_points.iter().zip(&mask.face) {
+                add(i, w);
+            }
+            for (&i, &w) in masks.edge_points.iter().zip(&mask.edge) {
+                add(i, w);
+            }
+            add(v as u32, mask.vertex[0]);
+        }
+    }
+}
+
+/// [`apply`] for `W` values per vertex, summed in registers (the same terms
+/// in the same order).
+#[inline(always)]
+fn apply_fixed<T: Real, const W: usize>(
+    mask: &Mask<T>,
+    masks: &LimitMasks<T>,
+    v: usize,
+    src: &[T],
+    out: &mut [T],
+) {
+    let mut acc = [T::ZERO; W];
     let mut add = |i: u32, w: T| {
-        let row = &src[i as usize * width..(i as usize + 1) * width];
-        for (o, &s) in out.iter_mut().zip(row) {
-            *o += s * w;
+        let row = &src[i as usize * W..i as usize * W + W];
+        for k in 0..W {
+            acc[k] += row[k] * w;
         }
     };
     for (&i, &w) in masks.face_points.iter().zip(&mask.face) {
@@ -128,7 +174,11 @@ fn apply<T: Real>(
         add(i, w);
     }
     add(v as u32, mask.vertex[0]);
+    out[..W].copy_from_slice(&acc);
 }
+
+/// Vertices per parallel task of limit evaluation.
+const BLOCK: usize = 2048;
 
 impl Refiner {
     fn check_limit_source<T>(&self, width: usize, src: &[T]) -> Result<&Level> {
@@ -160,8 +210,10 @@ impl Refiner {
     /// Limit values and both tangents at the vertices of the last level, from
     /// data at that level (`PrimvarRefiner::Limit`). Works at any level,
     /// including 0; like OpenSubdiv, it needs the last level refined with
-    /// `full_topology_in_last_level`.
+    /// `full_topology_in_last_level`. Parallel over blocks of vertices in
+    /// the current rayon pool.
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
+        use rayon::prelude::*;
         let level = self.check_limit_source(width, src)?;
         let n = level.vertex_count * width;
         let mut out = LimitData {
@@ -169,47 +221,52 @@ impl Refiner {
             du: vec![T::ZERO; n],
             dv: vec![T::ZERO; n],
         };
-        let mut masks = LimitMasks::<T>::new();
-        for v in 0..level.vertex_count {
-            let range = v * width..(v + 1) * width;
-            if !masks.compute(self, level, v, true) {
-                out.positions[range.clone()].copy_from_slice(&src[range]);
-                continue;
-            }
-            apply(
-                &masks.pos,
-                &masks,
-                v,
-                width,
-                src,
-                &mut out.positions[range.clone()],
-            );
-            apply(
-                &masks.tan1,
-                &masks,
-                v,
-                width,
-                src,
-                &mut out.du[range.clone()],
-            );
-            apply(&masks.tan2, &masks, v, width, src, &mut out.dv[range]);
-        }
+        let block = BLOCK * width;
+        out.positions
+            .par_chunks_mut(block)
+            .zip(out.du.par_chunks_mut(block))
+            .zip(out.dv.par_chunks_mut(block))
+            .enumerate()
+            .for_each(|(b, ((pos, du), dv))| {
+                let mut masks = LimitMasks::<T>::new();
+                let rows = pos
+                    .chunks_exact_mut(width)
+                    .zip(du.chunks_exact_mut(width))
+                    .zip(dv.chunks_exact_mut(width));
+                for (k, ((p, d1), d2)) in rows.enumerate() {
+                    let v = b * BLOCK + k;
+                    if !masks.compute(self, level, v, true) {
+                        p.copy_from_slice(&src[v * width..(v + 1) * width]);
+                        continue;
+                    }
+                    let [mp, m1, m2] = masks.masks();
+                    apply(mp, &masks, v, width, src, p);
+                    apply(m1, &masks, v, width, src, d1);
+                    apply(m2, &masks, v, width, src, d2);
+                }
+            });
         Ok(out)
     }
 
-    /// Limit values only, at the vertices of the last level.
+    /// Limit values only, at the vertices of the last level (parallel as
+    /// [`limit`](Self::limit)).
     pub fn limit_positions<T: Real>(&self, width: usize, src: &[T]) -> Result<Vec<T>> {
+        use rayon::prelude::*;
         let level = self.check_limit_source(width, src)?;
         let mut out = vec![T::ZERO; level.vertex_count * width];
-        let mut masks = LimitMasks::<T>::new();
-        for v in 0..level.vertex_count {
-            let range = v * width..(v + 1) * width;
-            if !masks.compute(self, level, v, false) {
-                out[range.clone()].copy_from_slice(&src[range]);
-                continue;
-            }
-            apply(&masks.pos, &masks, v, width, src, &mut out[range]);
-        }
+        out.par_chunks_mut(BLOCK * width)
+            .enumerate()
+            .for_each(|(b, out)| {
+                let mut masks = LimitMasks::<T>::new();
+                for (k, p) in out.chunks_exact_mut(width).enumerate() {
+                    let v = b * BLOCK + k;
+                    if !masks.compute(self, level, v, false) {
+                        p.copy_from_slice(&src[v * width..(v + 1) * width]);
+                        continue;
+                    }
+                    apply(masks.masks()[0], &masks, v, width, src, p);
+                }
+            });
         Ok(out)
     }
 }

@@ -217,7 +217,7 @@ impl Refiner {
             let tables = [&mut out.positions, &mut out.du, &mut out.dv];
             for (k, (builder, table)) in builders.iter_mut().zip(tables).enumerate() {
                 if has_masks {
-                    let mask = [&masks.pos, &masks.tan1, &masks.tan2][k];
+                    let mask = masks.masks()[k];
                     for (&p, &w) in masks.face_points.iter().zip(&mask.face) {
                         let (i, x) = rows.get(p);
                         builder.add_row(i, x, w);
