@@ -43,7 +43,10 @@ impl<T: Real> LimitMasks<T> {
     /// computed (the tangent masks only when it was computed with tangents).
     #[inline]
     pub fn masks(&self) -> [&Mask<T>; 3] {
-        match self.smooth_valence.and_then(|n| self.smooth[n].as_ref()) {
+        match self
+            .smooth_valence
+            .and_then(|n| self.smooth.get(n)?.as_ref())
+        {
             Some([p, t1, t2]) => [p, t1, t2],
             None => [&self.pos, &self.tan1, &self.tan2],
         }
