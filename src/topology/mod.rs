@@ -398,7 +398,9 @@ pub struct Level {
     pub vertex_face_local: Table<u16>,
     /// Vertex → edges.
     pub vertex_edges: Relation,
-    /// Which end of each edge the vertex is (0 or 1).
+    /// Which end of each edge the vertex is (0 or 1); empty in a level built
+    /// as [`Build::Relations`] from a parent without sharpness (nothing reads
+    /// it there).
     pub vertex_edge_local: Table<u16>,
     /// Number of edges.
     pub num_edges: usize,
@@ -602,6 +604,10 @@ impl Level {
     }
 
     /// Which end of each of its edges vertex `v` is.
+    ///
+    /// # Panics
+    /// If the level keeps no vertex-edge ends (a level built as
+    /// [`Build::Relations`] from a parent without sharpness).
     #[inline(always)]
     pub fn vertex_edge_locals(&self, v: usize) -> &[u16] {
         &self.vertex_edge_local[self.vertex_edges.range(v)]
@@ -884,6 +890,32 @@ mod tests {
     }
 
     #[test]
+    fn vertex_edge_ends_are_kept_where_sharpness_decays_into_a_minimal_level() {
+        // A crease of 3 is still 1 at level 2 and decays while level 3 is
+        // built (minimal): level 2 keeps which end of its edges each vertex
+        // is, and the positions equal those of a full refinement.
+        for mut mesh in [shapes::torus(6, 5), shapes::torus_triangles(6, 5)] {
+            mesh.add_crease(0, 1, 3.0);
+            mesh.add_corner(10, 2.5);
+            let base = mesh.flat_positions::<f64>();
+            let minimal = refiners(&mesh, 3, false);
+            let full = refiners(&mesh, 3, true);
+            for (m, f) in minimal.iter().zip(&full) {
+                let level2 = m.internal_level(2).unwrap();
+                assert_eq!(
+                    level2.vertex_edge_local.len(),
+                    level2.vertex_edges.members.len()
+                );
+                assert!(!level2.has_local_indices());
+                assert_eq!(
+                    m.interpolate_all(3, &base).unwrap(),
+                    f.interpolate_all(3, &base).unwrap()
+                );
+            }
+        }
+    }
+
+    #[test]
     fn the_level_before_a_minimal_last_level_keeps_no_face_local_indices() {
         for mesh in [shapes::torus(6, 4), shapes::torus_triangles(6, 4)] {
             for full in [false, true] {
@@ -891,8 +923,10 @@ mod tests {
                     let kept: Vec<bool> = (0..=3)
                         .map(|l| r.internal_level(l).unwrap().has_local_indices())
                         .collect();
+                    // Smooth meshes: level 2 keeps its vertex-edge ends
+                    // only if something reads them (a full level 3).
                     let level2 = r.internal_level(2).unwrap();
-                    assert!(!level2.vertex_edge_local.is_empty());
+                    assert_eq!(level2.vertex_edge_local.is_empty(), !full);
                     if full {
                         assert_eq!(kept, [true; 4]);
                     } else {

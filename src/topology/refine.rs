@@ -108,7 +108,8 @@ pub enum Build {
     /// faces (`edge_face_local` and `vertex_face_local` stay empty): a level
     /// whose only child is a minimal last level. Interpolation does not read
     /// them; only building a full child, face-varying refinement and limit
-    /// evaluation do. (`vertex_edge_local` stays: sharpness decay reads it.)
+    /// evaluation do. `vertex_edge_local` stays when the parent has
+    /// sharpness: the decay of semi-sharp features into the child reads it.
     Relations,
     /// Only the face-vertices (with sharpness, tags and holes): what a last
     /// level needs for interpolation, as OpenSubdiv builds it unless asked
@@ -270,6 +271,7 @@ pub fn refine_level(
             // two faces per parent face and two edges more.
             let ef_members = parent.edge_faces.members.len();
             let (vf, ve) = vertex_relation_writers(
+                parent,
                 &r,
                 parent.vertex_faces.members.len() + corners + 2 * ef_members,
                 parent.vertex_edges.members.len() + corners + 2 * ne + ef_members,
@@ -684,6 +686,7 @@ fn refine_triangles(
             // triangles and two inner edges per parent face, and two halves.
             let ef_members = parent.edge_faces.members.len();
             let (vf, ve) = vertex_relation_writers(
+                parent,
                 &r,
                 parent.vertex_faces.members.len() + 3 * ef_members,
                 parent.vertex_edges.members.len() + 2 * ne + 2 * ef_members,
@@ -874,18 +877,23 @@ fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<b
 /// The writers of a child level's vertex-faces and vertex-edges (`vf` and
 /// `ve` members in all), filled one child vertex after the other by
 /// [`fill_vertex_relations`]. Vertex-face local indices are kept when
-/// `locals`; which end of its edges a vertex is stays in any case, as
-/// sharpness decay reads it while building a minimal child.
+/// `locals`; which end of its edges a vertex is, when `locals` too or when
+/// the parent has sharpness: building a minimal child reads it only in the
+/// sharpness decay, and only at semi-sharp features, which the child can
+/// have only if its parent has sharpness (it decays; it never appears).
 fn vertex_relation_writers(
+    parent: &Level,
     r: &Refinement,
     vf: usize,
     ve: usize,
     locals: bool,
 ) -> (TableWriter, TableWriter) {
     let n = r.child_vertex_count();
+    let edge_ends =
+        locals || !parent.edge_sharpness.is_empty() || !parent.vertex_sharpness.is_empty();
     (
         TableWriter::new(n, vf, None, locals),
-        TableWriter::new(n, ve, None, true),
+        TableWriter::new(n, ve, None, edge_ends),
     )
 }
 
