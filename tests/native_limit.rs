@@ -284,3 +284,55 @@ fn factorized_stencils_equal_interpolation() {
         }
     }
 }
+
+/// Limits of a last level spanning several of the native engine's parallel
+/// blocks (2,048 vertices each): equal to OpenSubdiv's bit for bit, on one
+/// thread and on two, for a width with a specialised path (3) and one
+/// without (5), and `limit_positions` equal to the positions of `limit`.
+#[test]
+fn limit_in_parallel_blocks_equals_opensubdiv() {
+    for (mesh, scheme) in [
+        (shapes::torus(24, 20), Scheme::Catmark),
+        (shapes::torus_triangles(24, 20), Scheme::Loop),
+    ] {
+        let options = Options::default().with_scheme(scheme);
+        let full = UniformOptions::new(2).full_topology(true);
+        let mut n = refiner::Refiner::new(&mesh, &options).unwrap();
+        n.refine_uniform(full).unwrap();
+        let mut o = osd::Refiner::new(&mesh, &options).unwrap();
+        o.refine_uniform(full).unwrap();
+        let count = n.internal_level(2).unwrap().vertex_count;
+        assert!(count > 3 * 2048, "{count} vertices: fewer than four blocks");
+        for width in [3, 5] {
+            // Per vertex: its position, then extra components derived from it.
+            let base: Vec<f64> = mesh
+                .positions
+                .iter()
+                .flat_map(|p| {
+                    [p.x, p.y, p.z, p.x * p.y - 0.5, p.z + 2.0]
+                        .into_iter()
+                        .take(width)
+                })
+                .collect();
+            let last = n.interpolate_all(width, &base).unwrap().pop().unwrap();
+            let expected = o.limit(width, &last).unwrap();
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let (got, positions) = pool.install(|| {
+                    (
+                        n.limit(width, &last).unwrap(),
+                        n.limit_positions(width, &last).unwrap(),
+                    )
+                });
+                let ctx = format!("{scheme:?} width {width}, {threads} thread(s)");
+                assert!(got.positions == expected.positions, "{ctx}: positions");
+                assert!(got.du == expected.du, "{ctx}: du");
+                assert!(got.dv == expected.dv, "{ctx}: dv");
+                assert!(positions == got.positions, "{ctx}: limit_positions");
+            }
+        }
+    }
+}

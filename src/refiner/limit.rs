@@ -136,19 +136,7 @@ fn apply<T: Real>(
         4 => apply_fixed::<T, 4>(mask, masks, v, src, out),
         _ => {
             out.fill(T::ZERO);
-            let mut add = |i: u32, w: T| {
-                let row = &src[i as usize * width..(i as usize + 1) * width];
-                for (o, &s) in out.iter_mut().zip(row) {
-                    *o += s * w;
-                }
-            };
-            for (&i, &w) in masks.face_points.iter().zip(&mask.face) {
-                add(i, w);
-            }
-            for (&i, &w) in masks.edge_points.iter().zip(&mask.edge) {
-                add(i, w);
-            }
-            add(v as u32, mask.vertex[0]);
+            accumulate(mask, masks, v, src, out);
         }
     }
 }
@@ -164,10 +152,19 @@ fn apply_fixed<T: Real, const W: usize>(
     out: &mut [T],
 ) {
     let mut acc = [T::ZERO; W];
+    accumulate(mask, masks, v, src, &mut acc);
+    out[..W].copy_from_slice(&acc);
+}
+
+/// Adds the terms of `mask` to `acc` (one vertex's values): faces, then
+/// edges, then the vertex.
+#[inline(always)]
+fn accumulate<T: Real>(mask: &Mask<T>, masks: &LimitMasks<T>, v: usize, src: &[T], acc: &mut [T]) {
+    let width = acc.len();
     let mut add = |i: u32, w: T| {
-        let row = &src[i as usize * W..i as usize * W + W];
-        for k in 0..W {
-            acc[k] += row[k] * w;
+        let row = &src[i as usize * width..(i as usize + 1) * width];
+        for (a, &s) in acc.iter_mut().zip(row) {
+            *a += s * w;
         }
     };
     for (&i, &w) in masks.face_points.iter().zip(&mask.face) {
@@ -177,7 +174,6 @@ fn apply_fixed<T: Real, const W: usize>(
         add(i, w);
     }
     add(v as u32, mask.vertex[0]);
-    out[..W].copy_from_slice(&acc);
 }
 
 /// Vertices per parallel task of limit evaluation.
