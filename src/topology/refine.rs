@@ -397,7 +397,7 @@ fn split_quad_faces(
             split_quad(
                 parent,
                 r,
-                f,
+                (base, fc),
                 verts,
                 edges,
                 &mut fv_out[at..at + 16],
@@ -432,21 +432,19 @@ fn split_quad_faces(
     }
 }
 
-/// The four children of quad `f` (`fv_out` and `fe_out` hold 16 values
-/// each): what [`split_quad_faces`] writes for any face, with the face size
-/// known.
+/// The four children of a quad whose first corner is `base` and whose face
+/// point is child vertex `fc` (`fv_out` and `fe_out` hold 16 values each):
+/// what [`split_quad_faces`] writes for any face, with the face size known.
 #[inline(always)]
 fn split_quad(
     parent: &Level,
     r: &Refinement,
-    f: usize,
+    (base, fc): (usize, u32),
     verts: &[u32; 4],
     edges: &[u32; 4],
     fv_out: &mut [u32],
     fe_out: Option<&mut [u32]>,
 ) {
-    let fc = r.face_child(f);
-    let base = parent.face_vertices.start(f);
     let vc = verts.map(|v| r.vertex_child(v as usize));
     let ec = edges.map(|e| r.edge_child(e as usize));
     // Child j keeps the parent's orientation: its corner vertex at position j.
@@ -978,8 +976,12 @@ struct TableWriter {
 enum Starts {
     /// The offsets written so far, starting with 0.
     Table(Vec<u32>),
-    /// Every element has `size` members.
-    Uniform { len: usize, size: usize },
+    /// Every element has `size` members; `ended` elements are closed.
+    Uniform {
+        len: usize,
+        size: usize,
+        ended: usize,
+    },
 }
 
 impl TableWriter {
@@ -989,6 +991,7 @@ impl TableWriter {
                 Some(size) => Starts::Uniform {
                     len: elements,
                     size,
+                    ended: 0,
                 },
                 None => {
                     let mut offsets = Vec::with_capacity(elements + 1);
@@ -1012,15 +1015,22 @@ impl TableWriter {
 
     #[inline]
     fn end_element(&mut self) {
-        if let Starts::Table(offsets) = &mut self.starts {
-            offsets.push(self.members.len() as u32);
+        match &mut self.starts {
+            Starts::Table(offsets) => offsets.push(self.members.len() as u32),
+            Starts::Uniform { size, ended, .. } => {
+                *ended += 1;
+                debug_assert_eq!(self.members.len(), *ended * *size);
+            }
         }
     }
 
     fn finish(self) -> (Relation, Table<u16>) {
         let offsets = match self.starts {
             Starts::Table(offsets) => Offsets::Table(offsets.into()),
-            Starts::Uniform { len, size } => Offsets::Uniform { len, size },
+            Starts::Uniform { len, size, ended } => {
+                debug_assert_eq!(ended, len);
+                Offsets::Uniform { len, size }
+            }
         };
         let relation = Relation {
             offsets,
