@@ -10,6 +10,7 @@ use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood};
 use crate::topology::Level;
+use crate::topology::refine::derive_smooth_hood;
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -18,6 +19,45 @@ pub(crate) struct Scratch<T> {
     pub face_sizes: Vec<u32>,
     pub edge_sharpness: Vec<f32>,
     pub child_edge_sharpness: Vec<f32>,
+    /// A vertex's relations where its level derives them.
+    pub hood: HoodBuf,
+}
+
+/// Room for the faces and edges of one vertex of a level that derives its
+/// vertex relations ([`Refiner::vertex_hood`]).
+#[derive(Debug, Default)]
+pub(crate) struct HoodBuf {
+    faces: Vec<u32>,
+    edges: Vec<u32>,
+    edge_list: Vec<(u32, u16)>,
+}
+
+impl Refiner {
+    /// The faces and edges around vertex `v` of level `level`, in their
+    /// stored order: read from the level, or derived from the level before
+    /// into `buf` where the level left them out
+    /// ([`Level::derived_vertex_relations`]).
+    #[inline(always)]
+    pub(crate) fn vertex_hood<'a>(
+        &'a self,
+        level: usize,
+        v: usize,
+        buf: &'a mut HoodBuf,
+    ) -> (&'a [u32], &'a [u32]) {
+        let l = &self.levels[level];
+        if l.derived_vertex_relations {
+            crate::topology::refine::derive_vertex_relations(
+                &self.levels[level - 1],
+                &self.refinements[level - 1],
+                self.options.scheme == Scheme::Loop,
+                v,
+                (&mut buf.faces, &mut buf.edges, &mut buf.edge_list),
+            );
+            (&buf.faces, &buf.edges)
+        } else {
+            (l.vertex_faces_of(v), l.vertex_edges_of(v))
+        }
+    }
 }
 
 impl<T: Real> Scratch<T> {
@@ -28,6 +68,7 @@ impl<T: Real> Scratch<T> {
             face_sizes: Vec::new(),
             edge_sharpness: Vec::new(),
             child_edge_sharpness: Vec::new(),
+            hood: HoodBuf::default(),
         }
     }
 }
@@ -253,26 +294,43 @@ fn sum_terms<T: Real, W: Width>(
     acc
 }
 
-/// A smooth vertex of the parent level, with its faces, edges and mask.
-struct SmoothVertex<'a, T> {
-    parent: &'a Level,
+/// A smooth vertex's neighbourhood as its mask reads it: its faces (whose
+/// face points it weighs) and the far ends of its edges, `far(k)` for edge
+/// `k` — read through the parent's edges, or derived with the faces.
+struct SmoothVertex<'a, T, F> {
     v: usize,
     faces: &'a [u32],
-    edges: &'a [u32],
+    edges: usize,
+    far: F,
     mask: &'a Mask<T>,
 }
 
-impl<T: Real> SmoothVertex<'_, T> {
+impl<T: Real, F: Fn(usize) -> u32> SmoothVertex<'_, T, F> {
     /// Adds the terms of the vertex's child, in mask order: its faces' face
-    /// points, its edges' far ends, itself.
+    /// points, its edges' far ends, itself; the usual valences in unrolled
+    /// loops (no trip counts).
+    #[inline(always)]
+    fn sum<W: Width>(&self, acc: &mut [T; MAX_WIDTH], src: &[T], face_points: &[T], width: W) {
+        let done = match self.faces.len() {
+            3 => self.add_fixed::<3, W>(acc, src, face_points, width),
+            4 => self.add_fixed::<4, W>(acc, src, face_points, width),
+            5 => self.add_fixed::<5, W>(acc, src, face_points, width),
+            6 => self.add_fixed::<6, W>(acc, src, face_points, width),
+            _ => false,
+        };
+        if !done {
+            self.add(acc, src, face_points, width);
+        }
+    }
+
+    /// Adds the terms of the vertex's child, in mask order.
     #[inline(always)]
     fn add<W: Width>(&self, acc: &mut [T; MAX_WIDTH], src: &[T], face_points: &[T], width: W) {
         for (&f, &w) in self.faces.iter().zip(&self.mask.face) {
             add(acc, face_points, f, w, width);
         }
-        for (&e, &w) in self.edges.iter().zip(&self.mask.edge) {
-            let far = self.parent.other_vertex(e as usize, self.v as u32);
-            add(acc, src, far, w, width);
+        for (k, &w) in self.mask.edge.iter().take(self.edges).enumerate() {
+            add(acc, src, (self.far)(k), w, width);
         }
         add(acc, src, self.v as u32, self.mask.vertex[0], width);
     }
@@ -288,13 +346,15 @@ impl<T: Real> SmoothVertex<'_, T> {
         face_points: &[T],
         width: W,
     ) -> bool {
-        let (Ok(faces), Ok(edges), Ok(edge_weights)) = (
+        let (Ok(faces), Ok(edge_weights)) = (
             <&[u32; N]>::try_from(self.faces),
-            <&[u32; N]>::try_from(self.edges),
             <&[T; N]>::try_from(&self.mask.edge[..]),
         ) else {
             return false;
         };
+        if self.edges != N {
+            return false;
+        }
         if let Ok(face_weights) = <&[T; N]>::try_from(&self.mask.face[..]) {
             for k in 0..N {
                 add(acc, face_points, faces[k], face_weights[k], width);
@@ -302,9 +362,8 @@ impl<T: Real> SmoothVertex<'_, T> {
         } else if !self.mask.face.is_empty() {
             return false;
         }
-        for k in 0..N {
-            let far = self.parent.other_vertex(edges[k] as usize, self.v as u32);
-            add(acc, src, far, edge_weights[k], width);
+        for (k, &w) in edge_weights.iter().enumerate() {
+            add(acc, src, (self.far)(k), w, width);
         }
         add(acc, src, self.v as u32, self.mask.vertex[0], width);
         true
@@ -456,9 +515,32 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Empty vertex tags: every parent vertex is smooth (what
     // `Level::vertex_tag` reads, tested once here).
     let has_tags = !parent.vertex_tags.is_empty();
+    // A level whose vertex relations are derived: every vertex smooth,
+    // its faces and far ends derived from the level before.
+    let derived = parent
+        .derived_vertex_relations
+        .then(|| (&r.levels[level - 2], &r.refinements[level - 2]));
+    let triangles = scheme == Scheme::Loop;
     par_children(vertex_points, n, |v, slot, cache, scratch| {
-        let faces = parent.vertex_faces_of(v);
-        let edges = parent.vertex_edges_of(v);
+        let mut acc = zero;
+        if let Some((grand, gr)) = derived {
+            let (mut faces, mut fars) = ([0u32; 8], [0u32; 8]);
+            if let Some(count) = derive_smooth_hood(grand, gr, triangles, v, &mut faces, &mut fars)
+            {
+                SmoothVertex {
+                    v,
+                    faces: &faces[..count],
+                    edges: count,
+                    far: |k: usize| fars[k],
+                    mask: cache.smooth_vertex(r, count),
+                }
+                .sum(&mut acc, src, face_points, width);
+                store(slot, &acc, width);
+                return;
+            }
+        }
+        let mut hood = std::mem::take(&mut scratch.hood);
+        let (faces, edges) = r.vertex_hood(level - 1, v, &mut hood);
         let rule = if has_tags {
             parent.vertex_tags[v].rule()
         } else {
@@ -467,31 +549,20 @@ fn run<T: Real, W: Width + Send + Sync>(
         let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
             && faces.len() == edges.len()
             && !edges.is_empty();
-        let mut acc = zero;
         if smooth {
-            let mask = cache.smooth_vertex(r, faces.len());
-            let hood = SmoothVertex {
-                parent,
+            SmoothVertex {
                 v,
                 faces,
-                edges,
-                mask,
-            };
-            // The usual valences in unrolled loops (no trip counts).
-            let done = match faces.len() {
-                3 => hood.add_fixed::<3, W>(&mut acc, src, face_points, width),
-                4 => hood.add_fixed::<4, W>(&mut acc, src, face_points, width),
-                5 => hood.add_fixed::<5, W>(&mut acc, src, face_points, width),
-                6 => hood.add_fixed::<6, W>(&mut acc, src, face_points, width),
-                _ => false,
-            };
-            if !done {
-                hood.add(&mut acc, src, face_points, width);
+                edges: edges.len(),
+                far: |k: usize| parent.other_vertex(edges[k] as usize, v as u32),
+                mask: cache.smooth_vertex(r, faces.len()),
             }
+            .sum(&mut acc, src, face_points, width);
         } else {
             r.vertex_terms(Kind::Vertex, level, v, scratch);
             acc = irregular(scratch);
         }
         store(slot, &acc, width);
+        scratch.hood = hood;
     });
 }

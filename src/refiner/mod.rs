@@ -31,6 +31,8 @@ mod kernel;
 mod limit;
 mod stencils;
 
+#[cfg(test)]
+pub(crate) use kernel::HoodBuf;
 pub(crate) use kernel::Scratch;
 pub use stencils::FactorizedStencils;
 
@@ -590,8 +592,8 @@ impl Refiner {
             s.terms.push((Source::Parent(v as u32), T::ONE));
             return;
         }
-        let edges = parent.vertex_edges_of(v);
-        let faces = parent.vertex_faces_of(v);
+        let mut buf = std::mem::take(&mut s.hood);
+        let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
         s.edge_sharpness.clear();
         s.edge_sharpness
             .extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
@@ -620,6 +622,7 @@ impl Refiner {
                 .push((Source::Parent(parent.other_vertex(e as usize, v as u32)), w));
         }
         s.terms.push((Source::Parent(v as u32), s.mask.vertex[0]));
+        s.hood = buf;
     }
 }
 
@@ -692,8 +695,12 @@ pub fn refine_last<T: Real>(
         let mut next = vec![T::ZERO; r.levels[level].vertex_count * width];
         r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
         data = next;
-        // Nothing reads the parent any more: only this local refiner held it.
-        r.levels[level - 1] = Level::default();
+        // Nothing reads the grandparent any more (the parent's vertex
+        // relations, when derived, are read from it while interpolating this
+        // level): only this local refiner held it.
+        if level >= 2 {
+            r.levels[level - 2] = Level::default();
+        }
     }
     Ok((counts, data))
 }

@@ -402,6 +402,15 @@ pub struct Level {
     /// as [`Build::Relations`] from a parent without sharpness (nothing reads
     /// it there).
     pub vertex_edge_local: Table<u16>,
+    /// Whether `vertex_faces`, `vertex_edges` and their local indices were
+    /// left out (empty): in the level before a minimal last level whose
+    /// parent is smooth everywhere, where only interpolating the last level
+    /// reads them. They are then derived from the parent, vertex by vertex,
+    /// in the order they would have been stored ([`Level::vertex_faces_of`]
+    /// and [`Level::vertex_edges_of`] return empty slices there; use
+    /// [`crate::refiner::Refiner`]'s interpolation and stencils, which derive
+    /// them).
+    pub derived_vertex_relations: bool,
     /// Number of edges.
     pub num_edges: usize,
     /// Edge sharpness, empty when every edge is smooth (sharpness `0.0`) and
@@ -445,7 +454,8 @@ impl Level {
     /// sharpness and vertex tags.
     #[inline]
     pub fn has_full_topology(&self) -> bool {
-        self.edge_vertices.len() == self.num_edges && self.vertex_faces.len() == self.vertex_count
+        self.edge_vertices.len() == self.num_edges
+            && (self.derived_vertex_relations || self.vertex_faces.len() == self.vertex_count)
     }
 
     /// The sharpness of edge `e`: `0.0` when the level stores no edge
@@ -937,6 +947,77 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// The level before a minimal last level of a smooth closed mesh leaves
+    /// out its vertex relations; derived from its parent, they are the ones
+    /// a full level stores, vertex by vertex, in both vertex orders and under
+    /// every scheme. With sharpness in the parent, they are stored.
+    #[test]
+    fn derived_vertex_relations_equal_the_stored_ones() {
+        let mut buf = crate::refiner::HoodBuf::default();
+        let meshes = [
+            shapes::torus(6, 5),
+            shapes::torus_mixed(6, 4),
+            shapes::torus_triangles(6, 5),
+        ];
+        let mut derived_levels = 0;
+        for mesh in meshes {
+            for &scheme in mesh.applicable_schemes() {
+                for faces_first in [false, true] {
+                    for depth in 2..=3 {
+                        let options = Options::default().with_scheme(scheme);
+                        let uniform = UniformOptions::new(depth).faces_first(faces_first);
+                        let mut minimal = Refiner::new(&mesh, &options).unwrap();
+                        minimal.refine_uniform(uniform).unwrap();
+                        let mut full = Refiner::new(&mesh, &options).unwrap();
+                        full.refine_uniform(uniform.full_topology(true)).unwrap();
+                        let l = depth as usize - 1;
+                        let (derived, stored) = (&minimal.levels[l], &full.levels[l]);
+                        assert!(derived.derived_vertex_relations, "{scheme:?} L{depth}");
+                        assert!(derived.vertex_faces.is_empty() && derived.vertex_edges.is_empty());
+                        assert!(derived.has_full_topology());
+                        assert!(!stored.derived_vertex_relations);
+                        derived_levels += 1;
+                        let triangles = scheme == crate::options::Scheme::Loop;
+                        let (grand, r) = (&minimal.levels[l - 1], &minimal.refinements[l - 1]);
+                        for v in 0..stored.vertex_count {
+                            let (faces, edges) = minimal.vertex_hood(l, v, &mut buf);
+                            assert_eq!(
+                                faces,
+                                stored.vertex_faces_of(v),
+                                "{scheme:?} L{depth} v{v}"
+                            );
+                            assert_eq!(
+                                edges,
+                                stored.vertex_edges_of(v),
+                                "{scheme:?} L{depth} v{v}"
+                            );
+                            // The kernel's form: faces and far ends, up to 8.
+                            let (mut f, mut far) = ([0; 8], [0; 8]);
+                            let n = super::refine::derive_smooth_hood(
+                                grand, r, triangles, v, &mut f, &mut far,
+                            )
+                            .expect("valence up to 8");
+                            assert_eq!(&f[..n], faces, "{scheme:?} L{depth} v{v}");
+                            let fars: Vec<u32> = edges
+                                .iter()
+                                .map(|&e| stored.other_vertex(e as usize, v as u32))
+                                .collect();
+                            assert_eq!(&far[..n], &fars[..], "{scheme:?} L{depth} v{v}");
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(derived_levels, 2 * 2 * (2 + 2 + 3));
+        // A semi-sharp crease in the parent: the relations are stored.
+        let mut mesh = shapes::torus(6, 5);
+        mesh.add_crease(0, 1, 3.0);
+        for r in refiners(&mesh, 3, false) {
+            assert!(!r.levels[2].derived_vertex_relations);
+            assert!(!r.levels[2].vertex_faces.is_empty());
         }
     }
 

@@ -110,6 +110,10 @@ pub enum Build {
     /// them; only building a full child, face-varying refinement and limit
     /// evaluation do. `vertex_edge_local` stays when the parent has
     /// sharpness: the decay of semi-sharp features into the child reads it.
+    /// Where the parent is smooth everywhere (no sharpness, no tags, two
+    /// faces on every edge), the vertex-faces and vertex-edges are left out
+    /// too and derived from the parent when interpolation reads them
+    /// ([`Level::derived_vertex_relations`]).
     Relations,
     /// Only the face-vertices (with sharpness, tags and holes): what a last
     /// level needs for interpolation, as OpenSubdiv builds it unless asked
@@ -146,6 +150,7 @@ pub fn refine_level(
         return refine_triangles(parent, options, faces_first, minimal, locals);
     }
     let r = Refinement::new(parent, faces_first, true);
+    let derive = build == Build::Relations && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
     let child_faces = corners;
@@ -266,6 +271,9 @@ pub fn refine_level(
             (edge_vertices, edge_faces, ef_local)
         };
         let vertices_part = || {
+            if derive {
+                return Default::default();
+            }
             // Vertex-faces and vertex-edges, per child vertex, by origin: a
             // face point has one face and one edge per corner, an edge point
             // two faces per parent face and two edges more.
@@ -279,60 +287,25 @@ pub fn refine_level(
             );
             let face_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
                 for f in 0..nf {
-                    let base = parent.face_vertices.start(f);
-                    let n = parent.face_vertices.count(f);
-                    for j in 0..n {
-                        vf.push(
-                            (base + j) as u32,
-                            if n == 4 { (j + 2) & 3 } else { 2 } as u16,
-                        );
-                        ve.push((base + prev(j, n)) as u32, 0);
-                    }
+                    quad_face_child(parent, f, vf, ve);
                     vf.end_element();
                     ve.end_element();
                 }
             };
             let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                let mut edge_list: Vec<(u32, u16)> = Vec::with_capacity(8);
+                let mut edge_list = Vec::with_capacity(8);
                 for e in 0..ne {
-                    let ev = parent.edge_vertices[e];
-                    // The two halves first, then the edges inside each face; after the
-                    // first face the edges are rotated into counter-clockwise order.
-                    edge_list.clear();
-                    edge_list.push((r.edge_child_edge(e, 0), 0u16));
-                    edge_list.push((r.edge_child_edge(e, 1), 0u16));
-                    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
-                        let n = parent.face_vertices.count(f);
-                        let base = parent.face_vertices.start(f) as u32;
-                        let (c0, c1) = (k, next(k, n));
-                        vf.push(base + c1 as u32, if n == 4 { c0 } else { 3 } as u16);
-                        vf.push(base + c0 as u32, if n == 4 { c1 } else { 1 } as u16);
-                        edge_list.push((base + k as u32, 1));
-                        if i == 0 {
-                            if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
-                                edge_list.swap(0, 1);
-                            }
-                            edge_list.swap(1, 2);
-                        }
-                    }
-                    for &(m, l) in &edge_list {
-                        ve.push(m, l);
-                    }
+                    quad_edge_child(parent, &r, e, vf, ve, &mut edge_list);
                     vf.end_element();
                     ve.end_element();
                 }
             };
-            // A vertex's child sits in the child face at its corner: at the
-            // same position in a child of a quad, first in other children.
             let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                vertex_children_relations(parent, &r, vf, ve, |f, k| {
-                    let n = parent.face_vertices.count(f as usize);
-                    let local = if n == 4 { k } else { 0 };
-                    (
-                        parent.face_vertices.start(f as usize) as u32 + k as u32,
-                        local,
-                    )
-                })
+                for v in 0..parent.vertex_count {
+                    quad_vertex_child(parent, &r, v, vf, ve);
+                    vf.end_element();
+                    ve.end_element();
+                }
             };
             fill_vertex_relations(&r, vf, ve, face_children, edge_children, vertex_children)
         };
@@ -364,6 +337,7 @@ pub fn refine_level(
             relations,
             num_edges: child_edges,
             face_holes: child_holes(parent, child_faces, false),
+            derived_vertex_relations: derive,
             max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
         },
     );
@@ -552,6 +526,7 @@ fn refine_triangles(
     locals: bool,
 ) -> (Refinement, Level) {
     let r = Refinement::new(parent, faces_first, false);
+    let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
     let child_faces = 4 * nf;
@@ -680,6 +655,9 @@ fn refine_triangles(
             ef.finish()
         };
         let vertices_part = || {
+            if derive {
+                return Default::default();
+            }
             // Vertex-faces and vertex-edges: an edge point has three child
             // triangles and two inner edges per parent face, and two halves.
             let ef_members = parent.edge_faces.members.len();
@@ -692,33 +670,17 @@ fn refine_triangles(
             );
             let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
                 for e in 0..ne {
-                    let ev = parent.edge_vertices[e];
-                    let mut last_half = None;
-                    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
-                        // Leading, middle and trailing child triangles around the edge point.
-                        for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)]
-                        {
-                            vf.push((4 * f + child) as u32, local as u16);
-                        }
-                        if i == 0 {
-                            let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
-                            let (first, second) = if reversed { (0, 1) } else { (1, 0) };
-                            ve.push(r.edge_child_edge(e, first), 0);
-                            last_half = Some(r.edge_child_edge(e, second));
-                        }
-                        ve.push(inner_edge(f, (k + 1) % 3), 1);
-                        ve.push(inner_edge(f, k), 0);
-                        if let Some(h) = last_half.take() {
-                            ve.push(h, 0);
-                        }
-                    }
+                    triangle_edge_child(parent, &r, e, vf, ve);
                     vf.end_element();
                     ve.end_element();
                 }
             };
-            // A vertex's child sits in the corner triangle of each face.
             let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                vertex_children_relations(parent, &r, vf, ve, |f, k| (4 * f + k as u32, k))
+                for v in 0..parent.vertex_count {
+                    triangle_vertex_child(parent, &r, v, vf, ve);
+                    vf.end_element();
+                    ve.end_element();
+                }
             };
             fill_vertex_relations(&r, vf, ve, |_, _| {}, edge_children, vertex_children)
         };
@@ -752,6 +714,7 @@ fn refine_triangles(
             relations,
             num_edges: child_edges,
             face_holes: child_holes(parent, child_faces, true),
+            derived_vertex_relations: derive,
             max_valence: parent.max_valence.max(6).max(2 + 2 * parent.max_edge_faces),
         },
     );
@@ -779,6 +742,8 @@ struct Parts {
     relations: ChildRelations,
     num_edges: usize,
     face_holes: Vec<bool>,
+    /// Vertex relations left out, derived from the parent when read.
+    derived_vertex_relations: bool,
     max_valence: usize,
 }
 
@@ -845,6 +810,7 @@ fn assemble_child(parent: &Level, tags: ChildTags, p: Parts) -> Level {
         edge_tags: tags.edge_tags,
         vertex_tags: tags.vertex_tags,
         face_holes: p.face_holes,
+        derived_vertex_relations: p.derived_vertex_relations,
         max_edge_faces: parent.max_edge_faces.max(2),
         max_valence: p.max_valence,
     }
@@ -924,35 +890,334 @@ fn fill_vertex_relations(
     (vf.finish(), ve.finish())
 }
 
-/// The vertex-faces and vertex-edges of the children of parent vertices: the
+/// Where the members of one child vertex's relations go, with their local
+/// indices: a [`TableWriter`] building a level, or a buffer of members
+/// deriving one vertex's relations on demand ([`derive_vertex_relations`]).
+trait Sink {
+    fn push(&mut self, member: u32, local: u16);
+}
+
+impl Sink for TableWriter {
+    #[inline(always)]
+    fn push(&mut self, member: u32, local: u16) {
+        TableWriter::push(self, member, local);
+    }
+}
+
+impl Sink for Vec<u32> {
+    #[inline(always)]
+    fn push(&mut self, member: u32, _: u16) {
+        Vec::push(self, member);
+    }
+}
+
+/// The vertex-faces and vertex-edges of the child of parent vertex `v`: the
 /// child faces at the vertex's corners (`child_face(f, k)` gives the child
 /// of face `f` at corner `k` and the vertex's position in it) and the halves
 /// of its edges at its end (where the child vertex is end 1).
-fn vertex_children_relations(
+#[inline(always)]
+fn vertex_child_relations(
     parent: &Level,
     r: &Refinement,
-    vf: &mut TableWriter,
-    ve: &mut TableWriter,
+    v: usize,
+    vf: &mut impl Sink,
+    ve: &mut impl Sink,
     child_face: impl Fn(u32, u16) -> (u32, u16),
 ) {
-    for v in 0..parent.vertex_count {
-        for (&f, &k) in parent
-            .vertex_faces_of(v)
-            .iter()
-            .zip(parent.vertex_face_locals(v))
-        {
-            let (member, local) = child_face(f, k);
-            vf.push(member, local);
+    for (&f, &k) in parent
+        .vertex_faces_of(v)
+        .iter()
+        .zip(parent.vertex_face_locals(v))
+    {
+        let (member, local) = child_face(f, k);
+        vf.push(member, local);
+    }
+    for (&e, &l) in parent
+        .vertex_edges_of(v)
+        .iter()
+        .zip(parent.vertex_edge_locals(v))
+    {
+        ve.push(r.edge_child_edge(e as usize, l as usize), 1);
+    }
+}
+
+/// Quad split: the face point of parent face `f` has one child face and one
+/// child edge per corner.
+#[inline(always)]
+fn quad_face_child(parent: &Level, f: usize, vf: &mut impl Sink, ve: &mut impl Sink) {
+    let base = parent.face_vertices.start(f);
+    let n = parent.face_vertices.count(f);
+    for j in 0..n {
+        vf.push(
+            (base + j) as u32,
+            if n == 4 { (j + 2) & 3 } else { 2 } as u16,
+        );
+        ve.push((base + prev(j, n)) as u32, 0);
+    }
+}
+
+/// Quad split: the edge point of parent edge `e` has two child faces per
+/// parent face, and the two halves of `e` and an edge inside each face.
+#[inline(always)]
+fn quad_edge_child(
+    parent: &Level,
+    r: &Refinement,
+    e: usize,
+    vf: &mut impl Sink,
+    ve: &mut impl Sink,
+    edge_list: &mut Vec<(u32, u16)>,
+) {
+    let ev = parent.edge_vertices[e];
+    // The two halves first, then the edges inside each face; after the
+    // first face the edges are rotated into counter-clockwise order.
+    edge_list.clear();
+    edge_list.push((r.edge_child_edge(e, 0), 0u16));
+    edge_list.push((r.edge_child_edge(e, 1), 0u16));
+    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
+        let n = parent.face_vertices.count(f);
+        let base = parent.face_vertices.start(f) as u32;
+        let (c0, c1) = (k, next(k, n));
+        vf.push(base + c1 as u32, if n == 4 { c0 } else { 3 } as u16);
+        vf.push(base + c0 as u32, if n == 4 { c1 } else { 1 } as u16);
+        edge_list.push((base + k as u32, 1));
+        if i == 0 {
+            if ev[0] != ev[1] && parent.face_verts(f)[k] == ev[0] {
+                edge_list.swap(0, 1);
+            }
+            edge_list.swap(1, 2);
         }
-        for (&e, &l) in parent
-            .vertex_edges_of(v)
-            .iter()
-            .zip(parent.vertex_edge_locals(v))
-        {
-            ve.push(r.edge_child_edge(e as usize, l as usize), 1);
+    }
+    for &(m, l) in edge_list.iter() {
+        ve.push(m, l);
+    }
+}
+
+/// Quad split: a vertex's child sits in the child face at its corner — at
+/// the same position in a child of a quad, first in other children.
+#[inline(always)]
+fn quad_vertex_child(
+    parent: &Level,
+    r: &Refinement,
+    v: usize,
+    vf: &mut impl Sink,
+    ve: &mut impl Sink,
+) {
+    vertex_child_relations(parent, r, v, vf, ve, |f, k| {
+        let n = parent.face_vertices.count(f as usize);
+        let local = if n == 4 { k } else { 0 };
+        (
+            parent.face_vertices.start(f as usize) as u32 + k as u32,
+            local,
+        )
+    });
+}
+
+/// Triangle split: the edge point of parent edge `e` has three child
+/// triangles and two inner edges per parent face, and the two halves.
+#[inline(always)]
+fn triangle_edge_child(
+    parent: &Level,
+    r: &Refinement,
+    e: usize,
+    vf: &mut impl Sink,
+    ve: &mut impl Sink,
+) {
+    let inner_edge = |f: usize, j: usize| (3 * f + j) as u32;
+    let ev = parent.edge_vertices[e];
+    let mut last_half = None;
+    for (i, (f, k)) in parent.edge_faces_at(e).enumerate() {
+        // Leading, middle and trailing child triangles around the edge point.
+        for (child, local) in [((k + 1) % 3, k), (3, (k + 2) % 3), (k, (k + 1) % 3)] {
+            vf.push((4 * f + child) as u32, local as u16);
         }
-        vf.end_element();
-        ve.end_element();
+        if i == 0 {
+            let reversed = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+            let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+            ve.push(r.edge_child_edge(e, first), 0);
+            last_half = Some(r.edge_child_edge(e, second));
+        }
+        ve.push(inner_edge(f, (k + 1) % 3), 1);
+        ve.push(inner_edge(f, k), 0);
+        if let Some(h) = last_half.take() {
+            ve.push(h, 0);
+        }
+    }
+}
+
+/// Triangle split: a vertex's child sits in the corner triangle of each face.
+#[inline(always)]
+fn triangle_vertex_child(
+    parent: &Level,
+    r: &Refinement,
+    v: usize,
+    vf: &mut impl Sink,
+    ve: &mut impl Sink,
+) {
+    vertex_child_relations(parent, r, v, vf, ve, |f, k| (4 * f + k as u32, k));
+}
+
+/// Whether a child of `parent` built as [`Build::Relations`] can leave out
+/// its vertex-faces and vertex-edges, to be derived from `parent` when read
+/// ([`derive_vertex_relations`]): `parent` has its local indices, no
+/// sharpness and no tags (every vertex smooth and manifold, no boundary),
+/// and two faces on every edge. Then every vertex of the child is smooth
+/// with as many faces as edges, and nothing but interpolating the minimal
+/// last level reads its vertex relations.
+fn vertex_relations_derivable(parent: &Level) -> bool {
+    parent.has_local_indices()
+        && parent.vertex_tags.is_empty()
+        && parent.edge_tags.is_empty()
+        && parent.edge_sharpness.is_empty()
+        && parent.vertex_sharpness.is_empty()
+        && parent.edge_faces.uniform_size() == Some(2)
+}
+
+/// The faces and edges of vertex `c` of a level split from `parent` by `r`
+/// (`triangles`: Loop's triangle split; otherwise the quad split), in the
+/// order the level would store them, for a level built without them
+/// ([`Level::derived_vertex_relations`]). `edge_list` is scratch space.
+pub(crate) fn derive_vertex_relations(
+    parent: &Level,
+    r: &Refinement,
+    triangles: bool,
+    c: usize,
+    (faces, edges, edge_list): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<(u32, u16)>),
+) {
+    faces.clear();
+    edges.clear();
+    let [nv, ne, nf] = r.parent_counts;
+    let from = |first: u32, count: usize| c.checked_sub(first as usize).filter(|&i| i < count);
+    if let Some(f) = from(r.first_vertex_from_faces, nf) {
+        quad_face_child(parent, f, faces, edges);
+    } else if let Some(e) = from(r.first_vertex_from_edges, ne) {
+        if triangles {
+            triangle_edge_child(parent, r, e, faces, edges);
+        } else {
+            quad_edge_child(parent, r, e, faces, edges, edge_list);
+        }
+    } else if let Some(v) = from(r.first_vertex_from_vertices, nv) {
+        if triangles {
+            triangle_vertex_child(parent, r, v, faces, edges);
+        } else {
+            quad_vertex_child(parent, r, v, faces, edges);
+        }
+    }
+}
+
+/// [`derive_vertex_relations`] as the interpolation kernel reads it: the
+/// faces of vertex `c` into `faces` and the far ends of its edges (vertices
+/// of the child level, in the same order as the edges) into `fars`, without
+/// reading the child level. Returns how many, or `None` when they are more
+/// than `N` (then derive the relations themselves). Only for levels whose
+/// vertex relations are derived: every edge of `parent` has two faces.
+#[inline(always)]
+pub(crate) fn derive_smooth_hood<const N: usize>(
+    parent: &Level,
+    r: &Refinement,
+    triangles: bool,
+    c: usize,
+    faces: &mut [u32; N],
+    fars: &mut [u32; N],
+) -> Option<usize> {
+    let [nv, ne, nf] = r.parent_counts;
+    let from = |first: u32, count: usize| c.checked_sub(first as usize).filter(|&i| i < count);
+    if let Some(f) = from(r.first_vertex_from_faces, nf) {
+        // Quad split: a child face per corner, an edge to each edge point.
+        let base = parent.face_vertices.start(f) as u32;
+        let edges = parent.face_edges_of(f);
+        let n = edges.len();
+        if n > N {
+            return None;
+        }
+        for j in 0..n {
+            faces[j] = base + j as u32;
+            fars[j] = r.edge_child(edges[prev(j, n)] as usize);
+        }
+        Some(n)
+    } else if let Some(e) = from(r.first_vertex_from_edges, ne) {
+        let ev = parent.edge_vertices[e];
+        let mut at = parent.edge_faces_at(e);
+        let (Some((f0, k0)), Some((f1, k1))) = (at.next(), at.next()) else {
+            return None;
+        };
+        if triangles {
+            // Three child triangles per face; the half at the first face's
+            // leading end, the inner edges to the face's other edge points
+            // (inner edge `j` of a face joins the points of its edges `j`
+            // and `j - 1`), then the other half.
+            if 6 > N {
+                return None;
+            }
+            let ep = |f: usize, j: usize| r.edge_child(parent.face_edges_of(f)[j % 3] as usize);
+            for (i, (f, k)) in [(f0, k0), (f1, k1)].into_iter().enumerate() {
+                let t = 4 * f as u32;
+                faces[3 * i..3 * i + 3].copy_from_slice(&[
+                    t + ((k + 1) % 3) as u32,
+                    t + 3,
+                    t + k as u32,
+                ]);
+            }
+            let reversed = ev[0] != ev[1] && parent.face_verts(f0)[k0] != ev[0];
+            let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+            fars[..6].copy_from_slice(&[
+                r.vertex_child(ev[first] as usize),
+                ep(f0, k0 + 1),
+                ep(f0, k0 + 2),
+                r.vertex_child(ev[second] as usize),
+                ep(f1, k1 + 1),
+                ep(f1, k1 + 2),
+            ]);
+            Some(6)
+        } else {
+            if 4 > N {
+                return None;
+            }
+            let (n0, n1) = (
+                parent.face_vertices.count(f0),
+                parent.face_vertices.count(f1),
+            );
+            let (b0, b1) = (
+                parent.face_vertices.start(f0) as u32,
+                parent.face_vertices.start(f1) as u32,
+            );
+            faces[..4].copy_from_slice(&[
+                b0 + next(k0, n0) as u32,
+                b0 + k0 as u32,
+                b1 + next(k1, n1) as u32,
+                b1 + k1 as u32,
+            ]);
+            // The halves around the first face's inner edge, the end met
+            // first in that face's order first.
+            let swapped = ev[0] != ev[1] && parent.face_verts(f0)[k0] == ev[0];
+            let (a, b) = if swapped { (1, 0) } else { (0, 1) };
+            fars[..4].copy_from_slice(&[
+                r.vertex_child(ev[a] as usize),
+                r.face_child(f0),
+                r.vertex_child(ev[b] as usize),
+                r.face_child(f1),
+            ]);
+            Some(4)
+        }
+    } else if let Some(v) = from(r.first_vertex_from_vertices, nv) {
+        let vfaces = parent.vertex_faces_of(v);
+        let vedges = parent.vertex_edges_of(v);
+        let n = vfaces.len();
+        if n > N || vedges.len() != n {
+            return None;
+        }
+        for (j, (&f, &k)) in vfaces.iter().zip(parent.vertex_face_locals(v)).enumerate() {
+            faces[j] = if triangles {
+                4 * f + k as u32
+            } else {
+                parent.face_vertices.start(f as usize) as u32 + k as u32
+            };
+        }
+        for (j, &e) in vedges.iter().enumerate() {
+            fars[j] = r.edge_child(e as usize);
+        }
+        Some(n)
+    } else {
+        None
     }
 }
 
