@@ -87,11 +87,12 @@ fn main() -> Result<(), Error> {
     // [relations]
     // The other relations (native engine): Refiner::internal_level.
     let full = refiner.internal_level(1)?;
-    let vertex_faces = full.vertex_faces_of(0); // GetVertexFaces(0)
-    let vertex_edges = full.vertex_edges_of(0); // GetVertexEdges(0)
+    // GetVertexFaces(0), GetVertexEdges(0): through the refiner, which derives
+    // them where a level leaves them out (the level before a minimal last level).
+    let (vertex_faces, vertex_edges) = refiner.vertex_faces_and_edges(1, 0)?;
     let edge_faces = full.edge_faces_of(0); // GetEdgeFaces(0)
     let face_edges = full.face_edges_of(3); // GetFaceEdges(3)
-    let edge = full.find_edge(v0, v1); // FindEdge(v0, v1), None for INDEX_INVALID
+    let edge = refiner.find_edge(1, v0, v1)?; // FindEdge(v0, v1), None for INDEX_INVALID
     let boundary = full.vertex_tag(0).boundary(); // IsVertexBoundary(0)
     let rule = full.vertex_tag(0).rule(); // GetVertexRule(0)
     // [end]

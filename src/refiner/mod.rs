@@ -31,9 +31,7 @@ mod kernel;
 mod limit;
 mod stencils;
 
-#[cfg(test)]
-pub(crate) use kernel::HoodBuf;
-pub(crate) use kernel::Scratch;
+pub(crate) use kernel::{HoodBuf, Scratch};
 pub use stencils::FactorizedStencils;
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
@@ -236,6 +234,61 @@ impl Refiner {
             face_vertices: l.face_vertices.members.len(),
             full_topology: l.has_full_topology(),
         })
+    }
+
+    /// The faces around vertex `v` of `level` and its edges, in OpenSubdiv's
+    /// order (`TopologyLevel::GetVertexFaces` and `GetVertexEdges`): read
+    /// from the level, or derived from the level before where the level
+    /// leaves them out ([`Level::derived_vertex_relations`]: the level before
+    /// a minimal last level of a smooth mesh, whose
+    /// [`Level::vertex_faces_of`] is empty). Empty in a minimal last level,
+    /// which has no vertex relations, as in OpenSubdiv.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let torus = shapes::torus(6, 4);
+    /// let mut refiner = Refiner::new(&torus, &Options::default())?;
+    /// refiner.refine_uniform(UniformOptions::new(2))?;
+    /// // Level 1 leaves its vertex relations out: level 0 gives them.
+    /// assert!(refiner.internal_level(1)?.vertex_faces_of(0).is_empty());
+    /// let (faces, edges) = refiner.vertex_faces_and_edges(1, 0)?;
+    /// assert_eq!((faces.len(), edges.len()), (4, 4));
+    /// assert_eq!(refiner.find_edge(1, 0, refiner.internal_level(1)?.other_vertex(edges[0] as usize, 0))?, Some(edges[0]));
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn vertex_faces_and_edges(&self, level: u32, v: usize) -> Result<(Vec<u32>, Vec<u32>)> {
+        let l = self.internal_level(level)?;
+        if v >= l.vertex_count {
+            return Err(Error::InvalidArgument(format!(
+                "vertex {v} does not exist (level {level} has {} vertices)",
+                l.vertex_count
+            )));
+        }
+        let mut buf = HoodBuf::default();
+        let (faces, edges) = self.vertex_hood(level as usize, v, &mut buf);
+        Ok((faces.to_vec(), edges.to_vec()))
+    }
+
+    /// The edge of `level` between vertices `v0` and `v1`
+    /// (`TopologyLevel::FindEdge`), or `None` (always in a minimal last
+    /// level, which has no edges); like [`Level::find_edge`], but also on a
+    /// level that derives its vertex relations
+    /// ([`Refiner::vertex_faces_and_edges`]), and a vertex out of range is an
+    /// error.
+    pub fn find_edge(&self, level: u32, v0: u32, v1: u32) -> Result<Option<u32>> {
+        let l = self.internal_level(level)?;
+        if v1 as usize >= l.vertex_count {
+            return Err(Error::InvalidArgument(format!(
+                "vertex {v1} does not exist (level {level} has {} vertices)",
+                l.vertex_count
+            )));
+        }
+        // Every edge around `v0` has `v0` for an end; the other must be `v1`.
+        let (_, edges) = self.vertex_faces_and_edges(level, v0 as usize)?;
+        Ok(edges.into_iter().find(|&e| {
+            let [a, b] = l.edge_vertices[e as usize];
+            if v0 != v1 { a == v1 || b == v1 } else { a == b }
+        }))
     }
 
     /// The deepest refined level.

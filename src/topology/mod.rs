@@ -1007,6 +1007,19 @@ mod tests {
                                 .collect();
                             assert_eq!(&far[..n], &fars[..], "{scheme:?} L{depth} v{v}");
                         }
+                        // The public accessors, on the derived level.
+                        let (faces, edges) = minimal.vertex_faces_and_edges(l as u32, 7).unwrap();
+                        assert_eq!(
+                            (&faces[..], &edges[..]),
+                            (stored.vertex_faces_of(7), stored.vertex_edges_of(7))
+                        );
+                        for (e, &[a, b]) in stored.edge_vertices.iter().enumerate() {
+                            assert_eq!(minimal.find_edge(l as u32, a, b).unwrap(), Some(e as u32));
+                            assert_eq!(minimal.find_edge(l as u32, b, a).unwrap(), Some(e as u32));
+                        }
+                        let count = stored.vertex_count;
+                        assert!(minimal.vertex_faces_and_edges(l as u32, count).is_err());
+                        assert!(minimal.find_edge(l as u32, 0, count as u32).is_err());
                     }
                 }
             }
