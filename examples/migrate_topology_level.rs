@@ -90,7 +90,7 @@ fn main() -> Result<(), Error> {
     // GetVertexFaces(0), GetVertexEdges(0): through the refiner, which derives
     // them where a level leaves them out (the level before a minimal last level).
     let (vertex_faces, vertex_edges) = refiner.vertex_faces_and_edges(1, 0)?;
-    let edge_faces = full.edge_faces_of(0); // GetEdgeFaces(0)
+    let edge_faces = refiner.edge_faces(1, 0)?; // GetEdgeFaces(0)
     let face_edges = full.face_edges_of(3); // GetFaceEdges(3)
     let edge = refiner.find_edge(1, v0, v1)?; // FindEdge(v0, v1), None for INDEX_INVALID
     let boundary = full.vertex_tag(0).boundary(); // IsVertexBoundary(0)

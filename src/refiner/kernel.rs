@@ -10,7 +10,7 @@ use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood};
 use crate::topology::Level;
-use crate::topology::refine::derive_smooth_hood;
+use crate::topology::refine::{derive_edge_faces, derive_half_edge_faces, derive_smooth_hood};
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -21,6 +21,9 @@ pub(crate) struct Scratch<T> {
     pub child_edge_sharpness: Vec<f32>,
     /// A vertex's relations where its level derives them.
     pub hood: HoodBuf,
+    /// The parent edge whose halves' faces were derived last, and those
+    /// faces (the two halves are consecutive child edges).
+    pub halves: (usize, [[u32; 2]; 2]),
 }
 
 /// Room for the faces and edges of one vertex of a level that derives its
@@ -36,7 +39,7 @@ impl Refiner {
     /// The faces and edges around vertex `v` of level `level`, in their
     /// stored order: read from the level, or derived from the level before
     /// into `buf` where the level left them out
-    /// ([`Level::derived_vertex_relations`]).
+    /// ([`Level::derived_relations`]).
     #[inline(always)]
     pub(crate) fn vertex_hood<'a>(
         &'a self,
@@ -45,7 +48,7 @@ impl Refiner {
         buf: &'a mut HoodBuf,
     ) -> (&'a [u32], &'a [u32]) {
         let l = &self.levels[level];
-        if l.derived_vertex_relations {
+        if l.derived_relations {
             crate::topology::refine::derive_vertex_relations(
                 &self.levels[level - 1],
                 &self.refinements[level - 1],
@@ -69,6 +72,7 @@ impl<T: Real> Scratch<T> {
             edge_sharpness: Vec::new(),
             child_edge_sharpness: Vec::new(),
             hood: HoodBuf::default(),
+            halves: (usize::MAX, [[0; 2]; 2]),
         }
     }
 }
@@ -474,8 +478,32 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Empty edge sharpness: every parent edge is smooth (what
     // `Level::edge_sharpness_at` reads, tested once here).
     let has_sharpness = !parent.edge_sharpness.is_empty();
+    // A level whose relations are derived (every vertex smooth, every edge
+    // between two faces): its edges' faces, and its vertices' faces and far
+    // ends, derived from the level before.
+    let derived = parent
+        .derived_relations
+        .then(|| (&r.levels[level - 2], &r.refinements[level - 2]));
+    let triangles = scheme == Scheme::Loop;
     par_children(edge_points, n, |e, slot, cache, scratch| {
-        let faces = parent.edge_faces_of(e);
+        let derived_faces;
+        let faces: &[u32] = match derived {
+            Some((grand, gr)) => {
+                derived_faces = match e.checked_sub(gr.parent_corners) {
+                    // A half of a parent edge: both halves derived at once.
+                    Some(i) => {
+                        if scratch.halves.0 != i / 2 {
+                            scratch.halves =
+                                (i / 2, derive_half_edge_faces(grand, triangles, i / 2));
+                        }
+                        scratch.halves.1[i % 2]
+                    }
+                    None => derive_edge_faces(grand, gr, triangles, e),
+                };
+                &derived_faces
+            }
+            None => parent.edge_faces_of(e),
+        };
         let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
         let mut acc = zero;
         let weights = if smooth {
@@ -515,12 +543,6 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Empty vertex tags: every parent vertex is smooth (what
     // `Level::vertex_tag` reads, tested once here).
     let has_tags = !parent.vertex_tags.is_empty();
-    // A level whose vertex relations are derived: every vertex smooth,
-    // its faces and far ends derived from the level before.
-    let derived = parent
-        .derived_vertex_relations
-        .then(|| (&r.levels[level - 2], &r.refinements[level - 2]));
-    let triangles = scheme == Scheme::Loop;
     par_children(vertex_points, n, |v, slot, cache, scratch| {
         let mut acc = zero;
         if let Some((grand, gr)) = derived {

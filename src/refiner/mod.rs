@@ -53,6 +53,21 @@ pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
     level.face_verts(f)[(k + 2) % f_edges.len()]
 }
 
+/// The faces of an edge: read from its level, or derived.
+pub(crate) enum EdgeFaces<'a> {
+    Stored(&'a [u32]),
+    Derived([u32; 2]),
+}
+
+impl EdgeFaces<'_> {
+    fn as_slice(&self) -> &[u32] {
+        match self {
+            EdgeFaces::Stored(f) => f,
+            EdgeFaces::Derived(f) => f,
+        }
+    }
+}
+
 /// Where a mask term reads its value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Source {
@@ -239,7 +254,7 @@ impl Refiner {
     /// The faces around vertex `v` of `level` and its edges, in OpenSubdiv's
     /// order (`TopologyLevel::GetVertexFaces` and `GetVertexEdges`): read
     /// from the level, or derived from the level before where the level
-    /// leaves them out ([`Level::derived_vertex_relations`]: the level before
+    /// leaves them out ([`Level::derived_relations`]: the level before
     /// a minimal last level of a smooth mesh, whose
     /// [`Level::vertex_faces_of`] is empty). Empty in a minimal last level,
     /// which has no vertex relations, as in OpenSubdiv.
@@ -289,6 +304,40 @@ impl Refiner {
             let [a, b] = l.edge_vertices[e as usize];
             if v0 != v1 { a == v1 || b == v1 } else { a == b }
         }))
+    }
+
+    /// The faces of edge `e` of `level`, stored or derived
+    /// ([`Level::derived_relations`]).
+    pub(crate) fn edge_faces_of(&self, level: usize, e: usize) -> EdgeFaces<'_> {
+        let l = &self.levels[level];
+        if l.derived_relations {
+            EdgeFaces::Derived(crate::topology::refine::derive_edge_faces(
+                &self.levels[level - 1],
+                &self.refinements[level - 1],
+                self.options.scheme == Scheme::Loop,
+                e,
+            ))
+        } else {
+            EdgeFaces::Stored(l.edge_faces_of(e))
+        }
+    }
+
+    /// The faces of edge `e` of `level`, in OpenSubdiv's order
+    /// (`TopologyLevel::GetEdgeFaces`): read from the level, or derived from
+    /// the level before where the level leaves them out
+    /// ([`Level::derived_relations`]); empty in a minimal last level.
+    pub fn edge_faces(&self, level: u32, e: usize) -> Result<Vec<u32>> {
+        let l = self.internal_level(level)?;
+        if e >= l.edge_count() {
+            return Err(Error::InvalidArgument(format!(
+                "edge {e} does not exist (level {level} has {} edges)",
+                l.edge_count()
+            )));
+        }
+        if !l.derived_relations && l.edge_faces.len() != l.edge_count() {
+            return Ok(Vec::new());
+        }
+        Ok(self.edge_faces_of(level as usize, e).as_slice().to_vec())
     }
 
     /// The deepest refined level.
@@ -592,7 +641,8 @@ impl Refiner {
                 .extend([(Source::Parent(ev[0]), half), (Source::Parent(ev[1]), half)]);
             return;
         }
-        let faces = parent.edge_faces_of(e);
+        let faces = self.edge_faces_of(level - 1, e);
+        let faces = faces.as_slice();
         s.face_sizes.clear();
         s.face_sizes.extend(
             faces

@@ -177,7 +177,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         vertex_face_local: Table::new(),
         vertex_edges: vertex_edges.into_relation(),
         vertex_edge_local: Table::new(),
-        derived_vertex_relations: false,
+        derived_relations: false,
         num_edges: ne,
         // Sharpness, tags and holes are allocated by the first value that
         // is not the default (non-manifold features, `assign_tags`).

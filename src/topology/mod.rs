@@ -402,15 +402,19 @@ pub struct Level {
     /// as [`Build::Relations`] from a parent without sharpness (nothing reads
     /// it there).
     pub vertex_edge_local: Table<u16>,
-    /// Whether `vertex_faces`, `vertex_edges` and their local indices were
-    /// left out (empty): in the level before a minimal last level whose
-    /// parent is smooth everywhere, where only interpolating the last level
-    /// reads them. They are then derived from the parent, vertex by vertex,
-    /// in the order they would have been stored ([`Level::vertex_faces_of`]
-    /// and [`Level::vertex_edges_of`] return empty slices there; use
-    /// [`crate::refiner::Refiner`]'s interpolation and stencils, which derive
-    /// them).
-    pub derived_vertex_relations: bool,
+    /// Whether `vertex_faces`, `vertex_edges`, `edge_faces` and their local
+    /// indices were left out (empty): in the level before a minimal last
+    /// level whose parent is smooth everywhere (no sharpness, no tags, two
+    /// faces on every edge), where only interpolating the last level reads
+    /// them. They are then derived from the parent, element by element, in
+    /// the order they would have been stored: [`Level::vertex_faces_of`],
+    /// [`Level::vertex_edges_of`], [`Level::edge_faces_of`] and
+    /// [`Level::find_edge`] find nothing there, while
+    /// [`crate::refiner::Refiner::vertex_faces_and_edges`],
+    /// [`crate::refiner::Refiner::edge_faces`] and
+    /// [`crate::refiner::Refiner::find_edge`], interpolation and stencils
+    /// derive them.
+    pub derived_relations: bool,
     /// Number of edges.
     pub num_edges: usize,
     /// Edge sharpness, empty when every edge is smooth (sharpness `0.0`) and
@@ -455,7 +459,7 @@ impl Level {
     #[inline]
     pub fn has_full_topology(&self) -> bool {
         self.edge_vertices.len() == self.num_edges
-            && (self.derived_vertex_relations || self.vertex_faces.len() == self.vertex_count)
+            && (self.derived_relations || self.vertex_faces.len() == self.vertex_count)
     }
 
     /// The sharpness of edge `e`: `0.0` when the level stores no edge
@@ -588,7 +592,8 @@ impl Level {
     /// their faces: false only for a level built as [`Build::Relations`] (the
     /// level before a minimal last level).
     pub fn has_local_indices(&self) -> bool {
-        self.vertex_face_local.len() == self.vertex_faces.members.len()
+        !self.derived_relations
+            && self.vertex_face_local.len() == self.vertex_faces.members.len()
             && self.edge_face_local.len() == self.edge_faces.members.len()
     }
 
@@ -771,17 +776,16 @@ mod tests {
                     for e in 0..level.edge_count() {
                         let tag = level.edge_tag(e);
                         assert_eq!(tag, f.edge_tag(e), "level {l} edge {e}");
-                        assert_eq!(tag.boundary(), level.edge_faces.count(e) < 2);
+                        let faces = r.edge_faces(l, e).unwrap().len();
+                        assert_eq!(tag.boundary(), faces < 2);
                         let s = level.edge_sharpness_at(e);
                         assert_eq!(tag.inf_sharp(), crease::is_infinite(s));
                         assert_eq!(tag.semi_sharp(), crease::is_sharp(s) && !tag.inf_sharp());
                     }
                     for v in 0..level.vertex_count {
                         let tag = level.vertex_tag(v);
-                        let edges = level
-                            .vertex_edges_of(v)
-                            .iter()
-                            .map(|&e| level.edge_tag(e as usize));
+                        let (_, around) = r.vertex_faces_and_edges(l, v).unwrap();
+                        let edges = around.iter().map(|&e| level.edge_tag(e as usize));
                         let sharp = edges.clone().filter(|t| t.inf_sharp() || t.semi_sharp());
                         let s = level.vertex_sharpness_at(v);
                         assert_eq!(tag.boundary(), edges.clone().any(|t| t.boundary()));
@@ -951,11 +955,12 @@ mod tests {
     }
 
     /// The level before a minimal last level of a smooth closed mesh leaves
-    /// out its vertex relations; derived from its parent, they are the ones
-    /// a full level stores, vertex by vertex, in both vertex orders and under
-    /// every scheme. With sharpness in the parent, they are stored.
+    /// out its vertex relations and edge-faces; derived from its parent,
+    /// they are the ones a full level stores, element by element, in both
+    /// vertex orders and under every scheme. With sharpness in the parent,
+    /// they are stored.
     #[test]
-    fn derived_vertex_relations_equal_the_stored_ones() {
+    fn derived_relations_equal_the_stored_ones() {
         let mut buf = crate::refiner::HoodBuf::default();
         let meshes = [
             shapes::torus(6, 5),
@@ -975,10 +980,10 @@ mod tests {
                         full.refine_uniform(uniform.full_topology(true)).unwrap();
                         let l = depth as usize - 1;
                         let (derived, stored) = (&minimal.levels[l], &full.levels[l]);
-                        assert!(derived.derived_vertex_relations, "{scheme:?} L{depth}");
+                        assert!(derived.derived_relations, "{scheme:?} L{depth}");
                         assert!(derived.vertex_faces.is_empty() && derived.vertex_edges.is_empty());
                         assert!(derived.has_full_topology());
-                        assert!(!stored.derived_vertex_relations);
+                        assert!(!stored.derived_relations);
                         derived_levels += 1;
                         let triangles = scheme == crate::options::Scheme::Loop;
                         let (grand, r) = (&minimal.levels[l - 1], &minimal.refinements[l - 1]);
@@ -1017,6 +1022,17 @@ mod tests {
                             assert_eq!(minimal.find_edge(l as u32, a, b).unwrap(), Some(e as u32));
                             assert_eq!(minimal.find_edge(l as u32, b, a).unwrap(), Some(e as u32));
                         }
+                        assert!(derived.edge_faces.is_empty());
+                        for e in 0..stored.edge_count() {
+                            let faces = super::refine::derive_edge_faces(grand, r, triangles, e);
+                            assert_eq!(
+                                &faces[..],
+                                stored.edge_faces_of(e),
+                                "{scheme:?} L{depth} e{e}"
+                            );
+                            assert_eq!(minimal.edge_faces(l as u32, e).unwrap(), faces);
+                        }
+                        assert!(minimal.edge_faces(l as u32, stored.edge_count()).is_err());
                         let count = stored.vertex_count;
                         assert!(minimal.vertex_faces_and_edges(l as u32, count).is_err());
                         assert!(minimal.find_edge(l as u32, 0, count as u32).is_err());
@@ -1029,7 +1045,7 @@ mod tests {
         let mut mesh = shapes::torus(6, 5);
         mesh.add_crease(0, 1, 3.0);
         for r in refiners(&mesh, 3, false) {
-            assert!(!r.levels[2].derived_vertex_relations);
+            assert!(!r.levels[2].derived_relations);
             assert!(!r.levels[2].vertex_faces.is_empty());
         }
     }

@@ -111,9 +111,9 @@ pub enum Build {
     /// evaluation do. `vertex_edge_local` stays when the parent has
     /// sharpness: the decay of semi-sharp features into the child reads it.
     /// Where the parent is smooth everywhere (no sharpness, no tags, two
-    /// faces on every edge), the vertex-faces and vertex-edges are left out
-    /// too and derived from the parent when interpolation reads them
-    /// ([`Level::derived_vertex_relations`]).
+    /// faces on every edge), the vertex-faces, vertex-edges and edge-faces
+    /// are left out too and derived from the parent when interpolation reads
+    /// them ([`Level::derived_relations`]).
     Relations,
     /// Only the face-vertices (with sharpness, tags and holes): what a last
     /// level needs for interpolation, as OpenSubdiv builds it unless asked
@@ -216,6 +216,9 @@ pub fn refine_level(
             }
             let edge_vertices = Table::from(edge_vertices);
 
+            if derive {
+                return (edge_vertices, Relation::default(), Table::new());
+            }
             // Edge-faces: two per edge inside a face, then the parent edge's
             // faces for each half.
             let mut ef = TableWriter::new(
@@ -337,7 +340,7 @@ pub fn refine_level(
             relations,
             num_edges: child_edges,
             face_holes: child_holes(parent, child_faces, false),
-            derived_vertex_relations: derive,
+            derived_relations: derive,
             max_valence: parent.max_valence.max(4).max(2 + parent.max_edge_faces),
         },
     );
@@ -621,6 +624,9 @@ fn refine_triangles(
             return Default::default();
         }
         let edges_part = || {
+            if derive {
+                return (Relation::default(), Table::new());
+            }
             // Edge-faces.
             let mut ef = TableWriter::new(
                 child_edges,
@@ -714,7 +720,7 @@ fn refine_triangles(
             relations,
             num_edges: child_edges,
             face_holes: child_holes(parent, child_faces, true),
-            derived_vertex_relations: derive,
+            derived_relations: derive,
             max_valence: parent.max_valence.max(6).max(2 + 2 * parent.max_edge_faces),
         },
     );
@@ -743,7 +749,7 @@ struct Parts {
     num_edges: usize,
     face_holes: Vec<bool>,
     /// Vertex relations left out, derived from the parent when read.
-    derived_vertex_relations: bool,
+    derived_relations: bool,
     max_valence: usize,
 }
 
@@ -810,7 +816,7 @@ fn assemble_child(parent: &Level, tags: ChildTags, p: Parts) -> Level {
         edge_tags: tags.edge_tags,
         vertex_tags: tags.vertex_tags,
         face_holes: p.face_holes,
-        derived_vertex_relations: p.derived_vertex_relations,
+        derived_relations: p.derived_relations,
         max_edge_faces: parent.max_edge_faces.max(2),
         max_valence: p.max_valence,
     }
@@ -1057,12 +1063,13 @@ fn triangle_vertex_child(
 }
 
 /// Whether a child of `parent` built as [`Build::Relations`] can leave out
-/// its vertex-faces and vertex-edges, to be derived from `parent` when read
-/// ([`derive_vertex_relations`]): `parent` has its local indices, no
+/// its vertex-faces, vertex-edges and edge-faces, to be derived from
+/// `parent` when read ([`derive_vertex_relations`], [`derive_edge_faces`]):
+/// `parent` has its local indices, no
 /// sharpness and no tags (every vertex smooth and manifold, no boundary),
 /// and two faces on every edge. Then every vertex of the child is smooth
-/// with as many faces as edges, and nothing but interpolating the minimal
-/// last level reads its vertex relations.
+/// with as many faces as edges, every edge has two faces, and nothing but
+/// interpolating the minimal last level reads these relations.
 fn vertex_relations_derivable(parent: &Level) -> bool {
     parent.has_local_indices()
         && parent.vertex_tags.is_empty()
@@ -1075,7 +1082,7 @@ fn vertex_relations_derivable(parent: &Level) -> bool {
 /// The faces and edges of vertex `c` of a level split from `parent` by `r`
 /// (`triangles`: Loop's triangle split; otherwise the quad split), in the
 /// order the level would store them, for a level built without them
-/// ([`Level::derived_vertex_relations`]). `edge_list` is scratch space.
+/// ([`Level::derived_relations`]). `edge_list` is scratch space.
 pub(crate) fn derive_vertex_relations(
     parent: &Level,
     r: &Refinement,
@@ -1219,6 +1226,62 @@ pub(crate) fn derive_smooth_hood<const N: usize>(
     } else {
         None
     }
+}
+
+/// The two faces of edge `c` of a level split from `parent` by `r`
+/// (`triangles`: Loop's triangle split), in the order the level would store
+/// them, for a level built without its edge-faces
+/// ([`Level::derived_relations`]: every edge of `parent` has two faces, so
+/// every child edge has two).
+#[inline(always)]
+pub(crate) fn derive_edge_faces(
+    parent: &Level,
+    r: &Refinement,
+    triangles: bool,
+    c: usize,
+) -> [u32; 2] {
+    if let Some(i) = c.checked_sub(r.parent_corners) {
+        derive_half_edge_faces(parent, triangles, i / 2)[i % 2]
+    } else if triangles {
+        // Inner edge `j` of triangle `f`: its corner triangle `j` and the
+        // middle one.
+        let (f, j) = (c / 3, c % 3);
+        [(4 * f + j) as u32, (4 * f + 3) as u32]
+    } else {
+        // Edge `j` inside face `f`: its children `j` and `j + 1`.
+        let f = parent.face_vertices.element_of(c);
+        let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
+        let j = c - base;
+        [(base + j) as u32, (base + next(j, n)) as u32]
+    }
+}
+
+/// The faces of both halves of parent edge `e` ([`derive_edge_faces`] of
+/// child edges `2e` and `2e + 1` after the edges inside faces): in each of
+/// the edge's two faces, the child at the corner of the half's end.
+#[inline(always)]
+pub(crate) fn derive_half_edge_faces(parent: &Level, triangles: bool, e: usize) -> [[u32; 2]; 2] {
+    let ev = parent.edge_vertices[e];
+    let mut out = [[0; 2]; 2];
+    for (i, (f, k)) in parent.edge_faces_at(e).take(2).enumerate() {
+        // The corners of the edge's ends in the face: `k` and the next,
+        // ends 0 and 1 in that order unless the face runs the other way.
+        let flip = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+        let (at_k, at_next) = if triangles {
+            ((4 * f + k) as u32, (4 * f + (k + 1) % 3) as u32)
+        } else {
+            let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
+            ((base + k) as u32, (base + next(k, n)) as u32)
+        };
+        let (end0, end1) = if flip {
+            (at_next, at_k)
+        } else {
+            (at_k, at_next)
+        };
+        out[0][i] = end0;
+        out[1][i] = end1;
+    }
+    out
 }
 
 /// Fills a relation with known totals element by element: members and their
