@@ -10,7 +10,10 @@ use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood};
 use crate::topology::Level;
-use crate::topology::refine::{derive_edge_faces, derive_half_edge_faces, derive_smooth_hood};
+use crate::topology::refine::{
+    derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
+    derive_smooth_hood,
+};
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -24,6 +27,9 @@ pub(crate) struct Scratch<T> {
     /// The parent edge whose halves' faces were derived last, and those
     /// faces (the two halves are consecutive child edges).
     pub halves: (usize, [[u32; 2]; 2]),
+    /// The same for the vertices opposite the halves under Loop's split
+    /// (`None`: not derivable).
+    pub wings: (usize, Option<[[u32; 2]; 2]>),
 }
 
 /// Room for the faces and edges of one vertex of a level that derives its
@@ -73,6 +79,7 @@ impl<T: Real> Scratch<T> {
             child_edge_sharpness: Vec::new(),
             hood: HoodBuf::default(),
             halves: (usize::MAX, [[0; 2]; 2]),
+            wings: (usize::MAX, None),
         }
     }
 }
@@ -485,7 +492,42 @@ fn run<T: Real, W: Width + Send + Sync>(
         .derived_relations
         .then(|| (&r.levels[level - 2], &r.refinements[level - 2]));
     let triangles = scheme == Scheme::Loop;
+    // Loop's smooth edge: its ends and the vertices opposite it, which a
+    // derived level gives without reading its faces.
+    let loop_edge = if triangles {
+        Cache::<T>::new()
+            .smooth_edge(r, [false, false])
+            .and_then(|w| match w.faces {
+                Some(faces) if !w.centers => Some((w.ends, faces)),
+                _ => None,
+            })
+    } else {
+        None
+    };
     par_children(edge_points, n, |e, slot, cache, scratch| {
+        if let (Some((ends, opposite)), Some((grand, gr))) = (loop_edge, derived)
+            && (!has_sharpness || parent.edge_sharpness[e] <= 0.0)
+        {
+            let wings = match e.checked_sub(gr.parent_corners) {
+                Some(i) => {
+                    if scratch.wings.0 != i / 2 {
+                        scratch.wings = (i / 2, derive_half_edge_wings(grand, gr, i / 2));
+                    }
+                    scratch.wings.1.map(|h| h[i % 2])
+                }
+                None => derive_inner_edge_wings(grand, gr, e),
+            };
+            if let Some(wings) = wings {
+                let ev = parent.edge_vertices[e];
+                let mut acc = zero;
+                add(&mut acc, src, ev[0], ends[0], width);
+                add(&mut acc, src, ev[1], ends[1], width);
+                add(&mut acc, src, wings[0], opposite[0], width);
+                add(&mut acc, src, wings[1], opposite[1], width);
+                store(slot, &acc, width);
+                return;
+            }
+        }
         let derived_faces;
         let faces: &[u32] = match derived {
             Some((grand, gr)) => {

@@ -1031,6 +1031,20 @@ mod tests {
                                 "{scheme:?} L{depth} e{e}"
                             );
                             assert_eq!(minimal.edge_faces(l as u32, e).unwrap(), faces);
+                            if triangles {
+                                // The vertices opposite the edge in its faces.
+                                let wings = match e.checked_sub(r.parent_corners) {
+                                    Some(i) => {
+                                        super::refine::derive_half_edge_wings(grand, r, i / 2)
+                                            .map(|h| h[i % 2])
+                                    }
+                                    None => super::refine::derive_inner_edge_wings(grand, r, e),
+                                };
+                                let opposite = faces.map(|f| {
+                                    crate::refiner::opposite_vertex(stored, f as usize, e)
+                                });
+                                assert_eq!(wings, Some(opposite), "{scheme:?} L{depth} e{e}");
+                            }
                         }
                         assert!(minimal.edge_faces(l as u32, stored.edge_count()).is_err());
                         let count = stored.vertex_count;

@@ -1284,6 +1284,71 @@ pub(crate) fn derive_half_edge_faces(parent: &Level, triangles: bool, e: usize) 
     out
 }
 
+/// Loop's triangle split, a level built without its edge-faces
+/// ([`Level::derived_relations`]): the vertex opposite child edge `c` in
+/// each of its two faces, in the order of [`derive_edge_faces`], read from
+/// `parent` alone (the child's face-vertices are not read). `None` when a
+/// parent face involved has an edge twice: then a child triangle repeats a
+/// corner, and the opposite vertex is found by searching its edges.
+#[inline(always)]
+pub(crate) fn derive_inner_edge_wings(
+    parent: &Level,
+    r: &Refinement,
+    c: usize,
+) -> Option<[u32; 2]> {
+    // Inner edge `j` of triangle `f` joins the points of its edges `j` and
+    // `j - 1`: corner `j` is opposite it in the corner triangle, the point
+    // of edge `j + 1` in the middle one.
+    let (f, j) = (c / 3, c % 3);
+    let edges = <&[u32; 3]>::try_from(parent.face_edges_of(f)).ok()?;
+    if !distinct(edges) {
+        return None;
+    }
+    Some([
+        r.vertex_child(parent.face_verts(f)[j] as usize),
+        r.edge_child(edges[(j + 1) % 3] as usize),
+    ])
+}
+
+/// [`derive_inner_edge_wings`] for both halves of parent edge `e` (child
+/// edges `2e` and `2e + 1` after the inner edges), in the order of
+/// [`derive_half_edge_faces`]: in the corner triangle of a half's end, the
+/// point of the face's other edge at that corner.
+#[inline(always)]
+pub(crate) fn derive_half_edge_wings(
+    parent: &Level,
+    r: &Refinement,
+    e: usize,
+) -> Option<[[u32; 2]; 2]> {
+    let ev = parent.edge_vertices[e];
+    let mut out = [[0; 2]; 2];
+    for (i, (f, k)) in parent.edge_faces_at(e).take(2).enumerate() {
+        let edges = <&[u32; 3]>::try_from(parent.face_edges_of(f)).ok()?;
+        if !distinct(edges) {
+            return None;
+        }
+        // Edge `k` runs from corner `k` to corner `k + 1`; the edge before
+        // it meets corner `k`, the one after it corner `k + 1`.
+        let at_k = r.edge_child(edges[(k + 2) % 3] as usize);
+        let at_next = r.edge_child(edges[(k + 1) % 3] as usize);
+        let flip = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
+        let (end0, end1) = if flip {
+            (at_next, at_k)
+        } else {
+            (at_k, at_next)
+        };
+        out[0][i] = end0;
+        out[1][i] = end1;
+    }
+    Some(out)
+}
+
+/// Whether a triangle's three edges are three different edges.
+#[inline(always)]
+fn distinct(edges: &[u32; 3]) -> bool {
+    edges[0] != edges[1] && edges[1] != edges[2] && edges[0] != edges[2]
+}
+
 /// Fills a relation with known totals element by element: members and their
 /// local indices pushed in order, each element closed by `end_element`. With
 /// a `uniform` size (every element has that many members) no offsets are
