@@ -863,6 +863,101 @@ impl ByteSink for Vec<u8> {
     }
 }
 
+/// `10^k` for every `k` whose power fits in 128 bits.
+const POW10: [u128; 39] = {
+    let mut t = [1u128; 39];
+    let mut k = 1;
+    while k < 39 {
+        t[k] = t[k - 1] * 10;
+        k += 1;
+    }
+    t
+};
+
+/// The `p` significant decimal digits of `x` (finite, positive) rounded to
+/// nearest with ties to even, as an integer of exactly `p` digits, and the
+/// decimal exponent of the first digit: `x ≈ digits × 10^(exp + 1 - p)`.
+///
+/// Exact integer arithmetic: with `x = m × 2^e`, the digits are
+/// `m × 2^e × 10^s` rounded for the scale `s` that leaves `p` digits, computed
+/// in 128 bits. `None` where that does not fit (magnitudes beyond about
+/// `1e±21` for 17 digits) or for more than 19 digits: the caller then uses
+/// the standard library's (slower) exact formatting.
+fn exact_digits(x: f64, p: u32) -> Option<(u64, i32)> {
+    if !(1..=19).contains(&p) {
+        return None;
+    }
+    let bits = x.to_bits();
+    let (biased, fraction) = ((bits >> 52) as i32 & 0x7ff, bits & ((1 << 52) - 1));
+    let (m, e) = match biased {
+        0 => (fraction, -1074),
+        _ => (fraction | 1 << 52, biased - 1075),
+    };
+    if m == 0 {
+        return None;
+    }
+    // 2^b <= x < 2^(b + 1), so the decimal exponent is floor(b log10 2) or
+    // one more (78913 / 2^18 is log10 2 rounded down, exact enough here).
+    let b = e + 63 - m.leading_zeros() as i32;
+    let mut exp = (b * 78913) >> 18;
+    let limit = POW10[p as usize] as u64;
+    for _ in 0..3 {
+        let n = scaled_round(m, e, p as i32 - 1 - exp)?;
+        if n >= limit {
+            exp += 1;
+        } else if n < limit / 10 {
+            exp -= 1;
+        } else {
+            return Some((n, exp));
+        }
+    }
+    None
+}
+
+/// `m × 2^e × 10^s` rounded to the nearest integer, ties to even, when the
+/// computation fits in 128 bits and the result in 64.
+fn scaled_round(m: u64, e: i32, s: i32) -> Option<u64> {
+    let ten = |k: i32| POW10.get(k.unsigned_abs() as usize).copied();
+    // Numerator m × 2^max(e, 0) × 10^max(s, 0).
+    let mut num = u128::from(m);
+    if s > 0 {
+        num = num.checked_mul(ten(s)?)?;
+    }
+    if e > 0 {
+        if num.leading_zeros() <= e as u32 {
+            return None;
+        }
+        num <<= e;
+    }
+    let (q, round_up) = if s >= 0 {
+        // Denominator 2^max(-e, 0): a shift.
+        let shift = (-e).max(0) as u32;
+        if shift == 0 {
+            (num, false)
+        } else if shift >= 127 {
+            return None;
+        } else {
+            let q = num >> shift;
+            let r = num & ((1u128 << shift) - 1);
+            let half = 1u128 << (shift - 1);
+            (q, r > half || (r == half && q & 1 == 1))
+        }
+    } else {
+        // Denominator 2^max(-e, 0) × 10^-s.
+        let mut den = ten(s)?;
+        if e < 0 {
+            if den.leading_zeros() <= (-e) as u32 {
+                return None;
+            }
+            den <<= -e;
+        }
+        let (q, r) = (num / den, num % den);
+        let rest = den - r;
+        (q, r > rest || (r == rest && q & 1 == 1))
+    };
+    u64::try_from(q + u128::from(round_up)).ok()
+}
+
 /// Appends `x` formatted like C's `printf("%.*g", significant, x)` (glibc).
 fn g_format(x: f64, significant: usize, out: &mut impl ByteSink) {
     use fmt::Write as _;
@@ -882,26 +977,37 @@ fn g_format(x: f64, significant: usize, out: &mut impl ByteSink) {
         out.push(b'0');
         return;
     }
-    // Rust's `{:.N e}` is correctly rounded (ties to even on exact ties, as
-    // glibc), giving the p significant digits and the exponent X of `%.{p-1}e`:
-    // `D.DDDDeX`, or `DeX` when p is 1.
-    let mut sci = NumberBuf::new();
-    write!(sci, "{:.*e}", p - 1, x.abs()).expect("a formatted number fits in 64 bytes");
-    let sci = sci.as_bytes();
-    let e = sci
-        .iter()
-        .position(|&c| c == b'e')
-        .expect("exponential format has an 'e'");
-    let first = sci[0];
-    let rest = if e > 1 { &sci[2..e] } else { &[][..] };
-    let (exp_negative, exp_digits) = match sci[e + 1] {
-        b'-' => (true, &sci[e + 2..]),
-        _ => (false, &sci[e + 1..]),
+    // The p significant digits and the exponent X of `%.{p-1}e`: from exact
+    // integer arithmetic where it fits, else from Rust's `{:.N e}`, which is
+    // correctly rounded too (ties to even on exact ties, as glibc).
+    let mut digits = NumberBuf::new();
+    let exp = if let Some((n, exp)) = exact_digits(x.abs(), p as u32) {
+        let mut text = itoa::Buffer::new();
+        digits.extend(text.format(n).as_bytes());
+        exp
+    } else {
+        let mut sci = NumberBuf::new();
+        write!(sci, "{:.*e}", p - 1, x.abs()).expect("a formatted number fits in 64 bytes");
+        let sci = sci.as_bytes();
+        let e = sci
+            .iter()
+            .position(|&c| c == b'e')
+            .expect("exponential format has an 'e'");
+        digits.push(sci[0]);
+        if e > 1 {
+            digits.extend(&sci[2..e]);
+        }
+        let (exp_negative, exp_digits) = match sci[e + 1] {
+            b'-' => (true, &sci[e + 2..]),
+            _ => (false, &sci[e + 1..]),
+        };
+        let magnitude = exp_digits
+            .iter()
+            .fold(0i32, |acc, &c| acc * 10 + i32::from(c - b'0'));
+        if exp_negative { -magnitude } else { magnitude }
     };
-    let magnitude = exp_digits
-        .iter()
-        .fold(0i32, |acc, &c| acc * 10 + i32::from(c - b'0'));
-    let exp = if exp_negative { -magnitude } else { magnitude };
+    let digits = digits.as_bytes();
+    let (first, rest) = (digits[0], &digits[1..]);
     // Without '#', %g removes trailing zeros of the fraction (and a bare '.').
     let mut kept = rest.len();
     while kept > 0 && rest[kept - 1] == b'0' {
@@ -919,8 +1025,8 @@ fn g_format(x: f64, significant: usize, out: &mut impl ByteSink) {
         if magnitude < 10 {
             out.push(b'0');
         }
-        let mut buf = [0u8; 20];
-        out.extend(u64_digits(u64::from(magnitude), &mut buf));
+        let mut buf = itoa::Buffer::new();
+        out.extend(buf.format(magnitude).as_bytes());
     } else if exp >= 0 {
         // 0 <= exp < p: the integer part has exp + 1 <= p digits.
         let int_rest = exp as usize;
@@ -964,23 +1070,9 @@ pub fn format_g(x: f64, significant: usize, out: &mut String) {
     out.push_str(std::str::from_utf8(buf.as_bytes()).expect("formatted numbers are ASCII"));
 }
 
-/// The decimal digits of `n`, written at the end of `buf`.
-fn u64_digits(mut n: u64, buf: &mut [u8; 20]) -> &[u8] {
-    let mut i = buf.len();
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    &buf[i..]
-}
-
 fn push_u64(n: u64, out: &mut Vec<u8>) {
-    let mut buf = [0u8; 20];
-    out.extend_from_slice(u64_digits(n, &mut buf));
+    let mut buf = itoa::Buffer::new();
+    out.extend_from_slice(buf.format(n).as_bytes());
 }
 
 // ---------------------------------------------------------------------------
@@ -1349,6 +1441,74 @@ mod tests {
             assert_eq!(g(x, p), want, "{x:e} with {p} digits");
         }
         assert_eq!(g(0.5, 0), "0.5", "0 digits behaves as 1");
+    }
+
+    /// The digits and exponent of `{:.(p-1)e}`, the standard library's
+    /// correctly rounded formatting (the fallback of `exact_digits`).
+    fn std_digits(x: f64, p: u32) -> (u64, i32) {
+        let s = format!("{:.*e}", p as usize - 1, x);
+        let (mantissa, exp) = s.split_once('e').unwrap();
+        (
+            mantissa.replace('.', "").parse().unwrap(),
+            exp.parse().unwrap(),
+        )
+    }
+
+    #[test]
+    fn exact_digits_equal_the_standard_library() {
+        // A xorshift stream of bit patterns: every exponent, and values in
+        // the ranges coordinates take.
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let (mut fast, mut total) = (0, 0);
+        let mut check = |x: f64, p: u32| {
+            if !x.is_finite() || x <= 0.0 {
+                return;
+            }
+            total += 1;
+            if let Some(got) = exact_digits(x, p) {
+                fast += 1;
+                assert_eq!(got, std_digits(x, p), "{x:e} with {p} digits");
+            }
+        };
+        for _ in 0..200_000 {
+            let bits = next();
+            let p = (bits % 19) as u32 + 1;
+            check(f64::from_bits(bits >> 1), p);
+            let unit = (bits >> 11) as f64 / (1u64 << 53) as f64;
+            check(unit * 200.0, 17);
+            check(unit * 1e-3, 17);
+            check(f64::from(unit as f32 * 50.0), 9);
+        }
+        // Exact ties at every precision: (2n + 1) / 2 × 10^t, rounded to
+        // even by both.
+        for p in 1..=17u32 {
+            for t in -3..=3 {
+                for n in [1u64, 2, 12, 125, 9, 99_999, 1 << 40] {
+                    let n = n % 10u64.pow(p).max(1);
+                    let x = (2 * n + 1) as f64 / 2.0 * 10f64.powi(t);
+                    check(x, p);
+                    check(x.next_up(), p);
+                    check(x.next_down(), p);
+                }
+            }
+        }
+        // Powers of ten and their neighbours (the exponent's estimate).
+        for k in -30..=30 {
+            let x = 10f64.powi(k);
+            for p in [1, 9, 15, 16, 17] {
+                check(x, p);
+                check(x.next_up(), p);
+                check(x.next_down(), p);
+                check(x * 9.999_999_999_999_999, p);
+            }
+        }
+        assert!(fast * 2 > total, "the fast path took {fast} of {total}");
     }
 
     #[test]
