@@ -1273,15 +1273,23 @@ pub(crate) fn derive_half_edge_faces(parent: &Level, triangles: bool, e: usize) 
             let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
             ((base + k) as u32, (base + next(k, n)) as u32)
         };
-        let (end0, end1) = if flip {
-            (at_next, at_k)
-        } else {
-            (at_k, at_next)
-        };
-        out[0][i] = end0;
-        out[1][i] = end1;
+        put_by_end(&mut out, i, flip, [at_k, at_next]);
     }
     out
+}
+
+/// Stores the values at a face's corners `k` and `k + 1`
+/// (`[at_k, at_next]`) as face `i`'s entries of the halves of ends 0 and 1
+/// of an edge (swapped when the face runs against the edge).
+#[inline(always)]
+fn put_by_end(out: &mut [[u32; 2]; 2], i: usize, flip: bool, [at_k, at_next]: [u32; 2]) {
+    let (end0, end1) = if flip {
+        (at_next, at_k)
+    } else {
+        (at_k, at_next)
+    };
+    out[0][i] = end0;
+    out[1][i] = end1;
 }
 
 /// Loop's triangle split, a level built without its edge-faces
@@ -1332,13 +1340,7 @@ pub(crate) fn derive_half_edge_wings(
         let at_k = r.edge_child(edges[(k + 2) % 3] as usize);
         let at_next = r.edge_child(edges[(k + 1) % 3] as usize);
         let flip = ev[0] != ev[1] && parent.face_verts(f)[k] != ev[0];
-        let (end0, end1) = if flip {
-            (at_next, at_k)
-        } else {
-            (at_k, at_next)
-        };
-        out[0][i] = end0;
-        out[1][i] = end1;
+        put_by_end(&mut out, i, flip, [at_k, at_next]);
     }
     Some(out)
 }
