@@ -4,6 +4,7 @@
 
 use crate::mesh::Mesh;
 use crate::options::{Options, Scheme, UniformOptions};
+use crate::topology::Table;
 use crate::{Result, osd, refiner, shapes};
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -497,19 +498,22 @@ fn differ(what: &str, difference: String) -> crate::Error {
 }
 
 /// [`interleaved`] over a batch: each side maps every job with rayon inside
-/// `pool` and collects the results.
-fn interleaved_batches<J: Sync>(
+/// `pool` and collects the results (each engine's own buffer type).
+fn interleaved_batches<J: Sync, A: Send, B: Send>(
     pool: &rayon::ThreadPool,
     reps: usize,
     jobs: &[J],
-    native: impl Fn(&J) -> Vec<f32> + Sync,
-    osd: impl Fn(&J) -> Vec<f32> + Sync,
+    native: impl Fn(&J) -> A + Sync,
+    osd: impl Fn(&J) -> B + Sync,
 ) -> (f64, f64) {
     use rayon::prelude::*;
-    let batch = |f: &(dyn Fn(&J) -> Vec<f32> + Sync)| {
-        black_box(jobs.par_iter().map(f).collect::<Vec<Vec<f32>>>());
-    };
-    pool.install(|| interleaved(reps, || batch(&native), || batch(&osd)))
+    pool.install(|| {
+        interleaved(
+            reps,
+            || drop(black_box(jobs.par_iter().map(&native).collect::<Vec<A>>())),
+            || drop(black_box(jobs.par_iter().map(&osd).collect::<Vec<B>>())),
+        )
+    })
 }
 
 /// Many frames of one topology: both engines refine `input`'s topology to
@@ -583,7 +587,7 @@ pub fn meshes_row(
             )
         })
         .collect();
-    let native_one = |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<Vec<f32>> {
+    let native_one = |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<Table<f32>> {
         let mut r = refiner::Refiner::new(mesh, options)?;
         r.refine_uniform(uniform)?;
         r.interpolate_last(3, base)

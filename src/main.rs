@@ -8,6 +8,7 @@ use std::str::FromStr;
 use std::time::Instant;
 use subdiv::curve::{CurveScheme, Point};
 use subdiv::io::{ObjOutput, ShapeFile, UvOutput};
+use subdiv::topology::Table;
 use subdiv::{
     BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh, Options,
     Precision, Refinement, Scheme, TriangleSubdivision, UniformOptions,
@@ -587,7 +588,7 @@ fn write_native_last(
     fn last_values<T: subdiv::Real>(
         r: &subdiv::refiner::Refiner,
         mesh: &Mesh,
-    ) -> subdiv::Result<(Vec<T>, Option<Vec<T>>)> {
+    ) -> subdiv::Result<(Table<T>, Option<Vec<T>>)> {
         let positions = r.interpolate_last(3, &mesh.flat_positions::<T>())?;
         // Only the first face-varying channel is written.
         let uv = match mesh.fvar_channels.first() {
@@ -607,9 +608,9 @@ fn write_native_last(
     let (positions, uv_values) = match precision {
         Precision::F64 => last_values::<f64>(&r, mesh)?,
         Precision::F32 => {
-            let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+            let widen = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
             let (positions, uv) = last_values::<f32>(&r, mesh)?;
-            (widen(positions), uv.map(widen))
+            (Table::from(widen(&positions)), uv.as_deref().map(widen))
         }
     };
     let faces = r.faces(uniform.level)?;
@@ -629,7 +630,7 @@ fn write_native_last(
         path,
         &ObjOutput {
             // Flat f64 triples are DVec3s: no second copy of the positions.
-            positions: bytemuck::cast_slice(&positions),
+            positions: bytemuck::cast_slice(&positions[..]),
             face_offsets: &faces.offsets,
             face_vertices: faces.vertices,
             holes: faces.holes,

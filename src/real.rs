@@ -15,6 +15,7 @@ mod sealed {
 /// same type as the data they are applied to.
 pub trait Real:
     sealed::Sealed
+    + bytemuck::Pod
     + Copy
     + Default
     + PartialEq

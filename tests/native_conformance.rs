@@ -221,7 +221,7 @@ fn refine_last_equals_full_refinement_and_opensubdiv() {
             let mut o = osd::Refiner::new(&mesh, &options).unwrap();
             o.refine_uniform(uniform).unwrap();
             assert_eq!(
-                last,
+                &last[..],
                 o.interpolate_last(3, &base).unwrap(),
                 "{name} L{level} osd"
             );

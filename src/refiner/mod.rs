@@ -22,7 +22,7 @@ use crate::refinement::{
 };
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::FVarLevel as FVarChannelLevel;
-use crate::topology::{Build, Level, Refinement, build_base_level, fvar, refine_level};
+use crate::topology::{Build, Level, Refinement, Table, build_base_level, fvar, refine_level};
 
 mod fvar_interp;
 use glam::{DVec3, Vec3};
@@ -514,7 +514,9 @@ impl Refiner {
     /// Interpolates vertex data through every level and returns the last
     /// level's only, holding no more than two levels at a time — what a
     /// caller that wants just the refined result needs (OpenSubdiv's
-    /// tutorials keep a buffer for every level).
+    /// tutorials keep a buffer for every level). The values come in a
+    /// [`Table`], which dereferences to a slice: a
+    /// large last level lives in memory advised for huge pages.
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
@@ -523,13 +525,15 @@ impl Refiner {
     /// r.refine_uniform(UniformOptions::new(3))?;
     /// let base: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
     /// let last = r.interpolate_last(3, &base)?;
-    /// assert_eq!(&last, r.interpolate_all(3, &base)?.last().unwrap());
+    /// assert_eq!(&last[..], r.interpolate_all(3, &base)?.last().unwrap());
     /// # Ok::<(), subdiv::Error>(())
     /// ```
-    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<T>> {
-        let mut current = base.to_vec();
+    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Table<T>> {
+        let mut current = Table::from_slice(base);
         for level in 1..=self.max_level() {
-            current = self.interpolate(level, width, &current)?;
+            let mut next = Table::zeroed(self.internal_level(level)?.vertex_count * width);
+            self.interpolate_into(level, width, &current, &mut next)?;
+            current = next;
         }
         Ok(current)
     }
@@ -748,7 +752,7 @@ pub struct Faces<'a> {
 /// `width` components per base vertex) along the way, releasing each level's
 /// topology and data as soon as the next level's data exists: the smallest
 /// memory footprint for "just the last level's values". Returns the element
-/// counts of every level and the last level's values (equal to
+/// counts of every level and the last level's values in a [`Table`] (equal to
 /// [`Refiner::interpolate_last`] after [`Refiner::refine_uniform`]).
 /// Face-varying channels of `mesh` are not refined.
 ///
@@ -767,7 +771,7 @@ pub fn refine_last<T: Real>(
     uniform: UniformOptions,
     width: usize,
     base: &[T],
-) -> Result<(Vec<LevelCounts>, Vec<T>)> {
+) -> Result<(Vec<LevelCounts>, Table<T>)> {
     check_level(mesh, options, uniform.level)?;
     let mut r = Refiner::new(mesh, options)?;
     r.fvar.clear();
@@ -779,7 +783,7 @@ pub fn refine_last<T: Real>(
         )));
     }
     let mut counts = vec![r.level_counts(0)?];
-    let mut data = base.to_vec();
+    let mut data = Table::from_slice(base);
     for level in 1..=uniform.level as usize {
         let (refinement, child) = refine_level(
             &r.levels[level - 1],
@@ -795,7 +799,7 @@ pub fn refine_last<T: Real>(
         r.levels.push(child);
         r.check_unpaired_smooth_step(level - 1)?;
         counts.push(r.level_counts(level as u32)?);
-        let mut next = vec![T::ZERO; r.levels[level].vertex_count * width];
+        let mut next = Table::zeroed(r.levels[level].vertex_count * width);
         r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
         data = next;
         // Nothing reads the grandparent any more (the parent's vertex
