@@ -1254,8 +1254,8 @@ fn obj_writer_rate(input: &subdiv::bench::BenchInput) -> String {
 fn whole_process(input: &subdiv::bench::BenchInput, quick: bool, threads: usize) -> String {
     use std::fmt::Write as _;
     use std::process::Command;
-    let mut s = format!(
-        "\nWhole process, level 4, no output file (OpenSubdiv is single-threaded; medians of interleaved runs):\n"
+    let mut s = String::from(
+        "\nWhole process, level 4, no output file (OpenSubdiv is single-threaded; medians of interleaved runs):\n",
     );
     let dir = match tempfile::tempdir() {
         Ok(d) => d,
