@@ -391,6 +391,29 @@ fn store<T: Real, W: Width>(slot: &mut [T], acc: &[T; MAX_WIDTH], width: W) {
     slot[..n].copy_from_slice(&acc[..n]);
 }
 
+/// What was derived for both halves of the parent edge of child edge
+/// `half` (`half / 2`; the halves are consecutive child edges): `cached`
+/// when it holds that edge's, else derived by `derive` and cached for the
+/// other half. The value is returned as computed, not read back from the
+/// cache: a pair stored as four words and read back as two is not forwarded
+/// from the store buffer, a stall on every other edge.
+#[inline(always)]
+fn halves_of<P: Copy>(cached: &mut (usize, P), half: usize, derive: impl FnOnce(usize) -> P) -> P {
+    let e = half / 2;
+    if cached.0 == e {
+        return cached.1;
+    }
+    let pair = derive(e);
+    *cached = (e, pair);
+    pair
+}
+
+/// Half `half % 2` of a pair (a select, not an indexed load).
+#[inline(always)]
+fn pick(pair: [[u32; 2]; 2], half: usize) -> [u32; 2] {
+    if half % 2 == 0 { pair[0] } else { pair[1] }
+}
+
 /// Child vertices per parallel task.
 const CHUNK: usize = 4096;
 
@@ -509,12 +532,10 @@ fn run<T: Real, W: Width + Send + Sync>(
             && (!has_sharpness || parent.edge_sharpness[e] <= 0.0)
         {
             let wings = match e.checked_sub(gr.parent_corners) {
-                Some(i) => {
-                    if scratch.wings.0 != i / 2 {
-                        scratch.wings = (i / 2, derive_half_edge_wings(grand, gr, i / 2));
-                    }
-                    scratch.wings.1.map(|h| h[i % 2])
-                }
+                Some(i) => halves_of(&mut scratch.wings, i, |e| {
+                    derive_half_edge_wings(grand, gr, e)
+                })
+                .map(|h| pick(h, i)),
                 None => derive_inner_edge_wings(grand, gr, e),
             };
             if let Some(wings) = wings {
@@ -533,13 +554,12 @@ fn run<T: Real, W: Width + Send + Sync>(
             Some((grand, gr)) => {
                 derived_faces = match e.checked_sub(gr.parent_corners) {
                     // A half of a parent edge: both halves derived at once.
-                    Some(i) => {
-                        if scratch.halves.0 != i / 2 {
-                            scratch.halves =
-                                (i / 2, derive_half_edge_faces(grand, triangles, i / 2));
-                        }
-                        scratch.halves.1[i % 2]
-                    }
+                    Some(i) => pick(
+                        halves_of(&mut scratch.halves, i, |e| {
+                            derive_half_edge_faces(grand, triangles, e)
+                        }),
+                        i,
+                    ),
                     None => derive_edge_faces(grand, gr, triangles, e),
                 };
                 &derived_faces
