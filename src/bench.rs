@@ -166,6 +166,63 @@ pub fn interleaved(reps: usize, mut a: impl FnMut(), mut b: impl FnMut()) -> (f6
     (median(&mut ta), median(&mut tb))
 }
 
+/// The median wall time of one program run by [`interleaved_processes`],
+/// and the peak memory it reported.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProcessRun {
+    /// Median seconds from start to exit.
+    pub seconds: f64,
+    /// The last `peak_memory_bytes N` line the program wrote to standard
+    /// error (`subdiv refine --peak-memory`, the C++ driver), or 0.
+    pub peak_bytes: u64,
+}
+
+/// Runs whole programs `reps` times each, interleaved: every repetition runs
+/// each program once, starting one further along the list each time, so that
+/// the machine's drift over the minutes falls on all of them alike. Returns
+/// each program's median time and reported peak memory, in the order given.
+/// A program that cannot start or exits unsuccessfully is an error naming it.
+pub fn interleaved_processes(
+    programs: &mut [(String, std::process::Command)],
+    reps: usize,
+) -> Result<Vec<ProcessRun>> {
+    let count = programs.len();
+    let mut times = vec![Vec::with_capacity(reps); count];
+    let mut peaks = vec![0u64; count];
+    for rep in 0..reps.max(1) {
+        for k in 0..count {
+            let i = (rep + k) % count;
+            let (name, command) = &mut programs[i];
+            let start = Instant::now();
+            let out = command.output().map_err(|e| {
+                crate::Error::InvalidArgument(format!("{name} could not start: {e}"))
+            })?;
+            let elapsed = start.elapsed().as_secs_f64();
+            if !out.status.success() {
+                return Err(crate::Error::InvalidArgument(format!(
+                    "{name} failed ({})",
+                    out.status
+                )));
+            }
+            times[i].push(elapsed);
+            if let Some(v) = String::from_utf8_lossy(&out.stderr)
+                .lines()
+                .find_map(|l| l.strip_prefix("peak_memory_bytes "))
+            {
+                peaks[i] = v.trim().parse().unwrap_or(0);
+            }
+        }
+    }
+    Ok(times
+        .iter_mut()
+        .zip(peaks)
+        .map(|(t, peak_bytes)| ProcessRun {
+            seconds: median(t),
+            peak_bytes,
+        })
+        .collect())
+}
+
 /// A named series of (level, native seconds, OpenSubdiv seconds).
 type Series = (String, Vec<(u32, f64, f64)>);
 

@@ -1314,37 +1314,13 @@ fn whole_process(input: &subdiv::bench::BenchInput, quick: bool, threads: usize)
         c.arg(&obj).arg("-").args(["--level", "4"]);
         programs.push(("C++ program against OpenSubdiv".into(), c));
     }
-    // Interleaved: each repetition runs every program once, starting with a
-    // different one each time, so that the machine's drift falls on all.
-    let mut results: Vec<(Vec<f64>, u64)> = vec![(Vec::new(), 0); programs.len()];
-    for rep in 0..reps {
-        for k in 0..programs.len() {
-            let i = (rep + k) % programs.len();
-            let t = Instant::now();
-            let Ok(out) = programs[i].1.output() else {
-                return format!("{s}  skipped: {} could not start\n", programs[i].0);
-            };
-            let elapsed = t.elapsed().as_secs_f64();
-            if !out.status.success() {
-                return format!("{s}  skipped: {} failed\n", programs[i].0);
-            }
-            results[i].0.push(elapsed);
-            let err = String::from_utf8_lossy(&out.stderr);
-            if let Some(v) = err
-                .lines()
-                .find_map(|l| l.strip_prefix("peak_memory_bytes "))
-            {
-                results[i].1 = v.trim().parse().unwrap_or(0);
-            }
-        }
-    }
-    let medians: Vec<(f64, u64)> = results
-        .into_iter()
-        .map(|(mut times, peak)| {
-            times.sort_by(f64::total_cmp);
-            (times[times.len() / 2], peak)
-        })
-        .collect();
+    let medians: Vec<(f64, u64)> = match subdiv::bench::interleaved_processes(&mut programs, reps) {
+        Ok(runs) => runs
+            .into_iter()
+            .map(|r| (r.seconds, r.peak_bytes))
+            .collect(),
+        Err(e) => return format!("{s}  skipped: {e}\n"),
+    };
     for ((name, _), (t, peak)) in programs.iter().zip(&medians) {
         let _ = write!(s, "  {name}: {:.1} ms", t * 1e3);
         if *peak > 0 {

@@ -1,6 +1,7 @@
 //! The parallel-use section of `subdiv bench` on tiny inputs: its rows are
 //! there, with positive times, after the engines' results were checked
-//! equal. Structure only: nothing here asserts a timing.
+//! equal; and the runner of its whole-process section. Structure only:
+//! nothing here asserts a timing beyond a program's own sleep.
 #![cfg(feature = "osd")]
 
 use subdiv::bench::{self, BenchInput, Report};
@@ -90,4 +91,52 @@ fn parallel_rows_on_tiny_inputs() {
     // The plots filter on the other tasks and still render.
     assert!(report.svg_time_per_level().ends_with("</svg>\n"));
     assert!(report.svg_rate_vs_bandwidth().ends_with("</svg>\n"));
+}
+
+/// The whole-process runner keeps each program's results with it whatever
+/// the order it ran them in, reads the peak memory each reports, and names a
+/// program that fails.
+#[test]
+fn whole_processes_run_interleaved_and_keep_their_results() {
+    use std::process::Command;
+    let shell = |script: &str| {
+        let mut c = Command::new("sh");
+        c.args(["-c", script]);
+        c
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("torus.obj");
+    subdiv::io::write_mesh_obj(&obj, &shapes::torus(8, 6), subdiv::Precision::F64).unwrap();
+    let mut refine = Command::new(env!("CARGO_BIN_EXE_subdiv"));
+    refine
+        .arg("refine")
+        .arg(&obj)
+        .args(["--level", "2", "--peak-memory"])
+        .env("RAYON_NUM_THREADS", "1");
+    let mut programs = vec![
+        (
+            "slow".to_string(),
+            shell("sleep 0.2; echo peak_memory_bytes 7 >&2"),
+        ),
+        ("subdiv refine".to_string(), refine),
+        ("fast".to_string(), shell("echo peak_memory_bytes 5 >&2")),
+    ];
+    let runs = bench::interleaved_processes(&mut programs, 3).unwrap();
+    assert_eq!(runs.len(), 3);
+    assert_eq!(runs[0].peak_bytes, 7);
+    assert!(runs[0].seconds >= 0.2, "{runs:?}");
+    assert!(runs[1].peak_bytes > 1 << 20, "{runs:?}");
+    assert!(runs[1].seconds > 0.0);
+    assert_eq!(runs[2].peak_bytes, 5);
+    assert!(runs[2].seconds < runs[0].seconds, "{runs:?}");
+
+    let mut failing = vec![
+        ("fine".to_string(), shell("true")),
+        ("broken".to_string(), shell("exit 3")),
+    ];
+    let e = bench::interleaved_processes(&mut failing, 2).unwrap_err();
+    assert!(e.to_string().contains("broken failed"), "{e}");
+    let mut missing = vec![("absent".to_string(), Command::new("/nonexistent/program"))];
+    let e = bench::interleaved_processes(&mut missing, 1).unwrap_err();
+    assert!(e.to_string().contains("absent could not start"), "{e}");
 }
