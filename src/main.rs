@@ -1298,22 +1298,28 @@ fn whole_process(input: &subdiv::bench::BenchInput, quick: bool, threads: usize)
         c
     };
     let threads = threads.max(1);
+    // Each program's place in the list, kept as it is pushed.
     let mut programs = vec![(
         format!("subdiv refine --engine native, {threads} thread(s)"),
         refine("native", Some(threads)),
     )];
-    if threads != cores {
+    let typed_at = if threads != cores {
         programs.push((
             format!("subdiv refine --engine native, every core ({cores})"),
             refine("native", None),
         ));
-    }
+        programs.len() - 1
+    } else {
+        0
+    };
+    let osd_at = programs.len();
     programs.push(("subdiv refine --engine osd".into(), refine("osd", None)));
-    if have_driver {
+    let cpp_at = have_driver.then(|| {
         let mut c = Command::new(&driver);
         c.arg(&obj).arg("-").args(["--level", "4"]);
         programs.push(("C++ program against OpenSubdiv".into(), c));
-    }
+        programs.len() - 1
+    });
     let medians: Vec<(f64, u64)> = match subdiv::bench::interleaved_processes(&mut programs, reps) {
         Ok(runs) => runs
             .into_iter()
@@ -1328,11 +1334,7 @@ fn whole_process(input: &subdiv::bench::BenchInput, quick: bool, threads: usize)
         }
         s.push('\n');
     }
-    // Programs in order: native (--threads), native on every core (when
-    // that differs), osd, then the C++ program (when built).
-    let native = medians[0];
-    let typed = if threads != cores { medians[1] } else { native };
-    let osd = medians[if threads != cores { 2 } else { 1 }];
+    let (native, typed, osd) = (medians[0], medians[typed_at], medians[osd_at]);
     if native.1 > 0 && osd.1 > 0 {
         let _ = writeln!(
             s,
@@ -1340,11 +1342,11 @@ fn whole_process(input: &subdiv::bench::BenchInput, quick: bool, threads: usize)
             native.1 as f64 / osd.1 as f64
         );
     }
-    let Some(&cpp) = medians.last().filter(|_| have_driver) else {
+    let Some(cpp) = cpp_at.map(|i| medians[i]) else {
         s.push_str("  C++ program: skipped (g++ or libosd-dev not available)\n");
         return s;
     };
-    if threads != cores {
+    if typed_at != 0 {
         let _ = writeln!(
             s,
             "  speed-up over the C++ program with {threads} thread(s): {:.2}x",
