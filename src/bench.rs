@@ -96,6 +96,25 @@ impl Row {
     }
 }
 
+/// OpenSubdiv's deepest "topology + positions" time measured twice: with no
+/// native run in between, and interleaved with the native engine (the time
+/// in [`Report::rows`]). Both engines share the process's C allocator, so
+/// each can leave the other's heap warmer or colder; the pair shows whether
+/// the reference in the table runs as it does on its own.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct AloneRow {
+    /// The input.
+    pub input: String,
+    /// The scheme.
+    pub scheme: String,
+    /// The level.
+    pub level: u32,
+    /// Median OpenSubdiv time alone, seconds.
+    pub alone: f64,
+    /// Median OpenSubdiv time interleaved with the native engine, seconds.
+    pub interleaved: f64,
+}
+
 /// A whole benchmark run.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Report {
@@ -114,6 +133,8 @@ pub struct Report {
     /// ([`frames_row`]) and many meshes ([`meshes_row`]), both engines over
     /// the same pool of `threads` threads.
     pub parallel: Vec<ParallelRow>,
+    /// OpenSubdiv alone against OpenSubdiv interleaved, per input.
+    pub osd_alone: Vec<AloneRow>,
 }
 
 /// One comparison of the parallel-use section.
@@ -266,6 +287,7 @@ pub fn run(
         })?;
     let bandwidth = measure_bandwidth();
     let mut stencil_bandwidth = None;
+    let mut osd_alone = Vec::new();
     for input in inputs {
         let options = Options::default().with_scheme(input.scheme);
         let base = input.mesh.flat_positions::<f32>();
@@ -275,6 +297,11 @@ pub fn run(
             progress(&label("topology + positions", level));
             let uniform = UniformOptions::new(level);
             let mut vertices = 0;
+            let opensubdiv = || {
+                let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd refiner");
+                r.refine_uniform(uniform).expect("osd refinement");
+                black_box(r.interpolate_all(3, &base).expect("osd positions"));
+            };
             let (native, osd) = pool.install(|| {
                 interleaved(
                     reps,
@@ -286,13 +313,20 @@ pub fn run(
                         vertices = p.last().map_or(0, |l| l.len() / 3);
                         black_box(p);
                     },
-                    || {
-                        let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd refiner");
-                        r.refine_uniform(uniform).expect("osd refinement");
-                        black_box(r.interpolate_all(3, &base).expect("osd positions"));
-                    },
+                    opensubdiv,
                 )
             });
+            if level == input.max_level {
+                progress(&label("OpenSubdiv alone", level));
+                let alone = pool.install(|| interleaved(reps, opensubdiv, || {}).0);
+                osd_alone.push(AloneRow {
+                    input: input.name.clone(),
+                    scheme: input.scheme.to_string(),
+                    level,
+                    alone,
+                    interleaved: osd,
+                });
+            }
             rows.push(Row {
                 input: input.name.clone(),
                 scheme: input.scheme.to_string(),
@@ -468,6 +502,7 @@ pub fn run(
         rows,
         stencil_bandwidth,
         parallel,
+        osd_alone,
     })
 }
 
@@ -749,6 +784,23 @@ impl Report {
                 100.0 * n / self.bandwidth,
                 o / 1e9
             );
+        }
+        if !self.osd_alone.is_empty() {
+            let _ = writeln!(
+                s,
+                "\nOpenSubdiv's deepest topology + positions alone (back to back, no native run in between) and as measured above (interleaved with the native engine; both share the C allocator):"
+            );
+            for a in &self.osd_alone {
+                let _ = writeln!(
+                    s,
+                    "- {} ({}, level {}): alone {:.1} ms, interleaved {:.1} ms",
+                    a.input,
+                    a.scheme,
+                    a.level,
+                    a.alone * 1e3,
+                    a.interleaved * 1e3
+                );
+            }
         }
         if !self.parallel.is_empty() {
             let _ = writeln!(

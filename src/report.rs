@@ -901,7 +901,7 @@ fn time_level(mesh: &Mesh, options: &Options, level: u32, quick: bool) -> Result
         let mut r = refiner::Refiner::new(mesh, options)?;
         r.refine_uniform(uniform)?;
         let p = r.interpolate_all(3, &base)?;
-        Ok(black_box(p).last().map_or(0, Vec::len))
+        Ok(black_box(p).last().map_or(0, |l| l.len()))
     };
     let opensubdiv = || -> Result<usize> {
         let mut r = osd::Refiner::new(mesh, options)?;

@@ -76,11 +76,22 @@ fn parallel_rows_on_tiny_inputs() {
         rows: Vec::new(),
         stencil_bandwidth: None,
         parallel: vec![f, m],
+        osd_alone: vec![bench::AloneRow {
+            input: "torus".into(),
+            scheme: "loop".into(),
+            level: 4,
+            alone: 0.0875,
+            interleaved: 0.0894,
+        }],
     };
     let text = report.markdown("today");
     assert!(text.contains("| frames (3, level 2) |"), "{text}");
     assert!(text.contains("| meshes (4, level 2) |"), "{text}");
     assert!(text.contains("Parallel use (2 thread(s)"), "{text}");
+    assert!(
+        text.contains("- torus (loop, level 4): alone 87.5 ms, interleaved 89.4 ms"),
+        "{text}"
+    );
     assert!(
         text.contains("frames/s") && text.contains("meshes/s"),
         "{text}"
@@ -88,6 +99,7 @@ fn parallel_rows_on_tiny_inputs() {
     let json = serde_json::to_value(&report).unwrap();
     assert_eq!(json["parallel"][0]["task"], "frames (3, level 2)");
     assert_eq!(json["parallel"][1]["count"], 4);
+    assert_eq!(json["osd_alone"][0]["alone"], 0.0875);
     // The plots filter on the other tasks and still render.
     assert!(report.svg_time_per_level().ends_with("</svg>\n"));
     assert!(report.svg_rate_vs_bandwidth().ends_with("</svg>\n"));

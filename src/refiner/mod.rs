@@ -473,6 +473,16 @@ impl Refiner {
         Ok(dst)
     }
 
+    /// [`Refiner::interpolate`] into a [`Table`]: memory from the pool of
+    /// dropped tables when large ([`crate::topology::release_table_pool`]),
+    /// not cleared first, since every value is written.
+    fn interpolate_table<T: Real>(&self, level: u32, width: usize, src: &[T]) -> Result<Table<T>> {
+        let n = self.internal_level(level)?.vertex_count;
+        let mut dst = Table::for_overwrite(n * width);
+        self.interpolate_into(level, width, src, &mut dst)?;
+        Ok(dst)
+    }
+
     /// As [`Refiner::interpolate`], into a caller's buffer (no allocation per frame).
     pub fn interpolate_into<T: Real>(
         &self,
@@ -502,10 +512,10 @@ impl Refiner {
     }
 
     /// Interpolates vertex data through every level: `result[l]` is level `l`.
-    pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Vec<T>>> {
-        let mut out = vec![base.to_vec()];
+    pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Table<T>>> {
+        let mut out = vec![Table::from_slice(base)];
         for level in 1..=self.max_level() {
-            let next = self.interpolate(level, width, out.last().expect("non-empty"))?;
+            let next = self.interpolate_table(level, width, out.last().expect("non-empty"))?;
             out.push(next);
         }
         Ok(out)
@@ -525,14 +535,13 @@ impl Refiner {
     /// r.refine_uniform(UniformOptions::new(3))?;
     /// let base: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
     /// let last = r.interpolate_last(3, &base)?;
-    /// assert_eq!(&last[..], r.interpolate_all(3, &base)?.last().unwrap());
+    /// assert_eq!(&last, r.interpolate_all(3, &base)?.last().unwrap());
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Table<T>> {
         let mut current = Table::from_slice(base);
         for level in 1..=self.max_level() {
-            let mut next = Table::zeroed(self.internal_level(level)?.vertex_count * width);
-            self.interpolate_into(level, width, &current, &mut next)?;
+            let next = self.interpolate_table(level, width, &current)?;
             current = next;
         }
         Ok(current)
@@ -799,7 +808,7 @@ pub fn refine_last<T: Real>(
         r.levels.push(child);
         r.check_unpaired_smooth_step(level - 1)?;
         counts.push(r.level_counts(level as u32)?);
-        let mut next = Table::zeroed(r.levels[level].vertex_count * width);
+        let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
         r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
         data = next;
         // Nothing reads the grandparent any more (the parent's vertex

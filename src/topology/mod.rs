@@ -24,7 +24,7 @@ mod table;
 
 pub use base::build_base_level;
 pub use refine::{Build, Refinement, refine_level};
-pub use table::Table;
+pub use table::{Table, release_table_pool};
 
 use crate::rules::Rule;
 use bytemuck::Pod;

@@ -1,39 +1,38 @@
-//! Flat tables of plain values; the very large ones live in memory advised
-//! for transparent huge pages.
+//! Flat tables of plain values; the large ones live in memory advised for
+//! transparent huge pages and are recycled when dropped.
 //!
 //! Refining a mesh writes hundreds of megabytes of fresh tables at deep
 //! levels. With 4 KiB pages, the first touch of each page is a kernel page
-//! fault. A [`Table`] of 32 MiB or more is an anonymous memory map
-//! advised with `MADV_HUGEPAGE` (through `memmap2`), so the kernel fills it
-//! with 2 MiB pages: one fault where there were 512. Smaller tables are
-//! ordinary `Vec`s. Where the advice is not available the map still works
-//! with ordinary pages.
+//! fault. A [`Table`] of 2 MiB or more is an anonymous memory map advised
+//! with `MADV_HUGEPAGE` (through `memmap2`), so the kernel fills it with
+//! 2 MiB pages: one fault where there were 512. Where the advice is not
+//! available the map still works with ordinary pages. A dropped map goes to
+//! a pool (256 MiB at most) that serves the next table of its size, so a
+//! program that refines again — the next frame, the next mesh — writes into
+//! memory already faulted in ([`release_table_pool`] hands it back).
+//! Smaller tables are ordinary `Vec`s.
 
 use bytemuck::Pod;
 use std::fmt;
 use std::ops::{Deref, DerefMut};
 
 /// Tables of at least this many bytes are memory maps advised for huge
-/// pages, unless `SUBDIV_HUGE_PAGES` says otherwise.
+/// pages, unless `SUBDIV_HUGE_PAGES=0`.
 ///
-/// 32 MiB is where the C allocator stops reusing its heap: glibc serves any
-/// larger block with a fresh map of its own (its map threshold never rises
-/// above 32 MiB on 64-bit), unmapped again when freed, so every refinement
-/// faults such a table in anew whatever we do. The only choice left there is
-/// the page size, and 2 MiB pages take 512 times fewer faults. A smaller
-/// table stays a `Vec`: the heap hands back memory a previous refinement
-/// already faulted in, which no fresh map can beat.
-const MAP_BYTES: usize = 32 << 20;
-
-/// With `SUBDIV_HUGE_PAGES=1`, tables from this size on are maps.
-const MAP_BYTES_ALL: usize = 2 << 20;
+/// Left to the C allocator, large blocks are fresh memory too often: glibc
+/// serves blocks above its map threshold (128 KiB to 32 MiB, raised as
+/// blocks are freed) with maps of their own, unmapped when freed, and a
+/// worker thread's arena that needs room for a block of tens of megabytes
+/// takes a new 64 MiB heap and deletes it again when the block is freed —
+/// on two threads, 7,500-14,000 page faults per level-4 refinement of the
+/// benchmark's tori (docs/PERFORMANCE.md). The pool keeps such memory ours.
+const MAP_BYTES: usize = 2 << 20;
 
 /// The size of a transparent huge page on x86-64 and most aarch64 kernels.
 const HUGE_PAGE: usize = 2 << 20;
 
-/// The smallest table that is a huge-page map: `MAP_BYTES` by default,
-/// 2 MiB with the environment variable `SUBDIV_HUGE_PAGES=1`, none with
-/// `SUBDIV_HUGE_PAGES=0` (read once).
+/// The smallest table that is a huge-page map: `MAP_BYTES`, or none with the
+/// environment variable `SUBDIV_HUGE_PAGES=0` (read once).
 fn map_threshold() -> usize {
     static THRESHOLD: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *THRESHOLD.get_or_init(|| {
@@ -41,7 +40,6 @@ fn map_threshold() -> usize {
             .as_deref()
             .and_then(|v| v.to_str())
         {
-            Some("1") => MAP_BYTES_ALL,
             Some("0") => usize::MAX,
             _ => MAP_BYTES,
         }
@@ -53,12 +51,12 @@ fn map_threshold() -> usize {
 ///
 /// Refining a mesh writes hundreds of megabytes of fresh tables at deep
 /// levels; with 4 KiB pages the first touch of every page is a kernel page
-/// fault. A table of 32 MiB or more is an anonymous memory
-/// map advised with `MADV_HUGEPAGE` (transparent huge pages: one fault where
-/// there were 512); smaller tables are ordinary `Vec`s, which the allocator
-/// can serve from memory already faulted in. The environment variable
-/// `SUBDIV_HUGE_PAGES=1` maps every table from 2 MiB on, and
-/// `SUBDIV_HUGE_PAGES=0` none (docs/PERFORMANCE.md has the measurements).
+/// fault. A table of 2 MiB or more is an anonymous memory map advised with
+/// `MADV_HUGEPAGE` (transparent huge pages: one fault where there were 512),
+/// and when dropped its map is kept for the next table of its size
+/// ([`release_table_pool`]); smaller tables are ordinary `Vec`s. The
+/// environment variable `SUBDIV_HUGE_PAGES=0` makes every table a `Vec`
+/// (docs/PERFORMANCE.md has the measurements).
 ///
 /// ```
 /// use subdiv::topology::Table;
@@ -93,24 +91,70 @@ impl<T: Pod> Table<T> {
     /// [`Table::zeroed`], in a huge-page map when at least `threshold`
     /// bytes long.
     fn zeroed_in(len: usize, threshold: usize) -> Self {
-        let bytes = len.saturating_mul(size_of::<T>());
-        if bytes >= threshold {
-            // A whole number of huge pages: the kernel then aligns the map
-            // on a huge-page boundary, so every part of it can use them.
-            let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
-            if let Ok(map) = memmap2::MmapOptions::new().len(mapped).map_anon() {
-                // Only advice: without transparent huge pages the map keeps
-                // ordinary pages.
-                #[cfg(target_os = "linux")]
-                let _ = map.advise(memmap2::Advice::HugePage);
-                return Table {
-                    repr: Repr::Map { map, len },
-                };
+        match Self::mapped(len, threshold) {
+            Some((mut t, fresh)) => {
+                if !fresh {
+                    t.fill(T::zeroed());
+                }
+                t
             }
+            None => Table {
+                repr: Repr::Vec(vec![T::zeroed(); len]),
+            },
         }
-        Table {
-            repr: Repr::Vec(vec![T::zeroed(); len]),
+    }
+
+    /// `len` values for the caller to overwrite, every one of them: their
+    /// contents are unspecified (zeros, or what a dropped table left in the
+    /// memory it handed back). Nothing is cleared first, so a recycled map
+    /// costs neither page faults nor a pass over its memory.
+    pub(crate) fn for_overwrite(len: usize) -> Self {
+        #[allow(unused_mut)]
+        let mut t = match Self::mapped(len, map_threshold()) {
+            Some((t, _)) => t,
+            None => Table {
+                repr: Repr::Vec(vec![T::zeroed(); len]),
+            },
+        };
+        // Debug builds (the test suite) poison the values, all bits set (NaN
+        // for floats, out of range for indices), so that a value the caller
+        // fails to write shows in every test, not only on recycled memory.
+        #[cfg(debug_assertions)]
+        bytemuck::cast_slice_mut::<T, u8>(&mut t).fill(0xff);
+        t
+    }
+
+    /// A map for `len` values when they take at least `threshold` bytes:
+    /// one the pool kept (`false`: its contents are stale) or a fresh one
+    /// (`true`: zeros). `None` below the threshold or when the system
+    /// refuses a map.
+    fn mapped(len: usize, threshold: usize) -> Option<(Self, bool)> {
+        let bytes = len.checked_mul(size_of::<T>())?;
+        if bytes < threshold || bytes == 0 {
+            return None;
         }
+        // A whole number of huge pages: the kernel then aligns the map
+        // on a huge-page boundary, so every part of it can use them.
+        let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
+        if let Some(map) = pool::take(mapped) {
+            return Some((
+                Table {
+                    repr: Repr::Map { map, len },
+                },
+                false,
+            ));
+        }
+        let map = memmap2::MmapOptions::new().len(mapped).map_anon().ok()?;
+        // Only advice: without transparent huge pages the map keeps
+        // ordinary pages.
+        #[cfg(target_os = "linux")]
+        let _ = map.advise(memmap2::Advice::HugePage);
+        Some((
+            Table {
+                repr: Repr::Map { map, len },
+            },
+            true,
+        ))
     }
 
     /// `len` copies of `value`.
@@ -147,10 +191,132 @@ impl<T: Pod> Table<T> {
         }
     }
 
-    /// Whether the table lives in a memory map (32 MiB or more; 2 MiB
-    /// or more with `SUBDIV_HUGE_PAGES=1`).
+    /// Whether the table lives in a memory map (2 MiB or more, unless
+    /// `SUBDIV_HUGE_PAGES=0`).
     pub fn is_mapped(&self) -> bool {
         matches!(self.repr, Repr::Map { .. })
+    }
+}
+
+impl<T: Pod> Drop for Table<T> {
+    /// A map goes back to the pool for the next table of its size.
+    fn drop(&mut self) {
+        if let Repr::Map { map, .. } = std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())) {
+            pool::give(map);
+        }
+    }
+}
+
+/// Releases the memory of dropped tables that is kept for reuse
+/// (transparent huge-page maps of 2 MiB and more), and returns how many bytes
+/// that was.
+///
+/// Dropping a large [`Table`] keeps its map, up to 256 MiB in all, so that
+/// the next refinement of a similar mesh (the next frame, the next mesh of a
+/// batch) reuses memory already faulted in instead of taking a kernel page
+/// fault for every page anew. A program that refines once and goes on to
+/// other work can hand that memory back to the system with this call.
+///
+/// ```
+/// use subdiv::topology::{Table, release_table_pool};
+/// drop(Table::<u32>::zeroed(1 << 20)); // 4 MiB: a map, kept when dropped
+/// release_table_pool();
+/// assert_eq!(release_table_pool(), 0);
+/// ```
+pub fn release_table_pool() -> usize {
+    pool::release()
+}
+
+/// The maps of dropped tables, kept for the next tables of their size.
+mod pool {
+    use memmap2::MmapMut;
+    use std::sync::{Mutex, MutexGuard};
+
+    /// At most this many bytes of maps are kept.
+    const POOL_BYTES: usize = 256 << 20;
+
+    /// Kept maps, oldest first.
+    pub(super) struct Pool {
+        maps: Vec<MmapMut>,
+        bytes: usize,
+        cap: usize,
+    }
+
+    impl Pool {
+        pub(super) const fn new(cap: usize) -> Self {
+            Pool {
+                maps: Vec::new(),
+                bytes: 0,
+                cap,
+            }
+        }
+
+        /// The smallest kept map of at least `bytes` and at most twice
+        /// that (a larger one would leave most of itself idle).
+        pub(super) fn take(&mut self, bytes: usize) -> Option<MmapMut> {
+            let (i, _) = self
+                .maps
+                .iter()
+                .enumerate()
+                .filter(|(_, m)| m.len() >= bytes && m.len() / 2 <= bytes)
+                .min_by_key(|(_, m)| m.len())?;
+            let map = self.maps.remove(i);
+            self.bytes -= map.len();
+            Some(map)
+        }
+
+        /// Keeps `map` and returns the oldest maps that no longer fit under
+        /// the cap (all of `map` itself when it is larger than the cap).
+        #[must_use]
+        pub(super) fn give(&mut self, map: MmapMut) -> Vec<MmapMut> {
+            if map.len() > self.cap {
+                return vec![map];
+            }
+            self.bytes += map.len();
+            self.maps.push(map);
+            let mut evicted = Vec::new();
+            while self.bytes > self.cap {
+                let old = self.maps.remove(0);
+                self.bytes -= old.len();
+                evicted.push(old);
+            }
+            evicted
+        }
+
+        /// Every kept map, and their total length; the pool is left empty.
+        pub(super) fn drain(&mut self) -> (Vec<MmapMut>, usize) {
+            let bytes = std::mem::take(&mut self.bytes);
+            (std::mem::take(&mut self.maps), bytes)
+        }
+
+        #[cfg(test)]
+        pub(super) fn bytes(&self) -> usize {
+            self.bytes
+        }
+    }
+
+    static POOL: Mutex<Pool> = Mutex::new(Pool::new(POOL_BYTES));
+
+    fn lock() -> MutexGuard<'static, Pool> {
+        // The pool is consistent between statements: a panic elsewhere while
+        // it was held leaves nothing half done.
+        POOL.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    pub(super) fn take(bytes: usize) -> Option<MmapMut> {
+        lock().take(bytes)
+    }
+
+    pub(super) fn give(map: MmapMut) {
+        let evicted = lock().give(map);
+        // Unmapped outside the lock.
+        drop(evicted);
+    }
+
+    pub(super) fn release() -> usize {
+        let (maps, bytes) = lock().drain();
+        drop(maps);
+        bytes
     }
 }
 
@@ -194,6 +360,24 @@ impl<T: Pod + PartialEq> PartialEq for Table<T> {
 
 impl<T: Pod + Eq> Eq for Table<T> {}
 
+impl<T: Pod + PartialEq> PartialEq<[T]> for Table<T> {
+    fn eq(&self, other: &[T]) -> bool {
+        self.as_slice() == other
+    }
+}
+
+impl<T: Pod + PartialEq> PartialEq<Vec<T>> for Table<T> {
+    fn eq(&self, other: &Vec<T>) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
+impl<T: Pod + PartialEq> PartialEq<Table<T>> for Vec<T> {
+    fn eq(&self, other: &Table<T>) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
 impl<T: Pod + fmt::Debug> fmt::Debug for Table<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()
@@ -227,13 +411,14 @@ mod tests {
 
     #[test]
     fn small_and_large_tables_behave_alike() {
-        for threshold in [MAP_BYTES_ALL, MAP_BYTES, usize::MAX] {
-            for len in [0, 3, MAP_BYTES_ALL / 4 + 5, MAP_BYTES / 4 + 5] {
+        const BIG: usize = 32 << 20;
+        for threshold in [MAP_BYTES, BIG, usize::MAX] {
+            for len in [0, 3, MAP_BYTES / 4 + 5, BIG / 4 + 5] {
                 let mut t: Table<u32> = Table::zeroed_in(len, threshold);
                 assert!(t.iter().all(|&x| x == 0));
                 t.fill(9);
                 assert_eq!(t.len(), len);
-                assert_eq!(t.is_mapped(), len * 4 >= threshold);
+                assert_eq!(t.is_mapped(), len > 0 && len * 4 >= threshold);
                 assert!(t.iter().all(|&x| x == 9));
                 if len > 0 {
                     t[len - 1] = 1;
@@ -245,13 +430,66 @@ mod tests {
                 assert_eq!(c, t);
                 assert_eq!(c.is_mapped(), t.is_mapped() && len * 4 >= map_threshold());
             }
-            let pairs: Table<[u32; 2]> = Table::zeroed_in(MAP_BYTES / 8, threshold);
-            assert_eq!(pairs.is_mapped(), MAP_BYTES >= threshold);
+            let pairs: Table<[u32; 2]> = Table::zeroed_in(BIG / 8, threshold);
+            assert_eq!(pairs.is_mapped(), BIG >= threshold);
             assert!(pairs.iter().all(|p| *p == [0, 0]));
         }
         let f: Table<f32> = Table::filled(0.5, 10);
         assert!(f.iter().all(|&x| x == 0.5));
         let v: Table<u16> = (0..5u16).collect();
         assert_eq!(&v[..], &[0, 1, 2, 3, 4]);
+    }
+
+    /// Whatever memory a zeroed table gets — fresh, or a dropped table's
+    /// from the pool — it reads zeros; a table for overwriting has its full
+    /// length, poisoned in debug builds.
+    #[test]
+    fn recycled_tables_are_cleared_when_zeroed() {
+        for len in [MAP_BYTES / 4, 3 * MAP_BYTES / 4 + 7] {
+            let mut t: Table<u32> = Table::zeroed(len);
+            t.fill(9);
+            drop(t);
+            let z: Table<u32> = Table::zeroed(len);
+            assert_eq!(z.len(), len);
+            assert!(z.iter().all(|&x| x == 0));
+            drop(z);
+            let w: Table<f32> = Table::for_overwrite(len);
+            assert_eq!(w.len(), len);
+            if cfg!(debug_assertions) {
+                assert!(w.iter().all(|x| x.is_nan()));
+            }
+        }
+    }
+
+    fn map(bytes: usize) -> memmap2::MmapMut {
+        memmap2::MmapOptions::new().len(bytes).map_anon().unwrap()
+    }
+
+    #[test]
+    fn pool_takes_the_best_fit_and_evicts_the_oldest() {
+        const M: usize = HUGE_PAGE;
+        let mut p = pool::Pool::new(10 * M);
+        assert!(p.give(map(4 * M)).is_empty());
+        assert!(p.give(map(2 * M)).is_empty());
+        assert!(p.give(map(3 * M)).is_empty());
+        assert_eq!(p.bytes(), 9 * M);
+        // Nothing large enough.
+        assert!(p.take(5 * M).is_none());
+        // The smallest that fits, not the first.
+        assert_eq!(p.take(2 * M).map(|m| m.len()), Some(2 * M));
+        // No map more than twice the request: 4 MiB is too big for 1 MiB.
+        assert!(p.take(M).is_none());
+        assert_eq!(p.bytes(), 7 * M);
+        // Over the cap: the oldest (4 MiB) goes, then a map larger than the
+        // cap is never kept.
+        let evicted = p.give(map(5 * M));
+        assert_eq!(
+            evicted.iter().map(|m| m.len()).collect::<Vec<_>>(),
+            vec![4 * M]
+        );
+        assert_eq!(p.bytes(), 8 * M);
+        assert_eq!(p.give(map(11 * M)).len(), 1);
+        let (maps, bytes) = p.drain();
+        assert_eq!((maps.len(), bytes, p.bytes()), (2, 8 * M, 0));
     }
 }
