@@ -265,6 +265,15 @@ impl Relation {
         }
     }
 
+    /// As [`Relation::uniform`], with members for the caller to write, every
+    /// one ([`Table::for_overwrite`]: not cleared first).
+    pub(crate) fn uniform_for_overwrite(count: usize, size: usize) -> Self {
+        Relation {
+            offsets: Offsets::Uniform { len: count, size },
+            members: Table::for_overwrite(count * size),
+        }
+    }
+
     /// Number of elements.
     #[inline]
     pub fn len(&self) -> usize {

@@ -160,11 +160,12 @@ pub fn refine_level(
     // Face-vertices and face-edges of the child quads, in parallel over
     // chunks of parent faces: each chunk writes its own corners' children.
     let faces_part = || {
-        let mut face_vertices = Relation::uniform(child_faces, 4);
+        // Every member is written below (debug builds poison them first).
+        let mut face_vertices = Relation::uniform_for_overwrite(child_faces, 4);
         let mut face_edges = if minimal {
             Table::new()
         } else {
-            Table::zeroed(child_faces * 4)
+            Table::for_overwrite(child_faces * 4)
         };
         let fv_chunks = carve_by_faces(&mut face_vertices.members, parent, 4);
         let fe_chunks = if minimal {
@@ -540,12 +541,16 @@ fn refine_triangles(
     // Child triangles (and the edges inside each parent face), in parallel
     // over chunks of parent triangles; then the halves of parent edges.
     let faces_part = || {
-        let mut face_vertices = Relation::uniform(child_faces, 3);
+        // Every member is written below (debug builds poison them first).
+        let mut face_vertices = Relation::uniform_for_overwrite(child_faces, 3);
         // A minimal last level needs neither face-edges nor edge-vertices.
         let (mut face_edges, mut edge_vertices) = if minimal {
             (Table::new(), Table::new())
         } else {
-            (Table::zeroed(child_faces * 3), Table::zeroed(child_edges))
+            (
+                Table::for_overwrite(child_faces * 3),
+                Table::for_overwrite(child_edges),
+            )
         };
         let split =
             |f0: usize, fv_out: &mut [u32], mut rest: Option<(&mut [u32], &mut [[u32; 2]])>| {

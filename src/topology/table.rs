@@ -159,16 +159,24 @@ impl<T: Pod> Table<T> {
 
     /// `len` copies of `value`.
     pub fn filled(value: T, len: usize) -> Self {
-        let mut t = Self::zeroed(len);
-        if bytemuck::bytes_of(&value).iter().any(|&b| b != 0) {
-            t.fill(value);
+        let zero = bytemuck::bytes_of(&value).iter().all(|&b| b == 0);
+        match Self::mapped(len, map_threshold()) {
+            Some((mut t, fresh)) => {
+                // A fresh map is zeros already.
+                if !(fresh && zero) {
+                    t.fill(value);
+                }
+                t
+            }
+            None => Table {
+                repr: Repr::Vec(vec![value; len]),
+            },
         }
-        t
     }
 
     /// A table holding a copy of `values`.
     pub fn from_slice(values: &[T]) -> Self {
-        let mut t = Self::zeroed(values.len());
+        let mut t = Self::for_overwrite(values.len());
         t.copy_from_slice(values);
         t
     }
@@ -452,7 +460,17 @@ mod tests {
             let z: Table<u32> = Table::zeroed(len);
             assert_eq!(z.len(), len);
             assert!(z.iter().all(|&x| x == 0));
+            let mut z = z;
+            z.fill(9);
             drop(z);
+            let f: Table<u32> = Table::filled(0, len);
+            assert!(f.len() == len && f.iter().all(|&x| x == 0));
+            drop(f);
+            let f: Table<u32> = Table::filled(5, len);
+            assert!(f.len() == len && f.iter().all(|&x| x == 5));
+            let copy = Table::from_slice(&f);
+            assert_eq!(copy, f);
+            drop((f, copy));
             let w: Table<f32> = Table::for_overwrite(len);
             assert_eq!(w.len(), len);
             if cfg!(debug_assertions) {
