@@ -381,6 +381,81 @@ impl<T: Real, F: Fn(usize) -> u32> SmoothVertex<'_, T, F> {
     }
 }
 
+/// The smooth mask of an interior vertex of valence `N` in fixed arrays:
+/// the weights of its `N` face points (none under Loop), of its `N` edges'
+/// far ends and of itself, added in the order of
+/// [`SmoothVertex::add_fixed`]. Hoisted out of the vertex pass for the
+/// regular valence of a level whose relations are derived (4 for quads, 6
+/// for Loop), so that the usual vertex reads no mask cache.
+#[derive(Clone, Copy)]
+struct Regular<T, const N: usize> {
+    face: Option<[T; N]>,
+    edge: [T; N],
+    vertex: T,
+}
+
+impl<T: Real, const N: usize> Regular<T, N> {
+    /// The mask from the rules; `None` for a mask of another shape.
+    fn new(r: &Refiner) -> Option<Self> {
+        let mut cache = Cache::<T>::new();
+        let m = cache.smooth_vertex(r, N);
+        Some(Regular {
+            face: match m.face.len() {
+                0 => None,
+                _ => Some(<[T; N]>::try_from(&m.face[..]).ok()?),
+            },
+            edge: <[T; N]>::try_from(&m.edge[..]).ok()?,
+            vertex: *m.vertex.first()?,
+        })
+    }
+
+    /// The vertex point of `v` from its faces' face points and its edges'
+    /// far ends.
+    #[inline(always)]
+    fn sum<W: Width>(
+        &self,
+        v: usize,
+        faces: &[u32; N],
+        fars: &[u32; N],
+        src: &[T],
+        face_points: &[T],
+        width: W,
+    ) -> [T; MAX_WIDTH] {
+        let mut acc = [T::ZERO; MAX_WIDTH];
+        if let Some(fw) = self.face {
+            for k in 0..N {
+                add(&mut acc, face_points, faces[k], fw[k], width);
+            }
+        }
+        for (&far, &w) in fars.iter().zip(&self.edge) {
+            add(&mut acc, src, far, w, width);
+        }
+        add(&mut acc, src, v as u32, self.vertex, width);
+        acc
+    }
+}
+
+/// The point of a smooth edge between two faces: its ends `ev` (from
+/// `src`) weighted `ends`, then one term per face — its face point, or under
+/// Loop the vertex opposite the edge — read at `at` from `sides`.
+#[inline(always)]
+fn smooth_edge_point<T: Real, W: Width>(
+    src: &[T],
+    ev: [u32; 2],
+    ends: [T; 2],
+    sides: &[T],
+    at: [u32; 2],
+    weights: [T; 2],
+    width: W,
+) -> [T; MAX_WIDTH] {
+    let mut acc = [T::ZERO; MAX_WIDTH];
+    add(&mut acc, src, ev[0], ends[0], width);
+    add(&mut acc, src, ev[1], ends[1], width);
+    add(&mut acc, sides, at[0], weights[0], width);
+    add(&mut acc, sides, at[1], weights[1], width);
+    acc
+}
+
 /// Writes the first `width` values of `acc` to `slot` (`width` values long).
 /// The width is read from `W` here, not captured from the caller: a
 /// captured length turns the copy into a call to `memcpy` and keeps `acc` in
@@ -527,90 +602,134 @@ fn run<T: Real, W: Width + Send + Sync>(
     } else {
         None
     };
-    par_children(edge_points, n, |e, slot, cache, scratch| {
-        if let (Some((ends, opposite)), Some((grand, gr))) = (loop_edge, derived)
-            && (!has_sharpness || parent.edge_sharpness[e] <= 0.0)
-        {
-            let wings = match e.checked_sub(gr.parent_corners) {
-                Some(i) => halves_of(&mut scratch.wings, i, |e| {
-                    derive_half_edge_wings(grand, gr, e)
-                })
-                .map(|h| pick(h, i)),
-                None => derive_inner_edge_wings(grand, gr, e),
+    // Catmull-Clark on a derived level without sharp edges: every edge is
+    // smooth between two quads, so one mask serves them all (what the
+    // general closure below finds in its cache edge by edge, with the same
+    // terms in the same order).
+    let quad_edge = if !triangles && !has_sharpness && derived.is_some() {
+        Cache::<T>::new()
+            .smooth_edge(r, [false, false])
+            .and_then(|w| match w.faces {
+                Some(faces) if w.centers => Some((w.ends, faces)),
+                _ => None,
+            })
+    } else {
+        None
+    };
+    if let (Some((ends, face_weights)), Some((grand, gr))) = (quad_edge, derived) {
+        par_children(edge_points, n, |e, slot, _, scratch| {
+            let faces = match e.checked_sub(gr.parent_corners) {
+                Some(i) => pick(
+                    halves_of(&mut scratch.halves, i, |e| {
+                        derive_half_edge_faces(grand, false, e)
+                    }),
+                    i,
+                ),
+                None => derive_edge_faces(grand, gr, false, e),
             };
-            if let Some(wings) = wings {
-                let ev = parent.edge_vertices[e];
-                let mut acc = zero;
-                add(&mut acc, src, ev[0], ends[0], width);
-                add(&mut acc, src, ev[1], ends[1], width);
-                add(&mut acc, src, wings[0], opposite[0], width);
-                add(&mut acc, src, wings[1], opposite[1], width);
-                store(slot, &acc, width);
-                return;
-            }
-        }
-        let derived_faces;
-        let faces: &[u32] = match derived {
-            Some((grand, gr)) => {
-                derived_faces = match e.checked_sub(gr.parent_corners) {
-                    // A half of a parent edge: both halves derived at once.
-                    Some(i) => pick(
-                        halves_of(&mut scratch.halves, i, |e| {
-                            derive_half_edge_faces(grand, triangles, e)
-                        }),
-                        i,
-                    ),
-                    None => derive_edge_faces(grand, gr, triangles, e),
-                };
-                &derived_faces
-            }
-            None => parent.edge_faces_of(e),
-        };
-        let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
-        let mut acc = zero;
-        let weights = if smooth {
-            cache.smooth_edge(
-                r,
-                [
-                    tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
-                    tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
-                ],
-            )
-        } else {
-            None
-        };
-        if let Some(w) = weights {
             let ev = parent.edge_vertices[e];
-            add(&mut acc, src, ev[0], w.ends[0], width);
-            add(&mut acc, src, ev[1], w.ends[1], width);
-            if let Some(fw) = w.faces {
-                for k in 0..2 {
-                    let f = faces[k];
-                    if w.centers {
-                        add(&mut acc, face_points, f, fw[k], width);
-                    } else {
-                        let far = opposite_vertex(parent, f as usize, e);
-                        add(&mut acc, src, far, fw[k], width);
-                    }
+            let acc = smooth_edge_point(src, ev, ends, face_points, faces, face_weights, width);
+            store(slot, &acc, width);
+        });
+    } else {
+        par_children(edge_points, n, |e, slot, cache, scratch| {
+            if let (Some((ends, opposite)), Some((grand, gr))) = (loop_edge, derived)
+                && (!has_sharpness || parent.edge_sharpness[e] <= 0.0)
+            {
+                let wings = match e.checked_sub(gr.parent_corners) {
+                    Some(i) => halves_of(&mut scratch.wings, i, |e| {
+                        derive_half_edge_wings(grand, gr, e)
+                    })
+                    .map(|h| pick(h, i)),
+                    None => derive_inner_edge_wings(grand, gr, e),
+                };
+                if let Some(wings) = wings {
+                    let ev = parent.edge_vertices[e];
+                    let acc = smooth_edge_point(src, ev, ends, src, wings, opposite, width);
+                    store(slot, &acc, width);
+                    return;
                 }
             }
-        } else {
-            r.edge_terms(Kind::Vertex, level, e, scratch);
-            acc = irregular(scratch);
-        }
-        store(slot, &acc, width);
-    });
+            let derived_faces;
+            let faces: &[u32] = match derived {
+                Some((grand, gr)) => {
+                    derived_faces = match e.checked_sub(gr.parent_corners) {
+                        // A half of a parent edge: both halves derived at once.
+                        Some(i) => pick(
+                            halves_of(&mut scratch.halves, i, |e| {
+                                derive_half_edge_faces(grand, triangles, e)
+                            }),
+                            i,
+                        ),
+                        None => derive_edge_faces(grand, gr, triangles, e),
+                    };
+                    &derived_faces
+                }
+                None => parent.edge_faces_of(e),
+            };
+            let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
+            let mut acc = zero;
+            let weights = if smooth {
+                cache.smooth_edge(
+                    r,
+                    [
+                        tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
+                        tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
+                    ],
+                )
+            } else {
+                None
+            };
+            if let Some(w) = weights {
+                let ev = parent.edge_vertices[e];
+                add(&mut acc, src, ev[0], w.ends[0], width);
+                add(&mut acc, src, ev[1], w.ends[1], width);
+                if let Some(fw) = w.faces {
+                    for k in 0..2 {
+                        let f = faces[k];
+                        if w.centers {
+                            add(&mut acc, face_points, f, fw[k], width);
+                        } else {
+                            let far = opposite_vertex(parent, f as usize, e);
+                            add(&mut acc, src, far, fw[k], width);
+                        }
+                    }
+                }
+            } else {
+                r.edge_terms(Kind::Vertex, level, e, scratch);
+                acc = irregular(scratch);
+            }
+            store(slot, &acc, width);
+        });
+    }
 
     // Vertex points.
     // Empty vertex tags: every parent vertex is smooth (what
     // `Level::vertex_tag` reads, tested once here).
     let has_tags = !parent.vertex_tags.is_empty();
+    let (quad4, loop6) = match derived {
+        Some(_) if triangles => (None, Regular::<T, 6>::new(r)),
+        Some(_) => (Regular::<T, 4>::new(r), None),
+        None => (None, None),
+    };
     par_children(vertex_points, n, |v, slot, cache, scratch| {
         let mut acc = zero;
         if let Some((grand, gr)) = derived {
             let (mut faces, mut fars) = ([0u32; 8], [0u32; 8]);
             if let Some(count) = derive_smooth_hood(grand, gr, triangles, v, &mut faces, &mut fars)
             {
+                if let (4, Some(m), Some(f), Some(e)) =
+                    (count, quad4, faces.first_chunk(), fars.first_chunk())
+                {
+                    store(slot, &m.sum(v, f, e, src, face_points, width), width);
+                    return;
+                }
+                if let (6, Some(m), Some(f), Some(e)) =
+                    (count, loop6, faces.first_chunk(), fars.first_chunk())
+                {
+                    store(slot, &m.sum(v, f, e, src, face_points, width), width);
+                    return;
+                }
                 SmoothVertex {
                     v,
                     faces: &faces[..count],
