@@ -511,7 +511,24 @@ impl Refiner {
         Ok(dst)
     }
 
-    /// Interpolates vertex data through every level: `result[l]` is level `l`.
+    /// Interpolates vertex data through every level: `result[l]` is level `l`,
+    /// a [`Table`] (it dereferences to a slice; `.to_vec()` copies it out).
+    /// Levels of 2 MiB and more live in huge-page maps that return to a pool
+    /// when dropped, so refining the next frame or mesh reuses their memory
+    /// without page faults ([`crate::topology::release_table_pool`]).
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let base: Vec<f32> = cube.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+    /// let levels = r.interpolate_all(3, &base)?;
+    /// assert_eq!(levels.len(), 3);
+    /// assert_eq!(levels[0], base);
+    /// assert_eq!(levels[2].len(), 3 * r.internal_level(2)?.vertex_count);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
     pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Table<T>>> {
         let mut out = vec![Table::from_slice(base)];
         for level in 1..=self.max_level() {
