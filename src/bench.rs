@@ -318,6 +318,8 @@ pub fn run(
             });
             if level == input.max_level {
                 progress(&label("OpenSubdiv alone", level));
+                // The same warm-up and repetitions as above, with nothing
+                // run in the native engine's place.
                 let alone = pool.install(|| interleaved(reps, opensubdiv, || {}).0);
                 osd_alone.push(AloneRow {
                     input: input.name.clone(),

@@ -558,8 +558,7 @@ impl Refiner {
     pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Table<T>> {
         let mut current = Table::from_slice(base);
         for level in 1..=self.max_level() {
-            let next = self.interpolate_table(level, width, &current)?;
-            current = next;
+            current = self.interpolate_table(level, width, &current)?;
         }
         Ok(current)
     }
