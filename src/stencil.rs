@@ -647,9 +647,10 @@ fn in_blocks(
     }
 }
 
-/// The rows of `t` from `first` on into `out` (whole rows of `W` values),
-/// two rows at a time: two independent chains of additions for the
-/// processor to overlap, each still in its row's order.
+/// The rows of `t` from `first` on into `out` (whole rows of `W` values), one
+/// after the other, each term added in the row's order. A plain loop: rows
+/// unrolled by size, or two at a time, measured 10-20% slower (more code for
+/// the processor's front end to hold; see docs/PERFORMANCE.md).
 fn block<const W: usize, L: Lanes<W>>(
     t: &StencilTableF32,
     first: usize,
@@ -660,84 +661,14 @@ fn block<const W: usize, L: Lanes<W>>(
     let offsets = &t.offsets[first..=first + n];
     let start = offsets[0] as usize;
     let (mut idx, mut wts) = (&t.indices[start..], &t.weights[start..]);
-    let mut pairs = out.chunks_exact_mut(2 * W);
-    for (dst, o) in (&mut pairs).zip(offsets.windows(3).step_by(2)) {
-        let (n0, n) = ((o[1] - o[0]) as usize, (o[2] - o[0]) as usize);
+    for (o, dst) in offsets.windows(2).zip(out.chunks_exact_mut(W)) {
+        let n = (o[1] - o[0]) as usize;
         let (i, rest) = idx.split_at(n);
         idx = rest;
         let (w, rest) = wts.split_at(n);
         wts = rest;
-        let (a, b) = pair::<W, L>(n0, i, w, src);
-        let (da, db) = dst.split_at_mut(W);
-        da.copy_from_slice(&a.store());
-        db.copy_from_slice(&b.store());
+        dst.copy_from_slice(&terms::<W, L>(L::ZERO, i, w, src).store());
     }
-    let last = pairs.into_remainder();
-    if !last.is_empty() {
-        let n = (offsets[n] - offsets[n - 1]) as usize;
-        last.copy_from_slice(&one::<W, L>(&idx[..n], &wts[..n], src).store());
-    }
-}
-
-/// Two consecutive rows, the first of `n0` terms, together in `i` and `w`.
-/// Rows of the same common size (the usual case: neighbouring vertices of a
-/// level have the same valence) are accumulated in one unrolled loop.
-#[inline(always)]
-fn pair<const W: usize, L: Lanes<W>>(n0: usize, i: &[u32], w: &[f32], src: &[L::Src]) -> (L, L) {
-    macro_rules! same_size {
-        ($($n:literal)*) => {
-            match n0 {
-                $($n => if let Some(ab) = fixed2::<$n, W, L>(i, w, src) {
-                    return ab;
-                },)*
-                _ => {}
-            }
-        };
-    }
-    if 2 * n0 == i.len() {
-        same_size!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
-    }
-    let (i0, i1) = i.split_at(n0);
-    let (w0, w1) = w.split_at(n0);
-    (one::<W, L>(i0, w0, src), one::<W, L>(i1, w1, src))
-}
-
-/// One row: common sizes get a fully unrolled loop (no loop counter, no
-/// trip-count misprediction); the order of accumulation is the same.
-#[inline(always)]
-fn one<const W: usize, L: Lanes<W>>(i: &[u32], w: &[f32], src: &[L::Src]) -> L {
-    macro_rules! unrolled {
-        ($($n:literal)*) => {
-            match i.len() {
-                $($n => if let (Ok(i), Ok(w)) = (<&[u32; $n]>::try_from(i), <&[f32; $n]>::try_from(w)) {
-                    return terms(L::ZERO, i, w, src);
-                },)*
-                _ => {}
-            }
-        };
-    }
-    unrolled!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
-    terms(L::ZERO, i, w, src)
-}
-
-/// Two rows of `N` terms each, one after the other in `i` and `w`.
-#[inline(always)]
-fn fixed2<const N: usize, const W: usize, L: Lanes<W>>(
-    i: &[u32],
-    w: &[f32],
-    src: &[L::Src],
-) -> Option<(L, L)> {
-    let ((i0, i1), (w0, w1)) = (i.split_first_chunk::<N>()?, w.split_first_chunk::<N>()?);
-    let (i1, w1) = (
-        <&[u32; N]>::try_from(i1).ok()?,
-        <&[f32; N]>::try_from(w1).ok()?,
-    );
-    let (mut a, mut b) = (L::ZERO, L::ZERO);
-    for (((&ia, &wa), &ib), &wb) in i0.iter().zip(w0).zip(i1).zip(w1) {
-        a = a.add_scaled(wa, L::load(src, ia));
-        b = b.add_scaled(wb, L::load(src, ib));
-    }
-    Some((a, b))
 }
 
 /// `acc` plus the terms, in order.
