@@ -649,8 +649,9 @@ fn in_blocks(
 
 /// The rows of `t` from `first` on into `out` (whole rows of `W` values), one
 /// after the other, each term added in the row's order. A plain loop: rows
-/// unrolled by size, or two at a time, measured 10-20% slower (more code for
-/// the processor's front end to hold; see docs/PERFORMANCE.md).
+/// unrolled by size, or two at a time, measured 10-20% slower on the tori
+/// once the loop is aligned (`.cargo/config.toml`; docs/PERFORMANCE.md,
+/// "Loop alignment").
 fn block<const W: usize, L: Lanes<W>>(
     t: &StencilTableF32,
     first: usize,
