@@ -5,10 +5,10 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
-use subdiv::bench::{BenchInput, default_inputs};
+use subdiv::shapes::{BenchShape, bench_shapes};
 use subdiv::{Options, UniformOptions, osd, refiner};
 
-fn flat32(input: &BenchInput) -> Vec<f32> {
+fn flat32(input: &BenchShape) -> Vec<f32> {
     input
         .mesh
         .positions
@@ -19,7 +19,7 @@ fn flat32(input: &BenchInput) -> Vec<f32> {
 
 fn engines(c: &mut Criterion) {
     let quick = std::env::var_os("SUBDIV_BENCH_FULL").is_none();
-    for input in default_inputs(quick) {
+    for input in bench_shapes(quick) {
         let options = Options::default().with_scheme(input.scheme);
         let base = flat32(&input);
         let mut group = c.benchmark_group(format!("{} {}", input.name, input.scheme));

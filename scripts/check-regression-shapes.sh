@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Compares `subdiv refine` (both engines) with the independent OpenSubdiv
-# driver (tests/osd_driver/osd_driver.cpp) on OpenSubdiv's own regression
+# driver (cpp/osd_driver.cpp) on OpenSubdiv's own regression
 # shapes, level by level, byte for byte.
 #
 # usage: scripts/check-regression-shapes.sh OPENSUBDIV_CHECKOUT [LEVELS]
@@ -17,7 +17,7 @@ trap 'rm -rf "$work"' EXIT
 
 cargo build --release --quiet --manifest-path "$here/Cargo.toml"
 bin="$here/target/release/subdiv"
-g++ -std=c++14 -O2 "$here/tests/osd_driver/osd_driver.cpp" -losdCPU -o "$work/driver"
+g++ -std=c++14 -O2 "$here/cpp/osd_driver.cpp" -losdCPU -o "$work/driver"
 
 pass=0 fail=0
 for header in "$osd_src"/regression/shapes/{catmark,bilinear,loop}_*.h; do

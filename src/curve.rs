@@ -1344,5 +1344,5 @@ pub fn format_points<P: Point>(points: &[P]) -> String {
 /// Writes [`format_points`] to `path` atomically (a temporary file in the
 /// same directory, renamed at the end).
 pub fn write_points<P: Point>(path: &Path, points: &[P]) -> Result<(), crate::Error> {
-    crate::io::svg::write_atomically(path, format_points(points).as_bytes())
+    crate::io::atomic::write_bytes(path, format_points(points).as_bytes())
 }

@@ -36,8 +36,6 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
-#[cfg(feature = "osd")]
-pub mod bench;
 pub mod compare;
 pub mod curve;
 pub mod doo_sabin;
@@ -50,8 +48,6 @@ pub mod patch;
 pub mod real;
 pub mod refinement;
 pub mod refiner;
-#[cfg(feature = "osd")]
-pub mod report;
 pub mod rules;
 pub mod shapes;
 pub mod stencil;

@@ -1,6 +1,7 @@
 //! Meshes generated in code: the built-in inputs of the CLI, the tests and the benches.
 
 use crate::mesh::{FVarChannel, Mesh};
+use crate::options::Scheme;
 use glam::DVec3;
 use std::f64::consts::TAU;
 
@@ -156,6 +157,67 @@ pub fn by_name(name: &str) -> Option<Mesh> {
 
 /// Names accepted by [`by_name`].
 pub const NAMES: &[&str] = &["cube", "cube-uv", "grid", "torus", "tetrahedron"];
+
+/// One input of the benchmarks (`subdiv bench`, `cargo bench`): a mesh, the
+/// scheme to refine it with and the deepest level.
+#[derive(Debug, Clone)]
+pub struct BenchShape {
+    /// Short name.
+    pub name: String,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The subdivision scheme.
+    pub scheme: Scheme,
+    /// Deepest level to refine.
+    pub max_level: u32,
+}
+
+/// The standard benchmark inputs: a 100×100 quad torus, an 80×80 torus of alternating
+/// quads and triangle pairs, a 100×50 triangle torus (Catmull-Clark and Loop)
+/// and a 1000×1000 quad grid refined one level. `quick` shrinks them.
+pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
+    let d = if quick { 4 } else { 1 };
+    let input = |name: &str, mesh: Mesh, scheme: Scheme, max_level: u32| BenchShape {
+        name: name.to_string(),
+        mesh,
+        scheme,
+        max_level,
+    };
+    let mut grid = grid(1000 / d, 1000 / d);
+    grid.fvar_channels.clear();
+    vec![
+        input(
+            &format!("torus {0}x{0} quads", 100 / d),
+            torus(100 / d, 100 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {0}x{0} mixed", 80 / d),
+            torus_mixed(80 / d, 80 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {}x{} triangles", 100 / d, 50 / d),
+            torus_triangles(100 / d, 50 / d),
+            Scheme::Catmark,
+            4,
+        ),
+        input(
+            &format!("torus {}x{} triangles", 100 / d, 50 / d),
+            torus_triangles(100 / d, 50 / d),
+            Scheme::Loop,
+            4,
+        ),
+        input(
+            &format!("grid {0}x{0} quads", 1000 / d),
+            grid,
+            Scheme::Catmark,
+            1,
+        ),
+    ]
+}
 
 #[cfg(test)]
 mod tests {

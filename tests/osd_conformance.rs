@@ -1,5 +1,5 @@
 //! Conformance of `subdiv refine` (both engines) with an independent OpenSubdiv
-//! driver (`tests/osd_driver/osd_driver.cpp`), index by index.
+//! driver (`cpp/osd_driver.cpp`), index by index.
 //!
 //! The driver is a from-scratch C++ program over OpenSubdiv's Far layer: its
 //! own OBJ parser, a `Far::TopologyDescriptor`, `RefineUniform` and
@@ -24,10 +24,7 @@ use std::sync::OnceLock;
 // ---------------------------------------------------------------------------
 // Harness
 
-const DRIVER_SOURCE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/osd_driver/osd_driver.cpp"
-);
+const DRIVER_SOURCE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cpp/osd_driver.cpp");
 
 /// Directory for inputs and outputs of this test binary.
 fn work_dir() -> &'static Path {

@@ -3,6 +3,7 @@
 //! The only format is OBJ, extended with the `t` tag lines of OpenSubdiv's
 //! shape files (creases, corners, holes and subdivision options); see [`obj`].
 
+pub mod atomic;
 pub mod obj;
 pub mod svg;
 

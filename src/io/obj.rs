@@ -1261,41 +1261,7 @@ pub fn write_obj_to<W: Write>(out: W, data: &ObjOutput<'_>) -> io::Result<()> {
 ///
 /// Any failure is an [`Error::Io`] naming `path`.
 pub fn write_obj(path: &Path, data: &ObjOutput<'_>) -> Result<(), Error> {
-    write_atomically(path, |file| write_obj_to(file, data))
-}
-
-/// Writes `path` through a temporary file in its directory, renamed at the end.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut std::fs::File) -> io::Result<()>,
-) -> Result<(), Error> {
-    let io_error = |source: io::Error| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| io_error(invalid("the path does not name a file".into())))?;
-    let dir = match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir,
-        _ => Path::new("."),
-    };
-    let mut prefix = std::ffi::OsString::from(".");
-    prefix.push(file_name);
-    prefix.push(".");
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp");
-    // A temporary file is private (0600) by default; ask for the mode a plain
-    // `File::create` uses (0666 less the umask), as the file becomes `path`.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut temp = builder.tempfile_in(dir).map_err(io_error)?;
-    write(temp.as_file_mut()).map_err(io_error)?;
-    temp.persist(path).map_err(|e| io_error(e.error))?;
-    Ok(())
+    super::atomic::write_with(path, |file| write_obj_to(file, data))
 }
 
 /// Writes a [`Mesh`] as OBJ text with its tags, so that [`parse_obj`] reads
@@ -1389,7 +1355,7 @@ pub fn mesh_to_obj_string(mesh: &Mesh, precision: Precision) -> String {
 
 /// [`write_mesh_obj_to`] into a file, atomically as [`write_obj`] does.
 pub fn write_mesh_obj(path: &Path, mesh: &Mesh, precision: Precision) -> Result<(), Error> {
-    write_atomically(path, |file| write_mesh_obj_to(file, mesh, precision))
+    super::atomic::write_with(path, |file| write_mesh_obj_to(file, mesh, precision))
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@ use crate::mesh::Mesh;
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
 use std::fmt::Write as _;
-use std::io::{self, Write};
+
 use std::path::Path;
 
 /// The colours of refinement levels 1, 2, 3, … (then repeating).
@@ -148,7 +148,9 @@ impl Frame {
     }
 }
 
-fn escape(text: &str) -> String {
+/// `text` escaped for XML and HTML text and attribute values (`&`, `<`,
+/// `>` and `"`).
+pub fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -477,40 +479,5 @@ fn newell_normal(mesh: &Mesh, verts: &[u32]) -> DVec3 {
 
 /// Writes an SVG text to `path` atomically.
 pub fn write_svg(path: &Path, svg: &str) -> Result<(), Error> {
-    write_atomically(path, svg.as_bytes())
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same directory,
-/// renamed over `path` at the end: `path` is replaced only when everything
-/// was written, and the temporary file is removed on failure.
-pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let io_error = |source: io::Error| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let file_name = path.file_name().ok_or_else(|| {
-        io_error(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            "the path does not name a file",
-        ))
-    })?;
-    let dir = match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir,
-        _ => Path::new("."),
-    };
-    let mut prefix = std::ffi::OsString::from(".");
-    prefix.push(file_name);
-    prefix.push(".");
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let mut temp = builder.tempfile_in(dir).map_err(io_error)?;
-    temp.write_all(bytes).map_err(io_error)?;
-    temp.flush().map_err(io_error)?;
-    temp.persist(path).map_err(|e| io_error(e.error))?;
-    Ok(())
+    super::atomic::write_bytes(path, svg.as_bytes())
 }

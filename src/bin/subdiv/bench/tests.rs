@@ -2,12 +2,12 @@
 //! there, with positive times, after the engines' results were checked
 //! equal; and the runner of its whole-process section. Structure only:
 //! nothing here asserts a timing beyond a program's own sleep.
-#![cfg(feature = "osd")]
-
-use subdiv::bench::{self, BenchInput, Report};
+use super::results::{AloneRow, Report};
+use crate::bench;
+use subdiv::shapes::BenchShape;
 use subdiv::{Scheme, shapes};
 
-fn pool() -> rayon::ThreadPool {
+pub(crate) fn pool() -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -15,7 +15,7 @@ fn pool() -> rayon::ThreadPool {
 }
 
 #[test]
-fn deformed_frames_are_distinct_and_finite() {
+pub(crate) fn deformed_frames_are_distinct_and_finite() {
     let torus = shapes::torus(6, 4);
     let frames = bench::deformed_frames(&torus, 4);
     assert_eq!(frames.len(), 4);
@@ -27,9 +27,9 @@ fn deformed_frames_are_distinct_and_finite() {
 }
 
 #[test]
-fn parallel_rows_on_tiny_inputs() {
+pub(crate) fn parallel_rows_on_tiny_inputs() {
     let pool = pool();
-    let input = BenchInput {
+    let input = BenchShape {
         name: "torus 6x4 quads".into(),
         mesh: shapes::torus(6, 4),
         scheme: Scheme::Catmark,
@@ -76,7 +76,7 @@ fn parallel_rows_on_tiny_inputs() {
         rows: Vec::new(),
         stencil_bandwidth: None,
         parallel: vec![f, m],
-        osd_alone: vec![bench::AloneRow {
+        osd_alone: vec![AloneRow {
             input: "torus".into(),
             scheme: "loop".into(),
             level: 4,
@@ -116,28 +116,22 @@ fn whole_processes_run_interleaved_and_keep_their_results() {
         c.args(["-c", script]);
         c
     };
-    let dir = tempfile::tempdir().unwrap();
-    let obj = dir.path().join("torus.obj");
-    subdiv::io::write_mesh_obj(&obj, &shapes::torus(8, 6), subdiv::Precision::F64).unwrap();
-    let mut refine = Command::new(env!("CARGO_BIN_EXE_subdiv"));
-    refine
-        .arg("refine")
-        .arg(&obj)
-        .args(["--level", "2", "--peak-memory"])
-        .env("RAYON_NUM_THREADS", "1");
     let mut programs = vec![
         (
             "slow".to_string(),
             shell("sleep 0.2; echo peak_memory_bytes 7 >&2"),
         ),
-        ("subdiv refine".to_string(), refine),
+        (
+            "middle".to_string(),
+            shell("echo peak_memory_bytes 2000000 >&2"),
+        ),
         ("fast".to_string(), shell("echo peak_memory_bytes 5 >&2")),
     ];
     let runs = bench::interleaved_processes(&mut programs, 3).unwrap();
     assert_eq!(runs.len(), 3);
     assert_eq!(runs[0].peak_bytes, 7);
     assert!(runs[0].seconds >= 0.2, "{runs:?}");
-    assert!(runs[1].peak_bytes > 1 << 20, "{runs:?}");
+    assert_eq!(runs[1].peak_bytes, 2_000_000, "{runs:?}");
     assert!(runs[1].seconds > 0.0);
     assert_eq!(runs[2].peak_bytes, 5);
     assert!(runs[2].seconds < runs[0].seconds, "{runs:?}");

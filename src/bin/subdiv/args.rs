@@ -1,0 +1,173 @@
+//! Arguments shared by the subcommands: the input mesh, its options, level ranges.
+
+use clap::Args;
+use std::path::PathBuf;
+use std::str::FromStr;
+use subdiv::io::ShapeFile;
+use subdiv::{
+    BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh, Options,
+    Precision, Scheme, TriangleSubdivision,
+};
+
+use crate::Failure;
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum Engine {
+    /// The pure-Rust engine.
+    Native,
+    /// OpenSubdiv through the C++ bridge.
+    Osd,
+}
+
+/// `--scheme`: one of OpenSubdiv's schemes, or Doo-Sabin (native engine only).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SchemeArg {
+    /// An OpenSubdiv scheme: both engines.
+    Osd(Scheme),
+    /// Doo-Sabin: the native engine only (`subdiv::doo_sabin`).
+    DooSabin,
+}
+
+impl FromStr for SchemeArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "doo-sabin" {
+            return Ok(SchemeArg::DooSabin);
+        }
+        // OpenSubdiv's message, with doo-sabin added to the list.
+        s.parse::<Scheme>()
+            .map(SchemeArg::Osd)
+            .map_err(|e| match e.strip_suffix(')') {
+                Some(head) => format!("{head}, doo-sabin)"),
+                None => e,
+            })
+    }
+}
+
+/// The input mesh and the subdivision options, shared by `refine` and `compare`.
+#[derive(Args)]
+pub(crate) struct MeshArgs {
+    /// Input OBJ file (with OpenSubdiv `t` tags); see --builtin for generated shapes.
+    #[arg(required_unless_present = "builtin", conflicts_with = "builtin")]
+    pub(crate) input: Option<PathBuf>,
+    /// Use a generated shape instead of a file: cube, cube-uv, grid, torus, tetrahedron.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) builtin: Option<String>,
+    /// Subdivision scheme.
+    #[arg(long, default_value = "catmark", value_parser = parse::<SchemeArg>)]
+    pub(crate) scheme: SchemeArg,
+    /// Vertex boundary interpolation (overrides the file's tag).
+    #[arg(long, value_parser = parse::<BoundaryInterpolation>)]
+    pub(crate) boundary: Option<BoundaryInterpolation>,
+    /// Face-varying linear interpolation (overrides the file's tag).
+    #[arg(long, value_parser = parse::<FVarLinearInterpolation>)]
+    pub(crate) fvar: Option<FVarLinearInterpolation>,
+    /// Creasing method (overrides the file's tag).
+    #[arg(long, value_parser = parse::<CreasingMethod>)]
+    pub(crate) creasing: Option<CreasingMethod>,
+    /// Catmull-Clark triangle weights (overrides the file's tag).
+    #[arg(long, value_parser = parse::<TriangleSubdivision>)]
+    pub(crate) triangles: Option<TriangleSubdivision>,
+    /// Floating-point precision of the interpolation.
+    #[arg(long, default_value = "f64", value_parser = parse::<Precision>)]
+    pub(crate) precision: Precision,
+    /// Order child vertices from faces first (OpenSubdiv's orderVerticesFromFacesFirst).
+    #[arg(long)]
+    pub(crate) faces_first: bool,
+    /// Treat every warning (unknown tag, crease without edge...) as an error.
+    #[arg(long)]
+    pub(crate) strict: bool,
+}
+
+pub(crate) fn parse_levels(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{s}' is not a level or a range A..B of levels");
+    let (a, b) = match s.split_once("..") {
+        Some((a, b)) => (
+            a.trim().parse().map_err(|_| bad())?,
+            b.trim()
+                .trim_start_matches('=')
+                .parse()
+                .map_err(|_| bad())?,
+        ),
+        None => {
+            let l = s.trim().parse().map_err(|_| bad())?;
+            (l, l)
+        }
+    };
+    if a > b {
+        return Err(format!("the range {s} is empty"));
+    }
+    if b > subdiv::MAX_LEVEL {
+        return Err(format!(
+            "level {b} is deeper than the supported {}",
+            subdiv::MAX_LEVEL
+        ));
+    }
+    Ok((a, b))
+}
+
+pub(crate) fn parse<T: std::str::FromStr<Err = String>>(s: &str) -> Result<T, String> {
+    s.parse()
+}
+
+/// Loads the input: a file (tags applied over the shape-file defaults) or a built-in shape.
+pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
+    let (name, shape) = match (&args.input, &args.builtin) {
+        (Some(path), _) => (
+            path.display().to_string(),
+            subdiv::io::read_obj(path).map_err(Error::from)?,
+        ),
+        (None, Some(name)) => {
+            let mesh = subdiv::shapes::by_name(name).ok_or_else(|| {
+                Error::InvalidArgument(format!(
+                    "unknown built-in shape '{name}' (known: {})",
+                    subdiv::shapes::NAMES.join(", ")
+                ))
+            })?;
+            (
+                format!("builtin:{name}"),
+                ShapeFile {
+                    mesh,
+                    tags: Default::default(),
+                    warnings: Vec::new(),
+                },
+            )
+        }
+        (None, None) => unreachable!("clap requires an input or --builtin"),
+    };
+    for w in &shape.warnings {
+        if args.strict {
+            return Err(Failure::Message(format!(
+                "{name}:{}: {} (--strict)",
+                w.line, w.message
+            )));
+        }
+        eprintln!("subdiv: warning: {name}: {w}");
+    }
+    let validation = if args.strict {
+        shape.mesh.validate_strict()
+    } else {
+        shape.mesh.validate()
+    }
+    .map_err(|e| Failure::Message(format!("{name}: invalid mesh: {e}")))?;
+    for w in &validation.warnings {
+        eprintln!("subdiv: warning: {name}: {w}");
+    }
+    let mut options = shape.options();
+    if let SchemeArg::Osd(scheme) = args.scheme {
+        options.scheme = scheme;
+    }
+    if let Some(b) = args.boundary {
+        options.boundary = b;
+    }
+    if let Some(f) = args.fvar {
+        options.fvar = f;
+    }
+    if let Some(c) = args.creasing {
+        options.creasing = c;
+    }
+    if let Some(t) = args.triangles {
+        options.triangles = t;
+    }
+    Ok((name, shape.mesh, options))
+}

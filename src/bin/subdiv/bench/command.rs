@@ -1,0 +1,92 @@
+//! The `bench` subcommand.
+
+use clap::Args;
+use std::path::PathBuf;
+#[cfg(feature = "osd")]
+use subdiv::{Error, Scheme};
+
+use crate::Failure;
+
+#[derive(Args)]
+pub(crate) struct BenchArgs {
+    /// OBJ files to benchmark (Catmull-Clark, levels 1-3); without them, the
+    /// generated tori and grid of the standard benchmark.
+    pub(crate) inputs: Vec<PathBuf>,
+    /// Smaller inputs and fewer repetitions.
+    #[arg(long)]
+    pub(crate) quick: bool,
+    /// Threads for the native engine.
+    #[arg(long, default_value_t = 1)]
+    pub(crate) threads: usize,
+    /// Write bench.md, bench.json and SVG plots into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+}
+
+#[cfg(not(feature = "osd"))]
+pub(crate) fn bench(_args: &BenchArgs) -> Result<(), Failure> {
+    Err(Failure::Unavailable(
+        "benchmarks compare with OpenSubdiv: rebuild with the default feature `osd`".into(),
+    ))
+}
+
+#[cfg(feature = "osd")]
+pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
+    use crate::bench;
+    let inputs = if args.inputs.is_empty() {
+        subdiv::shapes::bench_shapes(args.quick)
+    } else {
+        let mut v = Vec::new();
+        for path in &args.inputs {
+            let shape = subdiv::io::read_obj(path).map_err(Error::from)?;
+            v.push(subdiv::shapes::BenchShape {
+                name: path.display().to_string(),
+                mesh: shape.mesh,
+                scheme: Scheme::Catmark,
+                max_level: 3,
+            });
+        }
+        v
+    };
+    // Per input: one step per level and eight tasks; then the two parallel-use steps.
+    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 8).sum::<u64>() + 2;
+    let bar = indicatif::ProgressBar::new(steps);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let report = bench::run(&inputs, args.quick, args.threads, |msg| {
+        bar.set_message(msg.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    let date = crate::date::today();
+    let mut text = report.markdown(&date);
+    if args.inputs.is_empty() {
+        text.push_str(&bench::whole_process(&inputs[0], args.quick, args.threads));
+        text.push_str(&bench::obj_writer_rate(&inputs[0]));
+    }
+    text.push_str(&bench::targets(&report));
+    outln!("{text}");
+    if let Some(dir) = &args.out {
+        let io = |e: std::io::Error| {
+            Failure::Error(Error::Io {
+                path: dir.clone(),
+                source: e,
+            })
+        };
+        std::fs::create_dir_all(dir).map_err(io)?;
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::InvalidArgument(e.to_string()))?;
+        for (name, body) in [
+            ("bench.md", text.clone()),
+            ("bench.json", json),
+            ("time-per-level.svg", report.svg_time_per_level()),
+            ("rate-vs-bandwidth.svg", report.svg_rate_vs_bandwidth()),
+        ] {
+            std::fs::write(dir.join(name), body).map_err(io)?;
+        }
+        outln!("wrote {}", dir.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,247 @@
+//! The in-process comparisons of `subdiv bench`.
+
+use super::*;
+use std::hint::black_box;
+use subdiv::options::{Options, UniformOptions};
+use subdiv::shapes::BenchShape;
+use subdiv::{Result, osd, refiner};
+
+/// Runs every comparison on `inputs`; `progress` is called once per step
+/// with a description.
+pub fn run(
+    inputs: &[BenchShape],
+    quick: bool,
+    threads: usize,
+    mut progress: impl FnMut(&str),
+) -> Result<Report> {
+    // Each repetition runs both engines twice (see `interleaved`).
+    let reps = if quick { 3 } else { 5 };
+    let mut rows = Vec::new();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+        .map_err(|e| {
+            subdiv::Error::InvalidArgument(format!("cannot start {threads} threads: {e}"))
+        })?;
+    let bandwidth = pool.install(measure_bandwidth);
+    let mut stencil_bandwidth = None;
+    let mut osd_alone = Vec::new();
+    for input in inputs {
+        let options = Options::default().with_scheme(input.scheme);
+        let base = input.mesh.flat_positions::<f32>();
+        let label =
+            |task: &str, level: u32| format!("{} {} L{level}: {task}", input.name, input.scheme);
+        for level in 1..=input.max_level {
+            progress(&label("topology + positions", level));
+            let uniform = UniformOptions::new(level);
+            let mut vertices = 0;
+            let opensubdiv = || {
+                let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd refiner");
+                r.refine_uniform(uniform).expect("osd refinement");
+                black_box(r.interpolate_all(3, &base).expect("osd positions"));
+            };
+            let (native, osd) = pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        let mut r =
+                            refiner::Refiner::new(&input.mesh, &options).expect("native refiner");
+                        r.refine_uniform(uniform).expect("native refinement");
+                        let p = r.interpolate_all(3, &base).expect("native positions");
+                        vertices = p.last().map_or(0, |l| l.len() / 3);
+                        black_box(p);
+                    },
+                    opensubdiv,
+                )
+            });
+            if level == input.max_level {
+                progress(&label("OpenSubdiv alone", level));
+                // The same warm-up and repetitions as above, with nothing
+                // run in the native engine's place.
+                let alone = pool.install(|| interleaved(reps, opensubdiv, || {}).0);
+                osd_alone.push(AloneRow {
+                    input: input.name.clone(),
+                    scheme: input.scheme.to_string(),
+                    level,
+                    alone,
+                    interleaved: osd,
+                });
+            }
+            rows.push(Row {
+                input: input.name.clone(),
+                scheme: input.scheme.to_string(),
+                level,
+                task: "topology + positions".into(),
+                native,
+                osd,
+                vertices,
+            });
+        }
+        // Separate tasks at the deepest level.
+        let level = input.max_level;
+        let uniform = UniformOptions::new(level);
+        let mut n = refiner::Refiner::new(&input.mesh, &options)?;
+        n.refine_uniform(uniform)?;
+        let mut o = osd::Refiner::new(&input.mesh, &options)?;
+        o.refine_uniform(uniform)?;
+        let vertices = n.internal_level(level)?.vertex_count;
+        let mut push = |task: &str, (native, osd): (f64, f64)| {
+            rows.push(Row {
+                input: input.name.clone(),
+                scheme: input.scheme.to_string(),
+                level,
+                task: task.into(),
+                native,
+                osd,
+                vertices,
+            })
+        };
+        progress(&label("base topology", level));
+        push(
+            "base topology",
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        drop(black_box(
+                            refiner::Refiner::new(&input.mesh, &options).expect("native"),
+                        ))
+                    },
+                    || {
+                        drop(black_box(
+                            osd::Refiner::new(&input.mesh, &options).expect("osd"),
+                        ))
+                    },
+                )
+            }),
+        );
+        progress(&label("topology refinement", level));
+        push(
+            "topology refinement",
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || {
+                        let mut r = refiner::Refiner::new(&input.mesh, &options).expect("native");
+                        r.refine_uniform(uniform).expect("native");
+                        black_box(r);
+                    },
+                    || {
+                        let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd");
+                        r.refine_uniform(uniform).expect("osd");
+                        black_box(r);
+                    },
+                )
+            }),
+        );
+        progress(&label("positions (f32)", level));
+        push(
+            "positions (f32)",
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || drop(black_box(n.interpolate_all(3, &base).expect("native"))),
+                    || drop(black_box(o.interpolate_all(3, &base).expect("osd"))),
+                )
+            }),
+        );
+        progress(&label("limit (f32)", level));
+        let full = uniform.full_topology(true);
+        let mut nf = refiner::Refiner::new(&input.mesh, &options)?;
+        nf.refine_uniform(full)?;
+        let mut of = osd::Refiner::new(&input.mesh, &options)?;
+        of.refine_uniform(full)?;
+        let last = nf.interpolate_all(3, &base)?.pop().unwrap_or_default();
+        push(
+            "limit (f32)",
+            pool.install(|| {
+                interleaved(
+                    reps,
+                    || drop(black_box(nf.limit(3, &last).expect("native"))),
+                    || drop(black_box(of.limit(3, &last).expect("osd"))),
+                )
+            }),
+        );
+        progress(&label("stencil table", level));
+        push(
+            "stencil table",
+            pool.install(|| {
+                interleaved(
+                    reps.min(3),
+                    || drop(black_box(n.stencil_table().expect("native"))),
+                    || drop(black_box(osd::StencilEvaluator::new(&o).expect("osd"))),
+                )
+            }),
+        );
+        progress(&label("stencil apply", level));
+        // The same stencils on both sides: the native table is built in f32
+        // as OpenSubdiv's float StencilTableFactory builds the one its
+        // evaluator applies (same rows, same weights, so the results are equal
+        // bit for bit: tests/stencil_apply.rs), and both are applied to the
+        // same f32 frame, width 3, in the same thread pool.
+        let table = n.stencil_table_f32()?;
+        let evaluator = osd::StencilEvaluator::new(&o)?;
+        let mut out_n = vec![0f32; table.len() * 3];
+        let mut out_o = vec![0f32; evaluator.len() * 3];
+        let times = pool.install(|| {
+            interleaved(
+                reps * 5,
+                || table.apply_into(3, &base, &mut out_n).expect("native"),
+                || evaluator.eval_into(3, &base, &mut out_o).expect("osd"),
+            )
+        });
+        // Bytes each pass has to move, counted once: per term a 4-byte index
+        // and a 4-byte weight; per stencil its offset (native) or size
+        // (OpenSubdiv's CpuEvalStencils reads sizes only); the source frame
+        // once (it stays in cache while the terms stream by: counting it per
+        // term would inflate the rate) and the results. The 16-byte-aligned
+        // copy of the sources the native pass makes is extra work, not
+        // counted.
+        let frame = (base.len() + out_n.len()) * 4;
+        let bytes = (table.term_count() * 8 + (table.len() + 1) * 4 + frame) as f64;
+        let osd_bytes = (table.term_count() * 8 + evaluator.len() * 4 + frame) as f64;
+        let rates = (bytes / times.0, osd_bytes / times.1);
+        // Report the input where the native pass moves the fewest bytes per
+        // second, so that the bandwidth target holds for every input.
+        if stencil_bandwidth.is_none_or(|(slowest, _)| rates.0 < slowest) {
+            stencil_bandwidth = Some(rates);
+        }
+        push("stencil apply (f32)", times);
+        progress(&label("factorized stencil apply", level));
+        let factorized = n.factorized_stencils::<f32>()?;
+        let mut out_f = vec![0f32; factorized.len() * 3];
+        let times = pool.install(|| {
+            interleaved(
+                reps * 5,
+                || factorized.apply_into(3, &base, &mut out_f).expect("native"),
+                || evaluator.eval_into(3, &base, &mut out_o).expect("osd"),
+            )
+        });
+        push("factorized stencil apply (f32)", times);
+    }
+    let mut parallel = Vec::new();
+    if let Some(first) = inputs.first() {
+        progress(&format!(
+            "parallel use: {PARALLEL_COUNT} frames of {}",
+            first.name
+        ));
+        let frames = deformed_frames(&first.mesh, PARALLEL_COUNT);
+        parallel.push(frames_row(&pool, first, &frames, PARALLEL_LEVEL, reps)?);
+    }
+    progress(&format!("parallel use: {PARALLEL_COUNT} meshes"));
+    parallel.push(meshes_row(
+        &pool,
+        &many_meshes(PARALLEL_COUNT, quick),
+        PARALLEL_LEVEL,
+        reps,
+    )?);
+    Ok(Report {
+        machine: machine_description(),
+        threads,
+        bandwidth,
+        rows,
+        stencil_bandwidth,
+        parallel,
+        osd_alone,
+    })
+}

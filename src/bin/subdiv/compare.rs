@@ -1,0 +1,153 @@
+//! `subdiv compare`: both engines, level by level.
+
+use clap::Args;
+use subdiv::{Error, UniformOptions};
+
+use crate::Failure;
+use crate::args::*;
+
+use crate::refine::run_engine;
+
+#[derive(Args)]
+pub(crate) struct CompareArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshArgs,
+    /// Levels to compare: `A..B` (inclusive) or a single level.
+    #[arg(long, default_value = "1..4", value_parser = parse_levels)]
+    pub(crate) levels: (u32, u32),
+    /// Largest accepted deviation, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-6)]
+    pub(crate) tolerance: f64,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// One level of `subdiv compare`, as printed and as JSON.
+#[derive(serde::Serialize)]
+pub(crate) struct CompareRow {
+    pub(crate) level: u32,
+    pub(crate) native_counts: [usize; 4],
+    pub(crate) osd_counts: [usize; 4],
+    pub(crate) first_differing_face: Option<usize>,
+    pub(crate) topology_equal: bool,
+    pub(crate) max_abs_deviation: f64,
+    pub(crate) max_rel_deviation: f64,
+    pub(crate) worst_vertex: Option<usize>,
+    pub(crate) fvar_deviation: f64,
+    pub(crate) agrees: bool,
+}
+
+#[derive(serde::Serialize)]
+pub(crate) struct CompareReport<'a> {
+    pub(crate) input: &'a str,
+    pub(crate) options: String,
+    pub(crate) precision: &'a str,
+    pub(crate) tolerance: f64,
+    pub(crate) levels: Vec<CompareRow>,
+    pub(crate) agrees: bool,
+}
+
+pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
+    if args.mesh.scheme == SchemeArg::DooSabin {
+        return Err(Failure::Unavailable(
+            "compare needs both engines and OpenSubdiv has no Doo-Sabin scheme; use `subdiv refine --scheme doo-sabin`".into(),
+        ));
+    }
+    let (name, mesh, options) = load(&args.mesh)?;
+    let (first, last) = args.levels;
+    subdiv::refinement::check_level(&mesh, &options, last)?;
+    let uniform = UniformOptions::new(last).faces_first(args.mesh.faces_first);
+    let native = run_engine(
+        Engine::Native,
+        &mesh,
+        &options,
+        uniform,
+        args.mesh.precision,
+        false,
+    )?;
+    let osd = run_engine(
+        Engine::Osd,
+        &mesh,
+        &options,
+        uniform,
+        args.mesh.precision,
+        false,
+    )?;
+    let rows: Vec<CompareRow> = subdiv::compare::compare(&native, &osd)
+        .into_iter()
+        .filter(|c| c.level >= first)
+        .map(|c| CompareRow {
+            level: c.level,
+            native_counts: c.counts[0],
+            osd_counts: c.counts[1],
+            first_differing_face: c.first_face_difference,
+            topology_equal: c.topology_equal(),
+            max_abs_deviation: c.max_position_deviation,
+            max_rel_deviation: c.relative_position_deviation,
+            worst_vertex: c.worst_vertex,
+            fvar_deviation: c.max_fvar_deviation,
+            agrees: c.agrees(args.tolerance),
+        })
+        .collect();
+    let agrees = rows.iter().all(|r| r.agrees);
+    let report = CompareReport {
+        input: &name,
+        options: format!(
+            "{} boundary={} fvar={} creasing={} triangles={}{}",
+            options.scheme,
+            options.boundary,
+            options.fvar,
+            options.creasing,
+            options.triangles,
+            if args.mesh.faces_first {
+                " faces-first"
+            } else {
+                ""
+            }
+        ),
+        precision: args.mesh.precision.name(),
+        tolerance: args.tolerance,
+        levels: rows,
+        agrees,
+    };
+    if args.json {
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| Error::InvalidArgument(format!("cannot encode the report: {e}")))?;
+        outln!("{text}");
+    } else {
+        outln!(
+            "{}: {} ({}), tolerance {:e} of the bounding-box diagonal",
+            name,
+            report.options,
+            report.precision,
+            args.tolerance
+        );
+        outln!(
+            "level  vertices (native/osd)  faces (native/osd)  first diff face  max abs dev  max rel dev  fvar dev  result"
+        );
+        for r in &report.levels {
+            outln!(
+                "{:>5}  {:>21}  {:>18}  {:>15}  {:>11.3e}  {:>11.3e}  {:>8.2e}  {}",
+                r.level,
+                format!("{}/{}", r.native_counts[0], r.osd_counts[0]),
+                format!("{}/{}", r.native_counts[2], r.osd_counts[2]),
+                r.first_differing_face
+                    .map_or("-".to_string(), |f| f.to_string()),
+                r.max_abs_deviation,
+                r.max_rel_deviation,
+                r.fvar_deviation,
+                if r.agrees { "ok" } else { "DIFFERENT" }
+            );
+        }
+        outln!(
+            "{}",
+            if agrees {
+                "the engines agree"
+            } else {
+                "the engines DIFFER"
+            }
+        );
+    }
+    if agrees { Ok(()) } else { Err(Failure::Differ) }
+}

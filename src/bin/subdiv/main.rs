@@ -1,0 +1,174 @@
+//! The `subdiv` command-line tool.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+use std::time::Instant;
+use subdiv::{Error, Options, Precision, UniformOptions};
+
+/// `println!` that ends the process quietly when stdout is closed (a pipe
+/// into `head`), instead of panicking on the broken pipe.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::print_line(format_args!($($arg)*))
+    };
+}
+
+pub(crate) fn print_line(args: std::fmt::Arguments<'_>) {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = writeln!(out, "{args}") {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("subdiv: cannot write to standard output: {e}");
+        std::process::exit(1);
+    }
+}
+
+mod args;
+mod bench;
+mod compare;
+mod curve;
+#[cfg(feature = "osd")]
+mod date;
+mod refine;
+mod report;
+
+use args::*;
+use bench::BenchArgs;
+use compare::CompareArgs;
+use curve::CurveArgs;
+use refine::{RefineArgs, engine_name, refinement_counts, run_engine, summary};
+use report::ReportArgs;
+
+#[derive(Parser)]
+#[command(
+    name = "subdiv",
+    version,
+    about = "Subdivision surfaces, identical to OpenSubdiv index by index"
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Refine a mesh uniformly and write the last level as OBJ.
+    Refine(RefineArgs),
+    /// Refine with both engines and compare them level by level, vertex by vertex.
+    Compare(CompareArgs),
+    /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme.
+    Curve(CurveArgs),
+    /// Benchmark the native engine against OpenSubdiv, side by side in the same run.
+    Bench(BenchArgs),
+    /// The main job: compare native against OpenSubdiv on a set of inputs for every
+    /// option that applies, benchmark both, and write report.md and report.html.
+    Report(ReportArgs),
+    /// The main job on the built-in cube: refine it to level 2 with every available engine.
+    Demo,
+    /// Print the versions of subdiv and of the OpenSubdiv it is built against.
+    Version,
+}
+
+/// Why the tool stopped.
+pub(crate) enum Failure {
+    /// A real error: exit 1.
+    Error(Error),
+    /// A feature this build does not offer yet: exit 2.
+    Unavailable(String),
+    /// `compare` found a difference (already reported): exit 3.
+    Differ,
+    /// An error of the curve or Doo-Sabin tools, already worded: exit 1.
+    Message(String),
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Self {
+        Failure::Error(e)
+    }
+}
+
+pub(crate) fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Refine(args) => refine::refine(&args),
+        Command::Compare(args) => compare::compare(&args),
+        Command::Curve(args) => curve::curve(&args),
+        Command::Bench(args) => bench::bench(&args),
+        Command::Report(args) => report::report(&args),
+        Command::Demo => demo(),
+        Command::Version => {
+            version();
+            Ok(())
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Error(e)) => {
+            eprintln!("subdiv: error: {e}");
+            ExitCode::from(1)
+        }
+        Err(Failure::Unavailable(msg)) => {
+            eprintln!("subdiv: {msg}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Differ) => ExitCode::from(3),
+        Err(Failure::Message(msg)) => {
+            eprintln!("subdiv: error: {msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+pub(crate) fn version() {
+    outln!("subdiv {}", env!("CARGO_PKG_VERSION"));
+    #[cfg(feature = "osd")]
+    outln!("OpenSubdiv {}", subdiv::osd::version());
+    #[cfg(not(feature = "osd"))]
+    outln!("OpenSubdiv bridge: not built (feature `osd` is off)");
+}
+
+pub(crate) fn demo() -> Result<(), Failure> {
+    version();
+    let mesh = subdiv::shapes::cube();
+    let options = Options::shape_file_defaults();
+    let mut ran = 0;
+    for engine in [Engine::Native, Engine::Osd] {
+        let start = Instant::now();
+        match run_engine(
+            engine,
+            &mesh,
+            &options,
+            UniformOptions::new(2),
+            Precision::F64,
+            false,
+        ) {
+            Ok(r) => {
+                outln!(
+                    "{}",
+                    summary(
+                        "builtin:cube",
+                        engine,
+                        &r.options,
+                        r.precision,
+                        &refinement_counts(&r),
+                        r.limit.is_some(),
+                        start.elapsed().as_secs_f64()
+                    )
+                );
+                ran += 1;
+            }
+            Err(Failure::Unavailable(msg)) => {
+                outln!("builtin:cube ({}): skipped: {msg}", engine_name(engine))
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    if ran == 0 {
+        return Err(Failure::Unavailable(
+            "no engine is available in this build".into(),
+        ));
+    }
+    Ok(())
+}

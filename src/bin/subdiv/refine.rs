@@ -1,0 +1,427 @@
+//! `subdiv refine`: refine a mesh and write its last level (or a summary).
+
+use clap::Args;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use subdiv::io::{ObjOutput, UvOutput};
+use subdiv::topology::Table;
+use subdiv::{Error, Mesh, Options, Precision, Refinement, UniformOptions};
+
+use crate::Failure;
+use crate::args::*;
+
+#[derive(Args)]
+pub(crate) struct RefineArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshArgs,
+    /// Output OBJ file; without it nothing is written and a summary is printed.
+    #[arg(short, long, value_name = "OUT.obj")]
+    pub(crate) output: Option<PathBuf>,
+    /// Refinement level (0..=10).
+    #[arg(long, default_value_t = 2)]
+    pub(crate) level: u32,
+    /// Refinement engine.
+    #[arg(long, value_enum, default_value = "native")]
+    pub(crate) engine: Engine,
+    /// Write limit positions (and limit face-varying values) instead of refined ones.
+    #[arg(long)]
+    pub(crate) limit: bool,
+    /// Doo-Sabin corner weights: original or centroid (with --scheme doo-sabin).
+    #[arg(long, value_name = "WEIGHTS", value_parser = parse::<subdiv::doo_sabin::Weights>)]
+    pub(crate) doo_sabin_weights: Option<subdiv::doo_sabin::Weights>,
+    /// Doo-Sabin boundary rule: open or chaikin (with --scheme doo-sabin).
+    #[arg(long, value_name = "RULE", value_parser = parse::<subdiv::doo_sabin::Boundary>)]
+    pub(crate) doo_sabin_boundary: Option<subdiv::doo_sabin::Boundary>,
+    /// Print the process's peak memory (bytes) on stderr at the end (for `subdiv bench`).
+    #[arg(long, hide = true)]
+    pub(crate) peak_memory: bool,
+}
+
+pub(crate) fn run_engine(
+    engine: Engine,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+    limit: bool,
+) -> Result<Refinement, Failure> {
+    match engine {
+        Engine::Native => {
+            match subdiv::refiner::refine_with(mesh, options, uniform, precision, limit) {
+                Ok(r) => Ok(r),
+                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
+                    "native engine: {msg}; use --engine osd"
+                ))),
+                Err(e) => Err(e.into()),
+            }
+        }
+        #[cfg(feature = "osd")]
+        Engine::Osd => Ok(subdiv::osd::refine_with(
+            mesh, options, uniform, precision, limit,
+        )?),
+        #[cfg(not(feature = "osd"))]
+        Engine::Osd => {
+            let _ = (mesh, options, uniform, precision, limit);
+            Err(Failure::Unavailable(
+                "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
+                    .into(),
+            ))
+        }
+    }
+}
+
+pub(crate) fn engine_name(engine: Engine) -> &'static str {
+    match engine {
+        Engine::Native => "native",
+        Engine::Osd => "osd",
+    }
+}
+
+/// Vertex and face counts of every level of a refinement.
+pub(crate) fn refinement_counts(r: &Refinement) -> Vec<(usize, usize)> {
+    r.levels
+        .iter()
+        .map(|l| (l.vertex_count, l.face_count()))
+        .collect()
+}
+
+pub(crate) fn summary(
+    name: &str,
+    engine: Engine,
+    options: &Options,
+    precision: Precision,
+    counts: &[(usize, usize)],
+    limit: bool,
+    seconds: f64,
+) -> String {
+    let join = |f: fn(&(usize, usize)) -> usize| {
+        counts
+            .iter()
+            .map(|c| f(c).to_string())
+            .collect::<Vec<_>>()
+            .join("→")
+    };
+    format!(
+        "{name}: {} level {} ({}, {}): vertices {}, faces {}{}; {:.3} ms",
+        options.scheme,
+        counts.len().saturating_sub(1),
+        engine_name(engine),
+        precision,
+        join(|c| c.0),
+        join(|c| c.1),
+        if limit { ", limit evaluated" } else { "" },
+        seconds * 1e3
+    )
+}
+
+/// `refine` without an output file (and without limits or face-varying
+/// data): the topology of every level and the positions of the last, through
+/// the engine's own refiner (natively [`subdiv::refiner::refine_last`], which
+/// releases each level once the next exists; OpenSubdiv keeps every level),
+/// without building output tables nobody reads.
+/// Returns the vertex and face counts of every level.
+pub(crate) fn refine_counts(
+    engine: Engine,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+) -> Result<Vec<(usize, usize)>, Failure> {
+    match engine {
+        Engine::Native => {
+            let run = || -> subdiv::Result<Vec<(usize, usize)>> {
+                use subdiv::refiner::refine_last;
+                let counts = match precision {
+                    Precision::F64 => {
+                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f64>())?.0
+                    }
+                    Precision::F32 => {
+                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f32>())?.0
+                    }
+                };
+                Ok(counts.iter().map(|c| (c.vertices, c.faces)).collect())
+            };
+            match run() {
+                Ok(c) => Ok(c),
+                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
+                    "native engine: {msg}; use --engine osd"
+                ))),
+                Err(e) => Err(e.into()),
+            }
+        }
+        #[cfg(feature = "osd")]
+        Engine::Osd => {
+            let mut r = subdiv::osd::Refiner::new(mesh, options)?;
+            r.refine_uniform(uniform)?;
+            match precision {
+                Precision::F64 => drop(r.interpolate_last(3, &mesh.flat_positions::<f64>())?),
+                Precision::F32 => drop(r.interpolate_last(3, &mesh.flat_positions::<f32>())?),
+            }
+            Ok((0..=uniform.level)
+                .map(|l| r.level_counts(l).map(|c| (c.vertices, c.faces)))
+                .collect::<subdiv::Result<_>>()?)
+        }
+        #[cfg(not(feature = "osd"))]
+        Engine::Osd => {
+            let _ = (mesh, options, uniform, precision);
+            Err(Failure::Unavailable(
+                "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
+                    .into(),
+            ))
+        }
+    }
+}
+
+pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
+    if args.mesh.scheme == SchemeArg::DooSabin {
+        return refine_doo_sabin(args);
+    }
+    if args.doo_sabin_weights.is_some() || args.doo_sabin_boundary.is_some() {
+        return Err(Error::InvalidArgument(
+            "--doo-sabin-weights and --doo-sabin-boundary need --scheme doo-sabin".into(),
+        )
+        .into());
+    }
+    let (name, mesh, options) = load(&args.mesh)?;
+    let uniform = UniformOptions::new(args.level).faces_first(args.mesh.faces_first);
+    subdiv::refinement::check_level(&mesh, &options, args.level)?;
+    let start = Instant::now();
+    // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
+    let name_errors = |f: Failure| match f {
+        Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
+        other => other,
+    };
+    let precision = args.mesh.precision;
+    if args.output.is_none() && !args.limit && mesh.fvar_channels.is_empty() {
+        let counts =
+            refine_counts(args.engine, &mesh, &options, uniform, precision).map_err(name_errors)?;
+        let seconds = start.elapsed().as_secs_f64();
+        outln!(
+            "{}",
+            summary(
+                &name,
+                args.engine,
+                &options,
+                precision,
+                &counts,
+                false,
+                seconds
+            )
+        );
+    } else if let (Engine::Native, false, Some(path)) = (args.engine, args.limit, &args.output) {
+        write_native_last(path, &mesh, &options, uniform, precision).map_err(name_errors)?;
+    } else {
+        let r = run_engine(args.engine, &mesh, &options, uniform, precision, args.limit)
+            .map_err(name_errors)?;
+        let seconds = start.elapsed().as_secs_f64();
+        match &args.output {
+            Some(path) => write_output(path, &r)?,
+            None => outln!(
+                "{}",
+                summary(
+                    &name,
+                    args.engine,
+                    &r.options,
+                    r.precision,
+                    &refinement_counts(&r),
+                    r.limit.is_some(),
+                    seconds
+                )
+            ),
+        }
+    }
+    if args.peak_memory {
+        eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
+    }
+    Ok(())
+}
+
+/// The process's peak resident memory, from /proc/self/status.
+pub(crate) fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    Some(line.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
+}
+
+/// `refine -o` natively without `--limit`: only the last level's positions
+/// and face-varying values are kept (each level's data is dropped once the
+/// next exists) and the last level's faces are written straight from the
+/// refiner, instead of [`subdiv::refiner::refine_with`]'s copies of every
+/// level. The file is the same, byte for byte.
+pub(crate) fn write_native_last(
+    path: &Path,
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    precision: Precision,
+) -> Result<(), Failure> {
+    fn last_values<T: subdiv::Real>(
+        r: &subdiv::refiner::Refiner,
+        mesh: &Mesh,
+    ) -> subdiv::Result<(Table<T>, Option<Vec<T>>)> {
+        let positions = r.interpolate_last(3, &mesh.flat_positions::<T>())?;
+        // Only the first face-varying channel is written.
+        let uv = match mesh.fvar_channels.first() {
+            Some(channel) => {
+                let mut values: Vec<T> = channel.values.iter().map(|&v| T::from_f64(v)).collect();
+                for level in 1..=r.max_level() {
+                    values = r.interpolate_face_varying(0, level, channel.width, &values)?;
+                }
+                Some(values)
+            }
+            None => None,
+        };
+        Ok((positions, uv))
+    }
+    let mut r = subdiv::refiner::Refiner::new(mesh, options)?;
+    r.refine_uniform(uniform)?;
+    let (positions, uv_values) = match precision {
+        Precision::F64 => last_values::<f64>(&r, mesh)?,
+        Precision::F32 => {
+            let widen = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
+            let (positions, uv) = last_values::<f32>(&r, mesh)?;
+            (Table::from(widen(&positions)), uv.as_deref().map(widen))
+        }
+    };
+    let faces = r.faces(uniform.level)?;
+    let uv = match (
+        &uv_values,
+        faces.fvar_face_values.first(),
+        mesh.fvar_channels.first(),
+    ) {
+        (Some(values), Some(face_values), Some(channel)) => Some(UvOutput {
+            width: channel.width,
+            values,
+            face_values,
+        }),
+        _ => None,
+    };
+    subdiv::io::write_obj(
+        path,
+        &ObjOutput {
+            // Flat f64 triples are DVec3s: no second copy of the positions.
+            positions: bytemuck::cast_slice(&positions[..]),
+            face_offsets: &faces.offsets,
+            face_vertices: faces.vertices,
+            holes: faces.holes,
+            uv,
+            precision,
+        },
+    )?;
+    Ok(())
+}
+
+/// Writes the last level (or its limit) in OpenSubdiv's order; holes are left out.
+pub(crate) fn write_output(path: &Path, r: &Refinement) -> Result<(), Failure> {
+    let level = r.last_level();
+    let (positions, uv_values) = match &r.limit {
+        Some(limit) => (
+            limit.positions.as_slice(),
+            limit.fvar_values.first().map(Vec::as_slice),
+        ),
+        None => (r.last_positions(), r.last_fvar(0)),
+    };
+    let uv = match (uv_values, level.fvar.first(), r.fvar_widths.first()) {
+        (Some(values), Some(fvar), Some(&width)) => Some(UvOutput {
+            width,
+            values,
+            face_values: &fvar.face_values,
+        }),
+        _ => None,
+    };
+    let data = ObjOutput {
+        positions,
+        face_offsets: &level.face_offsets,
+        face_vertices: &level.face_vertices,
+        holes: Some(&level.face_holes),
+        uv,
+        precision: r.precision,
+    };
+    subdiv::io::write_obj(path, &data)?;
+    Ok(())
+}
+
+/// `subdiv refine --scheme doo-sabin`: the native Doo-Sabin refiner.
+pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
+    if args.engine == Engine::Osd {
+        return Err(Failure::Unavailable(
+            "OpenSubdiv has no Doo-Sabin scheme: --scheme doo-sabin needs --engine native".into(),
+        ));
+    }
+    if args.limit {
+        return Err(Failure::Unavailable(
+            "doo-sabin has no limit evaluation (--limit)".into(),
+        ));
+    }
+    if args.mesh.precision != Precision::F64 {
+        return Err(Failure::Unavailable(
+            "doo-sabin computes in f64 only (--precision f32)".into(),
+        ));
+    }
+    let m = &args.mesh;
+    for (given, flag) in [
+        (m.boundary.is_some(), "--boundary"),
+        (m.fvar.is_some(), "--fvar"),
+        (m.creasing.is_some(), "--creasing"),
+        (m.triangles.is_some(), "--triangles"),
+        (m.faces_first, "--faces-first"),
+    ] {
+        if given {
+            return Err(Error::InvalidArgument(format!(
+                "{flag} does not apply to --scheme doo-sabin (see --doo-sabin-weights and --doo-sabin-boundary)"
+            ))
+            .into());
+        }
+    }
+    if args.level > subdiv::MAX_LEVEL {
+        return Err(Error::Level {
+            level: args.level,
+            reason: format!("the deepest supported level is {}", subdiv::MAX_LEVEL),
+        }
+        .into());
+    }
+    let (name, mesh, _) = load(&args.mesh)?;
+    if !mesh.creases.is_empty()
+        || !mesh.corners.is_empty()
+        || !mesh.holes.is_empty()
+        || !mesh.fvar_channels.is_empty()
+    {
+        let msg =
+            format!("{name}: doo-sabin ignores creases, corners, holes and texture coordinates");
+        if args.mesh.strict {
+            return Err(Error::InvalidArgument(format!("{msg} (--strict)")).into());
+        }
+        eprintln!("subdiv: warning: {msg}");
+    }
+    let options = subdiv::doo_sabin::Options {
+        weights: args.doo_sabin_weights.unwrap_or_default(),
+        boundary: args.doo_sabin_boundary.unwrap_or_default(),
+    };
+    let start = Instant::now();
+    let levels = subdiv::doo_sabin::refine(&mesh, &options, args.level)
+        .map_err(|e| Failure::Message(format!("{name}: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let last = levels.last().unwrap_or(&mesh);
+    match &args.output {
+        Some(path) => subdiv::io::write_mesh_obj(path, last, Precision::F64)?,
+        None => {
+            let counts = |f: fn(&Mesh) -> usize| {
+                levels
+                    .iter()
+                    .map(|l| f(l).to_string())
+                    .collect::<Vec<_>>()
+                    .join("→")
+            };
+            outln!(
+                "{name}: doo-sabin ({}, {} boundary) level {} (native, f64): vertices {}, faces {}; {:.3} ms",
+                options.weights,
+                options.boundary,
+                args.level,
+                counts(Mesh::vertex_count),
+                counts(Mesh::face_count),
+                seconds * 1e3
+            );
+        }
+    }
+    Ok(())
+}

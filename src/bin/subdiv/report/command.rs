@@ -1,0 +1,91 @@
+//! The `report` subcommand.
+
+use clap::Args;
+#[cfg(feature = "osd")]
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use crate::Failure;
+use crate::args::*;
+
+#[derive(Args)]
+pub(crate) struct ReportArgs {
+    /// OBJ files (with OpenSubdiv `t` tags) to report on; without them, the
+    /// embedded set (cube, torus, creases, pole, holes, UV seams, four boxes,
+    /// Loop, bilinear, non-manifold).
+    #[arg(value_name = "INPUT.obj")]
+    pub(crate) inputs: Vec<PathBuf>,
+    /// Directory for report.md, report.html and figures/.
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    pub(crate) out: PathBuf,
+    /// Levels to compare and benchmark: `A..B` (inclusive) or a single level
+    /// [default: 1..4, with --quick 1..2].
+    #[arg(long, value_parser = parse_levels)]
+    pub(crate) levels: Option<(u32, u32)>,
+    /// Fewer option sets (one option varied at a time), levels 1..2, shorter benchmarks.
+    #[arg(long)]
+    pub(crate) quick: bool,
+    /// Largest accepted deviation, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-6)]
+    pub(crate) tolerance: f64,
+}
+
+#[cfg(not(feature = "osd"))]
+pub(crate) fn report(_args: &ReportArgs) -> Result<(), Failure> {
+    Err(Failure::Unavailable(
+        "the report compares with OpenSubdiv: rebuild with the default feature `osd`".into(),
+    ))
+}
+
+/// `subdiv report`: conformance and benchmarks on the embedded set or on OBJ files.
+#[cfg(feature = "osd")]
+pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
+    use crate::report::{self, Settings};
+    let mut settings = Settings::new(args.quick);
+    if let Some((a, b)) = args.levels {
+        settings.first_level = a;
+        settings.last_level = b;
+    }
+    settings.tolerance = args.tolerance;
+    let inputs = if args.inputs.is_empty() {
+        report::embedded_inputs()
+    } else {
+        let mut v = Vec::with_capacity(args.inputs.len());
+        for path in &args.inputs {
+            let (input, warnings) = report::read_input(path)?;
+            for w in warnings {
+                eprintln!("subdiv: warning: {}: {w}", path.display());
+            }
+            v.push(input);
+        }
+        v
+    };
+    let bar = indicatif::ProgressBar::new(report::steps(&inputs, &settings));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {wide_msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let result = report::run(&inputs, &settings, |msg| {
+        bar.set_message(msg.to_string());
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let rep = result?;
+    rep.write(&args.out)?;
+    // The files are written; a closed stdout (`| head`) is not an error.
+    let mut out = std::io::stdout().lock();
+    let _ = write!(out, "{}", rep.summary_text()).and_then(|()| {
+        writeln!(
+            out,
+            "wrote {} and {}",
+            args.out.join("report.md").display(),
+            args.out.join("report.html").display()
+        )
+    });
+    if rep.conforms() {
+        Ok(())
+    } else {
+        Err(Failure::Differ)
+    }
+}

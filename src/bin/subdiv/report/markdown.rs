@@ -1,0 +1,217 @@
+//! The report as text and Markdown.
+
+use super::*;
+use std::fmt::Write as _;
+
+impl Report {
+    /// The summary table as aligned text (for the terminal).
+    pub fn summary_text(&self) -> String {
+        let last = self.settings.last_level;
+        let mut rows: Vec<[String; 7]> = vec![[
+            "input".into(),
+            "option sets".into(),
+            "agree/cases".into(),
+            "worst deviation".into(),
+            format!("native L{last} ms"),
+            format!("OpenSubdiv L{last} ms"),
+            "speed-up".into(),
+        ]];
+        for i in &self.inputs {
+            let t = i.last_timing();
+            rows.push([
+                i.name.clone(),
+                i.sets.len().to_string(),
+                format!("{}/{}", i.agreeing(), i.cases()),
+                format_worst(i.worst_deviation()),
+                t.map_or("-".into(), |t| format_ms(t.native)),
+                t.map_or("-".into(), |t| format_ms(t.osd)),
+                t.map_or("-".into(), |t| format!("{:.2}x", t.speedup())),
+            ]);
+        }
+        let widths: Vec<usize> = (0..7)
+            .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+            .collect();
+        let mut s = String::new();
+        for r in &rows {
+            for (c, cell) in r.iter().enumerate() {
+                let pad = widths[c] - cell.chars().count();
+                if c == 0 || c == 3 {
+                    let _ = write!(s, "{cell}{}  ", " ".repeat(pad));
+                } else {
+                    let _ = write!(s, "{}{cell}  ", " ".repeat(pad));
+                }
+            }
+            s = s.trim_end().to_string();
+            s.push('\n');
+        }
+        let _ = writeln!(s, "{}", self.verdict());
+        s
+    }
+
+    pub(crate) fn meta_lines(&self) -> Vec<(&'static str, String)> {
+        let s = &self.settings;
+        vec![
+            ("Date", self.date.clone()),
+            ("Machine", self.machine.clone()),
+            ("OpenSubdiv", self.osd_version.clone()),
+            ("subdiv", self.subdiv_version.clone()),
+            (
+                "Run",
+                format!(
+                    "{}, {} option sets ({}), tolerance {:.0e} of the bounding-box diagonal, f64; {:.1} s",
+                    self.levels_label(),
+                    self.inputs.iter().map(|i| i.sets.len()).sum::<usize>(),
+                    if s.quick {
+                        "quick: one option varied at a time"
+                    } else {
+                        "every combination of the options that apply"
+                    },
+                    s.tolerance,
+                    self.seconds
+                ),
+            ),
+        ]
+    }
+
+    /// The report as Markdown; figures are linked as `figures/*.svg`
+    /// (written by [`Report::write`]).
+    pub fn markdown(&self) -> String {
+        let last = self.settings.last_level;
+        let mut s = String::from("# subdiv: native engine against OpenSubdiv\n\n");
+        for (k, v) in self.meta_lines() {
+            let _ = writeln!(s, "- **{k}:** {v}");
+        }
+        let _ = writeln!(s, "\n**Verdict: {}**\n", self.verdict());
+        s.push_str("## Summary\n\n");
+        let _ = writeln!(
+            s,
+            "| input | faces | option sets | agree / cases | worst deviation | native L{last} ms | OpenSubdiv L{last} ms | speed-up |"
+        );
+        s.push_str("| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |\n");
+        for i in &self.inputs {
+            let t = i.last_timing();
+            let _ = writeln!(
+                s,
+                "| [{}](#{}) | {} | {} | {}/{} | {} | {} | {} | {} |",
+                i.name,
+                markdown_anchor(&i.name),
+                i.faces,
+                i.sets.len(),
+                i.agreeing(),
+                i.cases(),
+                format_worst(i.worst_deviation()),
+                t.map_or("-".into(), |t| format_ms(t.native)),
+                t.map_or("-".into(), |t| format_ms(t.osd)),
+                t.map_or("-".into(), |t| format!("{:.2}x", t.speedup())),
+            );
+        }
+        s.push_str(
+            "\nDeviations are the largest distance between corresponding vertices (or face-varying values, or limit positions and tangents) of the two engines, relative to the bounding-box diagonal; 0 means bit-identical. Times are medians of interleaved runs of \"refine + positions\" (topology refinement and f64 positions of every level) with each input's default options, the native engine on one thread; speed-up is OpenSubdiv's time over the native time.\n\n",
+        );
+        for (idx, i) in self.inputs.iter().enumerate() {
+            let sl = slug(idx, &i.name);
+            let _ = writeln!(s, "## {}\n", i.name);
+            let _ = writeln!(
+                s,
+                "{}. {} vertices, {} faces; default options: {}. Varied: {}.\n",
+                sentence(&i.description),
+                i.vertices,
+                i.faces,
+                options_label(&i.options),
+                if i.varied.is_empty() {
+                    "nothing".into()
+                } else {
+                    i.varied.join(", ")
+                }
+            );
+            let _ = writeln!(
+                s,
+                "![deviation per level](figures/{sl}-deviation.svg) ![time per level](figures/{sl}-time.svg) ![refined shape](figures/{sl}-shape.svg)\n"
+            );
+            s.push_str(&sets_markdown(i, &self.settings));
+            s.push_str("\n| level | faces | native ms | OpenSubdiv ms | speed-up | repetitions |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
+            for t in &i.timings {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {:.2}x | {} |",
+                    t.level,
+                    t.faces,
+                    format_ms(t.native),
+                    format_ms(t.osd),
+                    t.speedup(),
+                    t.reps
+                );
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// The anchor Markdown renderers (GitHub's) give the heading `## name`.
+pub(crate) fn markdown_anchor(name: &str) -> String {
+    name.chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c.to_ascii_lowercase()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `text` with its first letter in upper case.
+pub(crate) fn sentence(text: &str) -> String {
+    let mut c = text.chars();
+    c.next()
+        .map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
+}
+
+pub(crate) fn sets_markdown(i: &InputReport, s: &Settings) -> String {
+    let mut out = String::from("| scheme | boundary | creasing | triangles | fvar |");
+    let levels: Vec<u32> = (s.first_level..=s.last_level).collect();
+    for l in &levels {
+        let _ = write!(out, " L{l} |");
+    }
+    out.push_str(" limit | result |\n| --- | --- | --- | --- | --- |");
+    for _ in &levels {
+        out.push_str(" ---: |");
+    }
+    out.push_str(" ---: | --- |\n");
+    for set in &i.sets {
+        let o = &set.options;
+        let _ = write!(
+            out,
+            "| {} | {} | {} | {} | {} |",
+            o.scheme.name(),
+            o.boundary.name(),
+            o.creasing.name(),
+            o.triangles.name(),
+            o.fvar.name()
+        );
+        for l in &levels {
+            let cell = match set.levels.iter().find(|c| c.level == *l) {
+                Some(c) if !c.topology_equal => "topology differs".into(),
+                Some(c) => format_deviation(c.deviation()),
+                None => "-".into(),
+            };
+            let _ = write!(out, " {cell} |");
+        }
+        let limit = set.limit.as_ref().map_or("-".into(), |l| {
+            let mut c = format_deviation(l.deviation());
+            if l.known_difference_vertices > 0 {
+                let _ = write!(c, " (known: {} tangents)", l.known_difference_vertices);
+            }
+            c
+        });
+        let result = match &set.error {
+            Some(e) => format!("ERROR: {e}"),
+            None if set.agreeing() == set.cases() => "ok".into(),
+            None => "DIFFERS".into(),
+        };
+        let _ = writeln!(out, " {limit} | {result} |");
+    }
+    if i.known_differences() > 0 {
+        out.push_str("\n\"known\": limit tangents differ at vertices on non-manifold edges, OpenSubdiv 3.5's known limit-mask bug (docs/CONFORMANCE.md, \"Known differences\"); limit positions agree, and these tangents are not counted.\n");
+    }
+    out
+}

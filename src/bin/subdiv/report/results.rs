@@ -1,0 +1,288 @@
+//! What a report found: per level, per option set, per input.
+
+use super::*;
+use subdiv::options::Options;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelResult {
+    /// The level.
+    pub level: u32,
+    /// Vertices (OpenSubdiv's count).
+    pub vertices: usize,
+    /// Faces (OpenSubdiv's count).
+    pub faces: usize,
+    /// Whether counts, face-vertex lists, sharpness, holes and face-varying
+    /// topology are equal.
+    pub topology_equal: bool,
+    /// Largest position deviation relative to the bounding-box diagonal.
+    pub position_deviation: f64,
+    /// Largest face-varying value deviation, when the mesh has UVs.
+    pub fvar_deviation: Option<f64>,
+    /// Whether everything is within the tolerance.
+    pub agrees: bool,
+}
+
+impl LevelResult {
+    /// The larger of the position and face-varying deviations.
+    pub fn deviation(&self) -> f64 {
+        self.position_deviation
+            .max(self.fvar_deviation.unwrap_or(0.0))
+    }
+}
+
+/// The limit at the last level of one option set: native against OpenSubdiv.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitResult {
+    /// The level the limit was evaluated at.
+    pub level: u32,
+    /// Largest limit position deviation, relative to the bounding-box diagonal.
+    pub position_deviation: f64,
+    /// Largest tangent deviation (both tangents, relative to the diagonal),
+    /// outside the vertices of the known difference.
+    pub tangent_deviation: f64,
+    /// Largest face-varying limit value deviation, when the mesh has UVs.
+    pub fvar_deviation: Option<f64>,
+    /// Vertices on non-manifold edges whose tangents differ: OpenSubdiv 3.5's
+    /// known tangent bug there (docs/CONFORMANCE.md), not counted as failures.
+    pub known_difference_vertices: usize,
+    /// Whether positions, tangents (known difference excepted) and
+    /// face-varying values are within the tolerance.
+    pub agrees: bool,
+}
+
+impl LimitResult {
+    /// The largest deviation counted for conformance.
+    pub fn deviation(&self) -> f64 {
+        self.position_deviation
+            .max(self.tangent_deviation)
+            .max(self.fvar_deviation.unwrap_or(0.0))
+    }
+}
+
+/// All comparisons of one option set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetResult {
+    /// The options.
+    pub options: Options,
+    /// Levels `first_level..=last_level`.
+    pub levels: Vec<LevelResult>,
+    /// The limit at the last level.
+    pub limit: Option<LimitResult>,
+    /// An engine failed (one failing case): which and why.
+    pub error: Option<String>,
+}
+
+impl SetResult {
+    /// Checks made: one per level, one for the limit, one for an error.
+    pub fn cases(&self) -> usize {
+        self.levels.len() + usize::from(self.limit.is_some()) + usize::from(self.error.is_some())
+    }
+
+    /// Checks passed.
+    pub fn agreeing(&self) -> usize {
+        self.levels.iter().filter(|l| l.agrees).count()
+            + usize::from(self.limit.as_ref().is_some_and(|l| l.agrees))
+    }
+
+    /// The largest deviation of any check (infinite after an error).
+    pub fn worst_deviation(&self) -> f64 {
+        if self.error.is_some() {
+            return f64::INFINITY;
+        }
+        self.levels
+            .iter()
+            .map(LevelResult::deviation)
+            .chain(self.limit.iter().map(LimitResult::deviation))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The median time of "refine + positions" at one level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Timing {
+    /// The level.
+    pub level: u32,
+    /// Faces at that level.
+    pub faces: usize,
+    /// Native median, seconds.
+    pub native: f64,
+    /// OpenSubdiv median, seconds.
+    pub osd: f64,
+    /// Repetitions of each.
+    pub reps: usize,
+}
+
+impl Timing {
+    /// OpenSubdiv's time over the native time (above 1: native is faster).
+    pub fn speedup(&self) -> f64 {
+        self.osd / self.native
+    }
+}
+
+/// The picture of one input's refined shape.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Picture {
+    /// The pictured level.
+    pub level: u32,
+    /// Its faces.
+    pub faces: usize,
+    /// The largest per-vertex deviation from OpenSubdiv, relative to the diagonal.
+    pub max_deviation: f64,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// Everything the report says about one input.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputReport {
+    /// The input's name.
+    pub name: String,
+    /// Its description.
+    pub description: String,
+    /// Base vertices.
+    pub vertices: usize,
+    /// Base faces.
+    pub faces: usize,
+    /// The default options (benchmarked and pictured).
+    pub options: Options,
+    /// What the option sets vary.
+    pub varied: Vec<&'static str>,
+    /// Every option set's comparisons.
+    pub sets: Vec<SetResult>,
+    /// Benchmarks per level.
+    pub timings: Vec<Timing>,
+    /// The refined shape.
+    pub picture: Picture,
+}
+
+impl InputReport {
+    /// Checks made.
+    pub fn cases(&self) -> usize {
+        self.sets.iter().map(SetResult::cases).sum()
+    }
+
+    /// Checks passed.
+    pub fn agreeing(&self) -> usize {
+        self.sets.iter().map(SetResult::agreeing).sum()
+    }
+
+    /// Whether every check passed.
+    pub fn conforms(&self) -> bool {
+        self.agreeing() == self.cases()
+    }
+
+    /// The largest deviation of any check.
+    pub fn worst_deviation(&self) -> f64 {
+        self.sets
+            .iter()
+            .map(SetResult::worst_deviation)
+            .fold(0.0, f64::max)
+    }
+
+    /// Vertices with the known limit-tangent difference, over all option sets.
+    pub fn known_differences(&self) -> usize {
+        self.sets
+            .iter()
+            .filter_map(|s| s.limit.as_ref())
+            .map(|l| l.known_difference_vertices)
+            .sum()
+    }
+
+    /// The timing at the last level.
+    pub fn last_timing(&self) -> Option<&Timing> {
+        self.timings.last()
+    }
+}
+
+/// A whole report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The date (UTC, YYYY-MM-DD).
+    pub date: String,
+    /// The machine ([`bench::machine_description`]).
+    pub machine: String,
+    /// OpenSubdiv's version.
+    pub osd_version: String,
+    /// subdiv's version.
+    pub subdiv_version: String,
+    /// What was run.
+    pub settings: Settings,
+    /// One entry per input.
+    pub inputs: Vec<InputReport>,
+    /// How long the run took, seconds.
+    pub seconds: f64,
+}
+
+impl Report {
+    /// Checks made.
+    pub fn cases(&self) -> usize {
+        self.inputs.iter().map(InputReport::cases).sum()
+    }
+
+    /// Checks passed.
+    pub fn agreeing(&self) -> usize {
+        self.inputs.iter().map(InputReport::agreeing).sum()
+    }
+
+    /// Whether every check of every input passed.
+    pub fn conforms(&self) -> bool {
+        self.inputs.iter().all(InputReport::conforms)
+    }
+
+    /// Checks whose every deviation is exactly zero.
+    pub fn bit_identical(&self) -> usize {
+        self.inputs
+            .iter()
+            .flat_map(|i| &i.sets)
+            .map(|s| {
+                s.levels
+                    .iter()
+                    .filter(|l| l.topology_equal && l.deviation() == 0.0)
+                    .count()
+                    + usize::from(s.limit.as_ref().is_some_and(|l| l.deviation() == 0.0))
+            })
+            .sum()
+    }
+
+    /// The conformance verdict, one sentence.
+    pub fn verdict(&self) -> String {
+        let (ok, total) = (self.agreeing(), self.cases());
+        let known: usize = self.inputs.iter().map(InputReport::known_differences).sum();
+        let known = if known > 0 {
+            format!(
+                " Known OpenSubdiv difference (limit tangents at non-manifold vertices, docs/CONFORMANCE.md): {known} vertex tangents, not counted."
+            )
+        } else {
+            String::new()
+        };
+        if self.conforms() {
+            format!(
+                "CONFORMS: all {total} checks agree within {:.0e} of the bounding-box diagonal; {} of them bit-identical.{known}",
+                self.settings.tolerance,
+                self.bit_identical()
+            )
+        } else {
+            let bad: Vec<&str> = self
+                .inputs
+                .iter()
+                .filter(|i| !i.conforms())
+                .map(|i| i.name.as_str())
+                .collect();
+            format!(
+                "DIFFERS: {} of {total} checks fail (tolerance {:.0e} of the bounding-box diagonal) on {}.{known}",
+                total - ok,
+                self.settings.tolerance,
+                bad.join(", ")
+            )
+        }
+    }
+
+    pub(crate) fn levels_label(&self) -> String {
+        let s = &self.settings;
+        if s.first_level == s.last_level {
+            format!("level {}", s.first_level)
+        } else {
+            format!("levels {}..{}", s.first_level, s.last_level)
+        }
+    }
+}

@@ -1,0 +1,330 @@
+//! Running the report: comparisons, limits and timings.
+
+use super::*;
+use glam::DVec3;
+use std::hint::black_box;
+use std::time::Instant;
+use subdiv::compare::{bbox_diagonal, compare};
+use subdiv::level::LevelTopology;
+use subdiv::mesh::Mesh;
+use subdiv::options::{Options, Scheme, UniformOptions};
+use subdiv::refinement::{Precision, Refinement, check_level};
+use subdiv::{Error, Result, osd, refiner};
+
+pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
+    inputs
+        .iter()
+        .map(|i| {
+            option_sets(i, settings.quick).len() as u64 + settings.timed_levels().count() as u64
+        })
+        .sum()
+}
+
+/// Runs the report: every comparison, benchmark and picture. `progress` is
+/// called once per step (see [`steps`]) with a description of the step.
+///
+/// Invalid meshes and levels too deep for an input are errors before any
+/// work; an engine failing on an option set is recorded as a failing case.
+pub fn run(
+    inputs: &[Input],
+    settings: &Settings,
+    mut progress: impl FnMut(&str),
+) -> Result<Report> {
+    let start = Instant::now();
+    if settings.first_level > settings.last_level {
+        return Err(Error::InvalidArgument(format!(
+            "the level range {}..{} is empty",
+            settings.first_level, settings.last_level
+        )));
+    }
+    if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
+        return Err(Error::InvalidArgument(format!(
+            "the tolerance {} is not a non-negative number",
+            settings.tolerance
+        )));
+    }
+    let mut plans = Vec::with_capacity(inputs.len());
+    for input in inputs {
+        input
+            .mesh
+            .validate()
+            .map_err(|e| Error::InvalidArgument(format!("{}: invalid mesh: {e}", input.name)))?;
+        let sets = option_sets(input, settings.quick);
+        for o in &sets {
+            check_level(&input.mesh, o, settings.last_level)?;
+        }
+        plans.push(sets);
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| Error::InvalidArgument(format!("cannot start a thread pool: {e}")))?;
+    let mut reports = Vec::with_capacity(inputs.len());
+    for (input, sets) in inputs.iter().zip(plans) {
+        reports.push(run_input(input, sets, settings, &pool, &mut progress)?);
+    }
+    Ok(Report {
+        date: crate::date::today(),
+        machine: crate::bench::timing::machine_description(),
+        osd_version: osd::version(),
+        subdiv_version: env!("CARGO_PKG_VERSION").to_string(),
+        settings: *settings,
+        inputs: reports,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+pub(crate) fn run_input(
+    input: &Input,
+    sets: Vec<Options>,
+    settings: &Settings,
+    pool: &rayon::ThreadPool,
+    progress: &mut impl FnMut(&str),
+) -> Result<InputReport> {
+    let t = traits(&input.mesh);
+    let mut varied = Vec::new();
+    let mut schemes: Vec<Scheme> = sets.iter().map(|o| o.scheme).collect();
+    schemes.dedup();
+    if schemes.len() > 1 {
+        varied.push("scheme");
+    }
+    for (yes, what) in [
+        (t.boundary, "boundary"),
+        (t.creases, "creasing"),
+        (t.triangles, "triangles"),
+        (t.uvs, "face-varying"),
+    ] {
+        if yes {
+            varied.push(what);
+        }
+    }
+    let mut results = Vec::with_capacity(sets.len());
+    let mut pictured: Option<(Refinement, Refinement)> = None;
+    for (k, options) in sets.iter().enumerate() {
+        progress(&format!(
+            "{}: {} ({}/{})",
+            input.name,
+            options_label(options),
+            k + 1,
+            sets.len()
+        ));
+        let (result, pair) = compare_set(&input.mesh, options, settings);
+        if *options == input.options {
+            pictured = pair;
+        }
+        results.push(result);
+    }
+    let mut timings = Vec::new();
+    for level in settings.timed_levels() {
+        progress(&format!("{}: timing level {level}", input.name));
+        timings
+            .push(pool.install(|| time_level(&input.mesh, &input.options, level, settings.quick))?);
+    }
+    let picture = match &pictured {
+        Some((native, osd)) => picture(input, native, osd, settings.tolerance),
+        None => Picture {
+            level: 0,
+            faces: 0,
+            max_deviation: f64::INFINITY,
+            svg: String::new(),
+        },
+    };
+    Ok(InputReport {
+        name: input.name.clone(),
+        description: input.description.clone(),
+        vertices: input.mesh.vertex_count(),
+        faces: input.mesh.face_count(),
+        options: input.options,
+        varied,
+        sets: results,
+        timings,
+        picture,
+    })
+}
+
+/// Compares one option set; returns the refinements too (for the picture).
+pub(crate) fn compare_set(
+    mesh: &Mesh,
+    options: &Options,
+    settings: &Settings,
+) -> (SetResult, Option<(Refinement, Refinement)>) {
+    let mut result = SetResult {
+        options: *options,
+        levels: Vec::new(),
+        limit: None,
+        error: None,
+    };
+    let uniform = UniformOptions::new(settings.last_level);
+    let both = |limit: bool| -> std::result::Result<(Refinement, Refinement), String> {
+        let n = refiner::refine_with(mesh, options, uniform, Precision::F64, limit)
+            .map_err(|e| format!("native engine{}: {e}", if limit { " (limit)" } else { "" }))?;
+        let o = osd::refine_with(mesh, options, uniform, Precision::F64, limit)
+            .map_err(|e| format!("osd engine{}: {e}", if limit { " (limit)" } else { "" }))?;
+        Ok((n, o))
+    };
+    let pair = match both(false) {
+        Ok(pair) => pair,
+        Err(e) => {
+            result.error = Some(e);
+            return (result, None);
+        }
+    };
+    let has_uvs = !mesh.fvar_channels.is_empty();
+    for c in compare(&pair.0, &pair.1) {
+        if c.level < settings.first_level {
+            continue;
+        }
+        result.levels.push(LevelResult {
+            level: c.level,
+            vertices: c.counts[1][0],
+            faces: c.counts[1][2],
+            topology_equal: c.topology_equal(),
+            position_deviation: c.relative_position_deviation,
+            fvar_deviation: has_uvs.then_some(c.max_fvar_deviation),
+            agrees: c.agrees(settings.tolerance),
+        });
+    }
+    match both(true) {
+        Ok((n, o)) => {
+            result.limit = compare_limit(&n, &o, settings.tolerance);
+            if result.limit.is_none() {
+                result.error = Some("an engine returned no limit".into());
+            }
+        }
+        Err(e) => result.error = Some(e),
+    }
+    (result, Some(pair))
+}
+
+/// Vertices of a level that lie on an edge shared by more than two faces.
+pub(crate) fn nonmanifold_vertices(level: &LevelTopology) -> Vec<bool> {
+    let mut out = vec![false; level.vertex_count];
+    for ((a, b), n) in edge_face_counts(level.faces()) {
+        if n > 2 {
+            for v in [a, b] {
+                if let Some(x) = out.get_mut(v as usize) {
+                    *x = true;
+                }
+            }
+        }
+    }
+    out
+}
+
+pub(crate) fn compare_limit(n: &Refinement, o: &Refinement, tolerance: f64) -> Option<LimitResult> {
+    let (ln, lo) = (n.limit.as_ref()?, o.limit.as_ref()?);
+    let diag = bbox_diagonal(&lo.positions).max(f64::MIN_POSITIVE);
+    let dist = |a: DVec3, b: DVec3| {
+        let d = (a - b).length() / diag;
+        if d.is_nan() { f64::INFINITY } else { d }
+    };
+    let mut position = if ln.positions.len() == lo.positions.len() {
+        0.0f64
+    } else {
+        f64::INFINITY
+    };
+    for (a, b) in ln.positions.iter().zip(&lo.positions) {
+        position = position.max(dist(*a, *b));
+    }
+    let nonmanifold = nonmanifold_vertices(o.last_level());
+    let mut tangent = if ln.du.len() == lo.du.len() && ln.dv.len() == lo.dv.len() {
+        0.0f64
+    } else {
+        f64::INFINITY
+    };
+    let mut known = 0;
+    for (i, ((a, b), (c, d))) in ln
+        .du
+        .iter()
+        .zip(&lo.du)
+        .zip(ln.dv.iter().zip(&lo.dv))
+        .enumerate()
+    {
+        let dev = dist(*a, *b).max(dist(*c, *d));
+        if nonmanifold.get(i).copied().unwrap_or(false) {
+            known += usize::from(dev > tolerance);
+        } else {
+            tangent = tangent.max(dev);
+        }
+    }
+    let fvar = (!lo.fvar_values.is_empty() || !ln.fvar_values.is_empty()).then(|| {
+        let mut worst = if ln.fvar_values.len() == lo.fvar_values.len() {
+            0.0f64
+        } else {
+            f64::INFINITY
+        };
+        for (x, y) in ln.fvar_values.iter().zip(&lo.fvar_values) {
+            if x.len() != y.len() {
+                worst = f64::INFINITY;
+            }
+            for (p, q) in x.iter().zip(y) {
+                let d = (p - q).abs();
+                worst = worst.max(if d.is_nan() { f64::INFINITY } else { d });
+            }
+        }
+        worst
+    });
+    let agrees =
+        position <= tolerance && tangent <= tolerance && fvar.is_none_or(|f| f <= tolerance);
+    Some(LimitResult {
+        level: o.uniform.level,
+        position_deviation: position,
+        tangent_deviation: tangent,
+        fvar_deviation: fvar,
+        known_difference_vertices: known,
+        agrees,
+    })
+}
+
+pub(crate) fn time_level(
+    mesh: &Mesh,
+    options: &Options,
+    level: u32,
+    quick: bool,
+) -> Result<Timing> {
+    let base: Vec<f64> = mesh.flat_positions();
+    let uniform = UniformOptions::new(level);
+    let native = || -> Result<usize> {
+        let mut r = refiner::Refiner::new(mesh, options)?;
+        r.refine_uniform(uniform)?;
+        let p = r.interpolate_all(3, &base)?;
+        Ok(black_box(p).last().map_or(0, |l| l.len()))
+    };
+    let opensubdiv = || -> Result<usize> {
+        let mut r = osd::Refiner::new(mesh, options)?;
+        r.refine_uniform(uniform)?;
+        let p = r.interpolate_all(3, &base)?;
+        Ok(black_box(p).last().map_or(0, Vec::len))
+    };
+    // One run of each: errors surface here, and it sizes the repetitions.
+    let t0 = Instant::now();
+    native()?;
+    opensubdiv()?;
+    let once = t0.elapsed().as_secs_f64().max(1e-7);
+    let (budget, min_reps) = if quick { (0.02, 3) } else { (0.25, 7) };
+    let reps = ((budget / once) as usize).clamp(min_reps, 2001) | 1;
+    // Warm up (caches, allocator, clock) for a tenth of the budget.
+    for _ in 0..reps / 10 {
+        let _ = black_box(native());
+        let _ = black_box(opensubdiv());
+    }
+    let (tn, to) = crate::bench::timing::interleaved(
+        reps,
+        || {
+            let _ = black_box(native());
+        },
+        || {
+            let _ = black_box(opensubdiv());
+        },
+    );
+    let faces = osd::refine(mesh, options, uniform)
+        .map(|r| r.last_level().face_count())
+        .unwrap_or(0);
+    Ok(Timing {
+        level,
+        faces,
+        native: tn,
+        osd: to,
+        reps,
+    })
+}

@@ -1,0 +1,95 @@
+use super::*;
+use subdiv::compare::bbox_diagonal;
+use subdiv::{Scheme, UniformOptions, refiner};
+
+#[test]
+fn embedded_inputs_are_valid_and_named_uniquely() {
+    let inputs = embedded_inputs();
+    let mut names: Vec<&str> = inputs.iter().map(|i| i.name.as_str()).collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), inputs.len());
+    for i in &inputs {
+        i.mesh.validate().unwrap();
+        assert!(!option_sets(i, true).is_empty());
+    }
+}
+
+#[test]
+fn option_sets_vary_what_applies() {
+    let inputs = embedded_inputs();
+    let by = |n: &str| inputs.iter().find(|i| i.name == n).unwrap();
+    // A closed quad mesh: catmark and bilinear, nothing else varies.
+    assert_eq!(option_sets(by("cube"), false).len(), 2);
+    // Loop only on all-triangle meshes.
+    let ico = option_sets(by("icosahedron"), false);
+    assert_eq!(ico[0].scheme, Scheme::Loop);
+    assert!(
+        option_sets(by("pole"), false)
+            .iter()
+            .all(|o| o.scheme != Scheme::Loop)
+    );
+    // UVs on an open mesh: 3 boundaries × 6 face-varying modes per scheme.
+    assert_eq!(option_sets(by("grid-uv-regions"), false).len(), 2 * 3 * 6);
+    assert!(option_sets(by("grid-uv-regions"), true).len() < 2 * 3 * 6);
+}
+
+#[test]
+fn pictures_colour_deviations() {
+    let input = embedded_inputs().swap_remove(0);
+    let n = refiner::refine(&input.mesh, &input.options, UniformOptions::new(2)).unwrap();
+    let exact = picture(&input, &n, &n, 1e-6);
+    assert_eq!(exact.max_deviation, 0.0);
+    assert!(exact.svg.contains("0 (bit-identical to OpenSubdiv)"));
+    // Deviations from 0 (every third vertex) through 1e-16 to 1e-5.
+    let mut o = n.clone();
+    let diag = bbox_diagonal(&n.positions[2]);
+    let count = o.positions[2].len();
+    for (i, p) in o.positions[2].iter_mut().enumerate() {
+        if i % 3 != 0 {
+            p.x += diag * 10f64.powf(-16.0 + 11.0 * i as f64 / count as f64);
+        }
+    }
+    let pic = picture(&input, &n, &o, 1e-6);
+    assert!(pic.max_deviation > 1e-6 && pic.max_deviation < 1e-4);
+    assert!(pic.svg.contains("largest deviation"));
+    for d in [0.0, 1e-3] {
+        let c = hex(deviation_color(d, 1e-6));
+        assert!(pic.svg.contains(&c[..5]), "{c}");
+    }
+    if let Some(path) = std::env::var_os("SUBDIV_REPORT_PICTURE") {
+        std::fs::write(path, &pic.svg).unwrap();
+    }
+}
+
+#[test]
+fn a_difference_fails_the_verdict() {
+    let inputs = vec![embedded_inputs().swap_remove(0)];
+    let mut rep = run(&inputs, &Settings::new(true), |_| {}).unwrap();
+    assert!(rep.conforms());
+    assert!(rep.verdict().starts_with("CONFORMS"));
+    let c = &mut rep.inputs[0].sets[0].levels[0];
+    c.position_deviation = 1e-3;
+    c.agrees = false;
+    assert!(!rep.conforms());
+    assert!(rep.verdict().starts_with("DIFFERS: 1 of"));
+    let html = rep.html();
+    assert!(html.contains("verdict fail") && html.contains("DIFFERS"));
+    assert!(rep.markdown().contains("DIFFERS"));
+}
+
+#[test]
+fn colours_and_formats() {
+    assert_eq!(format_deviation(0.0), "0");
+    assert_eq!(format_worst(0.0), "0 (bit-identical)");
+    assert_eq!(format_deviation(f64::INFINITY), "∞");
+    assert_ne!(
+        hex(deviation_color(0.0, 1e-6)),
+        hex(deviation_color(1e-16, 1e-6))
+    );
+    assert_eq!(
+        hex(deviation_color(1e-3, 1e-6)),
+        hex(deviation_color(f64::INFINITY, 1e-6))
+    );
+    assert_eq!(slug(2, "My Shape.obj"), "03-my-shape-obj");
+}
