@@ -5,15 +5,16 @@
 //! Run with `cargo run --example migrate_compare` (the comparison needs the
 //! `osd` feature; without it the example only refines natively).
 
-use subdiv::{Error, Options, Precision, UniformOptions, refiner, shapes};
+use subdiv::{Engine, Error, Options, Request, shapes};
 
 fn main() -> Result<(), Error> {
     let mut mesh = shapes::cube_with_uvs();
     mesh.add_crease(0, 1, 1.5);
     mesh.add_corner(6, 10.0);
     let options = Options::shape_file_defaults();
-    let uniform = UniformOptions::new(3);
-    let native = refiner::refine_with(&mesh, &options, uniform, Precision::F64, true)?;
+    // One request (level 3, f64, limits) for either engine.
+    let request = Request::new(3).limit(true);
+    let native = Engine::Native.refine(&mesh, &options, request)?;
     println!(
         "native: level 3 has {} vertices; limit evaluated: {}",
         native.last_level().vertex_count,
@@ -23,7 +24,7 @@ fn main() -> Result<(), Error> {
     #[cfg(feature = "osd")]
     {
         // [compare]
-        let osd = subdiv::osd::refine_with(&mesh, &options, uniform, Precision::F64, true)?;
+        let osd = Engine::Osd.refine(&mesh, &options, request)?;
         for level in subdiv::compare::compare(&native, &osd) {
             println!(
                 "level {}: topology equal {}, max position deviation {:e} (relative {:e}), \

@@ -36,7 +36,9 @@ fn main() -> Result<(), Error> {
     quads_for_loop.add_crease(0, 1, 1.0);
     match Refiner::new(&quads_for_loop, &options.with_scheme(Scheme::Loop)) {
         Ok(_) => unreachable!("Loop needs triangles"),
-        Err(Error::InvalidArgument(message)) => println!("refused: {message}"),
+        Err(Error::NotTriangles { face, corners, .. }) => {
+            println!("refused: face {face} has {corners} corners")
+        }
         Err(other) => return Err(other),
     }
     let mut bad_index = shapes::cube();

@@ -2,7 +2,7 @@
 //! OpenSubdiv): counts, face-vertex lists, sharpness, holes, positions and
 //! face-varying data, level by level.
 
-use crate::refinement::Refinement;
+use crate::output::Refinement;
 use glam::DVec3;
 
 /// How one level of two refinements compares.

@@ -72,8 +72,8 @@ use crate::mesh::{Mesh, MeshError};
 use glam::DVec3;
 use std::collections::HashMap;
 use std::f64::consts::TAU;
-use std::fmt;
-use std::str::FromStr;
+
+use crate::names::impl_named;
 use thiserror::Error;
 
 /// The corner-point weights.
@@ -96,37 +96,8 @@ pub enum Boundary {
     Chaikin,
 }
 
-macro_rules! named_enum {
-    ($ty:ident, $what:literal, $($variant:ident => $name:literal),+) => {
-        impl $ty {
-            /// The name used on the command line.
-            pub fn name(self) -> &'static str {
-                match self { $($ty::$variant => $name,)+ }
-            }
-        }
-        impl fmt::Display for $ty {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str(self.name())
-            }
-        }
-        impl FromStr for $ty {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
-                match s {
-                    $($name => Ok($ty::$variant),)+
-                    _ => Err(format!(
-                        concat!("unknown ", $what, " '{}' (expected one of: {})"),
-                        s,
-                        [$($name),+].join(", ")
-                    )),
-                }
-            }
-        }
-    };
-}
-
-named_enum!(Weights, "Doo-Sabin weights", Original => "original", Centroid => "centroid");
-named_enum!(Boundary, "Doo-Sabin boundary", Open => "open", Chaikin => "chaikin");
+impl_named!(Weights, "Doo-Sabin weights", { Original => "original", Centroid => "centroid" });
+impl_named!(Boundary, "Doo-Sabin boundary", { Open => "open", Chaikin => "chaikin" });
 
 /// Doo-Sabin options.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

@@ -1,10 +1,14 @@
 //! The crate's error types.
 
+use crate::engine::Engine;
 use crate::mesh::{MAX_VALENCE, MeshError};
+use crate::options::Scheme;
+use std::fmt;
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// Any error of the `subdiv` crate.
+/// Any error of the `subdiv` crate. Every variant carries the values a
+/// caller needs to act on it; none is a bare message.
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -18,23 +22,127 @@ pub enum Error {
     /// refuse it, before OpenSubdiv is involved.
     #[error("the mesh has no faces: there is nothing to refine")]
     EmptyMesh,
-    /// OpenSubdiv (through the bridge) refused or failed.
-    #[error("OpenSubdiv: {0}")]
-    Osd(String),
-    /// A refinement level outside `0..=MAX_LEVEL`, or one whose output would not fit.
+    /// A refinement level refused before anything is allocated.
     #[error("refinement level {level} refused: {reason}")]
     Level {
         /// The requested level.
         level: u32,
         /// Why it is refused.
-        reason: String,
+        reason: LevelRefusal,
     },
-    /// A call whose arguments do not fit the refiner (wrong buffer length, missing channel...).
-    #[error("invalid argument: {0}")]
-    InvalidArgument(String),
-    /// The requested feature is not available in this build or engine.
-    #[error("not available: {0}")]
-    Unavailable(String),
+    /// A face that is not a triangle under a scheme that needs triangles (Loop).
+    #[error("face {face} has {corners} vertices; the {scheme} scheme needs triangles")]
+    NotTriangles {
+        /// The scheme.
+        scheme: Scheme,
+        /// The base face.
+        face: usize,
+        /// Its number of vertices.
+        corners: usize,
+    },
+    /// A smooth vertex whose faces and edges do not pair up (a face names it
+    /// twice), which OpenSubdiv cannot refine.
+    #[error(
+        "vertex {vertex} of level {level} is smooth but its faces and edges do not pair up \
+         (a face names it twice): OpenSubdiv cannot refine it"
+    )]
+    UnpairedSmoothVertex {
+        /// The level (0 for the base mesh).
+        level: u32,
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A level that is not among those the call can use.
+    #[error("level {level} is not refined (the levels here are {first}..={last})")]
+    NoSuchLevel {
+        /// The level asked for.
+        level: u32,
+        /// The first level the call accepts.
+        first: u32,
+        /// The last refined level.
+        last: u32,
+    },
+    /// A vertex, edge or face index beyond a level's count.
+    #[error("{element} {index} does not exist (level {level} has {count})")]
+    NoSuchElement {
+        /// What kind of element.
+        element: Element,
+        /// The index asked for.
+        index: usize,
+        /// The level.
+        level: u32,
+        /// How many such elements the level has.
+        count: usize,
+    },
+    /// A face-varying channel the mesh does not have.
+    #[error("face-varying channel {channel} does not exist (the mesh has {count})")]
+    NoSuchChannel {
+        /// The channel asked for.
+        channel: usize,
+        /// How many the mesh has.
+        count: usize,
+    },
+    /// A primvar width of zero.
+    #[error("primvar width must be at least 1")]
+    ZeroWidth,
+    /// A buffer whose length does not fit the call.
+    #[error("{buffer} buffer has {got} values, expected {expected}")]
+    BufferLength {
+        /// Which buffer.
+        buffer: Buffer,
+        /// The length the call needs.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+    /// A buffer whose length is not a multiple of the element width.
+    #[error("{buffer} buffer has {len} values, not a whole number of {width}-wide elements")]
+    NotWholeElements {
+        /// Which buffer.
+        buffer: Buffer,
+        /// The length given.
+        len: usize,
+        /// The element width.
+        width: usize,
+    },
+    /// Limit evaluation without full topology in the last level.
+    #[error(
+        "limit evaluation needs full topology in the last level \
+         (refine with full_topology_in_last_level, as OpenSubdiv requires)"
+    )]
+    NeedsFullTopology,
+    /// A stencil names a base vertex beyond the data given.
+    #[error("the stencils refer to base vertex {index}, but only {count} were given")]
+    StencilOutOfRange {
+        /// The largest base vertex the stencils name.
+        index: usize,
+        /// How many base vertices were given.
+        count: usize,
+    },
+    /// A stencil table whose parts do not fit together.
+    #[error("malformed stencil table: {0}")]
+    MalformedStencils(StencilFault),
+    /// A count beyond what a table or OpenSubdiv's indices can hold.
+    #[error("{count} {what} do not fit {bits}-bit indices")]
+    TooLarge {
+        /// What is counted.
+        what: &'static str,
+        /// How many there are.
+        count: usize,
+        /// The width of the indices.
+        bits: u32,
+    },
+    /// The engine is not in this build (`osd` without the feature `osd`).
+    #[error(
+        "the {engine} engine is not in this build (rebuild with the default feature `{engine}`)"
+    )]
+    EngineUnavailable {
+        /// The engine.
+        engine: Engine,
+    },
+    /// OpenSubdiv (through the bridge) refused or failed.
+    #[error(transparent)]
+    Osd(#[from] OsdError),
     /// Reading or writing a file failed.
     #[error("{}: {source}", path.display())]
     Io {
@@ -44,6 +152,161 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+}
+
+/// Why a refinement level is refused ([`Error::Level`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum LevelRefusal {
+    /// Deeper than [`MAX_LEVEL`](crate::MAX_LEVEL).
+    TooDeep {
+        /// The deepest supported level.
+        max: u32,
+    },
+    /// More face corners than 32-bit indices address.
+    TooManyCorners {
+        /// The estimated number of face corners at the level.
+        corners: f64,
+    },
+    /// More memory than this machine has available.
+    OutOfMemory {
+        /// The estimated bytes needed.
+        needed: f64,
+        /// The bytes available.
+        available: u64,
+    },
+}
+
+impl fmt::Display for LevelRefusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
+        match *self {
+            LevelRefusal::TooDeep { max } => write!(f, "the deepest supported level is {max}"),
+            LevelRefusal::TooManyCorners { corners } => write!(
+                f,
+                "the level has about {corners:.3e} face corners, more than 32-bit indices address"
+            ),
+            LevelRefusal::OutOfMemory { needed, available } => write!(
+                f,
+                "the level needs about {:.1} GiB, more than the {:.1} GiB available",
+                needed / GIB,
+                available as f64 / GIB
+            ),
+        }
+    }
+}
+
+/// A kind of topological element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Element {
+    /// A vertex.
+    Vertex,
+    /// An edge.
+    Edge,
+    /// A face.
+    Face,
+}
+
+impl fmt::Display for Element {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Element::Vertex => "vertex",
+            Element::Edge => "edge",
+            Element::Face => "face",
+        })
+    }
+}
+
+/// The role of a buffer passed to a call ([`Error::BufferLength`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Buffer {
+    /// Primvar values of the level interpolated from.
+    Source,
+    /// Primvar values of the level interpolated to.
+    Destination,
+    /// Face-varying values of the level interpolated from.
+    FaceVaryingSource,
+    /// Values at the base vertices (stencil or whole-refinement input).
+    Base,
+    /// Output values (one per stencil or refined vertex).
+    Output,
+}
+
+impl fmt::Display for Buffer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Buffer::Source => "source primvar",
+            Buffer::Destination => "destination primvar",
+            Buffer::FaceVaryingSource => "source face-varying",
+            Buffer::Base => "base data",
+            Buffer::Output => "output",
+        })
+    }
+}
+
+/// What is inconsistent in a stencil table ([`Error::MalformedStencils`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum StencilFault {
+    /// A row's offset and size reach past the indices or weights.
+    #[error("row {row} lies outside the table's indices and weights")]
+    RowOutOfRange {
+        /// The row.
+        row: usize,
+    },
+    /// As many rows' sizes as offsets are needed.
+    #[error("{sizes} sizes but {offsets} offsets")]
+    SizesAndOffsets {
+        /// Number of sizes.
+        sizes: usize,
+        /// Number of offsets.
+        offsets: usize,
+    },
+    /// Indices and weights of different lengths.
+    #[error("{indices} indices but {weights} weights")]
+    IndicesAndWeights {
+        /// Number of indices.
+        indices: usize,
+        /// Number of weights.
+        weights: usize,
+    },
+    /// Offsets that do not start at 0.
+    #[error("offsets must start at 0")]
+    FirstOffset,
+    /// Offsets that decrease.
+    #[error("offsets must not decrease (offset {index})")]
+    DecreasingOffsets {
+        /// The first offset smaller than the one before.
+        index: usize,
+    },
+    /// A last offset that is not the number of terms.
+    #[error("the last offset must be the number of terms")]
+    LastOffset,
+}
+
+/// OpenSubdiv (or the bridge in front of it) refused an input or failed.
+/// The message is OpenSubdiv's or the bridge's own text.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("OpenSubdiv: {message}")]
+pub struct OsdError {
+    /// What happened.
+    pub kind: OsdErrorKind,
+    /// The bridge's or OpenSubdiv's message.
+    pub message: String,
+}
+
+/// What kind of failure an [`OsdError`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum OsdErrorKind {
+    /// The bridge refused an input before OpenSubdiv saw it (an index out of
+    /// range, a count that does not fit).
+    Refused,
+    /// OpenSubdiv reported an error, or threw.
+    Failed,
+    /// The bridge and OpenSubdiv disagree on a size or returned no object
+    /// (a defect, not an input problem).
+    Internal,
 }
 
 /// Shorthand for `Result<T, subdiv::Error>`.

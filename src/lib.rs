@@ -39,14 +39,15 @@
 pub mod compare;
 pub mod curve;
 pub mod doo_sabin;
+pub mod engine;
 pub mod error;
 pub mod io;
-pub mod level;
 pub mod mesh;
+pub mod names;
 pub mod options;
+pub mod output;
 pub mod patch;
 pub mod real;
-pub mod refinement;
 pub mod refiner;
 pub mod rules;
 pub mod shapes;
@@ -57,15 +58,19 @@ pub mod topology;
 #[allow(unsafe_code)]
 pub mod osd;
 
-pub use error::{Error, ObjError, ObjErrorKind, Result};
-pub use level::{FVarLevel, LevelCounts, LevelTopology};
+pub use engine::{Engine, Request};
+pub use error::{
+    Buffer, Element, Error, LevelRefusal, ObjError, ObjErrorKind, OsdError, OsdErrorKind, Result,
+    StencilFault,
+};
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
+pub use names::{Named, ParseNameError};
 pub use options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, MAX_LEVEL, Options, Scheme,
     TriangleSubdivision, UniformOptions,
 };
-pub use real::Real;
-pub use refinement::{Limit, Precision, Refinement};
+pub use output::{FVarTopology, LevelCounts, LevelTopology, Limit, LimitData, Refinement};
+pub use real::{Precision, Real};
 pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
 /// The README's examples, compiled and run as doctests.

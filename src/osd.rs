@@ -20,12 +20,15 @@
 //! several threads), and only [`Refiner::refine_uniform`] mutates it, which
 //! needs `&mut self`. OpenSubdiv's error messages are captured per thread.
 
-use crate::error::{Error, Result};
-use crate::level::{FVarLevel, LevelTopology};
+use crate::engine::Request;
+use crate::error::{Buffer, Error, OsdError, OsdErrorKind, Result};
 use crate::mesh::Mesh;
+use crate::options::check_level;
 use crate::options::{Options, UniformOptions};
-pub use crate::refinement::LimitData;
-use crate::refinement::{Limit, Precision, Refinement, check_level};
+pub use crate::output::LimitData;
+use crate::output::{FVarTopology, LevelTopology};
+use crate::output::{Limit, Refinement};
+use crate::real::Precision;
 use crate::stencil::{LimitStencilTable, StencilTable};
 use glam::DVec3;
 use std::ffi::CStr;
@@ -100,16 +103,17 @@ mod sealed {
             let msg = unsafe { CStr::from_ptr(self.0.as_ptr()) }
                 .to_string_lossy()
                 .into_owned();
-            Err(match status {
-                ffi::SDV_ERR_INVALID => Error::InvalidArgument(msg),
-                ffi::SDV_ERR_OSD => Error::Osd(msg),
-                ffi::SDV_ERR_CAPACITY => Error::Osd(format!("internal buffer mismatch: {msg}")),
-                _ => Error::Osd(if msg.is_empty() {
-                    format!("shim status {status}")
-                } else {
-                    msg
-                }),
-            })
+            use crate::error::OsdErrorKind as Kind;
+            let (kind, message) = match status {
+                ffi::SDV_ERR_INVALID => (Kind::Refused, msg),
+                ffi::SDV_ERR_OSD => (Kind::Failed, msg),
+                ffi::SDV_ERR_CAPACITY => {
+                    (Kind::Internal, format!("internal buffer mismatch: {msg}"))
+                }
+                _ if msg.is_empty() => (Kind::Internal, format!("shim status {status}")),
+                _ => (Kind::Internal, msg),
+            };
+            Err(Error::Osd(crate::error::OsdError { kind, message }))
         }
     }
 
@@ -239,7 +243,7 @@ macro_rules! impl_real {
 impl_real!(f32, sdv_interpolate_f32, sdv_limit_f32, sdv_limit_fvar_f32);
 impl_real!(f64, sdv_interpolate_f64, sdv_limit_f64, sdv_limit_fvar_f64);
 
-pub use crate::level::LevelCounts;
+pub use crate::output::LevelCounts;
 
 /// An OpenSubdiv `Far::TopologyRefiner`, owned.
 #[derive(Debug)]
@@ -269,9 +273,33 @@ impl Drop for Refiner {
     }
 }
 
-fn to_i32(n: usize, what: &str) -> Result<i32> {
-    i32::try_from(n)
-        .map_err(|_| Error::InvalidArgument(format!("{what} ({n}) does not fit in 32 bits")))
+fn to_i32(n: usize, what: &'static str) -> Result<i32> {
+    i32::try_from(n).map_err(|_| Error::TooLarge {
+        what,
+        count: n,
+        bits: 32,
+    })
+}
+
+/// Refuses a buffer of `got` values where `expected` are needed.
+fn check_length(buffer: Buffer, expected: usize, got: usize) -> Result<()> {
+    if got == expected {
+        Ok(())
+    } else {
+        Err(Error::BufferLength {
+            buffer,
+            expected,
+            got,
+        })
+    }
+}
+
+/// A defect of the bridge (an object it should have returned), as an error.
+fn internal(message: &str) -> Error {
+    Error::Osd(OsdError {
+        kind: OsdErrorKind::Internal,
+        message: message.to_string(),
+    })
 }
 
 impl Refiner {
@@ -310,9 +338,10 @@ impl Refiner {
                 .iter()
                 .any(|c| c.width == 0 || c.indices.len() != mesh.face_vertices.len())
         {
-            return Err(Error::InvalidArgument(
-                "malformed face offsets or face-varying channel".into(),
-            ));
+            return Err(Error::Osd(OsdError {
+                kind: OsdErrorKind::Refused,
+                message: "malformed face offsets or face-varying channel".into(),
+            }));
         }
         Self::build(mesh, options, Vec::new())
     }
@@ -337,24 +366,24 @@ impl Refiner {
         let mut channels = Vec::with_capacity(mesh.fvar_channels.len());
         for (c, idx) in mesh.fvar_channels.iter().zip(&fvar_indices) {
             channels.push(ffi::sdv_fvar_channel {
-                num_values: to_i32(c.value_count(), "face-varying value count")?,
+                num_values: to_i32(c.value_count(), "face-varying values")?,
                 value_indices: idx.as_ptr(),
             });
         }
         let desc = ffi::sdv_mesh_desc {
-            num_vertices: to_i32(mesh.vertex_count(), "vertex count")?,
-            num_faces: to_i32(mesh.face_count(), "face count")?,
+            num_vertices: to_i32(mesh.vertex_count(), "vertices")?,
+            num_faces: to_i32(mesh.face_count(), "faces")?,
             face_sizes: face_sizes.as_ptr(),
             face_vertices: face_vertices.as_ptr(),
-            num_creases: to_i32(mesh.creases.len(), "crease count")?,
+            num_creases: to_i32(mesh.creases.len(), "creases")?,
             crease_vertex_pairs: crease_pairs.as_ptr(),
             crease_sharpness: crease_sharpness.as_ptr(),
-            num_corners: to_i32(mesh.corners.len(), "corner count")?,
+            num_corners: to_i32(mesh.corners.len(), "corners")?,
             corner_vertices: corner_vertices.as_ptr(),
             corner_sharpness: corner_sharpness.as_ptr(),
-            num_holes: to_i32(holes.len(), "hole count")?,
+            num_holes: to_i32(holes.len(), "holes")?,
             holes: holes.as_ptr(),
-            num_fvar_channels: to_i32(channels.len(), "channel count")?,
+            num_fvar_channels: to_i32(channels.len(), "face-varying channels")?,
             fvar_channels: channels.as_ptr(),
         };
         let opts = ffi::sdv_options {
@@ -370,8 +399,7 @@ impl Refiner {
         // call, with the lengths the counts state (the shim copies what it keeps).
         let status = unsafe { ffi::sdv_refiner_create(&desc, &opts, &mut raw, err.ptr(), ERR_LEN) };
         err.check(status)?;
-        let raw =
-            NonNull::new(raw).ok_or_else(|| Error::Osd("the shim returned no refiner".into()))?;
+        let raw = NonNull::new(raw).ok_or_else(|| internal("the shim returned no refiner"))?;
         let mut refiner = Refiner {
             raw,
             base_vertices: mesh.vertex_count(),
@@ -431,7 +459,7 @@ impl Refiner {
     pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
         // Validate the level ourselves: OpenSubdiv would silently wrap it, and
         // refuse sizes that cannot fit before anything is allocated.
-        crate::refinement::check_level_counts(
+        crate::options::check_level_counts(
             self.base_faces,
             self.base_corners,
             self.options.scheme,
@@ -468,6 +496,13 @@ impl Refiner {
 
     /// Element counts of `level`.
     pub fn level_counts(&self, level: u32) -> Result<LevelCounts> {
+        if level > self.max_level() {
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level(),
+            });
+        }
         let mut c = ffi::sdv_level_counts {
             vertices: 0,
             edges: 0,
@@ -577,7 +612,7 @@ impl Refiner {
                     ERR_LEN,
                 )
             })?;
-            fvar.push(FVarLevel {
+            fvar.push(FVarTopology {
                 value_count: value_count as usize,
                 face_values: values.into_iter().map(|v| v as u32).collect(),
             });
@@ -606,6 +641,25 @@ impl Refiner {
         })
     }
 
+    /// The number of values of face-varying `channel` at `level`.
+    fn fvar_value_count(&self, level: u32, channel: usize) -> Result<usize> {
+        let mut count = 0i32;
+        let mut err = ErrBuf::new();
+        let channel = to_i32(channel, "face-varying channels")?;
+        // SAFETY: the refiner is live; the shim range-checks level and channel.
+        err.run(|e| unsafe {
+            ffi::sdv_level_fvar_value_count(
+                self.raw.as_ptr(),
+                level as i32,
+                channel,
+                &mut count,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        Ok(count.max(0) as usize)
+    }
+
     fn interpolate_kind<T: Real>(
         &self,
         kind: i32,
@@ -615,36 +669,47 @@ impl Refiner {
         src: &[T],
     ) -> Result<Vec<T>> {
         if level == 0 || level > self.max_level() {
-            return Err(Error::InvalidArgument(format!(
-                "cannot interpolate to level {level}: refined levels are 1..={}",
-                self.max_level()
-            )));
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 1,
+                last: self.max_level(),
+            });
         }
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
-        let counts = self.level_counts(level)?;
-        let n = if kind == SDV_FACE_VARYING {
+        // Element counts of the level read from and the level written.
+        let (from, to) = if kind == SDV_FACE_VARYING {
             if channel >= self.fvar_channels {
-                return Err(Error::InvalidArgument(format!(
-                    "face-varying channel {channel} does not exist (the mesh has {})",
-                    self.fvar_channels
-                )));
+                return Err(Error::NoSuchChannel {
+                    channel,
+                    count: self.fvar_channels,
+                });
             }
-            self.level(level)?.fvar[channel].value_count
+            (
+                self.fvar_value_count(level - 1, channel)?,
+                self.fvar_value_count(level, channel)?,
+            )
         } else {
-            counts.vertices
+            (
+                self.level_counts(level - 1)?.vertices,
+                self.level_counts(level)?.vertices,
+            )
         };
-        let mut dst = vec![T::default(); n * width];
+        let buffer = if kind == SDV_FACE_VARYING {
+            Buffer::FaceVaryingSource
+        } else {
+            Buffer::Source
+        };
+        check_length(buffer, from * width, src.len())?;
+        let mut dst = vec![T::default(); to * width];
         let mut err = ErrBuf::new();
         let status = T::interpolate(
             self,
             kind,
-            to_i32(channel, "channel")?,
+            to_i32(channel, "face-varying channels")?,
             level as i32,
-            to_i32(width, "width")?,
+            to_i32(width, "primvar components")?,
             src,
             &mut dst,
             &mut err,
@@ -708,11 +773,14 @@ impl Refiner {
     /// last level (or no refinement at all).
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
-        let n = self.level_counts(self.max_level())?.vertices * width;
+        let last = self.level_counts(self.max_level())?;
+        if self.max_level() > 0 && !last.full_topology {
+            return Err(Error::NeedsFullTopology);
+        }
+        let n = last.vertices * width;
+        check_length(Buffer::Source, n, src.len())?;
         let mut out = LimitData {
             positions: vec![T::default(); n],
             du: vec![T::default(); n],
@@ -721,7 +789,7 @@ impl Refiner {
         let mut err = ErrBuf::new();
         let status = T::limit(
             self,
-            to_i32(width, "width")?,
+            to_i32(width, "primvar components")?,
             src,
             [&mut out.positions, &mut out.du, &mut out.dv],
             &mut err,
@@ -739,23 +807,25 @@ impl Refiner {
         src: &[T],
     ) -> Result<Vec<T>> {
         if channel >= self.fvar_channels {
-            return Err(Error::InvalidArgument(format!(
-                "face-varying channel {channel} does not exist (the mesh has {})",
-                self.fvar_channels
-            )));
+            return Err(Error::NoSuchChannel {
+                channel,
+                count: self.fvar_channels,
+            });
         }
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
-        let n = self.level(self.max_level())?.fvar[channel].value_count * width;
+        if self.max_level() > 0 && !self.level_counts(self.max_level())?.full_topology {
+            return Err(Error::NeedsFullTopology);
+        }
+        let n = self.fvar_value_count(self.max_level(), channel)? * width;
+        check_length(Buffer::FaceVaryingSource, n, src.len())?;
         let mut dst = vec![T::default(); n];
         let mut err = ErrBuf::new();
         let status = T::limit_fvar(
             self,
-            to_i32(channel, "channel")?,
-            to_i32(width, "width")?,
+            to_i32(channel, "face-varying channels")?,
+            to_i32(width, "primvar components")?,
             src,
             &mut dst,
             &mut err,
@@ -771,8 +841,8 @@ impl Refiner {
         err.run(|e| unsafe {
             ffi::sdv_stencils_create(self.raw.as_ptr(), kind, &mut raw, e, ERR_LEN)
         })?;
-        let table = NonNull::new(raw)
-            .ok_or_else(|| Error::Osd("the shim returned no stencil table".into()))?;
+        let table =
+            NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
         // Free the C++ table whatever happens below.
         struct Owned(NonNull<ffi::sdv_stencils>);
         impl Drop for Owned {
@@ -877,8 +947,7 @@ impl StencilEvaluator {
         err.run(|e| unsafe {
             ffi::sdv_evaluator_create(refiner.raw.as_ptr(), &mut raw, e, ERR_LEN)
         })?;
-        let raw =
-            NonNull::new(raw).ok_or_else(|| Error::Osd("the shim returned no evaluator".into()))?;
+        let raw = NonNull::new(raw).ok_or_else(|| internal("the shim returned no evaluator"))?;
         let (mut controls, mut stencils) = (0i32, 0i32);
         // SAFETY: the evaluator is live.
         unsafe { ffi::sdv_evaluator_counts(raw.as_ptr(), &mut controls, &mut stencils) };
@@ -902,7 +971,7 @@ impl StencilEvaluator {
     /// Applies the stencils to base data of `width` floats per vertex, into `dst`.
     pub fn eval_into(&self, width: usize, src: &[f32], dst: &mut [f32]) -> Result<()> {
         let mut err = ErrBuf::new();
-        let w = to_i32(width, "width")?;
+        let w = to_i32(width, "primvar components")?;
         // SAFETY: both lengths are passed and checked by the shim against the
         // table's counts before either buffer is touched.
         err.run(|e| unsafe {
@@ -922,11 +991,11 @@ impl StencilEvaluator {
     /// Applies the stencils to base data of `width` floats per vertex.
     pub fn eval(&self, width: usize, src: &[f32]) -> Result<Vec<f32>> {
         if src.len() != self.controls * width {
-            return Err(Error::InvalidArgument(format!(
-                "source primvar buffer has {} values, expected {}",
-                src.len(),
-                self.controls * width
-            )));
+            return Err(Error::BufferLength {
+                buffer: Buffer::Base,
+                expected: self.controls * width,
+                got: src.len(),
+            });
         }
         let mut dst = vec![0f32; self.stencils * width];
         self.eval_into(width, src, &mut dst)?;
@@ -955,38 +1024,23 @@ fn narrow<T: Real>(data: &[f64]) -> Vec<T> {
     data.iter().map(|&v| T::from_f64(v)).collect()
 }
 
-/// Refines a mesh uniformly with OpenSubdiv and interpolates positions and
-/// face-varying channels in `f64`.
-pub fn refine(mesh: &Mesh, options: &Options, uniform: UniformOptions) -> Result<Refinement> {
-    refine_with(mesh, options, uniform, Precision::F64, false)
-}
-
-/// Refines a mesh uniformly with OpenSubdiv, interpolating in `precision`;
-/// with `limit`, also evaluates limit positions, tangents and face-varying
-/// values at the last level (the last level then keeps its full topology).
-pub fn refine_with(
-    mesh: &Mesh,
-    options: &Options,
-    uniform: UniformOptions,
-    precision: Precision,
-    limit: bool,
-) -> Result<Refinement> {
-    match precision {
-        Precision::F32 => refine_typed::<f32>(mesh, options, uniform, limit),
-        Precision::F64 => refine_typed::<f64>(mesh, options, uniform, limit),
+/// Refines a mesh uniformly with OpenSubdiv as `request` says (a
+/// [`UniformOptions`] is a request in `f64` without limits): the topology,
+/// positions and face-varying values of every level, and with
+/// `request.limit` the limit positions, tangents and face-varying values at
+/// the last level (which then keeps its full topology). The same as
+/// [`crate::refiner::refine`], through OpenSubdiv.
+pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Result<Refinement> {
+    let request = request.into();
+    match request.precision {
+        Precision::F32 => refine_typed::<f32>(mesh, options, &request),
+        Precision::F64 => refine_typed::<f64>(mesh, options, &request),
     }
 }
 
-fn refine_typed<T: Real>(
-    mesh: &Mesh,
-    options: &Options,
-    mut uniform: UniformOptions,
-    limit: bool,
-) -> Result<Refinement> {
+fn refine_typed<T: Real>(mesh: &Mesh, options: &Options, request: &Request) -> Result<Refinement> {
+    let (uniform, limit) = (request.effective_uniform(), request.limit);
     check_level(mesh, options, uniform.level)?;
-    if limit {
-        uniform.full_topology_in_last_level = true;
-    }
     let mut refiner = Refiner::new(mesh, options)?;
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)

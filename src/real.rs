@@ -1,7 +1,21 @@
-//! The floating-point types primvars and weights are computed in.
+//! The floating-point types primvars and weights are computed in: the
+//! [`Real`] trait over `f32` and `f64`, and [`Precision`] naming them.
 
+use crate::names::impl_named;
 use std::fmt::{Debug, Display};
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// The floating-point type primvars are interpolated in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Precision {
+    /// Single precision (`f32`), OpenSubdiv's usual choice.
+    F32,
+    /// Double precision (`f64`).
+    #[default]
+    F64,
+}
+
+impl_named!(Precision, "precision", { F32 => "f32", F64 => "f64" });
 
 mod sealed {
     pub trait Sealed {}
@@ -38,8 +52,8 @@ pub trait Real:
     const ZERO: Self;
     /// One.
     const ONE: Self;
-    /// This type's [`Precision`](crate::Precision).
-    const PRECISION: crate::Precision;
+    /// This type's [`Precision`].
+    const PRECISION: Precision;
     /// Converts from `f64` (rounding to nearest for `f32`).
     fn from_f64(x: f64) -> Self;
     /// Converts from `f32` exactly.
@@ -59,7 +73,7 @@ macro_rules! impl_real {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
-            const PRECISION: crate::Precision = $prec;
+            const PRECISION: Precision = $prec;
             #[inline]
             fn from_f64(x: f64) -> Self {
                 x as $t
@@ -88,5 +102,5 @@ macro_rules! impl_real {
     };
 }
 
-impl_real!(f32, crate::Precision::F32);
-impl_real!(f64, crate::Precision::F64);
+impl_real!(f32, Precision::F32);
+impl_real!(f64, Precision::F64);

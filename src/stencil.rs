@@ -8,7 +8,7 @@
 //! on the same table bit for bit (same products, same order of additions, no
 //! fused multiply-add).
 
-use crate::error::{Error, Result};
+use crate::error::{Buffer, Error, Result, StencilFault};
 use glam::Vec4;
 
 /// A stencil table in compressed-sparse-row form: row `i` is
@@ -95,10 +95,11 @@ impl StencilTable {
     pub fn apply_par_f32_into(&self, width: usize, base: &[f32], out: &mut [f32]) -> Result<()> {
         check_buffers(self.len(), width, base.len(), out.len())?;
         let count = base.len() / width;
-        if self.indices.iter().any(|&v| v as usize >= count) {
-            return Err(Error::InvalidArgument(format!(
-                "the stencils refer to base vertices beyond the {count} given"
-            )));
+        if let Some(&index) = self.indices.iter().max().filter(|&&v| v as usize >= count) {
+            return Err(Error::StencilOutOfRange {
+                index: index as usize,
+                count,
+            });
         }
         self.check_rows()?;
         apply_rows(width, base, out, self.indices.len(), |r| self.row(r));
@@ -125,14 +126,15 @@ impl StencilTable {
     ///
     /// A table whose rows lie outside its `indices` or `weights` (built by
     /// hand and left inconsistent), or that has more than `u32::MAX` terms,
-    /// is an [`Error::InvalidArgument`].
+    /// is an [`Error::MalformedStencils`] or an [`Error::TooLarge`].
     pub fn to_f32(&self) -> Result<StencilTableF32> {
         self.check_rows()?;
         if self.indices.len() > u32::MAX as usize {
-            return Err(Error::InvalidArgument(format!(
-                "{} stencil terms do not fit 32-bit offsets",
-                self.indices.len()
-            )));
+            return Err(Error::TooLarge {
+                what: "stencil terms",
+                count: self.indices.len(),
+                bits: 32,
+            });
         }
         let mut t = StencilTableF32::with_capacity(self.len(), self.indices.len());
         for i in 0..self.len() {
@@ -144,33 +146,33 @@ impl StencilTable {
 
     /// Checks that every row lies inside `indices` and `weights`.
     fn check_rows(&self) -> Result<()> {
-        if self.offsets.len() != self.len()
-            || (0..self.len()).any(|i| {
-                self.offsets[i] as usize + self.sizes[i] as usize
-                    > self.indices.len().min(self.weights.len())
-            })
+        if self.offsets.len() != self.len() {
+            return Err(Error::MalformedStencils(StencilFault::SizesAndOffsets {
+                sizes: self.len(),
+                offsets: self.offsets.len(),
+            }));
+        }
+        let terms = self.indices.len().min(self.weights.len());
+        if let Some(row) =
+            (0..self.len()).find(|&i| self.offsets[i] as usize + self.sizes[i] as usize > terms)
         {
-            return Err(Error::InvalidArgument(
-                "the table's sizes and offsets do not fit its indices and weights".into(),
-            ));
+            return Err(Error::MalformedStencils(StencilFault::RowOutOfRange {
+                row,
+            }));
         }
         Ok(())
     }
 
     /// Checks that `base` fits the table; returns its vertex count.
     fn check_apply(&self, width: usize, base: &[f64]) -> Result<usize> {
-        if width == 0 || base.len() % width != 0 {
-            return Err(Error::InvalidArgument(format!(
-                "base data of {} values is not a whole number of {width}-wide elements",
-                base.len()
-            )));
-        }
+        check_base(width, base.len())?;
         let count = base.len() / width;
         if let Some(&v) = self.indices.iter().max() {
             if v as usize >= count {
-                return Err(Error::InvalidArgument(format!(
-                    "the stencils refer to base vertex {v}, but only {count} were given"
-                )));
+                return Err(Error::StencilOutOfRange {
+                    index: v as usize,
+                    count,
+                });
             }
         }
         Ok(count)
@@ -293,22 +295,21 @@ impl StencilTableF32 {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn from_parts(offsets: Vec<u32>, indices: Vec<u32>, weights: Vec<f32>) -> Result<Self> {
-        let bad = |what: &str| Err(Error::InvalidArgument(format!("stencil table: {what}")));
+        let bad = |fault| Err(Error::MalformedStencils(fault));
         if indices.len() != weights.len() {
-            return bad(&format!(
-                "{} indices but {} weights",
-                indices.len(),
-                weights.len()
-            ));
+            return bad(StencilFault::IndicesAndWeights {
+                indices: indices.len(),
+                weights: weights.len(),
+            });
         }
         if offsets.first() != Some(&0) {
-            return bad("offsets must start at 0");
+            return bad(StencilFault::FirstOffset);
         }
-        if offsets.windows(2).any(|w| w[0] > w[1]) {
-            return bad("offsets must not decrease");
+        if let Some(i) = offsets.windows(2).position(|w| w[0] > w[1]) {
+            return bad(StencilFault::DecreasingOffsets { index: i + 1 });
         }
         if offsets.last().map(|&o| o as usize) != Some(indices.len()) {
-            return bad("the last offset must be the number of terms");
+            return bad(StencilFault::LastOffset);
         }
         let base_count = indices.iter().max().map_or(0, |&m| m as usize + 1);
         Ok(StencilTableF32 {
@@ -384,10 +385,10 @@ impl StencilTableF32 {
         check_buffers(self.len(), width, base.len(), out.len())?;
         let count = base.len() / width;
         if count < self.base_count {
-            return Err(Error::InvalidArgument(format!(
-                "the stencils refer to base vertex {}, but only {count} were given",
-                self.base_count - 1
-            )));
+            return Err(Error::StencilOutOfRange {
+                index: self.base_count - 1,
+                count,
+            });
         }
         apply_f32(self, width, base, out);
         Ok(())
@@ -402,8 +403,10 @@ impl StencilTableF32 {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn apply(&self, width: usize, base: &[f32]) -> Result<Vec<f32>> {
-        let len = self.len().checked_mul(width).ok_or_else(|| {
-            Error::InvalidArgument(format!("{} stencils of width {width}", self.len()))
+        let len = self.len().checked_mul(width).ok_or(Error::TooLarge {
+            what: "output values",
+            count: usize::MAX,
+            bits: usize::BITS,
         })?;
         let mut out = vec![0.0; len];
         self.apply_into(width, base, &mut out)?;
@@ -411,12 +414,35 @@ impl StencilTableF32 {
     }
 }
 
+/// Checks that base data of `len` values is whole `width`-wide elements.
+fn check_base(width: usize, len: usize) -> Result<()> {
+    if width == 0 {
+        return Err(Error::ZeroWidth);
+    }
+    if len % width != 0 {
+        return Err(Error::NotWholeElements {
+            buffer: Buffer::Base,
+            len,
+            width,
+        });
+    }
+    Ok(())
+}
+
 /// Checks the buffer lengths of an `f32` apply.
 fn check_buffers(rows: usize, width: usize, base: usize, out: usize) -> Result<()> {
-    if width == 0 || base % width != 0 || Some(out) != rows.checked_mul(width) {
-        return Err(Error::InvalidArgument(format!(
-            "buffers of {base} and {out} values do not fit {rows} stencils of width {width}"
-        )));
+    check_base(width, base)?;
+    let expected = rows.checked_mul(width).ok_or(Error::TooLarge {
+        what: "output values",
+        count: usize::MAX,
+        bits: usize::BITS,
+    })?;
+    if out != expected {
+        return Err(Error::BufferLength {
+            buffer: Buffer::Output,
+            expected,
+            got: out,
+        });
     }
     Ok(())
 }

@@ -644,8 +644,8 @@ fn readable_but_unusable_files() {
         // The shim's own check, without Rust's validation in front of it.
         let err = subdiv::osd::Refiner::new_unvalidated(&shape.mesh, &shape.options()).unwrap_err();
         assert!(
-            matches!(&err, Error::InvalidArgument(m)
-                if m == "face 0 has 70000 vertices; at most 65535 are supported"),
+            matches!(&err, Error::Osd(subdiv::OsdError { kind: subdiv::OsdErrorKind::Refused, message })
+                if message == "face 0 has 70000 vertices; at most 65535 are supported"),
             "{err:?}"
         );
     }
@@ -1081,7 +1081,7 @@ fn absurd_levels_are_refused_before_allocating() {
         assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
         assert_eq!(
             stderr(&o),
-            "subdiv: error: refinement level 10 refused: level 10 of this mesh has about \
+            "subdiv: error: refinement level 10 refused: the level has about \
              7.969e9 face corners, more than 32-bit indices address\n"
         );
         if available_memory().is_some_and(|m| m < 1.0e11) {
@@ -1097,7 +1097,7 @@ fn absurd_levels_are_refused_before_allocating() {
             let err = stderr(&o);
             assert!(
                 err.starts_with(
-                    "subdiv: error: refinement level 9 refused: level 9 of this mesh needs about "
+                    "subdiv: error: refinement level 9 refused: the level needs about "
                 ) && err.contains(" GiB, more than the "),
                 "{err}"
             );
@@ -1172,7 +1172,7 @@ mod osd_bridge {
     use super::*;
     use glam::DVec3;
     use subdiv::osd;
-    use subdiv::{FVarChannel, Mesh};
+    use subdiv::{Buffer, FVarChannel, Mesh, OsdError, OsdErrorKind};
 
     fn quad() -> Mesh {
         Mesh::from_faces(
@@ -1295,7 +1295,8 @@ mod osd_bridge {
             let options = Options::default();
             let err = osd::Refiner::new_unvalidated(&mesh, &options).unwrap_err();
             assert!(
-                matches!(&err, Error::InvalidArgument(m) if m == shim_message),
+                matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message })
+                    if message == shim_message),
                 "{shim_message}: {err:?}"
             );
             let err = osd::Refiner::new(&mesh, &options).unwrap_err();
@@ -1323,8 +1324,8 @@ mod osd_bridge {
             assert!(matches!(err, Error::EmptyMesh), "native: {err:?}");
             let err = osd::Refiner::new_unvalidated(&mesh, &Options::default()).unwrap_err();
             assert!(
-                matches!(&err, Error::InvalidArgument(m)
-                    if m == "the mesh has no faces: there is nothing to refine"),
+                matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message })
+                    if message == "the mesh has no faces: there is nothing to refine"),
                 "{err:?}"
             );
         }
@@ -1341,13 +1342,28 @@ mod osd_bridge {
         ));
         r.refine_uniform(UniformOptions::new(2)).unwrap();
         let base: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
-        for (level, width, len) in [(0, 3, 24), (3, 3, 24), (1, 0, 0), (1, 3, 23), (1, 3, 25)] {
+        let no_level = |level| Error::NoSuchLevel {
+            level,
+            first: 1,
+            last: 2,
+        };
+        let short = |got| Error::BufferLength {
+            buffer: Buffer::Source,
+            expected: 24,
+            got,
+        };
+        for (level, width, len, expected) in [
+            (0, 3, 24, no_level(0)),
+            (3, 3, 24, no_level(3)),
+            (1, 0, 0, Error::ZeroWidth),
+            (1, 3, 23, short(23)),
+            (1, 3, 25, short(25)),
+        ] {
             let src = vec![0.0f64; len];
-            assert!(
-                matches!(
-                    r.interpolate(level, width, &src),
-                    Err(Error::InvalidArgument(_))
-                ),
+            let err = r.interpolate(level, width, &src).unwrap_err();
+            assert_eq!(
+                format!("{err:?}"),
+                format!("{expected:?}"),
                 "level {level} width {width} len {len}"
             );
         }

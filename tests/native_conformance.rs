@@ -19,8 +19,20 @@ fn check(
     precision: Precision,
     limit: bool,
 ) -> Result<(), String> {
-    let expected = osd::refine_with(mesh, options, uniform, precision, limit);
-    let actual = refiner::refine_with(mesh, options, uniform, precision, limit);
+    let expected = osd::refine(
+        mesh,
+        options,
+        subdiv::Request::from(uniform)
+            .precision(precision)
+            .limit(limit),
+    );
+    let actual = refiner::refine(
+        mesh,
+        options,
+        subdiv::Request::from(uniform)
+            .precision(precision)
+            .limit(limit),
+    );
     let (expected, actual) = match (expected, actual) {
         (Ok(e), Ok(a)) => (e, a),
         (Err(e), Err(a)) => {

@@ -680,7 +680,7 @@ fn loop_scheme_channels() {
 }
 
 /// Whole refinements, positions and every channel, in `f64` and `f32`,
-/// through the engines' `refine_with` and the crate's comparison.
+/// through the engines' `refine` and the crate's comparison.
 #[test]
 fn whole_refinements_in_both_precisions() {
     for (name, mesh) in [
@@ -695,8 +695,18 @@ fn whole_refinements_in_both_precisions() {
             };
             for (precision, tolerance) in [(Precision::F64, 0.0), (Precision::F32, 1e-6)] {
                 let uniform = UniformOptions::new(3);
-                let e = osd::refine_with(&mesh, &options, uniform, precision, false).unwrap();
-                let a = refiner::refine_with(&mesh, &options, uniform, precision, false).unwrap();
+                let e = osd::refine(
+                    &mesh,
+                    &options,
+                    subdiv::Request::from(uniform).precision(precision),
+                )
+                .unwrap();
+                let a = refiner::refine(
+                    &mesh,
+                    &options,
+                    subdiv::Request::from(uniform).precision(precision),
+                )
+                .unwrap();
                 for c in compare(&a, &e) {
                     assert!(c.agrees(tolerance), "{name} {fvar:?} {precision:?}: {c:?}");
                 }

@@ -201,7 +201,7 @@ fn limit_at_level_zero_and_validation() {
 /// corpus shape with UVs, in every face-varying mode.
 #[test]
 fn limit_face_varying_matches_opensubdiv() {
-    use subdiv::{FVarLinearInterpolation, Precision};
+    use subdiv::FVarLinearInterpolation;
     let mut failures = Vec::new();
     let mut checked = 0;
     for (name, mesh) in shapes::corpus() {
@@ -224,11 +224,18 @@ fn limit_face_varying_matches_opensubdiv() {
                     for level in 1..=3 {
                         checked += 1;
                         let uniform = UniformOptions::new(level);
-                        let a =
-                            refiner::refine_with(&mesh, &options, uniform, Precision::F64, true)
-                                .unwrap();
-                        let b = osd::refine_with(&mesh, &options, uniform, Precision::F64, true)
-                            .unwrap();
+                        let a = refiner::refine(
+                            &mesh,
+                            &options,
+                            subdiv::Request::from(uniform).limit(true),
+                        )
+                        .unwrap();
+                        let b = osd::refine(
+                            &mesh,
+                            &options,
+                            subdiv::Request::from(uniform).limit(true),
+                        )
+                        .unwrap();
                         let (la, lb) = (a.limit.unwrap(), b.limit.unwrap());
                         if la.fvar_values != lb.fvar_values {
                             failures.push(format!("{name} {options:?} level {level}"));

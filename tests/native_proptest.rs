@@ -6,7 +6,7 @@ use glam::DVec3;
 use proptest::prelude::*;
 use subdiv::compare::compare;
 use subdiv::{
-    BoundaryInterpolation, CreasingMethod, Mesh, Options, Precision, Scheme, TriangleSubdivision,
+    BoundaryInterpolation, CreasingMethod, Mesh, Options, Scheme, TriangleSubdivision,
     UniformOptions, osd, refiner,
 };
 
@@ -163,8 +163,8 @@ fn assert_same(
     faces_first: bool,
 ) -> Result<(), TestCaseError> {
     let uniform = UniformOptions::new(level).faces_first(faces_first);
-    let expected = osd::refine_with(mesh, options, uniform, Precision::F64, false);
-    let actual = refiner::refine_with(mesh, options, uniform, Precision::F64, false);
+    let expected = osd::refine(mesh, options, subdiv::Request::from(uniform));
+    let actual = refiner::refine(mesh, options, subdiv::Request::from(uniform));
     match (expected, actual) {
         (Ok(e), Ok(a)) => {
             for c in compare(&a, &e) {

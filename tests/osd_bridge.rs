@@ -7,8 +7,8 @@ use glam::DVec3;
 use subdiv::compare::bbox_diagonal;
 use subdiv::osd::{self, Refiner};
 use subdiv::{
-    BoundaryInterpolation, Error, FVarLinearInterpolation, Mesh, MeshError, Options, Precision,
-    Scheme, UniformOptions, shapes,
+    BoundaryInterpolation, Buffer, Error, FVarLinearInterpolation, Mesh, MeshError, Options,
+    OsdError, OsdErrorKind, Precision, Scheme, UniformOptions, shapes,
 };
 
 fn refine1(mesh: &Mesh, options: &Options) -> Vec<DVec3> {
@@ -197,8 +197,13 @@ fn semi_sharp_crease_decays_by_one_per_level() {
 fn f32_and_f64_agree() {
     let torus = shapes::torus(12, 8);
     let opts = Options::default();
-    let a = osd::refine_with(&torus, &opts, UniformOptions::new(3), Precision::F32, false).unwrap();
-    let b = osd::refine_with(&torus, &opts, UniformOptions::new(3), Precision::F64, false).unwrap();
+    let a = osd::refine(
+        &torus,
+        &opts,
+        subdiv::Request::from(UniformOptions::new(3)).precision(Precision::F32),
+    )
+    .unwrap();
+    let b = osd::refine(&torus, &opts, subdiv::Request::from(UniformOptions::new(3))).unwrap();
     assert_eq!(a.levels, b.levels);
     let diag = bbox_diagonal(&b.positions[3]);
     let worst = a.positions[3]
@@ -302,27 +307,40 @@ fn limit_needs_full_topology_and_right_lengths() {
     let mut r = Refiner::new(&cube, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(1)).unwrap();
     let src = vec![0.0f64; 26 * 3];
-    assert!(
-        matches!(r.limit(3, &src), Err(Error::InvalidArgument(m)) if m.contains("full topology"))
-    );
+    assert!(matches!(r.limit(3, &src), Err(Error::NeedsFullTopology)));
     r.refine_uniform(UniformOptions::new(1).full_topology(true))
         .unwrap();
     assert!(r.limit(3, &src).is_ok());
     assert!(matches!(
         r.limit(3, &src[..10]),
-        Err(Error::InvalidArgument(_))
+        Err(Error::BufferLength {
+            expected: 78,
+            got: 10,
+            ..
+        })
     ));
     assert!(matches!(
         r.interpolate(1, 3, &[0.0f32; 5]),
-        Err(Error::InvalidArgument(_))
+        Err(Error::BufferLength {
+            buffer: Buffer::Source,
+            expected: 24,
+            got: 5
+        })
     ));
     assert!(matches!(
         r.interpolate(2, 3, &[0.0f32; 24]),
-        Err(Error::InvalidArgument(_))
+        Err(Error::NoSuchLevel {
+            level: 2,
+            first: 1,
+            last: 1
+        })
     ));
     assert!(matches!(
         r.interpolate_face_varying(0, 1, 2, &[0.0f64; 2]),
-        Err(Error::InvalidArgument(_))
+        Err(Error::NoSuchChannel {
+            channel: 0,
+            count: 0
+        })
     ));
     // The limit of a sphere-like closed cube lies inside the control hull.
     let levels = r
@@ -355,21 +373,21 @@ fn errors_not_crashes() {
     // The shim's own checks, without Rust's validation in front of them.
     let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
-        matches!(&err, Error::InvalidArgument(m) if m.contains("vertex index 99 is out of range")),
+        matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("vertex index 99 is out of range")),
         "{err}"
     );
     let mut bad = shapes::cube();
     bad.add_corner(8, 1.0);
     let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
-        matches!(&err, Error::InvalidArgument(m) if m.contains("corner 0")),
+        matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("corner 0")),
         "{err}"
     );
     let mut bad = shapes::cube_with_uvs();
     bad.fvar_channels[0].indices[3] = 1000;
     let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
-        matches!(&err, Error::InvalidArgument(m) if m.contains("value index 1000")),
+        matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("value index 1000")),
         "{err}"
     );
 
@@ -379,7 +397,7 @@ fn errors_not_crashes() {
     )
     .unwrap_err();
     assert!(
-        matches!(&err, Error::InvalidArgument(m) if m.contains("Loop scheme needs triangles")),
+        matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("Loop scheme needs triangles")),
         "{err}"
     );
 
@@ -388,7 +406,14 @@ fn errors_not_crashes() {
         r.refine_uniform(UniformOptions::new(16)),
         Err(Error::Level { level: 16, .. })
     ));
-    assert!(matches!(r.level(1), Err(Error::InvalidArgument(_))));
+    assert!(matches!(
+        r.level(1),
+        Err(Error::NoSuchLevel {
+            level: 1,
+            first: 0,
+            last: 0
+        })
+    ));
 }
 
 #[test]
@@ -504,21 +529,22 @@ fn base_level_fvar_limit_with_values_beyond_the_vertex_values_is_refused() {
     }];
     let options = Options::shape_file_defaults().with_scheme(subdiv::Scheme::Catmark);
     let uniform = UniformOptions::new(0);
-    let err = osd::refine_with(&mesh, &options, uniform, Precision::F64, true).unwrap_err();
+    let err = osd::refine(&mesh, &options, subdiv::Request::from(uniform).limit(true)).unwrap_err();
     let msg = err.to_string();
     assert!(
         msg.contains("value 7 of face 0 is beyond the 4 per-vertex values"),
         "{msg}"
     );
-    assert!(subdiv::refiner::refine_with(&mesh, &options, uniform, Precision::F64, true).is_ok());
+    assert!(
+        subdiv::refiner::refine(&mesh, &options, subdiv::Request::from(uniform).limit(true))
+            .is_ok()
+    );
     // Refined once, the values are renumbered and OpenSubdiv's limit is fine.
     assert!(
-        osd::refine_with(
+        osd::refine(
             &mesh,
             &options,
-            UniformOptions::new(1),
-            Precision::F64,
-            true
+            subdiv::Request::from(UniformOptions::new(1)).limit(true)
         )
         .is_ok()
     );

@@ -402,18 +402,12 @@ fn acceptable_for_valid_mesh(e: &Error) -> bool {
     )
 }
 
-/// The native engine on one case: `refine_with`, then the `Refiner` API
+/// The native engine on one case: `refiner::refine`, then the `Refiner` API
 /// (wrong arguments must be refused, stencils must reproduce interpolation).
 pub fn check_native(case: &MeshCase) {
     let mesh = &case.mesh;
     let validation = mesh.validate();
-    let result = refiner::refine_with(
-        mesh,
-        &case.options,
-        case.uniform(),
-        case.precision,
-        case.limit,
-    );
+    let result = refiner::refine(mesh, &case.options, subdiv::Request::from(case.uniform()).precision(case.precision).limit(case.limit));
     match (&validation, result) {
         (Err(v), Err(Error::Mesh(e))) => assert_eq!(
             v.to_string(),
@@ -551,7 +545,7 @@ pub fn osd_may_abort(mesh: &Mesh) -> bool {
 }
 
 /// The OpenSubdiv bridge on one case: first without Rust's validation (the
-/// shim's own checks must refuse every bad index), then `osd::refine_with`.
+/// shim's own checks must refuse every bad index), then `osd::refine`.
 #[cfg(feature = "osd")]
 pub fn check_osd(case: &MeshCase) {
     use subdiv::osd;
@@ -583,13 +577,7 @@ pub fn check_osd(case: &MeshCase) {
         }
     }
     let validation = mesh.validate();
-    let result = osd::refine_with(
-        mesh,
-        &case.options,
-        case.uniform(),
-        case.precision,
-        case.limit,
-    );
+    let result = osd::refine(mesh, &case.options, subdiv::Request::from(case.uniform()).precision(case.precision).limit(case.limit));
     match (&validation, result) {
         (Err(v), Err(Error::Mesh(e))) => assert_eq!(
             v.to_string(),
@@ -621,8 +609,8 @@ pub fn check_differential(case: &MeshCase) {
         return;
     }
     let uniform = case.uniform();
-    let native = refiner::refine_with(&case.mesh, &case.options, uniform, Precision::F64, false);
-    let reference = osd::refine_with(&case.mesh, &case.options, uniform, Precision::F64, false);
+    let native = refiner::refine(&case.mesh, &case.options, subdiv::Request::from(uniform));
+    let reference = osd::refine(&case.mesh, &case.options, subdiv::Request::from(uniform));
     match (native, reference) {
         (Ok(a), Ok(e)) => {
             for c in subdiv::compare::compare(&a, &e) {

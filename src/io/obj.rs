@@ -57,7 +57,7 @@ use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
 use crate::options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options, TriangleSubdivision,
 };
-use crate::refinement::Precision;
+use crate::real::Precision;
 use glam::DVec3;
 use std::borrow::Cow;
 use std::fmt;

@@ -20,7 +20,7 @@
 //! from zero, so `f64` results agree to the last bit.
 
 use super::Refiner;
-use crate::error::{Error, Result};
+use crate::error::{Buffer, Error, Result};
 use crate::options::Scheme;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood, crease};
@@ -62,31 +62,27 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let levels = self.fvar.get(channel).ok_or_else(|| {
-            Error::InvalidArgument(format!(
-                "face-varying channel {channel} does not exist (the mesh has {})",
-                self.fvar.len()
-            ))
+        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            channel,
+            count: self.fvar.len(),
         })?;
         if level == 0 || level > self.max_level() {
-            return Err(Error::InvalidArgument(format!(
-                "cannot interpolate to level {level}: refined levels are 1..={}",
-                self.max_level()
-            )));
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 1,
+                last: self.max_level(),
+            });
         }
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
         let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
         if src.len() != parent.value_count() * width {
-            return Err(Error::InvalidArgument(format!(
-                "source face-varying buffer has {} values, expected {} ({} values × {width})",
-                src.len(),
-                parent.value_count() * width,
-                parent.value_count()
-            )));
+            return Err(Error::BufferLength {
+                buffer: Buffer::FaceVaryingSource,
+                expected: parent.value_count() * width,
+                got: src.len(),
+            });
         }
         let mut dst = vec![T::ZERO; child.value_count() * width];
         self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
@@ -284,32 +280,24 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let levels = self.fvar.get(channel).ok_or_else(|| {
-            Error::InvalidArgument(format!(
-                "face-varying channel {channel} does not exist (the mesh has {})",
-                self.fvar.len()
-            ))
+        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            channel,
+            count: self.fvar.len(),
         })?;
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
         let level = self.levels.last().expect("base level");
         if !level.has_full_topology() {
-            return Err(Error::InvalidArgument(
-                "limit evaluation needs full topology in the last level (refine with full_topology_in_last_level)"
-                    .into(),
-            ));
+            return Err(Error::NeedsFullTopology);
         }
         let fvar = levels.last().expect("base channel");
         if src.len() != fvar.value_count() * width {
-            return Err(Error::InvalidArgument(format!(
-                "source face-varying buffer has {} values, expected {} ({} values × {width})",
-                src.len(),
-                fvar.value_count() * width,
-                fvar.value_count()
-            )));
+            return Err(Error::BufferLength {
+                buffer: Buffer::FaceVaryingSource,
+                expected: fvar.value_count() * width,
+                got: src.len(),
+            });
         }
         let mut dst = vec![T::ZERO; src.len()];
         let mut acc = vec![T::ZERO; width];

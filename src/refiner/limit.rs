@@ -2,9 +2,9 @@
 //! (OpenSubdiv's `PrimvarRefiner::Limit`).
 
 use super::Refiner;
-use crate::error::{Error, Result};
+use crate::error::{Buffer, Error, Result};
+use crate::output::LimitData;
 use crate::real::Real;
-use crate::refinement::LimitData;
 use crate::rules::{Mask, VertexNeighborhood};
 use crate::topology::Level;
 
@@ -183,25 +183,17 @@ impl Refiner {
     fn check_limit_source<T>(&self, width: usize, src: &[T]) -> Result<&Level> {
         let level = self.levels.last().expect("base level");
         if !level.has_full_topology() {
-            return Err(Error::InvalidArgument(
-                "limit evaluation needs full topology in the last level \
-                 (refine with full_topology_in_last_level, as OpenSubdiv requires)"
-                    .into(),
-            ));
+            return Err(Error::NeedsFullTopology);
         }
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
         if src.len() != level.vertex_count * width {
-            return Err(Error::InvalidArgument(format!(
-                "source primvar buffer has {} values, expected {} ({} vertices of level {} × {width})",
-                src.len(),
-                level.vertex_count * width,
-                level.vertex_count,
-                self.max_level()
-            )));
+            return Err(Error::BufferLength {
+                buffer: Buffer::Source,
+                expected: level.vertex_count * width,
+                got: src.len(),
+            });
         }
         Ok(level)
     }

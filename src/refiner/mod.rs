@@ -12,14 +12,16 @@
 //! # Ok::<(), subdiv::Error>(())
 //! ```
 
-use crate::error::{Error, Result};
-use crate::level::{FVarLevel, LevelCounts, LevelTopology};
+use crate::engine::Request;
+use crate::error::{Buffer, Element, Error, Result};
 use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
+use crate::options::{check_level, check_level_counts};
+use crate::output::Limit;
+use crate::output::Refinement as RefinementResult;
+use crate::output::{FVarTopology, LevelCounts, LevelTopology};
+use crate::real::Precision;
 use crate::real::Real;
-use crate::refinement::{
-    Limit, Precision, Refinement as RefinementResult, check_level, check_level_counts,
-};
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::FVarLevel as FVarChannelLevel;
 use crate::topology::{Build, Level, Refinement, Table, build_base_level, fvar, refine_level};
@@ -109,9 +111,11 @@ impl Refiner {
                 .enumerate()
                 .find(|&(_, n)| n != 3)
             {
-                return Err(Error::InvalidArgument(format!(
-                    "face {face} has {size} vertices; the Loop scheme needs triangles"
-                )));
+                return Err(Error::NotTriangles {
+                    scheme: Scheme::Loop,
+                    face,
+                    corners: size,
+                });
             }
         }
         if mesh.face_count() == 0 {
@@ -119,12 +123,10 @@ impl Refiner {
         }
         let base = build_base_level(mesh, options);
         if let Some(v) = crate::topology::unpaired_smooth_vertex(&base) {
-            return Err(Error::InvalidArgument(format!(
-                "vertex {v} has {} faces and {} edges but no sharp feature: OpenSubdiv cannot refine a smooth \
-                 vertex whose faces and edges do not pair up (a face names it twice)",
-                base.vertex_faces.count(v),
-                base.vertex_edges.count(v)
-            )));
+            return Err(Error::UnpairedSmoothVertex {
+                level: 0,
+                vertex: v,
+            });
         }
         let fvar = mesh
             .fvar_channels
@@ -230,10 +232,10 @@ impl Refiner {
             if smooth(p.vertex_tag(v).rule())
                 || smooth(c.vertex_tag(r.vertex_child(v) as usize).rule())
             {
-                return Err(Error::InvalidArgument(format!(
-                    "vertex {v} of level {l} becomes smooth although its faces and edges do not pair up \
-                     (a face names it twice): OpenSubdiv cannot refine it"
-                )));
+                return Err(Error::UnpairedSmoothVertex {
+                    level: l as u32,
+                    vertex: v,
+                });
             }
         }
         Ok(())
@@ -274,10 +276,12 @@ impl Refiner {
     pub fn vertex_faces_and_edges(&self, level: u32, v: usize) -> Result<(Vec<u32>, Vec<u32>)> {
         let l = self.internal_level(level)?;
         if v >= l.vertex_count {
-            return Err(Error::InvalidArgument(format!(
-                "vertex {v} does not exist (level {level} has {} vertices)",
-                l.vertex_count
-            )));
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v,
+                level,
+                count: l.vertex_count,
+            });
         }
         let mut buf = HoodBuf::default();
         let (faces, edges) = self.vertex_hood(level as usize, v, &mut buf);
@@ -293,10 +297,12 @@ impl Refiner {
     pub fn find_edge(&self, level: u32, v0: u32, v1: u32) -> Result<Option<u32>> {
         let l = self.internal_level(level)?;
         if v1 as usize >= l.vertex_count {
-            return Err(Error::InvalidArgument(format!(
-                "vertex {v1} does not exist (level {level} has {} vertices)",
-                l.vertex_count
-            )));
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v1 as usize,
+                level,
+                count: l.vertex_count,
+            });
         }
         // Every edge around `v0` has `v0` for an end; the other must be `v1`.
         let (_, edges) = self.vertex_faces_and_edges(level, v0 as usize)?;
@@ -329,10 +335,12 @@ impl Refiner {
     pub fn edge_faces(&self, level: u32, e: usize) -> Result<Vec<u32>> {
         let l = self.internal_level(level)?;
         if e >= l.edge_count() {
-            return Err(Error::InvalidArgument(format!(
-                "edge {e} does not exist (level {level} has {} edges)",
-                l.edge_count()
-            )));
+            return Err(Error::NoSuchElement {
+                element: Element::Edge,
+                index: e,
+                level,
+                count: l.edge_count(),
+            });
         }
         if !l.derived_relations && l.edge_faces.len() != l.edge_count() {
             return Ok(Vec::new());
@@ -347,12 +355,13 @@ impl Refiner {
 
     /// Internal topology of `level`.
     pub fn internal_level(&self, level: u32) -> Result<&Level> {
-        self.levels.get(level as usize).ok_or_else(|| {
-            Error::InvalidArgument(format!(
-                "level {level} does not exist (refined levels are 0..={})",
-                self.max_level()
-            ))
-        })
+        self.levels
+            .get(level as usize)
+            .ok_or_else(|| Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level(),
+            })
     }
 
     /// The topology of `level` as OpenSubdiv reports it (edge-vertices of the
@@ -394,7 +403,7 @@ impl Refiner {
             fvar: self
                 .fvar
                 .iter()
-                .map(|channel| FVarLevel {
+                .map(|channel| FVarTopology {
                     value_count: channel[level as usize].value_count(),
                     face_values: channel[level as usize].face_values().to_vec(),
                 })
@@ -433,33 +442,30 @@ impl Refiner {
 
     fn check_buffers<T>(&self, level: u32, width: usize, src: &[T], dst: &[T]) -> Result<()> {
         if level == 0 || level > self.max_level() {
-            return Err(Error::InvalidArgument(format!(
-                "cannot interpolate to level {level}: refined levels are 1..={}",
-                self.max_level()
-            )));
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 1,
+                last: self.max_level(),
+            });
         }
         if width == 0 {
-            return Err(Error::InvalidArgument(
-                "primvar width must be at least 1".into(),
-            ));
+            return Err(Error::ZeroWidth);
         }
         let (n_src, n_dst) = (
             self.levels[level as usize - 1].vertex_count,
             self.levels[level as usize].vertex_count,
         );
-        if src.len() != n_src * width {
-            return Err(Error::InvalidArgument(format!(
-                "source primvar buffer has {} values, expected {} ({n_src} vertices × {width})",
-                src.len(),
-                n_src * width
-            )));
-        }
-        if dst.len() != n_dst * width {
-            return Err(Error::InvalidArgument(format!(
-                "destination primvar buffer has {} values, expected {} ({n_dst} vertices × {width})",
-                dst.len(),
-                n_dst * width
-            )));
+        for (buffer, expected, got) in [
+            (Buffer::Source, n_src * width, src.len()),
+            (Buffer::Destination, n_dst * width, dst.len()),
+        ] {
+            if got != expected {
+                return Err(Error::BufferLength {
+                    buffer,
+                    expected,
+                    got,
+                });
+            }
         }
         Ok(())
     }
@@ -800,12 +806,15 @@ pub fn refine_last<T: Real>(
     check_level(mesh, options, uniform.level)?;
     let mut r = Refiner::new(mesh, options)?;
     r.fvar.clear();
-    if width == 0 || base.len() != r.levels[0].vertex_count * width {
-        return Err(Error::InvalidArgument(format!(
-            "base data of {} values does not fit {} vertices of width {width}",
-            base.len(),
-            r.levels[0].vertex_count
-        )));
+    if width == 0 {
+        return Err(Error::ZeroWidth);
+    }
+    if base.len() != r.levels[0].vertex_count * width {
+        return Err(Error::BufferLength {
+            buffer: Buffer::Base,
+            expected: r.levels[0].vertex_count * width,
+            got: base.len(),
+        });
     }
     let mut counts = vec![r.level_counts(0)?];
     let mut data = Table::from_slice(base);
@@ -837,28 +846,32 @@ pub fn refine_last<T: Real>(
     Ok((counts, data))
 }
 
-/// Refines a mesh uniformly with the native engine and interpolates positions
-/// in `f64`.
-pub fn refine(mesh: &Mesh, options: &Options, uniform: UniformOptions) -> Result<RefinementResult> {
-    refine_with(mesh, options, uniform, Precision::F64, false)
-}
-
-/// Refines a mesh uniformly with the native engine, interpolating in `precision`.
-pub fn refine_with(
+/// Refines a mesh uniformly with the native engine as `request` says (a
+/// [`UniformOptions`] is a request in `f64` without limits): the topology,
+/// positions and face-varying values of every level, and limit values at
+/// the last level when asked. [`crate::Engine::refine`] does the same with
+/// either engine.
+///
+/// ```
+/// use subdiv::{refiner, shapes, Options, Precision, Request, UniformOptions};
+/// let cube = shapes::cube();
+/// let r = refiner::refine(&cube, &Options::default(), UniformOptions::new(2))?;
+/// assert_eq!(r.positions[2].len(), 98);
+/// let with_limit = refiner::refine(&cube, &Options::default(), Request::new(1).limit(true))?;
+/// assert_eq!(with_limit.limit.unwrap().positions.len(), 26);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn refine(
     mesh: &Mesh,
     options: &Options,
-    uniform: UniformOptions,
-    precision: Precision,
-    limit: bool,
+    request: impl Into<Request>,
 ) -> Result<RefinementResult> {
+    let request = request.into();
+    let (precision, limit) = (request.precision, request.limit);
+    // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
+    let uniform = request.effective_uniform();
     check_level(mesh, options, uniform.level)?;
     let mut refiner = Refiner::new(mesh, options)?;
-    // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
-    let uniform = if limit {
-        uniform.full_topology(true)
-    } else {
-        uniform
-    };
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)
         .map(|l| refiner.level(l))
@@ -892,7 +905,7 @@ pub fn refine_with(
                 let narrow: Vec<f32> = last.iter().map(|&x| x as f32).collect();
                 let d = refiner.limit(3, &narrow)?;
                 let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
-                crate::refinement::LimitData {
+                crate::output::LimitData {
                     positions: widen(d.positions),
                     du: widen(d.du),
                     dv: widen(d.dv),

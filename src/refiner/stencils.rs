@@ -3,7 +3,7 @@
 
 use super::limit::LimitMasks;
 use super::{Kind, Refiner, Source};
-use crate::error::Result;
+use crate::error::{Buffer, Error, Result};
 use crate::real::Real;
 use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
@@ -198,9 +198,7 @@ impl Refiner {
     pub fn limit_stencil_table(&self) -> Result<LimitStencilTable> {
         let last = self.levels.len() - 1;
         if !self.levels[last].has_full_topology() {
-            return Err(crate::Error::InvalidArgument(
-                "limit stencils need full topology in the last level (refine with full_topology_in_last_level)".into(),
-            ));
+            return Err(crate::Error::NeedsFullTopology);
         }
         let rows = self.rows_of_level::<f64>(last);
         let level = &self.levels[last];
@@ -305,14 +303,20 @@ impl<T: crate::Real> FactorizedStencils<T> {
     /// writing the last level into `out`; the faces and the rest of each level
     /// are computed in parallel (rayon).
     pub fn apply_into(&self, width: usize, base: &[T], out: &mut [T]) -> Result<()> {
-        if width == 0 || base.len() != self.base_count * width || out.len() != self.len() * width {
-            return Err(crate::Error::InvalidArgument(format!(
-                "buffers of {} and {} values do not fit {} base and {} refined vertices of width {width}",
-                base.len(),
-                out.len(),
-                self.base_count,
-                self.len()
-            )));
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        for (buffer, expected, got) in [
+            (Buffer::Base, self.base_count * width, base.len()),
+            (Buffer::Output, self.len() * width, out.len()),
+        ] {
+            if got != expected {
+                return Err(Error::BufferLength {
+                    buffer,
+                    expected,
+                    got,
+                });
+            }
         }
         if self.steps.is_empty() {
             out.copy_from_slice(base);

@@ -6,18 +6,10 @@ use std::str::FromStr;
 use subdiv::io::ShapeFile;
 use subdiv::{
     BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh, Options,
-    Precision, Scheme, TriangleSubdivision,
+    ParseNameError, Precision, Scheme, TriangleSubdivision,
 };
 
 use crate::Failure;
-
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub(crate) enum Engine {
-    /// The pure-Rust engine.
-    Native,
-    /// OpenSubdiv through the C++ bridge.
-    Osd,
-}
 
 /// `--scheme`: one of OpenSubdiv's schemes, or Doo-Sabin (native engine only).
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -29,18 +21,16 @@ pub(crate) enum SchemeArg {
 }
 
 impl FromStr for SchemeArg {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = ParseNameError;
+    fn from_str(s: &str) -> Result<Self, ParseNameError> {
         if s == "doo-sabin" {
             return Ok(SchemeArg::DooSabin);
         }
-        // OpenSubdiv's message, with doo-sabin added to the list.
-        s.parse::<Scheme>()
-            .map(SchemeArg::Osd)
-            .map_err(|e| match e.strip_suffix(')') {
-                Some(head) => format!("{head}, doo-sabin)"),
-                None => e,
-            })
+        // OpenSubdiv's schemes, with doo-sabin added to the list.
+        s.parse::<Scheme>().map(SchemeArg::Osd).map_err(|mut e| {
+            e.expected.push("doo-sabin");
+            e
+        })
     }
 }
 
@@ -106,8 +96,9 @@ pub(crate) fn parse_levels(s: &str) -> Result<(u32, u32), String> {
     Ok((a, b))
 }
 
-pub(crate) fn parse<T: std::str::FromStr<Err = String>>(s: &str) -> Result<T, String> {
-    s.parse()
+/// A named option value, for clap (`value_parser = parse::<T>`).
+pub(crate) fn parse<T: FromStr<Err = ParseNameError>>(s: &str) -> Result<T, String> {
+    s.parse().map_err(|e: ParseNameError| e.to_string())
 }
 
 /// Loads the input: a file (tags applied over the shape-file defaults) or a built-in shape.
@@ -119,7 +110,7 @@ pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> 
         ),
         (None, Some(name)) => {
             let mesh = subdiv::shapes::by_name(name).ok_or_else(|| {
-                Error::InvalidArgument(format!(
+                Failure::Message(format!(
                     "unknown built-in shape '{name}' (known: {})",
                     subdiv::shapes::NAMES.join(", ")
                 ))

@@ -1,12 +1,10 @@
 //! `subdiv compare`: both engines, level by level.
 
 use clap::Args;
-use subdiv::{Error, UniformOptions};
+use subdiv::{Engine, Request};
 
 use crate::Failure;
 use crate::args::*;
-
-use crate::refine::run_engine;
 
 #[derive(Args)]
 pub(crate) struct CompareArgs {
@@ -56,24 +54,12 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     }
     let (name, mesh, options) = load(&args.mesh)?;
     let (first, last) = args.levels;
-    subdiv::refinement::check_level(&mesh, &options, last)?;
-    let uniform = UniformOptions::new(last).faces_first(args.mesh.faces_first);
-    let native = run_engine(
-        Engine::Native,
-        &mesh,
-        &options,
-        uniform,
-        args.mesh.precision,
-        false,
-    )?;
-    let osd = run_engine(
-        Engine::Osd,
-        &mesh,
-        &options,
-        uniform,
-        args.mesh.precision,
-        false,
-    )?;
+    subdiv::options::check_level(&mesh, &options, last)?;
+    let request = Request::new(last)
+        .faces_first(args.mesh.faces_first)
+        .precision(args.mesh.precision);
+    let native = Engine::Native.refine(&mesh, &options, request)?;
+    let osd = Engine::Osd.refine(&mesh, &options, request)?;
     let rows: Vec<CompareRow> = subdiv::compare::compare(&native, &osd)
         .into_iter()
         .filter(|c| c.level >= first)
@@ -113,7 +99,7 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     };
     if args.json {
         let text = serde_json::to_string_pretty(&report)
-            .map_err(|e| Error::InvalidArgument(format!("cannot encode the report: {e}")))?;
+            .map_err(|e| Failure::Message(format!("cannot encode the report: {e}")))?;
         outln!("{text}");
     } else {
         outln!(

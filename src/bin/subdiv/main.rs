@@ -3,7 +3,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 use std::time::Instant;
-use subdiv::{Error, Options, Precision, UniformOptions};
+use subdiv::{Engine, Error, Options, Request};
 
 /// `println!` that ends the process quietly when stdout is closed (a pipe
 /// into `head`), instead of panicking on the broken pipe.
@@ -34,11 +34,10 @@ mod date;
 mod refine;
 mod report;
 
-use args::*;
 use bench::BenchArgs;
 use compare::CompareArgs;
 use curve::CurveArgs;
-use refine::{RefineArgs, engine_name, refinement_counts, run_engine, summary};
+use refine::{RefineArgs, refinement_counts, summary};
 use report::ReportArgs;
 
 #[derive(Parser)]
@@ -72,6 +71,7 @@ pub(crate) enum Command {
 }
 
 /// Why the tool stopped.
+#[derive(Debug)]
 pub(crate) enum Failure {
     /// A real error: exit 1.
     Error(Error),
@@ -85,11 +85,14 @@ pub(crate) enum Failure {
 
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
-        Failure::Error(e)
+        match e {
+            Error::EngineUnavailable { .. } => Failure::Unavailable(e.to_string()),
+            e => Failure::Error(e),
+        }
     }
 }
 
-pub(crate) fn main() -> ExitCode {
+fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Refine(args) => refine::refine(&args),
@@ -134,16 +137,12 @@ pub(crate) fn demo() -> Result<(), Failure> {
     let mesh = subdiv::shapes::cube();
     let options = Options::shape_file_defaults();
     let mut ran = 0;
-    for engine in [Engine::Native, Engine::Osd] {
+    for &engine in Engine::ALL {
         let start = Instant::now();
-        match run_engine(
-            engine,
-            &mesh,
-            &options,
-            UniformOptions::new(2),
-            Precision::F64,
-            false,
-        ) {
+        match engine
+            .refine(&mesh, &options, Request::new(2))
+            .map_err(Failure::from)
+        {
             Ok(r) => {
                 outln!(
                     "{}",
@@ -160,7 +159,7 @@ pub(crate) fn demo() -> Result<(), Failure> {
                 ran += 1;
             }
             Err(Failure::Unavailable(msg)) => {
-                outln!("builtin:cube ({}): skipped: {msg}", engine_name(engine))
+                outln!("builtin:cube ({engine}): skipped: {msg}")
             }
             Err(e) => return Err(e),
         }

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv::io::{ObjOutput, UvOutput};
 use subdiv::topology::Table;
-use subdiv::{Error, Mesh, Options, Precision, Refinement, UniformOptions};
+use subdiv::{
+    Engine, Error, LevelRefusal, Mesh, Options, Precision, Refinement, Request, UniformOptions,
+};
 
 use crate::Failure;
 use crate::args::*;
@@ -20,8 +22,8 @@ pub(crate) struct RefineArgs {
     /// Refinement level (0..=10).
     #[arg(long, default_value_t = 2)]
     pub(crate) level: u32,
-    /// Refinement engine.
-    #[arg(long, value_enum, default_value = "native")]
+    /// Refinement engine: native or osd.
+    #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
     pub(crate) engine: Engine,
     /// Write limit positions (and limit face-varying values) instead of refined ones.
     #[arg(long)]
@@ -35,46 +37,6 @@ pub(crate) struct RefineArgs {
     /// Print the process's peak memory (bytes) on stderr at the end (for `subdiv bench`).
     #[arg(long, hide = true)]
     pub(crate) peak_memory: bool,
-}
-
-pub(crate) fn run_engine(
-    engine: Engine,
-    mesh: &Mesh,
-    options: &Options,
-    uniform: UniformOptions,
-    precision: Precision,
-    limit: bool,
-) -> Result<Refinement, Failure> {
-    match engine {
-        Engine::Native => {
-            match subdiv::refiner::refine_with(mesh, options, uniform, precision, limit) {
-                Ok(r) => Ok(r),
-                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
-                    "native engine: {msg}; use --engine osd"
-                ))),
-                Err(e) => Err(e.into()),
-            }
-        }
-        #[cfg(feature = "osd")]
-        Engine::Osd => Ok(subdiv::osd::refine_with(
-            mesh, options, uniform, precision, limit,
-        )?),
-        #[cfg(not(feature = "osd"))]
-        Engine::Osd => {
-            let _ = (mesh, options, uniform, precision, limit);
-            Err(Failure::Unavailable(
-                "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
-                    .into(),
-            ))
-        }
-    }
-}
-
-pub(crate) fn engine_name(engine: Engine) -> &'static str {
-    match engine {
-        Engine::Native => "native",
-        Engine::Osd => "osd",
-    }
 }
 
 /// Vertex and face counts of every level of a refinement.
@@ -105,7 +67,7 @@ pub(crate) fn summary(
         "{name}: {} level {} ({}, {}): vertices {}, faces {}{}; {:.3} ms",
         options.scheme,
         counts.len().saturating_sub(1),
-        engine_name(engine),
+        engine,
         precision,
         join(|c| c.0),
         join(|c| c.1),
@@ -114,77 +76,21 @@ pub(crate) fn summary(
     )
 }
 
-/// `refine` without an output file (and without limits or face-varying
-/// data): the topology of every level and the positions of the last, through
-/// the engine's own refiner (natively [`subdiv::refiner::refine_last`], which
-/// releases each level once the next exists; OpenSubdiv keeps every level),
-/// without building output tables nobody reads.
-/// Returns the vertex and face counts of every level.
-pub(crate) fn refine_counts(
-    engine: Engine,
-    mesh: &Mesh,
-    options: &Options,
-    uniform: UniformOptions,
-    precision: Precision,
-) -> Result<Vec<(usize, usize)>, Failure> {
-    match engine {
-        Engine::Native => {
-            let run = || -> subdiv::Result<Vec<(usize, usize)>> {
-                use subdiv::refiner::refine_last;
-                let counts = match precision {
-                    Precision::F64 => {
-                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f64>())?.0
-                    }
-                    Precision::F32 => {
-                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f32>())?.0
-                    }
-                };
-                Ok(counts.iter().map(|c| (c.vertices, c.faces)).collect())
-            };
-            match run() {
-                Ok(c) => Ok(c),
-                Err(Error::Unavailable(msg)) => Err(Failure::Unavailable(format!(
-                    "native engine: {msg}; use --engine osd"
-                ))),
-                Err(e) => Err(e.into()),
-            }
-        }
-        #[cfg(feature = "osd")]
-        Engine::Osd => {
-            let mut r = subdiv::osd::Refiner::new(mesh, options)?;
-            r.refine_uniform(uniform)?;
-            match precision {
-                Precision::F64 => drop(r.interpolate_last(3, &mesh.flat_positions::<f64>())?),
-                Precision::F32 => drop(r.interpolate_last(3, &mesh.flat_positions::<f32>())?),
-            }
-            Ok((0..=uniform.level)
-                .map(|l| r.level_counts(l).map(|c| (c.vertices, c.faces)))
-                .collect::<subdiv::Result<_>>()?)
-        }
-        #[cfg(not(feature = "osd"))]
-        Engine::Osd => {
-            let _ = (mesh, options, uniform, precision);
-            Err(Failure::Unavailable(
-                "this build has no OpenSubdiv bridge (rebuild with the default feature `osd`)"
-                    .into(),
-            ))
-        }
-    }
-}
-
 pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
     if args.mesh.scheme == SchemeArg::DooSabin {
         return refine_doo_sabin(args);
     }
     if args.doo_sabin_weights.is_some() || args.doo_sabin_boundary.is_some() {
-        return Err(Error::InvalidArgument(
+        return Err(Failure::Message(
             "--doo-sabin-weights and --doo-sabin-boundary need --scheme doo-sabin".into(),
-        )
-        .into());
+        ));
     }
     let (name, mesh, options) = load(&args.mesh)?;
-    let uniform = UniformOptions::new(args.level).faces_first(args.mesh.faces_first);
-    subdiv::refinement::check_level(&mesh, &options, args.level)?;
+    let request = Request::new(args.level)
+        .faces_first(args.mesh.faces_first)
+        .precision(args.mesh.precision)
+        .limit(args.limit);
+    subdiv::options::check_level(&mesh, &options, args.level)?;
     let start = Instant::now();
     // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
     let name_errors = |f: Failure| match f {
@@ -193,8 +99,13 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
     };
     let precision = args.mesh.precision;
     if args.output.is_none() && !args.limit && mesh.fvar_channels.is_empty() {
-        let counts =
-            refine_counts(args.engine, &mesh, &options, uniform, precision).map_err(name_errors)?;
+        let counts: Vec<(usize, usize)> = args
+            .engine
+            .refine_counts(&mesh, &options, request)
+            .map_err(|e| name_errors(e.into()))?
+            .iter()
+            .map(|c| (c.vertices, c.faces))
+            .collect();
         let seconds = start.elapsed().as_secs_f64();
         outln!(
             "{}",
@@ -209,10 +120,13 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
             )
         );
     } else if let (Engine::Native, false, Some(path)) = (args.engine, args.limit, &args.output) {
-        write_native_last(path, &mesh, &options, uniform, precision).map_err(name_errors)?;
-    } else {
-        let r = run_engine(args.engine, &mesh, &options, uniform, precision, args.limit)
+        write_native_last(path, &mesh, &options, request.uniform, precision)
             .map_err(name_errors)?;
+    } else {
+        let r = args
+            .engine
+            .refine(&mesh, &options, request)
+            .map_err(|e| name_errors(e.into()))?;
         let seconds = start.elapsed().as_secs_f64();
         match &args.output {
             Some(path) => write_output(path, &r)?,
@@ -246,7 +160,7 @@ pub(crate) fn peak_memory() -> Option<u64> {
 /// `refine -o` natively without `--limit`: only the last level's positions
 /// and face-varying values are kept (each level's data is dropped once the
 /// next exists) and the last level's faces are written straight from the
-/// refiner, instead of [`subdiv::refiner::refine_with`]'s copies of every
+/// refiner, instead of [`subdiv::Engine::refine`]'s copies of every
 /// level. The file is the same, byte for byte.
 pub(crate) fn write_native_last(
     path: &Path,
@@ -367,16 +281,17 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
         (m.faces_first, "--faces-first"),
     ] {
         if given {
-            return Err(Error::InvalidArgument(format!(
+            return Err(Failure::Message(format!(
                 "{flag} does not apply to --scheme doo-sabin (see --doo-sabin-weights and --doo-sabin-boundary)"
-            ))
-            .into());
+            )));
         }
     }
     if args.level > subdiv::MAX_LEVEL {
         return Err(Error::Level {
             level: args.level,
-            reason: format!("the deepest supported level is {}", subdiv::MAX_LEVEL),
+            reason: LevelRefusal::TooDeep {
+                max: subdiv::MAX_LEVEL,
+            },
         }
         .into());
     }
@@ -389,7 +304,7 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
         let msg =
             format!("{name}: doo-sabin ignores creases, corners, holes and texture coordinates");
         if args.mesh.strict {
-            return Err(Error::InvalidArgument(format!("{msg} (--strict)")).into());
+            return Err(Failure::Message(format!("{msg} (--strict)")));
         }
         eprintln!("subdiv: warning: {msg}");
     }

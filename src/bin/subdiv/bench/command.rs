@@ -77,7 +77,7 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         };
         std::fs::create_dir_all(dir).map_err(io)?;
         let json = serde_json::to_string_pretty(&report)
-            .map_err(|e| Error::InvalidArgument(e.to_string()))?;
+            .map_err(|e| Failure::Message(format!("cannot encode the report: {e}")))?;
         for (name, body) in [
             ("bench.md", text.clone()),
             ("bench.json", json),

@@ -1,6 +1,7 @@
 //! The parallel-use section: many frames of one mesh, many meshes.
 
 use super::*;
+use crate::Failure;
 use std::hint::black_box;
 use subdiv::mesh::Mesh;
 use subdiv::options::{Options, Scheme, UniformOptions};
@@ -85,8 +86,8 @@ pub(crate) fn first_difference(native: &[f32], osd: &[f32]) -> Option<String> {
         })
 }
 
-pub(crate) fn differ(what: &str, difference: String) -> subdiv::Error {
-    subdiv::Error::InvalidArgument(format!(
+pub(crate) fn differ(what: &str, difference: String) -> Failure {
+    Failure::Message(format!(
         "parallel-use benchmark refused: the engines' {what} differ ({difference}), so their times would not measure the same work"
     ))
 }
@@ -123,7 +124,7 @@ pub fn frames_row(
     frames: &[Vec<f32>],
     level: u32,
     reps: usize,
-) -> Result<ParallelRow> {
+) -> Result<ParallelRow, Failure> {
     let options = Options::default().with_scheme(input.scheme);
     let uniform = UniformOptions::new(level);
     let mut n = refiner::Refiner::new(&input.mesh, &options)?;
@@ -169,7 +170,7 @@ pub fn meshes_row(
     meshes: &[BenchShape],
     level: u32,
     reps: usize,
-) -> Result<ParallelRow> {
+) -> Result<ParallelRow, Failure> {
     let uniform = UniformOptions::new(level);
     let jobs: Vec<(&Mesh, Options, Vec<f32>)> = meshes
         .iter()

@@ -65,11 +65,10 @@ pub fn interleaved_processes(
 pub(crate) fn obj_writer_rate(input: &BenchShape) -> String {
     let options = Options::default().with_scheme(input.scheme);
     let uniform = UniformOptions::new(input.max_level);
-    let r =
-        match subdiv::refiner::refine_with(&input.mesh, &options, uniform, Precision::F64, false) {
-            Ok(r) => r,
-            Err(e) => return format!("\nOBJ writer: skipped ({e})\n"),
-        };
+    let r = match subdiv::refiner::refine(&input.mesh, &options, uniform) {
+        Ok(r) => r,
+        Err(e) => return format!("\nOBJ writer: skipped ({e})\n"),
+    };
     let dir = match tempfile::tempdir() {
         Ok(d) => d,
         Err(e) => return format!("\nOBJ writer: skipped: no temporary directory ({e})\n"),

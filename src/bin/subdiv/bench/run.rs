@@ -1,6 +1,7 @@
 //! The in-process comparisons of `subdiv bench`.
 
 use super::*;
+use crate::Failure;
 use std::hint::black_box;
 use subdiv::options::{Options, UniformOptions};
 use subdiv::shapes::BenchShape;
@@ -13,16 +14,14 @@ pub fn run(
     quick: bool,
     threads: usize,
     mut progress: impl FnMut(&str),
-) -> Result<Report> {
+) -> Result<Report, Failure> {
     // Each repetition runs both engines twice (see `interleaved`).
     let reps = if quick { 3 } else { 5 };
     let mut rows = Vec::new();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.max(1))
         .build()
-        .map_err(|e| {
-            subdiv::Error::InvalidArgument(format!("cannot start {threads} threads: {e}"))
-        })?;
+        .map_err(|e| Failure::Message(format!("cannot start {threads} threads: {e}")))?;
     let bandwidth = pool.install(measure_bandwidth);
     let mut stencil_bandwidth = None;
     let mut osd_alone = Vec::new();

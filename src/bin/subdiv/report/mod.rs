@@ -5,8 +5,8 @@
 //!
 //! For each [`Input`], [`run`]:
 //!
-//! - refines the mesh with both engines ([`refiner::refine_with`] and
-//!   [`osd::refine_with`]) for every option set of [`option_sets`] and
+//! - refines the mesh with both engines ([`subdiv::Engine::refine`]) for
+//!   every option set of [`option_sets`] and
 //!   compares them level by level ([`crate::compare::compare`]): topology,
 //!   positions relative to the bounding-box diagonal, face-varying values;
 //!   then evaluates the limit at the last level with both and compares limit

@@ -3,9 +3,9 @@
 use super::*;
 use glam::{DVec2, DVec3};
 use std::fmt::Write as _;
+use subdiv::Refinement;
 use subdiv::compare::bbox_diagonal;
 use subdiv::io::svg::{Projection, escape};
-use subdiv::refinement::Refinement;
 
 /// The native refined shape at the deepest level with at most
 /// [`MAX_PICTURE_FACES`] faces, shaded, each face coloured by the largest

@@ -1,15 +1,14 @@
 //! Running the report: comparisons, limits and timings.
 
 use super::*;
+use crate::Failure;
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Instant;
 use subdiv::compare::{bbox_diagonal, compare};
-use subdiv::level::LevelTopology;
 use subdiv::mesh::Mesh;
-use subdiv::options::{Options, Scheme, UniformOptions};
-use subdiv::refinement::{Precision, Refinement, check_level};
-use subdiv::{Error, Result, osd, refiner};
+use subdiv::options::{Options, Scheme, UniformOptions, check_level};
+use subdiv::{Engine, LevelTopology, Refinement, Request, Result, osd, refiner};
 
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs
@@ -29,16 +28,16 @@ pub fn run(
     inputs: &[Input],
     settings: &Settings,
     mut progress: impl FnMut(&str),
-) -> Result<Report> {
+) -> std::result::Result<Report, Failure> {
     let start = Instant::now();
     if settings.first_level > settings.last_level {
-        return Err(Error::InvalidArgument(format!(
+        return Err(Failure::Message(format!(
             "the level range {}..{} is empty",
             settings.first_level, settings.last_level
         )));
     }
     if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
-        return Err(Error::InvalidArgument(format!(
+        return Err(Failure::Message(format!(
             "the tolerance {} is not a non-negative number",
             settings.tolerance
         )));
@@ -48,7 +47,7 @@ pub fn run(
         input
             .mesh
             .validate()
-            .map_err(|e| Error::InvalidArgument(format!("{}: invalid mesh: {e}", input.name)))?;
+            .map_err(|e| Failure::Message(format!("{}: invalid mesh: {e}", input.name)))?;
         let sets = option_sets(input, settings.quick);
         for o in &sets {
             check_level(&input.mesh, o, settings.last_level)?;
@@ -58,7 +57,7 @@ pub fn run(
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
-        .map_err(|e| Error::InvalidArgument(format!("cannot start a thread pool: {e}")))?;
+        .map_err(|e| Failure::Message(format!("cannot start a thread pool: {e}")))?;
     let mut reports = Vec::with_capacity(inputs.len());
     for (input, sets) in inputs.iter().zip(plans) {
         reports.push(run_input(input, sets, settings, &pool, &mut progress)?);
@@ -154,13 +153,17 @@ pub(crate) fn compare_set(
         limit: None,
         error: None,
     };
-    let uniform = UniformOptions::new(settings.last_level);
     let both = |limit: bool| -> std::result::Result<(Refinement, Refinement), String> {
-        let n = refiner::refine_with(mesh, options, uniform, Precision::F64, limit)
-            .map_err(|e| format!("native engine{}: {e}", if limit { " (limit)" } else { "" }))?;
-        let o = osd::refine_with(mesh, options, uniform, Precision::F64, limit)
-            .map_err(|e| format!("osd engine{}: {e}", if limit { " (limit)" } else { "" }))?;
-        Ok((n, o))
+        let request = Request::new(settings.last_level).limit(limit);
+        let run = |engine: Engine| {
+            engine.refine(mesh, options, request).map_err(|e| {
+                format!(
+                    "{engine} engine{}: {e}",
+                    if limit { " (limit)" } else { "" }
+                )
+            })
+        };
+        Ok((run(Engine::Native)?, run(Engine::Osd)?))
     };
     let pair = match both(false) {
         Ok(pair) => pair,

@@ -1,0 +1,158 @@
+//! What both engines return: the topology of each level ([`LevelTopology`],
+//! [`LevelCounts`]), a whole uniform refinement ([`Refinement`]) and limit
+//! values ([`Limit`], [`LimitData`]). The types are engine-neutral, so
+//! [`crate::compare`] never cares which engine produced what.
+
+use crate::options::{Options, UniformOptions};
+use crate::real::Precision;
+use glam::DVec3;
+
+/// Face-varying topology of one channel at one level.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FVarTopology {
+    /// Number of distinct values in the channel at this level.
+    pub value_count: usize,
+    /// The value index of every face corner, parallel to [`LevelTopology::face_vertices`].
+    pub face_values: Vec<u32>,
+}
+
+/// The topology of one level of a refinement, in OpenSubdiv's order.
+///
+/// OpenSubdiv builds only the face-vertex relation of the last level unless
+/// it is refined with full topology, so `edge_vertices` is empty there;
+/// `edge_count` and the sharpness tables are always present.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LevelTopology {
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// Number of edges.
+    pub edge_count: usize,
+    /// Start of each face in `face_vertices`, plus one final entry.
+    pub face_offsets: Vec<u32>,
+    /// Vertex indices of all faces, concatenated.
+    pub face_vertices: Vec<u32>,
+    /// The two vertices of every edge (empty in a last level without full topology).
+    pub edge_vertices: Vec<[u32; 2]>,
+    /// Sharpness of every edge.
+    pub edge_sharpness: Vec<f32>,
+    /// Sharpness of every vertex.
+    pub vertex_sharpness: Vec<f32>,
+    /// Whether each face is a hole.
+    pub face_holes: Vec<bool>,
+    /// Face-varying topology of every channel.
+    pub fvar: Vec<FVarTopology>,
+}
+
+impl LevelTopology {
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+
+    /// The vertices of face `f`.
+    ///
+    /// # Panics
+    /// If `f >= face_count()`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_vertices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+
+    /// Iterates over the faces' vertex lists.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.face_offsets
+            .windows(2)
+            .map(move |w| &self.face_vertices[w[0] as usize..w[1] as usize])
+    }
+}
+
+/// Element counts of one level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LevelCounts {
+    /// Vertices.
+    pub vertices: usize,
+    /// Edges.
+    pub edges: usize,
+    /// Faces.
+    pub faces: usize,
+    /// Face corners (face-vertex incidences).
+    pub face_vertices: usize,
+    /// Whether the level has all topological relations; `false` for a last
+    /// level refined without full topology, which has no edge-vertex table.
+    pub full_topology: bool,
+}
+
+/// Limit values and both tangents of one primvar (`width` components per
+/// vertex) at the vertices of one level.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LimitData<T> {
+    /// Limit values, `width` per vertex.
+    pub positions: Vec<T>,
+    /// First tangents, `width` per vertex.
+    pub du: Vec<T>,
+    /// Second tangents, `width` per vertex.
+    pub dv: Vec<T>,
+}
+
+/// Limit positions, tangents and face-varying values at the vertices of one level.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Limit {
+    /// Limit position of every vertex.
+    pub positions: Vec<DVec3>,
+    /// First tangent (`du`) of every vertex.
+    pub du: Vec<DVec3>,
+    /// Second tangent (`dv`) of every vertex.
+    pub dv: Vec<DVec3>,
+    /// Limit values of every face-varying channel, flattened like [`crate::FVarChannel::values`].
+    pub fvar_values: Vec<Vec<f64>>,
+}
+
+impl Limit {
+    /// Unit normals `du × dv` (zero where the tangents are degenerate).
+    pub fn normals(&self) -> Vec<DVec3> {
+        self.du
+            .iter()
+            .zip(&self.dv)
+            .map(|(a, b)| a.cross(*b).normalize_or_zero())
+            .collect()
+    }
+}
+
+/// A mesh refined uniformly: the topology and the interpolated data of every level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refinement {
+    /// The options the mesh was refined with.
+    pub options: Options,
+    /// The uniform refinement options.
+    pub uniform: UniformOptions,
+    /// The precision primvars were interpolated in.
+    pub precision: Precision,
+    /// Topology of levels `0..=uniform.level`.
+    pub levels: Vec<LevelTopology>,
+    /// Vertex positions of every level.
+    pub positions: Vec<Vec<DVec3>>,
+    /// Widths of the face-varying channels.
+    pub fvar_widths: Vec<usize>,
+    /// Face-varying values of every level and channel: `fvar_values[level][channel]`.
+    pub fvar_values: Vec<Vec<Vec<f64>>>,
+    /// Limit data at the last level, when it was asked for.
+    pub limit: Option<Limit>,
+}
+
+impl Refinement {
+    /// The topology of the last level.
+    pub fn last_level(&self) -> &LevelTopology {
+        self.levels
+            .last()
+            .expect("a refinement has at least level 0")
+    }
+
+    /// The positions of the last level.
+    pub fn last_positions(&self) -> &[DVec3] {
+        self.positions.last().map(Vec::as_slice).unwrap_or(&[])
+    }
+
+    /// The face-varying values of `channel` at the last level.
+    pub fn last_fvar(&self, channel: usize) -> Option<&[f64]> {
+        self.fvar_values.last()?.get(channel).map(Vec::as_slice)
+    }
+}
