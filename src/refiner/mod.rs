@@ -17,12 +17,10 @@ use crate::level::{FVarLevel, LevelCounts, LevelTopology};
 use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
 use crate::real::Real;
-use crate::refinement::{
-    Limit, Precision, Refinement as RefinementResult, check_level, check_level_counts,
-};
+use crate::refinement::{Limit, Precision, Refinement, check_level, check_level_counts};
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
-use crate::topology::fvar::FVarLevel as FVarChannelLevel;
-use crate::topology::{Build, Level, Refinement, Table, build_base_level, fvar, refine_level};
+use crate::topology::fvar::ChannelLevel;
+use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
 mod fvar_interp;
 use glam::{DVec3, Vec3};
@@ -90,10 +88,10 @@ pub struct Refiner {
     pub(crate) options: Options,
     pub(crate) rules: SchemeRules,
     pub(crate) levels: Vec<Level>,
-    pub(crate) refinements: Vec<Refinement>,
+    pub(crate) refinements: Vec<Split>,
     pub(crate) uniform: Option<UniformOptions>,
     /// Face-varying topology: `fvar[channel][level]`.
-    pub(crate) fvar: Vec<Vec<FVarChannelLevel>>,
+    pub(crate) fvar: Vec<Vec<ChannelLevel>>,
     warnings: Vec<MeshWarning>,
 }
 
@@ -839,7 +837,7 @@ pub fn refine_last<T: Real>(
 
 /// Refines a mesh uniformly with the native engine and interpolates positions
 /// in `f64`.
-pub fn refine(mesh: &Mesh, options: &Options, uniform: UniformOptions) -> Result<RefinementResult> {
+pub fn refine(mesh: &Mesh, options: &Options, uniform: UniformOptions) -> Result<Refinement> {
     refine_with(mesh, options, uniform, Precision::F64, false)
 }
 
@@ -850,7 +848,7 @@ pub fn refine_with(
     uniform: UniformOptions,
     precision: Precision,
     limit: bool,
-) -> Result<RefinementResult> {
+) -> Result<Refinement> {
     check_level(mesh, options, uniform.level)?;
     let mut refiner = Refiner::new(mesh, options)?;
     // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
@@ -918,7 +916,7 @@ pub fn refine_with(
     } else {
         None
     };
-    Ok(RefinementResult {
+    Ok(Refinement {
         options: *options,
         uniform,
         precision,

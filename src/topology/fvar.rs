@@ -9,9 +9,9 @@
 //! several: the channel has a seam through the vertex. Each distinct value
 //! around vertex `v` is a *vertex value*; the first is sibling 0, the others
 //! are numbered in the order they are met walking the vertex's faces (the
-//! level's counter-clockwise order). An [`FVarLevel`] stores, flat:
+//! level's counter-clockwise order). A [`ChannelLevel`] stores, flat:
 //!
-//! * the value of every face corner ([`FVarLevel::face_values`]);
+//! * the value of every face corner ([`ChannelLevel::face_values`]);
 //! * for every vertex, the range of its vertex values (`value_offsets`) and,
 //!   per vertex-face incidence, which sibling that face uses;
 //! * a tag per edge (is the channel split across it? must it stay linear?);
@@ -35,7 +35,7 @@
 //! vertex, with the same tags, sibling assignment and crease spans. Semi-sharp
 //! values become creases once their sharpness has decayed.
 
-use super::{Level, Refinement};
+use super::{Level, Split};
 use crate::options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options, Scheme,
 };
@@ -186,7 +186,7 @@ impl Mode {
 /// How the faces of a level split: the one scheme-dependent ingredient of
 /// face-varying refinement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Split {
+enum FaceSplit {
     /// Catmull-Clark and bilinear: a face of `n` sides into `n` quads, child
     /// `j` of face `f` numbered `offsets[f] + j`; an edge point lies in two
     /// children of each face of its edge.
@@ -196,34 +196,34 @@ enum Split {
     Triangles,
 }
 
-impl Split {
+impl FaceSplit {
     fn of(scheme: Scheme) -> Self {
         match scheme {
-            Scheme::Loop => Split::Triangles,
-            Scheme::Catmark | Scheme::Bilinear => Split::Quads,
+            Scheme::Loop => FaceSplit::Triangles,
+            Scheme::Catmark | Scheme::Bilinear => FaceSplit::Quads,
         }
     }
 
     /// Children of one parent face around the point of one of its edges.
     fn child_faces_per_edge_face(self) -> usize {
         match self {
-            Split::Quads => 2,
-            Split::Triangles => 3,
+            FaceSplit::Quads => 2,
+            FaceSplit::Triangles => 3,
         }
     }
 
     /// The parent face of a child face.
     fn parent_face(self, parent: &Level, child_face: u32) -> u32 {
         match self {
-            Split::Quads => parent.face_vertices.element_of(child_face as usize) as u32,
-            Split::Triangles => child_face / 4,
+            FaceSplit::Quads => parent.face_vertices.element_of(child_face as usize) as u32,
+            FaceSplit::Triangles => child_face / 4,
         }
     }
 }
 
 /// One face-varying channel at one level.
 #[derive(Debug, Clone, Default)]
-pub struct FVarLevel {
+pub struct ChannelLevel {
     mode: Mode,
     /// Number of values of the channel at this level.
     value_count: usize,
@@ -246,7 +246,7 @@ pub struct FVarLevel {
     crease_ends: Vec<[u16; 2]>,
 }
 
-impl FVarLevel {
+impl ChannelLevel {
     /// Number of values.
     #[inline]
     pub fn value_count(&self) -> usize {
@@ -477,10 +477,10 @@ pub fn build_base(
     options: &Options,
     value_count: usize,
     indices: &[u32],
-) -> FVarLevel {
+) -> ChannelLevel {
     let mode = Mode::new(options.fvar);
     let nv = level.vertex_count;
-    let mut fvar = FVarLevel {
+    let mut fvar = ChannelLevel {
         mode,
         value_count,
         face_values: indices.to_vec(),
@@ -713,7 +713,7 @@ pub fn build_base(
 }
 
 /// The spans of the values of base vertex `v`, one per sibling, into `spans`.
-fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>) {
+fn gather_spans(fvar: &ChannelLevel, level: &Level, v: usize, spans: &mut Vec<Span>) {
     let count = fvar.vertex_value_count(v);
     spans.clear();
     spans.resize(count, Span::default());
@@ -780,12 +780,12 @@ fn gather_spans(fvar: &FVarLevel, level: &Level, v: usize, spans: &mut Vec<Span>
 pub fn refine(
     parent: &Level,
     child: &Level,
-    r: &Refinement,
-    parent_fvar: &FVarLevel,
+    r: &Split,
+    parent_fvar: &ChannelLevel,
     options: &Options,
-) -> FVarLevel {
+) -> ChannelLevel {
     let p = parent_fvar;
-    let split = Split::of(options.scheme);
+    let split = FaceSplit::of(options.scheme);
     let mode = p.mode;
     let (nv, ne, nf) = (
         parent.vertex_count,
@@ -827,7 +827,7 @@ pub fn refine(
     }
     let total = total as usize;
 
-    let mut fvar = FVarLevel {
+    let mut fvar = ChannelLevel {
         mode,
         value_count: total,
         face_values: Vec::new(),
@@ -966,9 +966,9 @@ pub fn refine(
 fn reclassify_semi_sharp(
     parent: &Level,
     child: &Level,
-    r: &Refinement,
-    p: &FVarLevel,
-    fvar: &mut FVarLevel,
+    r: &Split,
+    p: &ChannelLevel,
+    fvar: &mut ChannelLevel,
 ) {
     for v in 0..parent.vertex_count {
         let c = r.vertex_child(v) as usize;

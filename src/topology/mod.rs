@@ -23,7 +23,7 @@ pub mod refine;
 mod table;
 
 pub use base::build_base_level;
-pub use refine::{Build, Refinement, refine_level};
+pub use refine::{Build, Split, refine_level};
 pub use table::{Table, release_table_pool};
 
 use crate::rules::Rule;

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 
 /// The parent-to-child numbering of one refinement step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Refinement {
+pub struct Split {
     /// Number of parent vertices, edges, and faces with a face point (0 for Loop).
     pub parent_counts: [usize; 3],
     /// Number of parent face corners.
@@ -31,7 +31,7 @@ pub struct Refinement {
     pub first_vertex_from_edges: u32,
 }
 
-impl Refinement {
+impl Split {
     /// Numbering for a parent level, default or faces-first vertex order.
     pub fn new(parent: &Level, faces_first: bool, face_points: bool) -> Self {
         let (nv, ne) = (parent.vertex_count, parent.edge_count());
@@ -42,7 +42,7 @@ impl Refinement {
         } else {
             (0, nv as u32, (nv + nf) as u32)
         };
-        Refinement {
+        Split {
             parent_counts: [nv, ne, nf],
             parent_corners: parent.face_vertices.members.len(),
             first_vertex_from_vertices: fv,
@@ -143,13 +143,13 @@ pub fn refine_level(
     options: &Options,
     faces_first: bool,
     build: Build,
-) -> (Refinement, Level) {
+) -> (Split, Level) {
     let minimal = build == Build::Minimal;
     let locals = build == Build::Full;
     if options.scheme == Scheme::Loop {
         return refine_triangles(parent, options, faces_first, minimal, locals);
     }
-    let r = Refinement::new(parent, faces_first, true);
+    let r = Split::new(parent, faces_first, true);
     let derive = build == Build::Relations && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
@@ -353,7 +353,7 @@ pub fn refine_level(
 /// the range's corners, four values each.
 fn split_quad_faces(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     faces: std::ops::Range<usize>,
     fv_out: &mut [u32],
     mut fe_out: Option<&mut [u32]>,
@@ -416,7 +416,7 @@ fn split_quad_faces(
 #[inline(always)]
 fn split_quad(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     (base, fc): (usize, u32),
     verts: &[u32; 4],
     edges: &[u32; 4],
@@ -464,7 +464,7 @@ fn split_quad(
 #[inline(always)]
 fn corner_child_edges(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     corner: u32,
     [e_prev, e_next]: [usize; 2],
     base: usize,
@@ -528,8 +528,8 @@ fn refine_triangles(
     faces_first: bool,
     minimal: bool,
     locals: bool,
-) -> (Refinement, Level) {
-    let r = Refinement::new(parent, faces_first, false);
+) -> (Split, Level) {
+    let r = Split::new(parent, faces_first, false);
     let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
     let corners = r.parent_corners;
@@ -774,7 +774,7 @@ impl ChildTags {
     /// back to the default are dropped.
     fn new(
         parent: &Level,
-        r: &Refinement,
+        r: &Split,
         options: &Options,
         vertex_count: usize,
         num_edges: usize,
@@ -858,7 +858,7 @@ fn child_holes(parent: &Level, child_faces: usize, four_per_face: bool) -> Vec<b
 /// have only if its parent has sharpness (it decays; it never appears).
 fn vertex_relation_writers(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     vf: usize,
     ve: usize,
     locals: bool,
@@ -877,7 +877,7 @@ fn vertex_relation_writers(
 /// one element of both writers per child, in the order of its parents — are
 /// written in the order of the child vertices' indices.
 fn fill_vertex_relations(
-    r: &Refinement,
+    r: &Split,
     mut vf: TableWriter,
     mut ve: TableWriter,
     mut face_children: impl FnMut(&mut TableWriter, &mut TableWriter),
@@ -929,7 +929,7 @@ impl Sink for Vec<u32> {
 #[inline(always)]
 fn vertex_child_relations(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     v: usize,
     vf: &mut impl Sink,
     ve: &mut impl Sink,
@@ -972,7 +972,7 @@ fn quad_face_child(parent: &Level, f: usize, vf: &mut impl Sink, ve: &mut impl S
 #[inline(always)]
 fn quad_edge_child(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     e: usize,
     vf: &mut impl Sink,
     ve: &mut impl Sink,
@@ -1006,13 +1006,7 @@ fn quad_edge_child(
 /// Quad split: a vertex's child sits in the child face at its corner — at
 /// the same position in a child of a quad, first in other children.
 #[inline(always)]
-fn quad_vertex_child(
-    parent: &Level,
-    r: &Refinement,
-    v: usize,
-    vf: &mut impl Sink,
-    ve: &mut impl Sink,
-) {
+fn quad_vertex_child(parent: &Level, r: &Split, v: usize, vf: &mut impl Sink, ve: &mut impl Sink) {
     vertex_child_relations(parent, r, v, vf, ve, |f, k| {
         let n = parent.face_vertices.count(f as usize);
         let local = if n == 4 { k } else { 0 };
@@ -1028,7 +1022,7 @@ fn quad_vertex_child(
 #[inline(always)]
 fn triangle_edge_child(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     e: usize,
     vf: &mut impl Sink,
     ve: &mut impl Sink,
@@ -1059,7 +1053,7 @@ fn triangle_edge_child(
 #[inline(always)]
 fn triangle_vertex_child(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     v: usize,
     vf: &mut impl Sink,
     ve: &mut impl Sink,
@@ -1090,7 +1084,7 @@ fn vertex_relations_derivable(parent: &Level) -> bool {
 /// ([`Level::derived_relations`]). `edge_list` is scratch space.
 pub(crate) fn derive_vertex_relations(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     triangles: bool,
     c: usize,
     (faces, edges, edge_list): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<(u32, u16)>),
@@ -1125,7 +1119,7 @@ pub(crate) fn derive_vertex_relations(
 #[inline(always)]
 pub(crate) fn derive_smooth_hood<const N: usize>(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     triangles: bool,
     c: usize,
     faces: &mut [u32; N],
@@ -1239,12 +1233,7 @@ pub(crate) fn derive_smooth_hood<const N: usize>(
 /// ([`Level::derived_relations`]: every edge of `parent` has two faces, so
 /// every child edge has two).
 #[inline(always)]
-pub(crate) fn derive_edge_faces(
-    parent: &Level,
-    r: &Refinement,
-    triangles: bool,
-    c: usize,
-) -> [u32; 2] {
+pub(crate) fn derive_edge_faces(parent: &Level, r: &Split, triangles: bool, c: usize) -> [u32; 2] {
     if let Some(i) = c.checked_sub(r.parent_corners) {
         derive_half_edge_faces(parent, triangles, i / 2)[i % 2]
     } else if triangles {
@@ -1304,11 +1293,7 @@ fn put_by_end(out: &mut [[u32; 2]; 2], i: usize, flip: bool, [at_k, at_next]: [u
 /// parent face involved has an edge twice: then a child triangle repeats a
 /// corner, and the opposite vertex is found by searching its edges.
 #[inline(always)]
-pub(crate) fn derive_inner_edge_wings(
-    parent: &Level,
-    r: &Refinement,
-    c: usize,
-) -> Option<[u32; 2]> {
+pub(crate) fn derive_inner_edge_wings(parent: &Level, r: &Split, c: usize) -> Option<[u32; 2]> {
     // Inner edge `j` of triangle `f` joins the points of its edges `j` and
     // `j - 1`: corner `j` is opposite it in the corner triangle, the point
     // of edge `j + 1` in the middle one.
@@ -1328,11 +1313,7 @@ pub(crate) fn derive_inner_edge_wings(
 /// [`derive_half_edge_faces`]: in the corner triangle of a half's end, the
 /// point of the face's other edge at that corner.
 #[inline(always)]
-pub(crate) fn derive_half_edge_wings(
-    parent: &Level,
-    r: &Refinement,
-    e: usize,
-) -> Option<[[u32; 2]; 2]> {
+pub(crate) fn derive_half_edge_wings(parent: &Level, r: &Split, e: usize) -> Option<[[u32; 2]; 2]> {
     let ev = parent.edge_vertices[e];
     let mut out = [[0; 2]; 2];
     for (i, (f, k)) in parent.edge_faces_at(e).take(2).enumerate() {
@@ -1451,7 +1432,7 @@ impl TableWriter {
 /// Default edge tags give default child tags, so a parent storing no edge
 /// (vertex) tags skips the pass over its edges (vertices), and the child's
 /// tables are allocated only by a tag other than the default.
-fn propagate_tags(parent: &Level, child: &mut Level, r: &Refinement, store_edges: bool) {
+fn propagate_tags(parent: &Level, child: &mut Level, r: &Split, store_edges: bool) {
     for (e, &t) in parent.edge_tags.iter().enumerate() {
         if store_edges {
             child.set_edge_tag(r.edge_child_edge(e, 0) as usize, t);
@@ -1513,7 +1494,7 @@ pub fn child_edge(
 /// are smooth): what a minimal last level does not store.
 pub fn child_edge_sharpness(
     parent: &Level,
-    r: &Refinement,
+    r: &Split,
     method: CreasingMethod,
     child_edges: usize,
 ) -> Vec<f32> {
@@ -1543,7 +1524,7 @@ pub fn child_edge_sharpness(
 fn subdivide_sharpness(
     parent: &Level,
     child: &mut Level,
-    r: &Refinement,
+    r: &Split,
     method: CreasingMethod,
     store_edges: bool,
 ) {
