@@ -380,8 +380,8 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     }
     // A later crease or corner may have set a value back to 0.0; only
     // boundary sharpening (never 0.0) writes sharpness after this.
-    super::drop_if_default(&mut level.edge_sharpness);
-    super::drop_if_default(&mut level.vertex_sharpness);
+    super::level::drop_if_default(&mut level.edge_sharpness);
+    super::level::drop_if_default(&mut level.vertex_sharpness);
     for &f in &mesh.holes {
         level.set_hole(f as usize);
     }
