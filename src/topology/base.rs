@@ -1,4 +1,9 @@
-//! Building the base level from face-vertex lists and tags.
+//! Building the base level from face-vertex lists and tags — what
+//! OpenSubdiv's `Far::TopologyRefinerFactory` does for the base level
+//! (`far/topologyRefinerFactory.cpp`, with `Vtr::Level`'s
+//! `completeTopologyFromFaceVertices` in `vtr/level.cpp` for the edges and
+//! the vertices' ordered faces and edges, and
+//! `prepareComponentTagsAndSharpness` for tags and sharpness).
 
 use super::{Level, Relation, Table};
 use crate::mesh::Mesh;

@@ -1,5 +1,6 @@
 //! One refinement level as flat index tables, built from face-vertex lists and
-//! split level by level — the native counterpart of OpenSubdiv's `Vtr::Level`.
+//! split level by level — the native counterpart of OpenSubdiv's `Vtr`
+//! (`Vtr::Level`, `Vtr::Refinement` and their face-varying counterparts).
 //!
 //! Every relation is stored as a flat array plus offsets (no per-element
 //! allocation, no pointer graph):

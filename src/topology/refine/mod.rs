@@ -13,8 +13,9 @@
 //!   then of edges; with `order_vertices_from_faces_first`, faces, edges,
 //!   then vertices.
 //!
-//! Loop's triangle split numbers its child faces four per triangle instead
-//! (and its edges three per triangle), and has no face points.
+//! Loop's triangle split gives four child faces per triangle instead (the
+//! three corner triangles, child `j` at corner `j`, then the middle one) and
+//! no face points; its child edges and vertices follow the same order.
 //!
 //! # Where each part lives
 //!
@@ -30,12 +31,15 @@
 //!   `subdivideSharpnessValues` in `vtr/refinement.cpp`), and
 //!   [`child_edge_sharpness`] for a minimal last level that stores none;
 //! * `relations.rs`: the writers that fill the child's relations element by
-//!   element, and the `Sink` the per-vertex rules of both
-//!   splits write into;
+//!   element, and the `Sink` the per-vertex rules of both splits write into;
 //! * `derive.rs`: the relations of a level built without them
 //!   ([`Level::derived_relations`]), derived on demand from its parent with
 //!   the same per-vertex rules — what the refiner's interpolation kernel
 //!   reads there (OpenSubdiv always stores them).
+//!
+//! Every split here is uniform: all of the parent is refined. OpenSubdiv's
+//! sparse refinement (`Vtr::SparseSelector` and the `markSparse*` methods
+//! of `vtr/refinement.cpp`) has no counterpart yet.
 
 mod derive;
 mod quad;
