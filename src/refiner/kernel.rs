@@ -496,7 +496,7 @@ const CHUNK: usize = 4096;
 /// as disjoint mutable slices of `dst`, in that order.
 fn split_children<'a, T>(
     dst: &'a mut [T],
-    refinement: &crate::topology::Refinement,
+    refinement: &crate::topology::Split,
     width: usize,
 ) -> [&'a mut [T]; 3] {
     let [nv, ne, nf] = refinement.parent_counts;

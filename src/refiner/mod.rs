@@ -17,14 +17,12 @@ use crate::error::{Buffer, Element, Error, Result};
 use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
 use crate::options::{check_level, check_level_counts};
-use crate::output::Limit;
-use crate::output::Refinement as RefinementResult;
-use crate::output::{FVarTopology, LevelCounts, LevelTopology};
+use crate::output::{FVarTopology, LevelCounts, LevelTopology, Limit, Refinement};
 use crate::real::Precision;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
-use crate::topology::fvar::FVarLevel as FVarChannelLevel;
-use crate::topology::{Build, Level, Refinement, Table, build_base_level, fvar, refine_level};
+use crate::topology::fvar::ChannelLevel;
+use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
 mod fvar_interp;
 use glam::{DVec3, Vec3};
@@ -92,10 +90,10 @@ pub struct Refiner {
     pub(crate) options: Options,
     pub(crate) rules: SchemeRules,
     pub(crate) levels: Vec<Level>,
-    pub(crate) refinements: Vec<Refinement>,
+    pub(crate) refinements: Vec<Split>,
     pub(crate) uniform: Option<UniformOptions>,
     /// Face-varying topology: `fvar[channel][level]`.
-    pub(crate) fvar: Vec<Vec<FVarChannelLevel>>,
+    pub(crate) fvar: Vec<Vec<ChannelLevel>>,
     warnings: Vec<MeshWarning>,
 }
 
@@ -861,11 +859,7 @@ pub fn refine_last<T: Real>(
 /// assert_eq!(with_limit.limit.unwrap().positions.len(), 26);
 /// # Ok::<(), subdiv::Error>(())
 /// ```
-pub fn refine(
-    mesh: &Mesh,
-    options: &Options,
-    request: impl Into<Request>,
-) -> Result<RefinementResult> {
+pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Result<Refinement> {
     let request = request.into();
     let (precision, limit) = (request.precision, request.limit);
     // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
@@ -931,7 +925,7 @@ pub fn refine(
     } else {
         None
     };
-    Ok(RefinementResult {
+    Ok(Refinement {
         options: *options,
         uniform,
         precision,

@@ -1,4 +1,9 @@
-//! Building the base level from face-vertex lists and tags.
+//! Building the base level from face-vertex lists and tags — what
+//! OpenSubdiv's `Far::TopologyRefinerFactory` does for the base level
+//! (`far/topologyRefinerFactory.cpp`, with `Vtr::Level`'s
+//! `completeTopologyFromFaceVertices` in `vtr/level.cpp` for the edges and
+//! the vertices' ordered faces and edges, and
+//! `prepareComponentTagsAndSharpness` for tags and sharpness).
 
 use super::{Level, Relation, Table};
 use crate::mesh::Mesh;
@@ -380,8 +385,8 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
     }
     // A later crease or corner may have set a value back to 0.0; only
     // boundary sharpening (never 0.0) writes sharpness after this.
-    super::drop_if_default(&mut level.edge_sharpness);
-    super::drop_if_default(&mut level.vertex_sharpness);
+    super::level::drop_if_default(&mut level.edge_sharpness);
+    super::level::drop_if_default(&mut level.vertex_sharpness);
     for &f in &mesh.holes {
         level.set_hole(f as usize);
     }

@@ -10,7 +10,8 @@
 //! a pool (256 MiB at most) that serves the next table of its size, so a
 //! program that refines again — the next frame, the next mesh — writes into
 //! memory already faulted in ([`release_table_pool`] hands it back).
-//! Smaller tables are ordinary `Vec`s.
+//! Smaller tables are ordinary `Vec`s. (OpenSubdiv keeps its tables in
+//! `std::vector`s: this has no counterpart there.)
 
 use bytemuck::Pod;
 use std::fmt;

@@ -1,0 +1,298 @@
+//! A face-varying channel split into the next level, inheriting its parent's
+//! topology rather than analysing it again — OpenSubdiv's
+//! `Vtr::FVarRefinement` (`vtr/fvarRefinement.cpp`).
+
+use super::{ChannelLevel, EdgeTag, ValueTag};
+use crate::options::{Options, Scheme};
+use crate::topology::{Level, Split};
+
+/// How the faces of a level split: the one scheme-dependent ingredient of
+/// face-varying refinement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FaceSplit {
+    /// Catmull-Clark and bilinear: a face of `n` sides into `n` quads, child
+    /// `j` of face `f` numbered `offsets[f] + j`; an edge point lies in two
+    /// children of each face of its edge.
+    Quads,
+    /// Loop: a triangle into four, children of face `f` numbered `4f..4f+4`;
+    /// an edge point lies in three children of each face of its edge.
+    Triangles,
+}
+
+impl FaceSplit {
+    fn of(scheme: Scheme) -> Self {
+        match scheme {
+            Scheme::Loop => FaceSplit::Triangles,
+            Scheme::Catmark | Scheme::Bilinear => FaceSplit::Quads,
+        }
+    }
+
+    /// Children of one parent face around the point of one of its edges.
+    fn child_faces_per_edge_face(self) -> usize {
+        match self {
+            FaceSplit::Quads => 2,
+            FaceSplit::Triangles => 3,
+        }
+    }
+
+    /// The parent face of a child face.
+    fn parent_face(self, parent: &Level, child_face: u32) -> u32 {
+        match self {
+            FaceSplit::Quads => parent.face_vertices.element_of(child_face as usize) as u32,
+            FaceSplit::Triangles => child_face / 4,
+        }
+    }
+}
+
+/// Refines a channel from `parent_fvar` (on `parent`) to `child`, which
+/// `parent` was split into with the numbering `r`.
+pub fn refine(
+    parent: &Level,
+    child: &Level,
+    r: &Split,
+    parent_fvar: &ChannelLevel,
+    options: &Options,
+) -> ChannelLevel {
+    let p = parent_fvar;
+    let split = FaceSplit::of(options.scheme);
+    let mode = p.mode;
+    let (nv, ne, nf) = (
+        parent.vertex_count,
+        parent.edge_count(),
+        parent.face_count(),
+    );
+    let ncv = child.vertex_count;
+
+    // Values per child vertex: one per face point; one per edge point, or one
+    // per incident face across a split edge; as many per vertex child as its
+    // parent had when mismatched.
+    let mut counts = vec![0u32; ncv];
+    if r.has_face_points() {
+        for f in 0..nf {
+            counts[r.face_child(f) as usize] = 1;
+        }
+    }
+    for e in 0..ne {
+        counts[r.edge_child(e) as usize] = if p.edge_tags[e].is_mismatch() {
+            parent.edge_faces.count(e).max(1) as u32
+        } else {
+            1
+        };
+    }
+    for v in 0..nv {
+        let matches = !p.value_tags[p.value_offsets[v] as usize].is_mismatch();
+        counts[r.vertex_child(v) as usize] = if matches {
+            1
+        } else {
+            p.vertex_value_count(v) as u32
+        };
+    }
+    let mut value_offsets = Vec::with_capacity(ncv + 1);
+    let mut total = 0u32;
+    value_offsets.push(0);
+    for &c in &counts {
+        total += c;
+        value_offsets.push(total);
+    }
+    let total = total as usize;
+
+    let mut fvar = ChannelLevel {
+        mode,
+        value_count: total,
+        face_values: Vec::new(),
+        edge_tags: vec![EdgeTag::default(); child.edge_count()],
+        value_offsets,
+        face_siblings: vec![0; child.vertex_faces.members.len()],
+        value_indices: Vec::new(),
+        value_tags: vec![ValueTag::default(); total],
+        crease_ends: if mode.has_crease_ends() {
+            vec![[0, 0]; total]
+        } else {
+            Vec::new()
+        },
+    };
+
+    // Siblings of the faces around child vertices with several values.
+    for e in 0..ne {
+        let e_faces = parent.edge_faces_of(e);
+        if !p.edge_tags[e].is_mismatch() || e_faces.len() < 2 {
+            continue;
+        }
+        let c = r.edge_child(e) as usize;
+        let range = child.vertex_faces.range(c);
+        for (slot, &cf) in fvar.face_siblings[range.clone()]
+            .iter_mut()
+            .zip(&child.vertex_faces.members[range])
+        {
+            let pf = split.parent_face(parent, cf);
+            if let Some(j) = e_faces.iter().rposition(|&f| f == pf) {
+                *slot = j as u16;
+            }
+        }
+    }
+    for v in 0..nv {
+        let c = r.vertex_child(v) as usize;
+        if counts[c] > 1 {
+            let range = child.vertex_faces.range(c);
+            fvar.face_siblings[range].copy_from_slice(p.vertex_face_siblings(parent, v));
+        }
+    }
+
+    // Edge tags: edges inside faces are continuous, halves of an edge inherit.
+    for e in 0..ne {
+        for j in 0..2 {
+            fvar.edge_tags[r.edge_child_edge(e, j) as usize] = p.edge_tags[e];
+        }
+    }
+
+    // Value tags. Face points match; edge points of split or linear edges are
+    // creases (corners with linear boundaries); vertex children inherit.
+    let split_edge_tag = if mode.has_crease_ends() {
+        ValueTag::default()
+            .with(ValueTag::MISMATCH)
+            .with(ValueTag::CREASE)
+    } else {
+        ValueTag::default().with(ValueTag::MISMATCH)
+    };
+    for e in 0..ne {
+        let t = p.edge_tags[e];
+        if t.is_mismatch() || t.is_linear() {
+            let c = r.edge_child(e) as usize;
+            let range = fvar.value_offsets[c] as usize..fvar.value_offsets[c + 1] as usize;
+            fvar.value_tags[range].fill(split_edge_tag);
+        }
+    }
+    for v in 0..nv {
+        let c = r.vertex_child(v) as usize;
+        let o = fvar.value_offsets[c] as usize;
+        let n = counts[c] as usize;
+        let po = p.value_offsets[v] as usize;
+        fvar.value_tags[o..o + n].copy_from_slice(&p.value_tags[po..po + n]);
+    }
+
+    if mode.has_crease_ends() {
+        // An edge point's value i spans the children of the edge's face i.
+        let per_face = split.child_faces_per_edge_face();
+        for e in 0..ne {
+            let c = r.edge_child(e) as usize;
+            let o = fvar.value_offsets[c] as usize;
+            if !fvar.value_tags[o].is_mismatch() {
+                continue;
+            }
+            for i in 0..counts[c] as usize {
+                if !fvar.value_tags[o + i].is_inf_sharp() {
+                    let start = i * per_face;
+                    fvar.crease_ends[o + i] = [start as u16, (start + per_face - 1) as u16];
+                }
+            }
+        }
+        // A vertex's child keeps its faces in the same order: same spans.
+        for v in 0..nv {
+            let c = r.vertex_child(v) as usize;
+            let o = fvar.value_offsets[c] as usize;
+            if !fvar.value_tags[o].is_mismatch() {
+                continue;
+            }
+            let po = p.value_offsets[v] as usize;
+            for i in 0..counts[c] as usize {
+                if !fvar.value_tags[o + i].is_inf_sharp() {
+                    fvar.crease_ends[o + i] = p.crease_ends[po + i];
+                }
+            }
+        }
+        reclassify_semi_sharp(parent, child, r, p, &mut fvar);
+    }
+
+    // Face values: each corner's vertex value, offset by its sibling.
+    fvar.face_values = if total > ncv {
+        let mut values: Vec<u32> = child
+            .face_vertices
+            .members
+            .iter()
+            .map(|&v| fvar.value_offsets[v as usize])
+            .collect();
+        for (c, _) in counts.iter().enumerate().filter(|&(_, &n)| n > 1) {
+            let range = child.vertex_faces.range(c);
+            for i in range {
+                let s = fvar.face_siblings[i];
+                if s != 0 {
+                    let f = child.vertex_faces.members[i] as usize;
+                    let corner = child.face_vertices.start(f) + child.vertex_face_local[i] as usize;
+                    values[corner] += s as u32;
+                }
+            }
+        }
+        values
+    } else {
+        child.face_vertices.members.to_vec()
+    };
+    fvar
+}
+
+/// Turns semi-sharp values of vertex children into creases once no
+/// semi-sharp edge is left inside their span (or the vertex lost all its
+/// semi-sharp features).
+fn reclassify_semi_sharp(
+    parent: &Level,
+    child: &Level,
+    r: &Split,
+    p: &ChannelLevel,
+    fvar: &mut ChannelLevel,
+) {
+    for v in 0..parent.vertex_count {
+        let c = r.vertex_child(v) as usize;
+        let range = fvar.value_offsets[c] as usize..fvar.value_offsets[c + 1] as usize;
+        if !fvar.value_tags[range.start].is_mismatch() {
+            continue;
+        }
+        let ptag = parent.vertex_tag(v);
+        if !ptag.semi_sharp() && !ptag.semi_sharp_edges() {
+            continue;
+        }
+        let ctag = child.vertex_tag(c);
+        if ctag.semi_sharp() || ctag.inf_sharp() {
+            continue;
+        }
+        if !ctag.semi_sharp_edges() {
+            for t in &mut fvar.value_tags[range] {
+                if t.is_semi_sharp() {
+                    *t = t.into_crease();
+                }
+            }
+            continue;
+        }
+        let c_edges = child.vertex_edges_of(c);
+        let semi = |k: usize| child.edge_tag(c_edges[k] as usize).semi_sharp();
+        for i in range.clone() {
+            let t = fvar.value_tags[i];
+            if !t.is_semi_sharp() || t.is_dep_sharp() {
+                continue;
+            }
+            let [start, end] = fvar.crease_ends[i];
+            let (start, end) = (start as usize, end as usize);
+            let still = if end > start {
+                (start + 1..=end).any(semi)
+            } else if start > end {
+                (start + 1..c_edges.len()).any(semi) || (0..=end).any(semi)
+            } else {
+                false
+            };
+            if !still {
+                fvar.value_tags[i] = t.into_crease();
+            }
+        }
+        // A dependency on a value that is no longer semi-sharp is dropped.
+        if range.len() == 2 && p.mode.dependent_sharpness {
+            let (a, b) = (
+                fvar.value_tags[range.start],
+                fvar.value_tags[range.start + 1],
+            );
+            let clear = |t: ValueTag| ValueTag(t.0 & !ValueTag::DEP_SHARP);
+            if a.is_dep_sharp() && !b.is_semi_sharp() {
+                fvar.value_tags[range.start] = clear(a);
+            } else if b.is_dep_sharp() && !a.is_semi_sharp() {
+                fvar.value_tags[range.start + 1] = clear(b);
+            }
+        }
+    }
+}
