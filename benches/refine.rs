@@ -31,7 +31,7 @@ fn engines(c: &mut Criterion) {
             b.iter(|| refiner::Refiner::new(black_box(&input.mesh), &options).unwrap())
         });
         group.bench_function("osd/base topology", |b| {
-            b.iter(|| osd::Refiner::new(black_box(&input.mesh), &options).unwrap())
+            b.iter(|| osd::TopologyRefiner::new(black_box(&input.mesh), &options).unwrap())
         });
         for level in 1..=input.max_level {
             let uniform = UniformOptions::new(level);
@@ -44,14 +44,14 @@ fn engines(c: &mut Criterion) {
             });
             group.bench_with_input(BenchmarkId::new("osd/refine", level), &level, |b, _| {
                 b.iter(|| {
-                    let mut r = osd::Refiner::new(&input.mesh, &options).unwrap();
+                    let mut r = osd::TopologyRefiner::new(&input.mesh, &options).unwrap();
                     r.refine_uniform(uniform).unwrap();
                     r
                 })
             });
             let mut n = refiner::Refiner::new(&input.mesh, &options).unwrap();
             n.refine_uniform(uniform.full_topology(true)).unwrap();
-            let mut o = osd::Refiner::new(&input.mesh, &options).unwrap();
+            let mut o = osd::TopologyRefiner::new(&input.mesh, &options).unwrap();
             o.refine_uniform(uniform.full_topology(true)).unwrap();
             group.bench_with_input(
                 BenchmarkId::new("native/positions", level),

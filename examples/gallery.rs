@@ -157,7 +157,7 @@ fn main() -> Result<()> {
     // Cubes: Doo-Sabin and Catmull-Clark, levels 0 to 3.
     let view = Projection::orbit(-35.0, 28.0);
     let cube = subdiv::shapes::cube();
-    let ds = doo_sabin::refine(&cube, &doo_sabin::Options::default(), 3)?;
+    let ds = doo_sabin::refine(&cube, &doo_sabin::DooSabinOptions::default(), 3)?;
     let cc = catmull_clark(&cube, 3)?;
     for (file, title, meshes) in [
         ("doo-sabin-cube.svg", "Doo-Sabin cube", &ds),
@@ -189,7 +189,7 @@ fn main() -> Result<()> {
     let rules: Vec<(String, Mesh)> = [Boundary::Open, Boundary::Chaikin]
         .into_iter()
         .map(|boundary| {
-            let options = doo_sabin::Options {
+            let options = doo_sabin::DooSabinOptions {
                 weights: Weights::Original,
                 boundary,
             };

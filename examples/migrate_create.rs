@@ -78,7 +78,7 @@ fn main() -> Result<(), Error> {
         }
         #[cfg(feature = "osd")]
         {
-            let osd = subdiv::osd::Refiner::new(mesh, options);
+            let osd = subdiv::osd::TopologyRefiner::new(mesh, options);
             assert_eq!(native.is_ok(), osd.is_ok(), "{name}");
             if let (Ok(n), Ok(o)) = (&native, &osd) {
                 assert_eq!(n.level(0)?, o.level(0)?, "{name}");

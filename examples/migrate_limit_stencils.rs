@@ -187,7 +187,7 @@ fn main() -> Result<(), Error> {
     #[cfg(feature = "osd")]
     {
         // OpenSubdiv's limit masks (PrimvarRefiner::Limit on stencils) agree.
-        let mut osd = subdiv::osd::Refiner::new(&mesh, &options)?;
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &options)?;
         osd.refine_uniform(UniformOptions::new(level).full_topology(true))?;
         let theirs = osd.limit_stencil_table()?;
         let d = diff(&theirs.positions.apply(3, &base)?, &limit)

@@ -113,7 +113,7 @@ fn main() -> Result<(), Error> {
 
     #[cfg(feature = "osd")]
     {
-        let mut osd = subdiv::osd::Refiner::new(&mesh, &options)?;
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &options)?;
         osd.refine_uniform(UniformOptions::new(2).full_topology(true))?;
         // f64: every call bit for bit.
         assert_eq!(osd.interpolate(1, width, &base)?, level1);

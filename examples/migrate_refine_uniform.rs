@@ -93,7 +93,7 @@ fn main() -> Result<(), Error> {
                     .full_topology(full);
                 let mut native = Refiner::new(&mesh, &Options::default())?;
                 native.refine_uniform(uniform)?;
-                let mut osd = subdiv::osd::Refiner::new(&mesh, &Options::default())?;
+                let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &Options::default())?;
                 osd.refine_uniform(uniform)?;
                 for l in 0..=3 {
                     assert_eq!(native.level(l)?, osd.level(l)?, "{uniform:?} level {l}");

@@ -84,7 +84,7 @@ fn main() -> Result<(), Error> {
 
     #[cfg(feature = "osd")]
     {
-        let mut osd = subdiv::osd::Refiner::new(&mesh, &options)?;
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &options)?;
         osd.refine_uniform(UniformOptions::new(3))?;
         let theirs = osd.stencil_table()?; // StencilTableFactoryReal<double>
         assert_eq!(theirs.len(), table.len());

@@ -85,16 +85,14 @@ fn main() -> Result<(), Error> {
     }
 
     // [relations]
-    // The other relations (native engine): Refiner::internal_level.
-    let full = refiner.internal_level(1)?;
-    // GetVertexFaces(0), GetVertexEdges(0): through the refiner, which derives
-    // them where a level leaves them out (the level before a minimal last level).
+    // The other relations (native engine), level by level through the refiner,
+    // which derives them where a level leaves them out (the level before a
+    // minimal last level). GetVertexFaces(0), GetVertexEdges(0):
     let (vertex_faces, vertex_edges) = refiner.vertex_faces_and_edges(1, 0)?;
     let edge_faces = refiner.edge_faces(1, 0)?; // GetEdgeFaces(0)
-    let face_edges = full.face_edges_of(3); // GetFaceEdges(3)
+    let face_edges = refiner.face_edges(1, 3)?; // GetFaceEdges(3)
     let edge = refiner.find_edge(1, v0, v1)?; // FindEdge(v0, v1), None for INDEX_INVALID
-    let boundary = full.vertex_tag(0).boundary(); // IsVertexBoundary(0)
-    let rule = full.vertex_tag(0).rule(); // GetVertexRule(0)
+    let (rule, boundary) = refiner.vertex_rule(1, 0)?; // GetVertexRule(0), IsVertexBoundary(0)
     // [end]
     println!(
         "vertex 0: faces {vertex_faces:?}, edges {vertex_edges:?}, boundary {boundary}, rule {rule:?}; \
@@ -102,8 +100,8 @@ fn main() -> Result<(), Error> {
     );
     assert_eq!(edge, Some(0));
     for (e, &[a, b]) in level.edge_vertices.iter().enumerate() {
-        assert_eq!(full.find_edge(a, b), Some(e as u32));
-        assert_eq!(full.find_edge(b, a), Some(e as u32));
+        assert_eq!(refiner.find_edge(1, a, b)?, Some(e as u32));
+        assert_eq!(refiner.find_edge(1, b, a)?, Some(e as u32));
     }
     assert_eq!(vertex_faces.len(), 3); // a cube corner
     assert!(
@@ -114,7 +112,7 @@ fn main() -> Result<(), Error> {
 
     #[cfg(feature = "osd")]
     {
-        let mut osd = subdiv::osd::Refiner::new(&mesh, &Options::shape_file_defaults())?;
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &Options::shape_file_defaults())?;
         osd.refine_uniform(UniformOptions::new(2).full_topology(true))?;
         for l in 0..=2 {
             assert_eq!(refiner.level(l)?, osd.level(l)?);

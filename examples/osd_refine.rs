@@ -27,7 +27,7 @@ fn main() -> Result<(), subdiv::Error> {
     }
 
     // The same through the refiner handle: refine once, interpolate many frames.
-    let mut refiner = osd::Refiner::new(&cube, &Options::shape_file_defaults())?;
+    let mut refiner = osd::TopologyRefiner::new(&cube, &Options::shape_file_defaults())?;
     refiner.refine_uniform(UniformOptions::new(2))?;
     let stencils = refiner.stencil_table()?;
     let (indices, weights) = stencils.row(0);

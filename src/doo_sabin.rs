@@ -58,9 +58,9 @@
 //! has none); vertices in no face are dropped.
 //!
 //! ```
-//! use subdiv::doo_sabin::{refine, Options};
+//! use subdiv::doo_sabin::{refine, DooSabinOptions};
 //! let cube = subdiv::shapes::cube();
-//! let levels = refine(&cube, &Options::default(), 2)?;
+//! let levels = refine(&cube, &DooSabinOptions::default(), 2)?;
 //! // 24 corners; faces: 6 F-quads + 12 E-quads + 8 V-triangles.
 //! assert_eq!((levels[1].vertex_count(), levels[1].face_count()), (24, 26));
 //! // 6·4 + 12·4 + 8·3 = 96 corners; faces: 26 F + 48 E + 24 V.
@@ -101,7 +101,7 @@ impl_named!(Boundary, "Doo-Sabin boundary", { Open => "open", Chaikin => "chaiki
 
 /// Doo-Sabin options.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Options {
+pub struct DooSabinOptions {
     /// The corner-point weights.
     pub weights: Weights,
     /// The boundary rule.
@@ -196,7 +196,11 @@ pub fn corner_weights(n: usize, i: usize, weights: Weights) -> Vec<f64> {
 
 /// Levels 0 (the input's positions and faces) to `levels` of Doo-Sabin
 /// subdivision: `levels + 1` meshes.
-pub fn refine(mesh: &Mesh, options: &Options, levels: u32) -> Result<Vec<Mesh>, DooSabinError> {
+pub fn refine(
+    mesh: &Mesh,
+    options: &DooSabinOptions,
+    levels: u32,
+) -> Result<Vec<Mesh>, DooSabinError> {
     mesh.validate()?;
     let base = Mesh {
         positions: mesh.positions.clone(),
@@ -213,7 +217,7 @@ pub fn refine(mesh: &Mesh, options: &Options, levels: u32) -> Result<Vec<Mesh>, 
 }
 
 /// One level of Doo-Sabin subdivision.
-pub fn refine_once(mesh: &Mesh, options: &Options) -> Result<Mesh, DooSabinError> {
+pub fn refine_once(mesh: &Mesh, options: &DooSabinOptions) -> Result<Mesh, DooSabinError> {
     mesh.validate()?;
     refine_level(mesh, options, 1)
 }
@@ -278,7 +282,7 @@ impl Corners {
     }
 }
 
-fn refine_level(mesh: &Mesh, options: &Options, level: u32) -> Result<Mesh, DooSabinError> {
+fn refine_level(mesh: &Mesh, options: &DooSabinOptions, level: u32) -> Result<Mesh, DooSabinError> {
     let nc = mesh.face_vertices.len();
     // At most 3 points per corner and 7 face corners per corner (F: 1, E: 4, V: 1 + 2).
     if nc.checked_mul(7).is_none_or(|n| n > MAX_ELEMENTS) {

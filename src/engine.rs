@@ -114,7 +114,8 @@ impl Engine {
 
     /// Refines `mesh` as `request` says: the topology and interpolated
     /// positions and face-varying values of every level, and limits when
-    /// asked. An engine this build lacks is [`Error::EngineUnavailable`].
+    /// asked. An engine this build lacks is
+    /// [`Error::EngineUnavailable`](crate::Error::EngineUnavailable).
     pub fn refine(
         self,
         mesh: &Mesh,
@@ -162,7 +163,7 @@ impl Engine {
             }
             #[cfg(feature = "osd")]
             Engine::Osd => {
-                let mut r = crate::osd::Refiner::new(mesh, options)?;
+                let mut r = crate::osd::TopologyRefiner::new(mesh, options)?;
                 r.refine_uniform(uniform)?;
                 match request.precision {
                     Precision::F64 => drop(r.interpolate_last(3, &mesh.flat_positions::<f64>())?),

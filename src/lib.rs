@@ -52,7 +52,7 @@ pub mod refiner;
 pub mod rules;
 pub mod shapes;
 pub mod stencil;
-pub mod topology;
+pub(crate) mod topology;
 
 #[cfg(feature = "osd")]
 #[allow(unsafe_code)]
@@ -69,7 +69,10 @@ pub use options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, MAX_LEVEL, Options, Scheme,
     TriangleSubdivision, UniformOptions,
 };
-pub use output::{FVarTopology, LevelCounts, LevelTopology, Limit, LimitData, Refinement};
+pub use output::{
+    FVarTopology, LevelCounts, LevelTopology, Limit, LimitData, Refinement, Values,
+    release_buffer_pool,
+};
 pub use real::{Precision, Real};
 pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 

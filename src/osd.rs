@@ -1,13 +1,13 @@
 //! The OpenSubdiv engine: a safe wrapper over the C shim in `cpp/`.
 //!
 //! This is the only module of the crate with `unsafe` code. Every call goes
-//! through [`Refiner`], which owns the C++ `Far::TopologyRefiner` and frees it
+//! through [`TopologyRefiner`], which owns the C++ `Far::TopologyRefiner` and frees it
 //! on drop; slices go in, `Vec`s come out, and every failure is an [`Error`].
 //!
 //! ```
 //! use subdiv::{osd, shapes, Options, UniformOptions};
 //! let mesh = shapes::cube();
-//! let mut refiner = osd::Refiner::new(&mesh, &Options::default())?;
+//! let mut refiner = osd::TopologyRefiner::new(&mesh, &Options::default())?;
 //! refiner.refine_uniform(UniformOptions::new(1))?;
 //! let level1 = refiner.level(1)?;
 //! assert_eq!((level1.vertex_count, level1.face_count()), (26, 24));
@@ -15,9 +15,9 @@
 //! ```
 //!
 //! # Threads
-//! A [`Refiner`] is `Send` and `Sync`: every query and interpolation is a
+//! A [`TopologyRefiner`] is `Send` and `Sync`: every query and interpolation is a
 //! read-only use of OpenSubdiv's refiner (as OpenSubdiv itself allows from
-//! several threads), and only [`Refiner::refine_uniform`] mutates it, which
+//! several threads), and only [`TopologyRefiner::refine_uniform`] mutates it, which
 //! needs `&mut self`. OpenSubdiv's error messages are captured per thread.
 
 use crate::engine::Request;
@@ -28,7 +28,7 @@ use crate::options::{Options, UniformOptions};
 pub use crate::output::LimitData;
 use crate::output::{FVarTopology, LevelTopology};
 use crate::output::{Limit, Refinement};
-use crate::real::Precision;
+use crate::real::{Precision, Real};
 use crate::stencil::{LimitStencilTable, StencilTable};
 use glam::DVec3;
 use std::ffi::CStr;
@@ -54,7 +54,7 @@ const SDV_FACE_VARYING: i32 = ffi::SDV_FACE_VARYING as i32;
 const SDV_STENCIL_REFINED: i32 = ffi::SDV_STENCIL_REFINED as i32;
 const SDV_STENCIL_LIMIT: i32 = ffi::SDV_STENCIL_LIMIT as i32;
 
-use sealed::ErrBuf;
+use shim::{ErrBuf, ShimReal};
 
 /// The version of the OpenSubdiv library the bridge was built against, e.g. `"3.5.0"`.
 pub fn version() -> String {
@@ -70,8 +70,8 @@ pub fn version_number() -> u32 {
     unsafe { ffi::sdv_osd_version_number() as u32 }
 }
 
-mod sealed {
-    use super::{ERR_LEN, Error, Refiner, Result, ffi};
+mod shim {
+    use super::{ERR_LEN, Error, Result, TopologyRefiner, ffi};
     use std::ffi::CStr;
     use std::os::raw::c_char;
 
@@ -117,11 +117,11 @@ mod sealed {
         }
     }
 
-    /// The shim calls of one real type; private to the crate.
-    pub trait Sealed: Sized {
+    /// The shim's entry points of one real type (`f32`, `f64`); private.
+    pub trait ShimReal: Sized {
         #[allow(clippy::too_many_arguments)]
         fn interpolate(
-            r: &Refiner,
+            r: &TopologyRefiner,
             kind: i32,
             channel: i32,
             level: i32,
@@ -131,14 +131,14 @@ mod sealed {
             err: &mut ErrBuf,
         ) -> i32;
         fn limit(
-            r: &Refiner,
+            r: &TopologyRefiner,
             width: i32,
             src: &[Self],
             out: [&mut [Self]; 3],
             err: &mut ErrBuf,
         ) -> i32;
         fn limit_fvar(
-            r: &Refiner,
+            r: &TopologyRefiner,
             channel: i32,
             width: i32,
             src: &[Self],
@@ -148,16 +148,29 @@ mod sealed {
     }
 }
 
-/// The real types the bridge interpolates in: `f32` and `f64`.
-pub trait Real: crate::Real + sealed::Sealed {}
-impl Real for f32 {}
-impl Real for f64 {}
+/// Evaluates `$body` with `$S` standing for the shim's real type of `$T`
+/// (`f32` or `f64`, the two types [`Real`] is sealed to), so that `[T]`
+/// slices can be cast to `[$S]` for the shim's typed entry points.
+macro_rules! with_shim_type {
+    ($T:ty, |$S:ident| $body:expr) => {
+        match <$T as Real>::PRECISION {
+            Precision::F32 => {
+                type $S = f32;
+                $body
+            }
+            Precision::F64 => {
+                type $S = f64;
+                $body
+            }
+        }
+    };
+}
 
 macro_rules! impl_real {
     ($t:ty, $interp:ident, $limit:ident, $limit_fvar:ident) => {
-        impl sealed::Sealed for $t {
+        impl ShimReal for $t {
             fn interpolate(
-                r: &Refiner,
+                r: &TopologyRefiner,
                 kind: i32,
                 channel: i32,
                 level: i32,
@@ -186,7 +199,7 @@ macro_rules! impl_real {
                 }
             }
             fn limit(
-                r: &Refiner,
+                r: &TopologyRefiner,
                 width: i32,
                 src: &[Self],
                 out: [&mut [Self]; 3],
@@ -214,7 +227,7 @@ macro_rules! impl_real {
                 }
             }
             fn limit_fvar(
-                r: &Refiner,
+                r: &TopologyRefiner,
                 channel: i32,
                 width: i32,
                 src: &[Self],
@@ -247,7 +260,7 @@ pub use crate::output::LevelCounts;
 
 /// An OpenSubdiv `Far::TopologyRefiner`, owned.
 #[derive(Debug)]
-pub struct Refiner {
+pub struct TopologyRefiner {
     raw: NonNull<ffi::sdv_refiner>,
     base_vertices: usize,
     base_faces: usize,
@@ -262,11 +275,11 @@ pub struct Refiner {
 // every `&self` call is a read-only use of OpenSubdiv's TopologyRefiner, which
 // OpenSubdiv supports from several threads, and the shim keeps its error
 // capture in thread-local storage.
-unsafe impl Send for Refiner {}
+unsafe impl Send for TopologyRefiner {}
 // SAFETY: see above.
-unsafe impl Sync for Refiner {}
+unsafe impl Sync for TopologyRefiner {}
 
-impl Drop for Refiner {
+impl Drop for TopologyRefiner {
     fn drop(&mut self) {
         // SAFETY: `raw` came from sdv_refiner_create and is freed exactly once.
         unsafe { ffi::sdv_refiner_destroy(self.raw.as_ptr()) }
@@ -302,14 +315,14 @@ fn internal(message: &str) -> Error {
     })
 }
 
-impl Refiner {
+impl TopologyRefiner {
     /// Builds OpenSubdiv's refiner for a mesh (level 0 only).
     ///
     /// The mesh is validated first ([`Mesh::validate`]), and a mesh without
     /// faces is [`Error::EmptyMesh`], as in the native engine; the shim checks
     /// every index again before OpenSubdiv sees it. Warnings of either are
-    /// kept in [`Refiner::warnings`].
-    pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
+    /// kept in [`TopologyRefiner::warnings`].
+    pub fn new(mesh: &Mesh, options: &Options) -> Result<TopologyRefiner> {
         let validation = mesh.validate()?;
         if mesh.face_count() == 0 {
             return Err(Error::EmptyMesh);
@@ -327,9 +340,9 @@ impl Refiner {
 
     /// Builds the refiner without validating the mesh in Rust first, relying on
     /// the shim's own range checks (which still refuse every bad index). This
-    /// exists to test those checks; prefer [`Refiner::new`].
+    /// exists to test those checks; prefer [`TopologyRefiner::new`].
     #[doc(hidden)]
-    pub fn new_unvalidated(mesh: &Mesh, options: &Options) -> Result<Refiner> {
+    pub fn new_unvalidated(mesh: &Mesh, options: &Options) -> Result<TopologyRefiner> {
         if mesh.face_offsets.first() != Some(&0)
             || mesh.face_offsets.windows(2).any(|w| w[1] < w[0])
             || mesh.face_offsets.last().map(|&l| l as usize) != Some(mesh.face_vertices.len())
@@ -346,7 +359,7 @@ impl Refiner {
         Self::build(mesh, options, Vec::new())
     }
 
-    fn build(mesh: &Mesh, options: &Options, warnings: Vec<String>) -> Result<Refiner> {
+    fn build(mesh: &Mesh, options: &Options, warnings: Vec<String>) -> Result<TopologyRefiner> {
         let face_sizes: Vec<i32> = mesh.face_sizes().into_iter().map(|s| s as i32).collect();
         let face_vertices: Vec<i32> = mesh.face_vertices.iter().map(|&v| v as i32).collect();
         let crease_pairs: Vec<i32> = mesh
@@ -400,7 +413,7 @@ impl Refiner {
         let status = unsafe { ffi::sdv_refiner_create(&desc, &opts, &mut raw, err.ptr(), ERR_LEN) };
         err.check(status)?;
         let raw = NonNull::new(raw).ok_or_else(|| internal("the shim returned no refiner"))?;
-        let mut refiner = Refiner {
+        let mut refiner = TopologyRefiner {
             raw,
             base_vertices: mesh.vertex_count(),
             base_faces: mesh.face_count(),
@@ -704,16 +717,20 @@ impl Refiner {
         check_length(buffer, from * width, src.len())?;
         let mut dst = vec![T::default(); to * width];
         let mut err = ErrBuf::new();
-        let status = T::interpolate(
+        let (channel, width) = (
+            to_i32(channel, "face-varying channels")?,
+            to_i32(width, "primvar components")?,
+        );
+        let status = with_shim_type!(T, |S| S::interpolate(
             self,
             kind,
-            to_i32(channel, "face-varying channels")?,
+            channel,
             level as i32,
-            to_i32(width, "primvar components")?,
-            src,
-            &mut dst,
+            width,
+            bytemuck::cast_slice(src),
+            bytemuck::cast_slice_mut(&mut dst),
             &mut err,
-        );
+        ));
         err.check(status)?;
         Ok(dst)
     }
@@ -787,13 +804,18 @@ impl Refiner {
             dv: vec![T::default(); n],
         };
         let mut err = ErrBuf::new();
-        let status = T::limit(
+        let width = to_i32(width, "primvar components")?;
+        let status = with_shim_type!(T, |S| S::limit(
             self,
-            to_i32(width, "primvar components")?,
-            src,
-            [&mut out.positions, &mut out.du, &mut out.dv],
+            width,
+            bytemuck::cast_slice(src),
+            [
+                bytemuck::cast_slice_mut(&mut out.positions),
+                bytemuck::cast_slice_mut(&mut out.du),
+                bytemuck::cast_slice_mut(&mut out.dv),
+            ],
             &mut err,
-        );
+        ));
         err.check(status)?;
         Ok(out)
     }
@@ -822,14 +844,18 @@ impl Refiner {
         check_length(Buffer::FaceVaryingSource, n, src.len())?;
         let mut dst = vec![T::default(); n];
         let mut err = ErrBuf::new();
-        let status = T::limit_fvar(
-            self,
+        let (channel, width) = (
             to_i32(channel, "face-varying channels")?,
             to_i32(width, "primvar components")?,
-            src,
-            &mut dst,
-            &mut err,
         );
+        let status = with_shim_type!(T, |S| S::limit_fvar(
+            self,
+            channel,
+            width,
+            bytemuck::cast_slice(src),
+            bytemuck::cast_slice_mut(&mut dst),
+            &mut err,
+        ));
         err.check(status)?;
         Ok(dst)
     }
@@ -940,7 +966,7 @@ impl Drop for StencilEvaluator {
 
 impl StencilEvaluator {
     /// Builds OpenSubdiv's float stencil table for the refiner's last level.
-    pub fn new(refiner: &Refiner) -> Result<Self> {
+    pub fn new(refiner: &TopologyRefiner) -> Result<Self> {
         let mut raw: *mut ffi::sdv_evaluator = std::ptr::null_mut();
         let mut err = ErrBuf::new();
         // SAFETY: the refiner is live; `raw` receives a new evaluator.
@@ -1041,7 +1067,7 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
 fn refine_typed<T: Real>(mesh: &Mesh, options: &Options, request: &Request) -> Result<Refinement> {
     let (uniform, limit) = (request.effective_uniform(), request.limit);
     check_level(mesh, options, uniform.level)?;
-    let mut refiner = Refiner::new(mesh, options)?;
+    let mut refiner = TopologyRefiner::new(mesh, options)?;
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)
         .map(|l| refiner.level(l))

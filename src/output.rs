@@ -4,8 +4,11 @@
 //! [`crate::compare`] never cares which engine produced what.
 
 use crate::options::{Options, UniformOptions};
-use crate::real::Precision;
+use crate::real::{Precision, Real};
+use crate::topology::Table;
 use glam::DVec3;
+use std::fmt;
+use std::ops::{Deref, DerefMut};
 
 /// Face-varying topology of one channel at one level.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -155,4 +158,99 @@ impl Refinement {
     pub fn last_fvar(&self, channel: usize) -> Option<&[f64]> {
         self.fvar_values.last()?.get(channel).map(Vec::as_slice)
     }
+}
+
+/// A flat buffer of values (`width` per vertex) computed by the native
+/// engine: [`Refiner::interpolate_all`](crate::refiner::Refiner::interpolate_all),
+/// [`Refiner::interpolate_last`](crate::refiner::Refiner::interpolate_last) and
+/// [`refine_last`](crate::refiner::refine_last) return it. It dereferences to
+/// a slice and compares equal to slices and vectors.
+///
+/// Buffers of 2 MiB and more live in memory advised for transparent huge
+/// pages; when dropped, that memory goes to a pool (256 MiB at most) that
+/// the next refinement reuses without page faults, and
+/// [`release_buffer_pool`] hands it back to the system. `SUBDIV_HUGE_PAGES=0`
+/// makes every buffer an ordinary heap vector.
+#[derive(Clone, Default, PartialEq)]
+pub struct Values<T: Real>(pub(crate) Table<T>);
+
+impl<T: Real> Values<T> {
+    /// The values as a slice.
+    pub fn as_slice(&self) -> &[T] {
+        &self.0
+    }
+
+    /// The values in a vector (a copy when the buffer is a mapped one).
+    pub fn into_vec(self) -> Vec<T> {
+        self.0.to_vec()
+    }
+}
+
+impl<T: Real> Deref for Values<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        &self.0
+    }
+}
+
+impl<T: Real> DerefMut for Values<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        &mut self.0
+    }
+}
+
+impl<'a, T: Real> IntoIterator for &'a Values<T> {
+    type Item = &'a T;
+    type IntoIter = std::slice::Iter<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+impl<T: Real> fmt::Debug for Values<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl<T: Real> From<Vec<T>> for Values<T> {
+    fn from(values: Vec<T>) -> Self {
+        Values(Table::from(values))
+    }
+}
+
+impl<T: Real> PartialEq<[T]> for Values<T> {
+    fn eq(&self, other: &[T]) -> bool {
+        self.as_slice() == other
+    }
+}
+
+impl<T: Real> PartialEq<Vec<T>> for Values<T> {
+    fn eq(&self, other: &Vec<T>) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
+impl<T: Real> PartialEq<Values<T>> for Vec<T> {
+    fn eq(&self, other: &Values<T>) -> bool {
+        self.as_slice() == other.as_slice()
+    }
+}
+
+/// Hands the memory of dropped [`Values`] buffers (and of the native
+/// engine's own large tables) back to the system; returns the bytes released.
+///
+/// ```
+/// use subdiv::{refiner::Refiner, release_buffer_pool, shapes, Options, UniformOptions};
+/// let mut r = Refiner::new(&shapes::torus(64, 64), &Options::default())?;
+/// r.refine_uniform(UniformOptions::new(3))?;
+/// let base: Vec<f64> = shapes::torus(64, 64).flat_positions();
+/// drop(r.interpolate_last(3, &base)?); // 6 MiB of f64: its map goes to the pool
+/// let maps_off = std::env::var("SUBDIV_HUGE_PAGES").is_ok_and(|v| v == "0");
+/// assert!(release_buffer_pool() >= 6 << 20 || maps_off);
+/// assert_eq!(release_buffer_pool(), 0); // nothing left to release
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn release_buffer_pool() -> usize {
+    crate::topology::release_table_pool()
 }

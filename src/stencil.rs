@@ -227,7 +227,7 @@ impl StencilTable {
 /// let frame: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
 /// let mut refined = vec![0.0; stencils.len() * 3];
 /// stencils.apply_into(3, &frame, &mut refined)?; // per frame
-/// assert_eq!(refined.len(), r.internal_level(3)?.vertex_count * 3);
+/// assert_eq!(refined.len(), r.level_counts(3)?.vertices * 3);
 /// # Ok::<(), subdiv::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]

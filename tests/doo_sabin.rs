@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use subdiv::Mesh;
 use subdiv::curve::{self, CurveScheme};
-use subdiv::doo_sabin::{self, Boundary, DooSabinError, Options, Weights, corner_weights};
+use subdiv::doo_sabin::{self, Boundary, DooSabinError, DooSabinOptions, Weights, corner_weights};
 use subdiv::patch::ControlGrid;
 
 /// A small deterministic generator (xorshift64*), values in [-1, 1).
@@ -23,20 +23,20 @@ impl Rng {
     }
 }
 
-const ALL_OPTIONS: [Options; 4] = [
-    Options {
+const ALL_OPTIONS: [DooSabinOptions; 4] = [
+    DooSabinOptions {
         weights: Weights::Original,
         boundary: Boundary::Open,
     },
-    Options {
+    DooSabinOptions {
         weights: Weights::Centroid,
         boundary: Boundary::Open,
     },
-    Options {
+    DooSabinOptions {
         weights: Weights::Original,
         boundary: Boundary::Chaikin,
     },
-    Options {
+    DooSabinOptions {
         weights: Weights::Centroid,
         boundary: Boundary::Chaikin,
     },
@@ -209,7 +209,7 @@ fn centroid_corner_points_average_vertex_edge_midpoints_and_centroid() {
             .collect();
         let face: Vec<u32> = (0..n).collect();
         let mesh = Mesh::from_faces(positions.clone(), &[&face]);
-        let opts = Options {
+        let opts = DooSabinOptions {
             weights: Weights::Centroid,
             boundary: Boundary::Open,
         };
@@ -238,7 +238,7 @@ fn triangles_use_their_own_weights() {
         (Weights::Original, 2.0 / 3.0, 1.0 / 6.0),
         (Weights::Centroid, 7.0 / 12.0, 5.0 / 24.0),
     ] {
-        let opts = Options {
+        let opts = DooSabinOptions {
             weights,
             boundary: Boundary::Open,
         };
@@ -260,7 +260,7 @@ fn on_a_regular_quad_grid_one_level_is_biquadratic_splitting() {
     for weights in [Weights::Original, Weights::Centroid] {
         let g = grid(6, 5, 3);
         let mesh = g.to_mesh();
-        let opts = Options {
+        let opts = DooSabinOptions {
             weights,
             boundary: Boundary::Open,
         };
@@ -303,7 +303,7 @@ fn on_a_regular_quad_grid_one_level_is_biquadratic_splitting() {
 #[test]
 fn on_a_regular_quad_grid_every_level_is_biquadratic_splitting() {
     let g = grid(5, 5, 9);
-    let levels = doo_sabin::refine(&g.to_mesh(), &Options::default(), 3).unwrap();
+    let levels = doo_sabin::refine(&g.to_mesh(), &DooSabinOptions::default(), 3).unwrap();
     let mut coords: Vec<(usize, usize)> = (0..g.nv())
         .flat_map(|j| (0..g.nu()).map(move |i| (i, j)))
         .collect();
@@ -429,7 +429,7 @@ fn open_cube() -> Mesh {
 
 #[test]
 fn open_boundary_makes_no_faces_along_the_boundary() {
-    let opts = Options::default();
+    let opts = DooSabinOptions::default();
     // Open cube: 20 corners; 5 F + 8 interior edges + 4 interior vertices.
     let out = doo_sabin::refine_once(&open_cube(), &opts).unwrap();
     assert_eq!((out.vertex_count(), out.face_count()), (20, 17));
@@ -442,7 +442,7 @@ fn open_boundary_makes_no_faces_along_the_boundary() {
 
 #[test]
 fn chaikin_boundary_refines_the_boundary_polygon_by_chaikin() {
-    let opts = Options {
+    let opts = DooSabinOptions {
         weights: Weights::Original,
         boundary: Boundary::Chaikin,
     };
@@ -478,7 +478,7 @@ fn chaikin_boundary_counts_on_a_grid() {
     // 4 × 3 quads: 48 corners + 2 · 14 boundary points; faces: 12 F + 17 interior E
     // + 14 boundary E + 6 interior V + 14 boundary V.
     let mesh = subdiv::shapes::grid(4, 3);
-    let opts = Options {
+    let opts = DooSabinOptions {
         weights: Weights::Centroid,
         boundary: Boundary::Chaikin,
     };
@@ -498,21 +498,21 @@ fn non_manifold_meshes() {
         subdiv::shapes::inconsistent(),
     ] {
         // The open rule treats non-manifold edges and vertices like boundaries.
-        let levels = doo_sabin::refine(&mesh, &Options::default(), 2).unwrap();
+        let levels = doo_sabin::refine(&mesh, &DooSabinOptions::default(), 2).unwrap();
         for m in &levels {
             m.validate().unwrap();
         }
         // The chaikin rule needs a manifold mesh: a typed error, no panic.
         let _ = doo_sabin::refine(
             &mesh,
-            &Options {
+            &DooSabinOptions {
                 weights: Weights::Original,
                 boundary: Boundary::Chaikin,
             },
             2,
         );
     }
-    let chaikin = Options {
+    let chaikin = DooSabinOptions {
         weights: Weights::Original,
         boundary: Boundary::Chaikin,
     };
@@ -529,7 +529,7 @@ fn non_manifold_meshes() {
         Err(DooSabinError::NonManifoldVertex(0))
     );
     // Open: the fin's three faces around edge 0-1 get no E-face there.
-    let out = doo_sabin::refine_once(&subdiv::shapes::fin(), &Options::default()).unwrap();
+    let out = doo_sabin::refine_once(&subdiv::shapes::fin(), &DooSabinOptions::default()).unwrap();
     assert_eq!(out.face_count(), 4 + 1);
 }
 
@@ -538,17 +538,17 @@ fn invalid_meshes_are_typed_errors() {
     let mut mesh = subdiv::shapes::cube();
     mesh.face_vertices[3] = 99;
     assert!(matches!(
-        doo_sabin::refine_once(&mesh, &Options::default()),
+        doo_sabin::refine_once(&mesh, &DooSabinOptions::default()),
         Err(DooSabinError::Mesh(_))
     ));
     let mut mesh = subdiv::shapes::cube();
     mesh.positions[2].x = f64::NAN;
     assert!(matches!(
-        doo_sabin::refine(&mesh, &Options::default(), 1),
+        doo_sabin::refine(&mesh, &DooSabinOptions::default(), 1),
         Err(DooSabinError::Mesh(_))
     ));
     // An empty mesh refines to an empty mesh.
-    let levels = doo_sabin::refine(&Mesh::default(), &Options::default(), 2).unwrap();
+    let levels = doo_sabin::refine(&Mesh::default(), &DooSabinOptions::default(), 2).unwrap();
     assert!(levels.iter().all(|m| m.face_count() == 0));
     assert_eq!("centroid".parse::<Weights>(), Ok(Weights::Centroid));
     assert_eq!("chaikin".parse::<Boundary>(), Ok(Boundary::Chaikin));
@@ -617,7 +617,7 @@ fn cli_refine_doo_sabin() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let read = subdiv::io::read_obj(&out).unwrap().mesh;
-    let opts = Options {
+    let opts = DooSabinOptions {
         weights: Weights::Centroid,
         boundary: Boundary::Chaikin,
     };

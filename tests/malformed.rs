@@ -642,7 +642,8 @@ fn readable_but_unusable_files() {
             subdiv::osd::refine(&shape.mesh, &shape.options(), UniformOptions::new(1)).unwrap_err();
         assert!(matches!(&err, Error::Mesh(e) if *e == expected), "{err:?}");
         // The shim's own check, without Rust's validation in front of it.
-        let err = subdiv::osd::Refiner::new_unvalidated(&shape.mesh, &shape.options()).unwrap_err();
+        let err = subdiv::osd::TopologyRefiner::new_unvalidated(&shape.mesh, &shape.options())
+            .unwrap_err();
         assert!(
             matches!(&err, Error::Osd(subdiv::OsdError { kind: subdiv::OsdErrorKind::Refused, message })
                 if message == "face 0 has 70000 vertices; at most 65535 are supported"),
@@ -1190,7 +1191,7 @@ mod osd_bridge {
     }
 
     /// Malformed meshes: what the shim says without Rust's validation, and
-    /// what `osd::Refiner::new` (validating first) says.
+    /// what `osd::TopologyRefiner::new` (validating first) says.
     #[test]
     fn the_shim_refuses_every_malformed_mesh() {
         type Edit = fn(&mut Mesh);
@@ -1293,13 +1294,13 @@ mod osd_bridge {
             let mut mesh = quad();
             edit(&mut mesh);
             let options = Options::default();
-            let err = osd::Refiner::new_unvalidated(&mesh, &options).unwrap_err();
+            let err = osd::TopologyRefiner::new_unvalidated(&mesh, &options).unwrap_err();
             assert!(
                 matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message })
                     if message == shim_message),
                 "{shim_message}: {err:?}"
             );
-            let err = osd::Refiner::new(&mesh, &options).unwrap_err();
+            let err = osd::TopologyRefiner::new(&mesh, &options).unwrap_err();
             // Display, not ==: a NaN sharpness is not equal to itself.
             assert!(
                 matches!(&err, Error::Mesh(e) if e.to_string() == mesh_error.to_string()),
@@ -1318,11 +1319,12 @@ mod osd_bridge {
             ..Mesh::default()
         };
         for mesh in [Mesh::default(), points_only] {
-            let err = osd::Refiner::new(&mesh, &Options::default()).unwrap_err();
+            let err = osd::TopologyRefiner::new(&mesh, &Options::default()).unwrap_err();
             assert!(matches!(err, Error::EmptyMesh), "{err:?}");
             let err = Refiner::new(&mesh, &Options::default()).unwrap_err();
             assert!(matches!(err, Error::EmptyMesh), "native: {err:?}");
-            let err = osd::Refiner::new_unvalidated(&mesh, &Options::default()).unwrap_err();
+            let err =
+                osd::TopologyRefiner::new_unvalidated(&mesh, &Options::default()).unwrap_err();
             assert!(
                 matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message })
                     if message == "the mesh has no faces: there is nothing to refine"),
@@ -1335,7 +1337,7 @@ mod osd_bridge {
     #[test]
     fn the_bridge_refuses_wrong_arguments() {
         let cube = shapes::cube_with_uvs();
-        let mut r = osd::Refiner::new(&cube, &Options::default()).unwrap();
+        let mut r = osd::TopologyRefiner::new(&cube, &Options::default()).unwrap();
         assert!(matches!(
             r.refine_uniform(UniformOptions::new(11)),
             Err(Error::Level { level: 11, .. })
@@ -1403,7 +1405,8 @@ mod osd_bridge {
                     "{name} level {level}"
                 );
             }
-            let _ = osd::Refiner::new_unvalidated(&shape.mesh, &shape.options()).unwrap_err();
+            let _ =
+                osd::TopologyRefiner::new_unvalidated(&shape.mesh, &shape.options()).unwrap_err();
         }
     }
 

@@ -230,7 +230,7 @@ fn refine_last_equals_full_refinement_and_opensubdiv() {
                     |c: &subdiv::LevelCounts| (c.vertices, c.edges, c.faces, c.face_vertices);
                 assert_eq!(sizes(c), sizes(&f), "{name} L{level} level {l}");
             }
-            let mut o = osd::Refiner::new(&mesh, &options).unwrap();
+            let mut o = osd::TopologyRefiner::new(&mesh, &options).unwrap();
             o.refine_uniform(uniform).unwrap();
             assert_eq!(
                 &last[..],

@@ -444,8 +444,8 @@ fn check(
             uniform.level, uniform.order_vertices_from_faces_first
         )
     };
-    let expected =
-        osd::Refiner::new(mesh, options).and_then(|mut r| r.refine_uniform(uniform).map(|()| r));
+    let expected = osd::TopologyRefiner::new(mesh, options)
+        .and_then(|mut r| r.refine_uniform(uniform).map(|()| r));
     let actual = refiner::Refiner::new(mesh, options)
         .and_then(|mut r| r.refine_uniform(uniform).map(|()| r));
     let (expected, actual) = match (expected, actual) {
@@ -743,10 +743,9 @@ fn linear_seam_edge_points_are_midpoints() {
             .unwrap();
         // The edge 1-4 between the two faces; its child vertex is the one
         // both faces' children share apart from the face points.
-        let e = r.internal_level(0).unwrap().find_edge(1, 4).unwrap() as usize;
-        let child_of_edge = r.internal_level(1).unwrap().vertex_count
-            - r.internal_level(0).unwrap().edge_count()
-            + e;
+        let e = r.find_edge(0, 1, 4).unwrap().unwrap() as usize;
+        let child_of_edge =
+            r.level_counts(1).unwrap().vertices - r.level_counts(0).unwrap().edges + e;
         let uv = |f: usize, v: u32| {
             let k = mesh.face(f).iter().position(|&x| x == v).unwrap();
             let i = channel.indices[mesh.face_offsets[f] as usize + k] as usize;

@@ -57,9 +57,16 @@ fn rows_equal(a: &StencilTable, b: &StencilTable, tol: f64, skip: &[bool]) -> Re
 /// (at each triangle split: 6 and 2 + twice it).
 fn opensubdiv_max_valence(mesh: &Mesh, levels: usize) -> usize {
     let r = refiner::Refiner::new(mesh, &Options::default()).unwrap();
-    let base = r.internal_level(0).unwrap();
-    let mut valence = base.max_valence;
-    let mut edge_faces = base.max_edge_faces;
+    let base = r.level(0).unwrap();
+    let vertex_faces = (0..base.vertex_count)
+        .map(|v| r.vertex_faces_and_edges(0, v).unwrap())
+        .map(|(faces, edges)| faces.len().max(edges.len()));
+    let face_sizes = base.faces().map(<[u32]>::len);
+    let mut valence = vertex_faces.chain(face_sizes).max().unwrap_or(0);
+    let mut edge_faces = (0..base.edge_count)
+        .map(|e| r.edge_faces(0, e).unwrap().len())
+        .max()
+        .unwrap_or(0);
     for _ in 0..levels {
         valence = valence.max(4).max(2 + edge_faces);
         edge_faces = edge_faces.max(2);
@@ -73,7 +80,7 @@ fn level_index(n: &refiner::Refiner) -> usize {
 
 fn check(name: &str, mesh: &Mesh, options: &Options, level: u32) -> Result<(), String> {
     let ctx = format!("{name} {options:?} level {level}");
-    let mut o = osd::Refiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
+    let mut o = osd::TopologyRefiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
     o.refine_uniform(UniformOptions::new(level).full_topology(true))
         .map_err(|e| e.to_string())?;
     let mut n = refiner::Refiner::new(mesh, options).map_err(|e| format!("{ctx}: {e}"))?;
@@ -90,10 +97,9 @@ fn check(name: &str, mesh: &Mesh, options: &Options, level: u32) -> Result<(), S
     // that (a fin's edge point: 3 faces per side) writes its tangent face
     // weights over the next mask. The native engine computes the intended
     // masks, so tangents are compared only where OpenSubdiv's buffers fit.
-    let level = n.internal_level(level).unwrap();
     let max_valence = opensubdiv_max_valence(mesh, level_index(&n));
-    let overflows: Vec<bool> = (0..level.vertex_count)
-        .map(|v| level.vertex_faces_of(v).len() > max_valence)
+    let overflows: Vec<bool> = (0..n.level_counts(level).unwrap().vertices)
+        .map(|v| n.vertex_faces_and_edges(level, v).unwrap().0.len() > max_valence)
         .collect();
     for (v, _) in overflows.iter().enumerate().filter(|(_, o)| **o) {
         let r = 3 * v..3 * v + 3;
@@ -306,9 +312,9 @@ fn limit_in_parallel_blocks_equals_opensubdiv() {
         let full = UniformOptions::new(2).full_topology(true);
         let mut n = refiner::Refiner::new(&mesh, &options).unwrap();
         n.refine_uniform(full).unwrap();
-        let mut o = osd::Refiner::new(&mesh, &options).unwrap();
+        let mut o = osd::TopologyRefiner::new(&mesh, &options).unwrap();
         o.refine_uniform(full).unwrap();
-        let count = n.internal_level(2).unwrap().vertex_count;
+        let count = n.level_counts(2).unwrap().vertices;
         assert!(count > 3 * 2048, "{count} vertices: fewer than four blocks");
         for width in [3, 5] {
             // Per vertex: its position, then extra components derived from it.

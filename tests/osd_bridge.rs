@@ -5,7 +5,7 @@
 use approx::assert_abs_diff_eq;
 use glam::DVec3;
 use subdiv::compare::bbox_diagonal;
-use subdiv::osd::{self, Refiner};
+use subdiv::osd::{self, TopologyRefiner};
 use subdiv::{
     BoundaryInterpolation, Buffer, Error, FVarLinearInterpolation, Mesh, MeshError, Options,
     OsdError, OsdErrorKind, Precision, Scheme, UniformOptions, shapes,
@@ -53,7 +53,7 @@ fn cube_face_edge_and_vertex_points_by_hand() {
 
 #[test]
 fn cube_topology_level_one() {
-    let mut r = Refiner::new(&shapes::cube(), &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(1).full_topology(true))
         .unwrap();
     let l0 = r.level(0).unwrap();
@@ -91,7 +91,7 @@ fn cube_topology_level_one() {
 
 #[test]
 fn faces_first_ordering() {
-    let mut r = Refiner::new(&shapes::cube(), &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(1).faces_first(true))
         .unwrap();
     let base: Vec<f64> = shapes::cube()
@@ -176,7 +176,7 @@ fn infinitely_sharp_crease_keeps_vertices_on_the_crease() {
 fn semi_sharp_crease_decays_by_one_per_level() {
     let mut mesh = shapes::cube();
     mesh.add_crease(0, 1, 2.5);
-    let mut r = Refiner::new(&mesh, &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&mesh, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(3).full_topology(true))
         .unwrap();
     let max_sharpness = |l: u32| {
@@ -250,7 +250,7 @@ fn face_varying_seams_and_holes() {
 #[test]
 fn varying_is_linear() {
     let cube = shapes::cube();
-    let mut r = Refiner::new(&cube, &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&cube, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(1)).unwrap();
     let base: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
     let v = r.interpolate_varying(1, 3, &base).unwrap();
@@ -262,7 +262,7 @@ fn varying_is_linear() {
 fn stencils_reproduce_interpolation_and_limit() {
     let mut mesh = shapes::torus(8, 6);
     mesh.add_crease(0, 1, 1.5);
-    let mut r = Refiner::new(&mesh, &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&mesh, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(2).full_topology(true))
         .unwrap();
     let base: Vec<f64> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
@@ -304,7 +304,7 @@ fn stencils_reproduce_interpolation_and_limit() {
 #[test]
 fn limit_needs_full_topology_and_right_lengths() {
     let cube = shapes::cube();
-    let mut r = Refiner::new(&cube, &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&cube, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(1)).unwrap();
     let src = vec![0.0f64; 26 * 3];
     assert!(matches!(r.limit(3, &src), Err(Error::NeedsFullTopology)));
@@ -362,7 +362,7 @@ fn errors_not_crashes() {
     let mut bad = shapes::cube();
     bad.face_vertices[5] = 99;
     assert!(matches!(
-        Refiner::new(&bad, &Options::default()),
+        TopologyRefiner::new(&bad, &Options::default()),
         Err(Error::Mesh(MeshError::VertexOutOfRange {
             face: 1,
             corner: 1,
@@ -371,27 +371,27 @@ fn errors_not_crashes() {
         }))
     ));
     // The shim's own checks, without Rust's validation in front of them.
-    let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
+    let err = TopologyRefiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
         matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("vertex index 99 is out of range")),
         "{err}"
     );
     let mut bad = shapes::cube();
     bad.add_corner(8, 1.0);
-    let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
+    let err = TopologyRefiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
         matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("corner 0")),
         "{err}"
     );
     let mut bad = shapes::cube_with_uvs();
     bad.fvar_channels[0].indices[3] = 1000;
-    let err = Refiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
+    let err = TopologyRefiner::new_unvalidated(&bad, &Options::default()).unwrap_err();
     assert!(
         matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Refused, message: m }) if m.contains("value index 1000")),
         "{err}"
     );
 
-    let err = Refiner::new(
+    let err = TopologyRefiner::new(
         &shapes::cube(),
         &Options::default().with_scheme(Scheme::Loop),
     )
@@ -401,7 +401,7 @@ fn errors_not_crashes() {
         "{err}"
     );
 
-    let mut r = Refiner::new(&shapes::cube(), &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     assert!(matches!(
         r.refine_uniform(UniformOptions::new(16)),
         Err(Error::Level { level: 16, .. })
@@ -420,7 +420,7 @@ fn errors_not_crashes() {
 fn crease_without_edge_is_reported() {
     let mut mesh = shapes::cube();
     mesh.add_crease(0, 6, 2.0); // a body diagonal
-    let r = Refiner::new(&mesh, &Options::default()).unwrap();
+    let r = TopologyRefiner::new(&mesh, &Options::default()).unwrap();
     assert!(
         r.warnings().iter().any(|w| w.contains("share no edge")),
         "{:?}",
@@ -499,9 +499,9 @@ fn fvar_modes_change_boundary_values() {
 #[test]
 fn refiner_is_send_and_sync() {
     fn assert_send_sync<T: Send + Sync>() {}
-    assert_send_sync::<Refiner>();
+    assert_send_sync::<TopologyRefiner>();
     let torus = shapes::torus(10, 6);
-    let mut r = Refiner::new(&torus, &Options::default()).unwrap();
+    let mut r = TopologyRefiner::new(&torus, &Options::default()).unwrap();
     r.refine_uniform(UniformOptions::new(2)).unwrap();
     let base: Vec<f64> = torus.positions.iter().flat_map(|p| p.to_array()).collect();
     let expected = r.interpolate_all(3, &base).unwrap();

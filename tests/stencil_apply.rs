@@ -227,7 +227,7 @@ mod opensubdiv {
         let uniform = UniformOptions::new(level);
         let mut n = Refiner::new(mesh, &options).unwrap();
         n.refine_uniform(uniform).unwrap();
-        let mut o = osd::Refiner::new(mesh, &options).unwrap();
+        let mut o = osd::TopologyRefiner::new(mesh, &options).unwrap();
         o.refine_uniform(uniform).unwrap();
         let table = n.stencil_table_f32().unwrap();
         let evaluator = osd::StencilEvaluator::new(&o).unwrap();

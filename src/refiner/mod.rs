@@ -17,7 +17,7 @@ use crate::error::{Buffer, Element, Error, Result};
 use crate::mesh::{Mesh, MeshWarning};
 use crate::options::{Options, Scheme, UniformOptions};
 use crate::options::{check_level, check_level_counts};
-use crate::output::{FVarTopology, LevelCounts, LevelTopology, Limit, Refinement};
+use crate::output::{FVarTopology, LevelCounts, LevelTopology, Limit, Refinement, Values};
 use crate::real::Precision;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
@@ -29,10 +29,10 @@ use glam::{DVec3, Vec3};
 
 mod kernel;
 mod limit;
-mod stencils;
+mod stencil_factory;
 
 pub(crate) use kernel::{HoodBuf, Scratch};
-pub use stencils::FactorizedStencils;
+pub use stencil_factory::FactorizedStencils;
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
 #[inline(always)]
@@ -254,10 +254,9 @@ impl Refiner {
     /// The faces around vertex `v` of `level` and its edges, in OpenSubdiv's
     /// order (`TopologyLevel::GetVertexFaces` and `GetVertexEdges`): read
     /// from the level, or derived from the level before where the level
-    /// leaves them out ([`Level::derived_relations`]: the level before
-    /// a minimal last level of a smooth mesh, whose
-    /// [`Level::vertex_faces_of`] is empty). Empty in a minimal last level,
-    /// which has no vertex relations, as in OpenSubdiv.
+    /// leaves them out (the level before a minimal last level of a smooth
+    /// mesh does not store them). Empty in a minimal last level, which has
+    /// no vertex relations, as in OpenSubdiv.
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
@@ -265,10 +264,12 @@ impl Refiner {
     /// let mut refiner = Refiner::new(&torus, &Options::default())?;
     /// refiner.refine_uniform(UniformOptions::new(2))?;
     /// // Level 1 leaves its vertex relations out: level 0 gives them.
-    /// assert!(refiner.internal_level(1)?.vertex_faces_of(0).is_empty());
     /// let (faces, edges) = refiner.vertex_faces_and_edges(1, 0)?;
     /// assert_eq!((faces.len(), edges.len()), (4, 4));
-    /// assert_eq!(refiner.find_edge(1, 0, refiner.internal_level(1)?.other_vertex(edges[0] as usize, 0))?, Some(edges[0]));
+    /// let level = refiner.level(1)?;
+    /// let [a, b] = level.edge_vertices[edges[0] as usize];
+    /// let other = if a == 0 { b } else { a };
+    /// assert_eq!(refiner.find_edge(1, 0, other)?, Some(edges[0]));
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn vertex_faces_and_edges(&self, level: u32, v: usize) -> Result<(Vec<u32>, Vec<u32>)> {
@@ -288,10 +289,9 @@ impl Refiner {
 
     /// The edge of `level` between vertices `v0` and `v1`
     /// (`TopologyLevel::FindEdge`), or `None` (always in a minimal last
-    /// level, which has no edges); like [`Level::find_edge`], but also on a
-    /// level that derives its vertex relations
-    /// ([`Refiner::vertex_faces_and_edges`]), and a vertex out of range is an
-    /// error.
+    /// level, which has no edges), also on a level that derives its vertex
+    /// relations ([`Refiner::vertex_faces_and_edges`]); a vertex out of range
+    /// is an error.
     pub fn find_edge(&self, level: u32, v0: u32, v1: u32) -> Result<Option<u32>> {
         let l = self.internal_level(level)?;
         if v1 as usize >= l.vertex_count {
@@ -328,8 +328,8 @@ impl Refiner {
 
     /// The faces of edge `e` of `level`, in OpenSubdiv's order
     /// (`TopologyLevel::GetEdgeFaces`): read from the level, or derived from
-    /// the level before where the level leaves them out
-    /// ([`Level::derived_relations`]); empty in a minimal last level.
+    /// the level before where the level leaves them out; empty in a minimal
+    /// last level.
     pub fn edge_faces(&self, level: u32, e: usize) -> Result<Vec<u32>> {
         let l = self.internal_level(level)?;
         if e >= l.edge_count() {
@@ -346,13 +346,49 @@ impl Refiner {
         Ok(self.edge_faces_of(level as usize, e).as_slice().to_vec())
     }
 
+    /// The edges of face `f` of `level`, edge `j` from the face's vertex `j`
+    /// to vertex `j + 1` (`TopologyLevel::GetFaceEdges`); empty in a minimal
+    /// last level, which has no edges.
+    pub fn face_edges(&self, level: u32, f: usize) -> Result<Vec<u32>> {
+        let l = self.internal_level(level)?;
+        if f >= l.face_count() {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: f,
+                level,
+                count: l.face_count(),
+            });
+        }
+        if l.face_edges.len() != l.face_vertices.members.len() {
+            return Ok(Vec::new());
+        }
+        Ok(l.face_edges_of(f).to_vec())
+    }
+
+    /// The subdivision rule of vertex `v` of `level` (smooth, dart, crease
+    /// or corner: `TopologyLevel::GetVertexRule`) and whether it lies on a
+    /// boundary (`TopologyLevel::IsVertexBoundary`).
+    pub fn vertex_rule(&self, level: u32, v: usize) -> Result<(Rule, bool)> {
+        let l = self.internal_level(level)?;
+        if v >= l.vertex_count {
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v,
+                level,
+                count: l.vertex_count,
+            });
+        }
+        let tag = l.vertex_tag(v);
+        Ok((tag.rule(), tag.boundary()))
+    }
+
     /// The deepest refined level.
     pub fn max_level(&self) -> u32 {
         (self.levels.len() - 1) as u32
     }
 
     /// Internal topology of `level`.
-    pub fn internal_level(&self, level: u32) -> Result<&Level> {
+    pub(crate) fn internal_level(&self, level: u32) -> Result<&Level> {
         self.levels
             .get(level as usize)
             .ok_or_else(|| Error::NoSuchLevel {
@@ -516,10 +552,10 @@ impl Refiner {
     }
 
     /// Interpolates vertex data through every level: `result[l]` is level `l`,
-    /// a [`Table`] (it dereferences to a slice; `.to_vec()` copies it out).
-    /// Levels of 2 MiB and more live in huge-page maps that return to a pool
-    /// when dropped, so refining the next frame or mesh reuses their memory
-    /// without page faults ([`crate::topology::release_table_pool`]).
+    /// as [`Values`] (they dereference to a slice; `.to_vec()` copies them
+    /// out). Levels of 2 MiB and more live in huge-page maps that return to a
+    /// pool when dropped, so refining the next frame or mesh reuses their
+    /// memory without page faults ([`crate::release_buffer_pool`]).
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
@@ -530,14 +566,14 @@ impl Refiner {
     /// let levels = r.interpolate_all(3, &base)?;
     /// assert_eq!(levels.len(), 3);
     /// assert_eq!(levels[0], base);
-    /// assert_eq!(levels[2].len(), 3 * r.internal_level(2)?.vertex_count);
+    /// assert_eq!(levels[2].len(), 3 * r.level_counts(2)?.vertices);
     /// # Ok::<(), subdiv::Error>(())
     /// ```
-    pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Table<T>>> {
-        let mut out = vec![Table::from_slice(base)];
+    pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Values<T>>> {
+        let mut out = vec![Values(Table::from_slice(base))];
         for level in 1..=self.max_level() {
             let next = self.interpolate_table(level, width, out.last().expect("non-empty"))?;
-            out.push(next);
+            out.push(Values(next));
         }
         Ok(out)
     }
@@ -545,9 +581,9 @@ impl Refiner {
     /// Interpolates vertex data through every level and returns the last
     /// level's only, holding no more than two levels at a time — what a
     /// caller that wants just the refined result needs (OpenSubdiv's
-    /// tutorials keep a buffer for every level). The values come in a
-    /// [`Table`], which dereferences to a slice: a
-    /// large last level lives in memory advised for huge pages.
+    /// tutorials keep a buffer for every level). The values come as
+    /// [`Values`], which dereference to a slice: a large last level lives in
+    /// memory advised for huge pages.
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
@@ -559,12 +595,12 @@ impl Refiner {
     /// assert_eq!(&last, r.interpolate_all(3, &base)?.last().unwrap());
     /// # Ok::<(), subdiv::Error>(())
     /// ```
-    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Table<T>> {
+    pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Values<T>> {
         let mut current = Table::from_slice(base);
         for level in 1..=self.max_level() {
             current = self.interpolate_table(level, width, &current)?;
         }
-        Ok(current)
+        Ok(Values(current))
     }
 
     /// Positions of every level, from base positions, in `f64`.
@@ -781,7 +817,7 @@ pub struct Faces<'a> {
 /// `width` components per base vertex) along the way, releasing each level's
 /// topology and data as soon as the next level's data exists: the smallest
 /// memory footprint for "just the last level's values". Returns the element
-/// counts of every level and the last level's values in a [`Table`] (equal to
+/// counts of every level and the last level's values as [`Values`] (equal to
 /// [`Refiner::interpolate_last`] after [`Refiner::refine_uniform`]).
 /// Face-varying channels of `mesh` are not refined.
 ///
@@ -800,7 +836,7 @@ pub fn refine_last<T: Real>(
     uniform: UniformOptions,
     width: usize,
     base: &[T],
-) -> Result<(Vec<LevelCounts>, Table<T>)> {
+) -> Result<(Vec<LevelCounts>, Values<T>)> {
     check_level(mesh, options, uniform.level)?;
     let mut r = Refiner::new(mesh, options)?;
     r.fvar.clear();
@@ -841,7 +877,7 @@ pub fn refine_last<T: Real>(
             r.levels[level - 2] = Level::default();
         }
     }
-    Ok((counts, data))
+    Ok((counts, Values(data)))
 }
 
 /// Refines a mesh uniformly with the native engine as `request` says (a

@@ -48,6 +48,7 @@ impl Eq for Relation {}
 
 impl Relation {
     /// An empty relation over no elements.
+    #[cfg(test)]
     pub fn new() -> Self {
         Relation::default()
     }
@@ -62,6 +63,7 @@ impl Relation {
 
     /// A relation where every element has `size` members (zeroed), with
     /// implicit offsets.
+    #[cfg(test)]
     pub fn uniform(count: usize, size: usize) -> Self {
         Relation {
             offsets: Offsets::Uniform { len: count, size },
@@ -88,7 +90,7 @@ impl Relation {
     }
 
     /// Whether there is no element.
-    #[inline]
+    #[cfg(test)]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -58,15 +58,6 @@ fn map_threshold() -> usize {
 /// ([`release_table_pool`]); smaller tables are ordinary `Vec`s. The
 /// environment variable `SUBDIV_HUGE_PAGES=0` makes every table a `Vec`
 /// (docs/PERFORMANCE.md has the measurements).
-///
-/// ```
-/// use subdiv::topology::Table;
-/// let mut t: Table<u32> = Table::zeroed(4);
-/// t[2] = 7;
-/// assert_eq!(&t[..], &[0, 0, 7, 0]);
-/// let big: Table<u32> = Table::filled(1, 9 << 20); // 36 MiB: a huge-page map
-/// assert_eq!(big.iter().map(|&x| x as u64).sum::<u64>(), 9 << 20);
-/// ```
 pub struct Table<T: Pod> {
     repr: Repr<T>,
 }
@@ -224,16 +215,8 @@ impl<T: Pod> Drop for Table<T> {
 /// the next refinement of a similar mesh (the next frame, the next mesh of a
 /// batch) reuses memory already faulted in instead of taking a kernel page
 /// fault for every page anew. A program that refines once and goes on to
-/// other work can hand that memory back to the system with this call.
-///
-/// ```
-/// use subdiv::topology::{Table, release_table_pool};
-/// let table = Table::<u32>::zeroed(1 << 20); // 4 MiB: a map, unless SUBDIV_HUGE_PAGES=0
-/// let mapped = table.is_mapped();
-/// drop(table); // its map is kept
-/// assert_eq!(release_table_pool() >= 4 << 20, mapped);
-/// assert_eq!(release_table_pool(), 0);
-/// ```
+/// other work can hand that memory back to the system with this call
+/// (public as [`crate::release_buffer_pool`]).
 pub fn release_table_pool() -> usize {
     pool::release()
 }

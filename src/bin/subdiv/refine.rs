@@ -4,9 +4,9 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv::io::{ObjOutput, UvOutput};
-use subdiv::topology::Table;
 use subdiv::{
     Engine, Error, LevelRefusal, Mesh, Options, Precision, Refinement, Request, UniformOptions,
+    Values,
 };
 
 use crate::Failure;
@@ -172,7 +172,7 @@ pub(crate) fn write_native_last(
     fn last_values<T: subdiv::Real>(
         r: &subdiv::refiner::Refiner,
         mesh: &Mesh,
-    ) -> subdiv::Result<(Table<T>, Option<Vec<T>>)> {
+    ) -> subdiv::Result<(Values<T>, Option<Vec<T>>)> {
         let positions = r.interpolate_last(3, &mesh.flat_positions::<T>())?;
         // Only the first face-varying channel is written.
         let uv = match mesh.fvar_channels.first() {
@@ -194,7 +194,7 @@ pub(crate) fn write_native_last(
         Precision::F32 => {
             let widen = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
             let (positions, uv) = last_values::<f32>(&r, mesh)?;
-            (Table::from(widen(&positions)), uv.as_deref().map(widen))
+            (Values::from(widen(&positions)), uv.as_deref().map(widen))
         }
     };
     let faces = r.faces(uniform.level)?;
@@ -308,7 +308,7 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
         }
         eprintln!("subdiv: warning: {msg}");
     }
-    let options = subdiv::doo_sabin::Options {
+    let options = subdiv::doo_sabin::DooSabinOptions {
         weights: args.doo_sabin_weights.unwrap_or_default(),
         boundary: args.doo_sabin_boundary.unwrap_or_default(),
     };

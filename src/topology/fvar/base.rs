@@ -4,7 +4,7 @@
 //! OpenSubdiv's `FVarLevel::completeTopologyFromFaceValues`
 //! (`vtr/fvarLevel.cpp`) analyses them.
 
-use super::{ChannelLevel, EdgeTag, Mode, ValueTag};
+use super::{ChannelLevel, FVarEdgeTag, Mode, ValueTag};
 use crate::options::{BoundaryInterpolation, FVarLinearInterpolation, Options};
 use crate::topology::Level;
 
@@ -21,7 +21,7 @@ struct Span {
 }
 
 impl Span {
-    fn count_edge(&mut self, level: &Level, fvar_tags: &[EdgeTag], e: u32) {
+    fn count_edge(&mut self, level: &Level, fvar_tags: &[FVarEdgeTag], e: u32) {
         let e = e as usize;
         if fvar_tags[e].is_mismatch() {
             self.splits += 1;
@@ -50,7 +50,7 @@ pub fn build_base(
         mode,
         value_count,
         face_values: indices.to_vec(),
-        edge_tags: vec![EdgeTag::default(); level.edge_count()],
+        edge_tags: vec![FVarEdgeTag::default(); level.edge_count()],
         value_offsets: Vec::with_capacity(nv + 1),
         face_siblings: vec![0; level.vertex_faces.members.len()],
         value_indices: Vec::new(),
@@ -85,15 +85,15 @@ pub fn build_base(
         );
         let edges = level.vertex_edges_of(v);
         let tag = level.vertex_tag(v);
-        let split = |e: u32, edge_tags: &mut [EdgeTag], mismatch: &mut [bool]| {
+        let split = |e: u32, edge_tags: &mut [FVarEdgeTag], mismatch: &mut [bool]| {
             let [a, b] = level.edge_vertices[e as usize];
             mismatch[a as usize] = true;
             mismatch[b as usize] = true;
             let t = &mut edge_tags[e as usize];
-            t.set(EdgeTag::SPLIT_AT_V0, a as usize == v);
-            t.set(EdgeTag::SPLIT_AT_V1, b as usize == v);
-            t.set(EdgeTag::MISMATCH, true);
-            t.set(EdgeTag::LINEAR, mode.linear_boundaries);
+            t.set(FVarEdgeTag::SPLIT_AT_V0, a as usize == v);
+            t.set(FVarEdgeTag::SPLIT_AT_V1, b as usize == v);
+            t.set(FVarEdgeTag::MISMATCH, true);
+            t.set(FVarEdgeTag::LINEAR, mode.linear_boundaries);
         };
         if !tag.non_manifold() {
             // Around a manifold vertex, edge i separates faces i - 1 and i
@@ -140,12 +140,12 @@ pub fn build_base(
             if mode.linear_boundaries && !faces.is_empty() {
                 mismatch[v] = true;
                 if !tag.non_manifold() {
-                    fvar.edge_tags[edges[0] as usize].set(EdgeTag::LINEAR, true);
-                    fvar.edge_tags[edges[edges.len() - 1] as usize].set(EdgeTag::LINEAR, true);
+                    fvar.edge_tags[edges[0] as usize].set(FVarEdgeTag::LINEAR, true);
+                    fvar.edge_tags[edges[edges.len() - 1] as usize].set(FVarEdgeTag::LINEAR, true);
                 } else {
                     for &e in edges {
                         if level.edge_tag(e as usize).boundary() {
-                            fvar.edge_tags[e as usize].set(EdgeTag::LINEAR, true);
+                            fvar.edge_tags[e as usize].set(FVarEdgeTag::LINEAR, true);
                         }
                     }
                 }

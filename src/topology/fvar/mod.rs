@@ -57,9 +57,9 @@ use crate::rules::crease;
 
 /// Tags of an edge for one channel (packed bits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct EdgeTag(u8);
+pub struct FVarEdgeTag(u8);
 
-impl EdgeTag {
+impl FVarEdgeTag {
     const MISMATCH: u8 = 1;
     const SPLIT_AT_V0: u8 = 2;
     const SPLIT_AT_V1: u8 = 4;
@@ -69,18 +69,6 @@ impl EdgeTag {
     #[inline]
     pub fn is_mismatch(self) -> bool {
         self.0 & Self::MISMATCH != 0
-    }
-
-    /// The split was detected at the edge's first vertex.
-    #[inline]
-    pub fn is_split_at_v0(self) -> bool {
-        self.0 & Self::SPLIT_AT_V0 != 0
-    }
-
-    /// The split was detected at the edge's second vertex.
-    #[inline]
-    pub fn is_split_at_v1(self) -> bool {
-        self.0 & Self::SPLIT_AT_V1 != 0
     }
 
     /// The edge lies on a boundary of the channel that is interpolated linearly.
@@ -150,13 +138,6 @@ impl ValueTag {
         self.0 & Self::DEP_SHARP != 0
     }
 
-    /// The faces sharing this value do not form a single run around the
-    /// vertex, or the vertex is non-manifold: refined as a corner.
-    #[inline]
-    pub fn is_non_manifold(self) -> bool {
-        self.0 & Self::NON_MANIFOLD != 0
-    }
-
     #[inline]
     fn with(self, bit: u8) -> Self {
         ValueTag(self.0 | bit)
@@ -206,7 +187,7 @@ pub struct ChannelLevel {
     /// The value of every face corner, parallel to the level's face-vertices.
     face_values: Vec<u32>,
     /// Per edge.
-    edge_tags: Vec<EdgeTag>,
+    edge_tags: Vec<FVarEdgeTag>,
     /// Vertex values of vertex `v`: `value_offsets[v]..value_offsets[v + 1]`.
     value_offsets: Vec<u32>,
     /// Which sibling each vertex-face incidence uses, parallel to the level's
@@ -245,18 +226,6 @@ impl ChannelLevel {
     #[inline]
     pub fn is_linear(&self) -> bool {
         self.mode.linear
-    }
-
-    /// Whether the channel's boundaries are interpolated linearly.
-    #[inline]
-    pub fn has_linear_boundaries(&self) -> bool {
-        self.mode.linear_boundaries
-    }
-
-    /// The tag of edge `e`.
-    #[inline]
-    pub fn edge_tag(&self, e: usize) -> EdgeTag {
-        self.edge_tags[e]
     }
 
     /// Number of values at vertex `v` (1 unless a seam passes through it).

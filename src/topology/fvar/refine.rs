@@ -2,7 +2,7 @@
 //! topology rather than analysing it again — OpenSubdiv's
 //! `Vtr::FVarRefinement` (`vtr/fvarRefinement.cpp`).
 
-use super::{ChannelLevel, EdgeTag, ValueTag};
+use super::{ChannelLevel, FVarEdgeTag, ValueTag};
 use crate::options::{Options, Scheme};
 use crate::topology::{Level, Split};
 
@@ -100,7 +100,7 @@ pub fn refine(
         mode,
         value_count: total,
         face_values: Vec::new(),
-        edge_tags: vec![EdgeTag::default(); child.edge_count()],
+        edge_tags: vec![FVarEdgeTag::default(); child.edge_count()],
         value_offsets,
         face_siblings: vec![0; child.vertex_faces.members.len()],
         value_indices: Vec::new(),

@@ -51,7 +51,7 @@ pub(crate) use derive::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
     derive_smooth_hood, derive_vertex_relations,
 };
-pub use tags::{child_edge, child_edge_sharpness};
+pub use tags::child_edge_sharpness;
 
 use super::{Level, Relation, Table};
 use crate::options::{Options, Scheme};

@@ -6,7 +6,6 @@ use std::hint::black_box;
 use subdiv::mesh::Mesh;
 use subdiv::options::{Options, Scheme, UniformOptions};
 use subdiv::shapes::BenchShape;
-use subdiv::topology::Table;
 use subdiv::{Result, osd, refiner, shapes};
 
 /// Frames and meshes in the parallel-use section of [`run`].
@@ -129,7 +128,7 @@ pub fn frames_row(
     let uniform = UniformOptions::new(level);
     let mut n = refiner::Refiner::new(&input.mesh, &options)?;
     n.refine_uniform(uniform)?;
-    let mut o = osd::Refiner::new(&input.mesh, &options)?;
+    let mut o = osd::TopologyRefiner::new(&input.mesh, &options)?;
     o.refine_uniform(uniform)?;
     if let Some(frame) = frames.first() {
         let (a, b) = (n.interpolate_last(3, frame)?, o.interpolate_last(3, frame)?);
@@ -154,7 +153,7 @@ pub fn frames_row(
             task: format!("frames ({}, level {level})", frames.len()),
             native,
             osd,
-            vertices: frames.len() * n.internal_level(level)?.vertex_count,
+            vertices: frames.len() * n.level_counts(level)?.vertices,
         },
     })
 }
@@ -182,13 +181,14 @@ pub fn meshes_row(
             )
         })
         .collect();
-    let native_one = |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<Table<f32>> {
-        let mut r = refiner::Refiner::new(mesh, options)?;
-        r.refine_uniform(uniform)?;
-        r.interpolate_last(3, base)
-    };
+    let native_one =
+        |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<subdiv::Values<f32>> {
+            let mut r = refiner::Refiner::new(mesh, options)?;
+            r.refine_uniform(uniform)?;
+            r.interpolate_last(3, base)
+        };
     let osd_one = |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<Vec<f32>> {
-        let mut r = osd::Refiner::new(mesh, options)?;
+        let mut r = osd::TopologyRefiner::new(mesh, options)?;
         r.refine_uniform(uniform)?;
         r.interpolate_last(3, base)
     };

@@ -3,7 +3,7 @@
 use super::*;
 use std::fmt::Write as _;
 
-impl Report {
+impl BenchReport {
     /// The report as a Markdown table.
     pub fn markdown(&self, date: &str) -> String {
         let mut s = String::new();
@@ -87,8 +87,8 @@ impl Report {
     /// An SVG line chart of "topology + positions" time per level, native
     /// against OpenSubdiv, one pair of lines per input.
     pub fn svg_time_per_level(&self) -> String {
-        let series: Vec<Series> = {
-            let mut out: Vec<Series> = Vec::new();
+        let series: Vec<LevelSeries> = {
+            let mut out: Vec<LevelSeries> = Vec::new();
             for r in self
                 .rows
                 .iter()

@@ -28,7 +28,7 @@ impl Row {
 
 /// OpenSubdiv's deepest "topology + positions" time measured twice: with no
 /// native run in between, and interleaved with the native engine (the time
-/// in [`Report::rows`]). Both engines share the process's C allocator, so
+/// in [`BenchReport::rows`]). Both engines share the process's C allocator, so
 /// each can leave the other's heap warmer or colder; the pair shows whether
 /// the reference in the table runs as it does on its own.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -47,7 +47,7 @@ pub struct AloneRow {
 
 /// A whole benchmark run.
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct Report {
+pub struct BenchReport {
     /// When and where it ran.
     pub machine: String,
     /// Native threads used.
@@ -90,4 +90,4 @@ impl ParallelRow {
 }
 
 /// A named series of (level, native seconds, OpenSubdiv seconds).
-pub(crate) type Series = (String, Vec<(u32, f64, f64)>);
+pub(crate) type LevelSeries = (String, Vec<(u32, f64, f64)>);

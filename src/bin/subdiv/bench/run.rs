@@ -14,7 +14,7 @@ pub fn run(
     quick: bool,
     threads: usize,
     mut progress: impl FnMut(&str),
-) -> Result<Report, Failure> {
+) -> Result<BenchReport, Failure> {
     // Each repetition runs both engines twice (see `interleaved`).
     let reps = if quick { 3 } else { 5 };
     let mut rows = Vec::new();
@@ -35,7 +35,7 @@ pub fn run(
             let uniform = UniformOptions::new(level);
             let mut vertices = 0;
             let opensubdiv = || {
-                let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd refiner");
+                let mut r = osd::TopologyRefiner::new(&input.mesh, &options).expect("osd refiner");
                 r.refine_uniform(uniform).expect("osd refinement");
                 black_box(r.interpolate_all(3, &base).expect("osd positions"));
             };
@@ -81,9 +81,9 @@ pub fn run(
         let uniform = UniformOptions::new(level);
         let mut n = refiner::Refiner::new(&input.mesh, &options)?;
         n.refine_uniform(uniform)?;
-        let mut o = osd::Refiner::new(&input.mesh, &options)?;
+        let mut o = osd::TopologyRefiner::new(&input.mesh, &options)?;
         o.refine_uniform(uniform)?;
-        let vertices = n.internal_level(level)?.vertex_count;
+        let vertices = n.level_counts(level)?.vertices;
         let mut push = |task: &str, (native, osd): (f64, f64)| {
             rows.push(Row {
                 input: input.name.clone(),
@@ -108,7 +108,7 @@ pub fn run(
                     },
                     || {
                         drop(black_box(
-                            osd::Refiner::new(&input.mesh, &options).expect("osd"),
+                            osd::TopologyRefiner::new(&input.mesh, &options).expect("osd"),
                         ))
                     },
                 )
@@ -126,7 +126,7 @@ pub fn run(
                         black_box(r);
                     },
                     || {
-                        let mut r = osd::Refiner::new(&input.mesh, &options).expect("osd");
+                        let mut r = osd::TopologyRefiner::new(&input.mesh, &options).expect("osd");
                         r.refine_uniform(uniform).expect("osd");
                         black_box(r);
                     },
@@ -148,7 +148,7 @@ pub fn run(
         let full = uniform.full_topology(true);
         let mut nf = refiner::Refiner::new(&input.mesh, &options)?;
         nf.refine_uniform(full)?;
-        let mut of = osd::Refiner::new(&input.mesh, &options)?;
+        let mut of = osd::TopologyRefiner::new(&input.mesh, &options)?;
         of.refine_uniform(full)?;
         let last = nf.interpolate_all(3, &base)?.pop().unwrap_or_default();
         push(
@@ -200,7 +200,7 @@ pub fn run(
         let bytes = (table.term_count() * 8 + (table.len() + 1) * 4 + frame) as f64;
         let osd_bytes = (table.term_count() * 8 + evaluator.len() * 4 + frame) as f64;
         let rates = (bytes / times.0, osd_bytes / times.1);
-        // Report the input where the native pass moves the fewest bytes per
+        // BenchReport the input where the native pass moves the fewest bytes per
         // second, so that the bandwidth target holds for every input.
         if stencil_bandwidth.is_none_or(|(slowest, _)| rates.0 < slowest) {
             stencil_bandwidth = Some(rates);
@@ -234,7 +234,7 @@ pub fn run(
         PARALLEL_LEVEL,
         reps,
     )?);
-    Ok(Report {
+    Ok(BenchReport {
         machine: machine_description(),
         threads,
         bandwidth,

@@ -1,9 +1,9 @@
 //! The project's performance targets, checked against a benchmark report.
 
-use super::results::Report;
+use super::results::BenchReport;
 
 /// The issue-6 targets, checked against the report.
-pub(crate) fn targets(report: &Report) -> String {
+pub(crate) fn targets(report: &BenchReport) -> String {
     use std::fmt::Write as _;
     let mut s = String::from("\nTargets (OpenSubdiv time / native time):\n");
     for r in report
@@ -68,10 +68,10 @@ pub(crate) fn targets(report: &Report) -> String {
 
 #[cfg(all(test, feature = "osd"))]
 mod tests {
-    use crate::bench::results::{AloneRow, Report, Row};
+    use crate::bench::results::{AloneRow, BenchReport, Row};
 
-    fn report(osd_interleaved: f64, osd_alone: f64) -> Report {
-        Report {
+    fn report(osd_interleaved: f64, osd_alone: f64) -> BenchReport {
+        BenchReport {
             machine: "test".into(),
             threads: 1,
             bandwidth: 1e9,

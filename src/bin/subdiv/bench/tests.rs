@@ -2,7 +2,7 @@
 //! there, with positive times, after the engines' results were checked
 //! equal; and the runner of its whole-process section. Structure only:
 //! nothing here asserts a timing beyond a program's own sleep.
-use super::results::{AloneRow, Report};
+use super::results::{AloneRow, BenchReport};
 use crate::bench;
 use subdiv::shapes::BenchShape;
 use subdiv::{Scheme, shapes};
@@ -69,7 +69,7 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
         assert!(rn > 0.0 && ro > 0.0);
     }
 
-    let report = Report {
+    let report = BenchReport {
         machine: "test".into(),
         threads: 2,
         bandwidth: 1e9,

@@ -163,14 +163,14 @@ pub(crate) fn legend(out: &mut String, y: f64, x0: f64, items: &[(&str, &str, &s
 }
 
 /// A plotted series: label, colour, marker shape, (level, value) points.
-pub(crate) type Series = (&'static str, &'static str, &'static str, Vec<(u32, f64)>);
+pub(crate) type PlotSeries = (&'static str, &'static str, &'static str, Vec<(u32, f64)>);
 
 /// The deviation plot of one input: the worst deviation over its option sets
 /// per level (positions, face-varying values) and of the limit, on a log
 /// scale, exact zeros on their own row.
 pub(crate) fn deviation_svg(r: &InputReport, s: &Settings) -> String {
     let levels: Vec<u32> = (s.first_level..=s.last_level).collect();
-    let mut series: Vec<Series> = Vec::new();
+    let mut series: Vec<PlotSeries> = Vec::new();
     let ok_sets: Vec<&SetResult> = r.sets.iter().filter(|x| x.error.is_none()).collect();
     let per_level = |f: &dyn Fn(&LevelResult) -> Option<f64>| -> Vec<(u32, f64)> {
         levels

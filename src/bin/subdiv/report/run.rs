@@ -294,7 +294,7 @@ pub(crate) fn time_level(
         Ok(black_box(p).last().map_or(0, |l| l.len()))
     };
     let opensubdiv = || -> Result<usize> {
-        let mut r = osd::Refiner::new(mesh, options)?;
+        let mut r = osd::TopologyRefiner::new(mesh, options)?;
         r.refine_uniform(uniform)?;
         let p = r.interpolate_all(3, &base)?;
         Ok(black_box(p).last().map_or(0, Vec::len))
