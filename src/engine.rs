@@ -1,4 +1,6 @@
-//! One way to drive either engine: an [`Engine`] value and one [`Request`].
+//! One way to drive either engine: an [`Engine`] value and one [`Request`]
+//! (both defined with the other options in [`crate::options`]); this module
+//! dispatches them to the native refiner or to the OpenSubdiv bridge.
 //!
 //! ```
 //! use subdiv::{Engine, Options, Precision, Request, shapes};
@@ -16,92 +18,9 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::names::impl_named;
-use crate::options::{Options, UniformOptions};
+use crate::options::{Engine, Options, Request};
 use crate::output::{LevelCounts, Refinement};
 use crate::real::Precision;
-
-/// Which refiner does the work.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Engine {
-    /// The pure-Rust engine ([`crate::refiner`]).
-    #[default]
-    Native,
-    /// OpenSubdiv through the C++ bridge ([`crate::osd`], feature `osd`).
-    Osd,
-}
-
-impl_named!(Engine, "engine", { Native => "native", Osd => "osd" });
-
-/// What to compute in one uniform refinement: the uniform options (level,
-/// vertex order, full topology), the precision of the interpolation, and
-/// whether limit values are evaluated at the last level.
-///
-/// `Request::new(level)` is OpenSubdiv's default uniform refinement in `f64`
-/// without limits; a [`UniformOptions`] converts into a request of its own.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub struct Request {
-    /// Level, vertex order and last-level topology.
-    pub uniform: UniformOptions,
-    /// The precision primvars are interpolated in.
-    pub precision: Precision,
-    /// Evaluate limit positions, tangents and face-varying values at the last
-    /// level (the last level then keeps its full topology, as OpenSubdiv
-    /// requires).
-    pub limit: bool,
-}
-
-impl Request {
-    /// Refine `level` levels with OpenSubdiv's defaults, in `f64`, no limit.
-    pub fn new(level: u32) -> Request {
-        UniformOptions::new(level).into()
-    }
-
-    /// This request with other uniform options.
-    pub fn uniform(mut self, uniform: UniformOptions) -> Request {
-        self.uniform = uniform;
-        self
-    }
-
-    /// This request in another precision.
-    pub fn precision(mut self, precision: Precision) -> Request {
-        self.precision = precision;
-        self
-    }
-
-    /// This request with (or without) limit evaluation.
-    pub fn limit(mut self, limit: bool) -> Request {
-        self.limit = limit;
-        self
-    }
-
-    /// This request with child vertices ordered from faces first.
-    pub fn faces_first(mut self, yes: bool) -> Request {
-        self.uniform = self.uniform.faces_first(yes);
-        self
-    }
-
-    /// The uniform options the engines refine with: those asked for, with
-    /// full topology in the last level when limits are evaluated.
-    pub fn effective_uniform(&self) -> UniformOptions {
-        if self.limit {
-            self.uniform.full_topology(true)
-        } else {
-            self.uniform
-        }
-    }
-}
-
-impl From<UniformOptions> for Request {
-    fn from(uniform: UniformOptions) -> Request {
-        Request {
-            uniform,
-            precision: Precision::F64,
-            limit: false,
-        }
-    }
-}
 
 impl Engine {
     /// Whether this build has the engine (`Osd` needs the feature `osd`).
@@ -115,7 +34,7 @@ impl Engine {
     /// Refines `mesh` as `request` says: the topology and interpolated
     /// positions and face-varying values of every level, and limits when
     /// asked. An engine this build lacks is
-    /// [`Error::EngineUnavailable`](crate::Error::EngineUnavailable).
+    /// [`Error::OsdUnavailable`](crate::Error::OsdUnavailable).
     pub fn refine(
         self,
         mesh: &Mesh,
@@ -130,7 +49,7 @@ impl Engine {
             #[cfg(not(feature = "osd"))]
             Engine::Osd => {
                 let _ = (mesh, options, request);
-                Err(crate::Error::EngineUnavailable { engine: self })
+                Err(crate::Error::OsdUnavailable)
             }
         }
     }
@@ -174,7 +93,7 @@ impl Engine {
             #[cfg(not(feature = "osd"))]
             Engine::Osd => {
                 let _ = (mesh, options, uniform);
-                Err(crate::Error::EngineUnavailable { engine: self })
+                Err(crate::Error::OsdUnavailable)
             }
         }
     }

@@ -1,6 +1,5 @@
 //! The crate's error types.
 
-use crate::engine::Engine;
 use crate::mesh::{MAX_VALENCE, MeshError};
 use crate::options::Scheme;
 use std::fmt;
@@ -132,14 +131,10 @@ pub enum Error {
         /// The width of the indices.
         bits: u32,
     },
-    /// The engine is not in this build (`osd` without the feature `osd`).
-    #[error(
-        "the {engine} engine is not in this build (rebuild with the default feature `{engine}`)"
-    )]
-    EngineUnavailable {
-        /// The engine.
-        engine: Engine,
-    },
+    /// The OpenSubdiv engine was asked for, but this build has no bridge
+    /// (the feature `osd` is off).
+    #[error("the osd engine is not in this build (rebuild with the default feature `osd`)")]
+    OsdUnavailable,
     /// OpenSubdiv (through the bridge) refused or failed.
     #[error(transparent)]
     Osd(#[from] OsdError),

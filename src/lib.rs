@@ -36,17 +36,16 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
+pub mod classic;
 pub mod compare;
-pub mod curve;
-pub mod doo_sabin;
 pub mod engine;
 pub mod error;
 pub mod io;
+pub mod limits;
 pub mod mesh;
 pub mod names;
 pub mod options;
 pub mod output;
-pub mod patch;
 pub mod real;
 pub mod refiner;
 pub mod rules;
@@ -58,16 +57,17 @@ pub(crate) mod topology;
 #[allow(unsafe_code)]
 pub mod osd;
 
-pub use engine::{Engine, Request};
+pub use classic::{curve, doo_sabin, patch};
 pub use error::{
     Buffer, Element, Error, LevelRefusal, ObjError, ObjErrorKind, OsdError, OsdErrorKind, Result,
     StencilFault,
 };
+pub use limits::check_level;
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
 pub use names::{Named, ParseNameError};
 pub use options::{
-    BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, MAX_LEVEL, Options, Scheme,
-    TriangleSubdivision, UniformOptions,
+    BoundaryInterpolation, CreasingMethod, Engine, FVarLinearInterpolation, MAX_LEVEL, Options,
+    Request, Scheme, TriangleSubdivision, UniformOptions,
 };
 pub use output::{
     FVarTopology, LevelCounts, LevelTopology, Limit, LimitData, Refinement, Values,

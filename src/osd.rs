@@ -20,10 +20,10 @@
 //! several threads), and only [`TopologyRefiner::refine_uniform`] mutates it, which
 //! needs `&mut self`. OpenSubdiv's error messages are captured per thread.
 
-use crate::engine::Request;
 use crate::error::{Buffer, Error, OsdError, OsdErrorKind, Result};
+use crate::limits::check_level;
 use crate::mesh::Mesh;
-use crate::options::check_level;
+use crate::options::Request;
 use crate::options::{Options, UniformOptions};
 pub use crate::output::LimitData;
 use crate::output::{FVarTopology, LevelTopology};
@@ -472,7 +472,7 @@ impl TopologyRefiner {
     pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
         // Validate the level ourselves: OpenSubdiv would silently wrap it, and
         // refuse sizes that cannot fit before anything is allocated.
-        crate::options::check_level_counts(
+        crate::limits::check_level_counts(
             self.base_faces,
             self.base_corners,
             self.options.scheme,

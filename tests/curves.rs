@@ -5,9 +5,10 @@ use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use subdiv::curve::{
-    self, BSplineCurve, CurveError, CurveScheme, DEFAULT_TENSION, MAX_DEGREE, Point, Points,
-    PointsErrorKind, bspline_basis, flatness_bound,
+    self, BSplineCurve, CurveError, CurveScheme, DEFAULT_TENSION, MAX_DEGREE, Point, bspline_basis,
+    flatness_bound,
 };
+use subdiv::io::points::{Points, PointsErrorKind};
 
 // ---------------------------------------------------------------------------
 // helpers
@@ -924,11 +925,11 @@ fn bad_input_is_a_typed_error_never_a_panic() {
 fn points_text_round_trips_exactly_at_17_digits() {
     let mut rng = Rng(3);
     let p: Vec<DVec3> = (0..50).map(|_| rng.v3() * 1e-3).collect();
-    let text = curve::format_points(&p);
-    let back = curve::parse_points(&text, Path::new("x")).unwrap();
+    let text = subdiv::io::points::format_points(&p);
+    let back = subdiv::io::points::parse_points(&text, Path::new("x")).unwrap();
     assert_eq!(back.points, Points::Spatial(p));
     assert_eq!(
-        curve::format_points(&[DVec2::new(0.1, 1e20), DVec2::new(-0.0, 1.5)]),
+        subdiv::io::points::format_points(&[DVec2::new(0.1, 1e20), DVec2::new(-0.0, 1.5)]),
         "0.10000000000000001 1e+20\n-0 1.5\n"
     );
 }
@@ -937,7 +938,8 @@ fn points_text_round_trips_exactly_at_17_digits() {
 fn points_errors_escape_control_characters() {
     // A field that would clear the terminal: kept as written in the kind,
     // escaped in the message (as are backslashes).
-    let e = curve::parse_points("0 0\n1 \u{1b}[2J\\\n", Path::new("t.txt")).unwrap_err();
+    let e =
+        subdiv::io::points::parse_points("0 0\n1 \u{1b}[2J\\\n", Path::new("t.txt")).unwrap_err();
     assert_eq!(e.kind, PointsErrorKind::NotANumber("\u{1b}[2J\\".into()));
     assert_eq!(e.to_string(), "t.txt:2: '\\u{1b}[2J\\\\' is not a number");
     assert!(!e.to_string().chars().any(char::is_control));
@@ -947,7 +949,7 @@ fn points_errors_escape_control_characters() {
 fn points_parse_errors_name_the_line() {
     let f = Path::new("in.txt");
     let kind = |text: &str| {
-        let e = curve::parse_points(text, f).unwrap_err();
+        let e = subdiv::io::points::parse_points(text, f).unwrap_err();
         (e.line, e.kind)
     };
     assert_eq!(kind("0 0\n1\n"), (2, PointsErrorKind::WrongCount(1)));
@@ -971,9 +973,9 @@ fn points_parse_errors_name_the_line() {
         kind("0 nan\n"),
         (1, PointsErrorKind::NonFinite("nan".into()))
     );
-    let e = curve::parse_points("0 0\n1,2\n", f).unwrap_err();
+    let e = subdiv::io::points::parse_points("0 0\n1,2\n", f).unwrap_err();
     assert_eq!(e.to_string(), "in.txt:2: '1,2' is not a number");
-    let ok = curve::parse_points("  1e3\t-2  # x y\n#\n\n3 4#\n", f).unwrap();
+    let ok = subdiv::io::points::parse_points("  1e3\t-2  # x y\n#\n\n3 4#\n", f).unwrap();
     assert_eq!(
         ok.points,
         Points::Planar(vec![DVec2::new(1e3, -2.0), DVec2::new(3.0, 4.0)])
@@ -1037,7 +1039,10 @@ fn cli_chaikin_prints_the_refined_points() {
 fn cli_every_scheme_matches_the_library_at_17_digits() {
     let text = "0.1 0.2 0.3\n1.7 -2.2 0\n3.3 2.9 1e-3\n4 0.5 -1\n5.5 1 2\n";
     let input = write("spatial.txt", text);
-    let p = match curve::parse_points(text, Path::new("x")).unwrap().points {
+    let p = match subdiv::io::points::parse_points(text, Path::new("x"))
+        .unwrap()
+        .points
+    {
         Points::Spatial(p) => p,
         other => panic!("{other:?}"),
     };
@@ -1061,7 +1066,11 @@ fn cli_every_scheme_matches_the_library_at_17_digits() {
             let o = subdiv(&args);
             assert!(o.status.success(), "{args:?}: {}", stderr(&o));
             let expected = curve::refine(&p, scheme, closed, 3).unwrap();
-            assert_eq!(stdout(&o), curve::format_points(&expected), "{args:?}");
+            assert_eq!(
+                stdout(&o),
+                subdiv::io::points::format_points(&expected),
+                "{args:?}"
+            );
         }
     }
     // Default: one level.
@@ -1077,7 +1086,7 @@ fn cli_every_scheme_matches_the_library_at_17_digits() {
         "0",
     ]);
     let expected = curve::refine(&p, CurveScheme::bspline(1), false, 1).unwrap();
-    assert_eq!(stdout(&o), curve::format_points(&expected));
+    assert_eq!(stdout(&o), subdiv::io::points::format_points(&expected));
 }
 
 #[test]
@@ -1160,7 +1169,10 @@ fn cli_tolerance_flattens_chaikin_and_bspline_only() {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         let expected = curve::flatten(&p, scheme, false, 1e-3).unwrap();
-        assert_eq!(stdout(&o), curve::format_points(&expected.points));
+        assert_eq!(
+            stdout(&o),
+            subdiv::io::points::format_points(&expected.points)
+        );
     }
     let svg = tmp("flat.svg");
     let o = subdiv(&[

@@ -14,7 +14,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
-use subdiv::curve::{CurveScheme, PointsErrorKind};
+use subdiv::curve::CurveScheme;
+use subdiv::io::points::PointsErrorKind;
 use subdiv::io::read_obj;
 use subdiv::refiner::{self, Refiner};
 use subdiv::{Error, MeshError, ObjErrorKind, Options, Scheme, UniformOptions, shapes};
@@ -836,7 +837,7 @@ fn curve_errors() -> Vec<(&'static str, usize, PointsErrorKind, &'static str)> {
 fn every_malformed_curve_gets_its_exact_error() {
     for (name, line, kind, message) in curve_errors() {
         let path = malformed(name);
-        let err = subdiv::curve::read_points(&path).expect_err(name);
+        let err = subdiv::io::points::read_points(&path).expect_err(name);
         assert_eq!(err.file, path, "{name}");
         assert_eq!((err.line, &err.kind), (line, &kind), "{name}");
         assert_eq!(
@@ -909,7 +910,7 @@ fn curve_too_few() -> Vec<(
 fn too_few_points_name_the_last_line() {
     for (name, scheme, _, closed, got, needed, line, message) in curve_too_few() {
         let path = malformed(name);
-        let file = subdiv::curve::read_points(&path).unwrap();
+        let file = subdiv::io::points::read_points(&path).unwrap();
         assert_eq!(file.points.len(), got, "{name}");
         let err = file.require(&scheme, closed).unwrap_err();
         assert_eq!(err.line, line, "{name} {scheme}");
@@ -960,7 +961,7 @@ fn cli_curve_names_file_and_line_and_writes_nothing() {
 #[test]
 fn binary_curve_file_is_refused() {
     let path = malformed("curve_binary_garbage.txt");
-    let err = subdiv::curve::read_points(&path).unwrap_err();
+    let err = subdiv::io::points::read_points(&path).unwrap_err();
     assert_eq!(err.line, 3);
     assert_eq!(
         err.kind,
@@ -985,7 +986,7 @@ fn binary_curve_file_is_refused() {
 #[test]
 fn binary_curve_file_names_its_line() {
     let path = malformed("curve_binary_garbage.txt");
-    let err = subdiv::curve::read_points(&path).unwrap_err();
+    let err = subdiv::io::points::read_points(&path).unwrap_err();
     assert_eq!(err.line, 3, "{err}");
     assert!(
         err.to_string()

@@ -1,4 +1,4 @@
-//! `subdiv::curve::parse_points` on arbitrary text (after 6 configuration
+//! `subdiv::io::points::parse_points` on arbitrary text (after 6 configuration
 //! bytes: scheme, degree, tension, closed, levels, tolerance), then the
 //! refinement of what it returns with every scheme, flattening, evaluation
 //! and the text round trip.

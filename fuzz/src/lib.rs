@@ -12,7 +12,8 @@
 use arbitrary::{Result as AResult, Unstructured};
 use glam::DVec3;
 use std::path::Path;
-use subdiv::curve::{self, BSplineCurve, CurveError, CurveScheme, Point, Points, PointsErrorKind};
+use subdiv::curve::{self, BSplineCurve, CurveError, CurveScheme, Point};
+use subdiv::io::points::{self as points_io, Points, PointsErrorKind};
 use subdiv::io::{mesh_to_obj_string, parse_obj};
 use subdiv::refiner::{self, Refiner};
 use subdiv::{
@@ -723,7 +724,7 @@ pub fn check_curve(data: &[u8]) {
     let text = String::from_utf8_lossy(rest);
     let file = Path::new("fuzz.txt");
     let lines = text.lines().count();
-    let parsed = match curve::parse_points(&text, file) {
+    let parsed = match points_io::parse_points(&text, file) {
         Err(e) => {
             assert!(
                 e.line >= 1 && e.line <= lines,
@@ -794,10 +795,10 @@ pub fn check_curve(data: &[u8]) {
     }
     // Text round trip: what format_points writes reads back exactly.
     let round_trip =
-        |text: String| curve::parse_points(&text, file).expect("formatted points parse");
+        |text: String| points_io::parse_points(&text, file).expect("formatted points parse");
     let formatted = match &parsed.points {
-        Points::Planar(p) => curve::format_points(p),
-        Points::Spatial(p) => curve::format_points(p),
+        Points::Planar(p) => points_io::format_points(p),
+        Points::Spatial(p) => points_io::format_points(p),
     };
     assert_eq!(
         round_trip(formatted).points,

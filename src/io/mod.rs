@@ -1,13 +1,17 @@
-//! Reading and writing meshes as files.
-//!
-//! The only format is OBJ, extended with the `t` tag lines of OpenSubdiv's
-//! shape files (creases, corners, holes and subdivision options); see [`obj`].
+//! Files in and out: meshes as OBJ with the `t` tag lines of OpenSubdiv's
+//! shape files (creases, corners, holes and subdivision options; [`obj`]),
+//! curves as points files ([`points`]), pictures as SVG ([`svg`]); numbers
+//! written exactly as C's `%.17g` ([`number`]) and every output file written
+//! atomically ([`atomic`]).
 
 pub mod atomic;
+pub mod number;
 pub mod obj;
+pub mod points;
 pub mod svg;
 
+pub use number::format_g;
 pub use obj::{
-    ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, format_g, mesh_to_obj_string, parse_obj,
-    read_obj, write_mesh_obj, write_mesh_obj_to, write_obj, write_obj_to,
+    ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, mesh_to_obj_string, parse_obj, read_obj,
+    write_mesh_obj, write_mesh_obj_to, write_obj, write_obj_to,
 };

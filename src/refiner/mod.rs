@@ -12,11 +12,11 @@
 //! # Ok::<(), subdiv::Error>(())
 //! ```
 
-use crate::engine::Request;
 use crate::error::{Buffer, Element, Error, Result};
+use crate::limits::{check_level, check_level_counts};
 use crate::mesh::{Mesh, MeshWarning};
+use crate::options::Request;
 use crate::options::{Options, Scheme, UniformOptions};
-use crate::options::{check_level, check_level_counts};
 use crate::output::{FVarTopology, LevelCounts, LevelTopology, Limit, Refinement, Values};
 use crate::real::Precision;
 use crate::real::Real;

@@ -54,7 +54,7 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     }
     let (name, mesh, options) = load(&args.mesh)?;
     let (first, last) = args.levels;
-    subdiv::options::check_level(&mesh, &options, last)?;
+    subdiv::check_level(&mesh, &options, last)?;
     let request = Request::new(last)
         .faces_first(args.mesh.faces_first)
         .precision(args.mesh.precision);

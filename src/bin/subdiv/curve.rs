@@ -79,12 +79,12 @@ pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
             scheme: scheme.name(),
         }));
     }
-    let file = subdiv::curve::read_points(&args.input).map_err(|e| message(&e))?;
+    let file = subdiv::io::points::read_points(&args.input).map_err(|e| message(&e))?;
     file.require(&scheme, args.closed)
         .map_err(|e| message(&e))?;
     match &file.points {
-        subdiv::curve::Points::Planar(p) => run_curve(p, scheme, args),
-        subdiv::curve::Points::Spatial(p) => run_curve(p, scheme, args),
+        subdiv::io::points::Points::Planar(p) => run_curve(p, scheme, args),
+        subdiv::io::points::Points::Spatial(p) => run_curve(p, scheme, args),
     }
 }
 
@@ -168,9 +168,9 @@ pub(crate) fn run_curve<P: Point>(
             );
             subdiv::io::svg::write_svg(path, &svg)?;
         }
-        Some(path) => subdiv::curve::write_points(path, result)?,
+        Some(path) => subdiv::io::points::write_points(path, result)?,
         None => {
-            let text = subdiv::curve::format_points(result);
+            let text = subdiv::io::points::format_points(result);
             let mut out = std::io::stdout().lock();
             out.write_all(text.as_bytes())
                 .and_then(|()| out.flush())

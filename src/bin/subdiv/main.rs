@@ -86,7 +86,7 @@ pub(crate) enum Failure {
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         match e {
-            Error::EngineUnavailable { .. } => Failure::Unavailable(e.to_string()),
+            Error::OsdUnavailable => Failure::Unavailable(e.to_string()),
             e => Failure::Error(e),
         }
     }

@@ -90,7 +90,7 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
         .faces_first(args.mesh.faces_first)
         .precision(args.mesh.precision)
         .limit(args.limit);
-    subdiv::options::check_level(&mesh, &options, args.level)?;
+    subdiv::check_level(&mesh, &options, args.level)?;
     let start = Instant::now();
     // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
     let name_errors = |f: Failure| match f {

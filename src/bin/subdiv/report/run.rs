@@ -5,9 +5,10 @@ use crate::Failure;
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Instant;
+use subdiv::check_level;
 use subdiv::compare::{bbox_diagonal, compare};
 use subdiv::mesh::Mesh;
-use subdiv::options::{Options, Scheme, UniformOptions, check_level};
+use subdiv::options::{Options, Scheme, UniformOptions};
 use subdiv::{Engine, LevelTopology, Refinement, Request, Result, osd, refiner};
 
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {

@@ -1,0 +1,701 @@
+//! The OBJ reader: statements, `t` tags, file:line errors.
+
+use super::*;
+
+/// Reads an OBJ shape file.
+///
+/// Failing to read the file is an [`ObjErrorKind::Io`] error on line 0. Bytes
+/// that are not UTF-8 are replaced (they can only matter inside a number, where
+/// they are a syntax error), and a leading byte-order mark is skipped.
+pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
+    let bytes = std::fs::read(path).map_err(|e| ObjError {
+        file: path.to_path_buf(),
+        line: 0,
+        kind: ObjErrorKind::Io(e.to_string()),
+    })?;
+    let text: Cow<'_, str> = String::from_utf8_lossy(&bytes);
+    parse_obj(&text, path)
+}
+
+/// Parses the text of an OBJ shape file; `file` only names it in errors
+/// (use `Path::new("<memory>")` for in-memory text).
+///
+/// ```
+/// use std::path::Path;
+/// use subdiv::io::parse_obj;
+/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1 10\n";
+/// let shape = parse_obj(text, Path::new("<memory>"))?;
+/// assert_eq!(shape.mesh.face_vertices, [0, 1, 2, 3]);
+/// assert_eq!(shape.mesh.creases[0].vertices, [0, 1]);
+/// # Ok::<(), subdiv::ObjError>(())
+/// ```
+pub fn parse_obj(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let error = |line: usize, kind: ObjErrorKind| ObjError {
+        file: file.to_path_buf(),
+        line,
+        kind,
+    };
+    let mut parser = Parser::default();
+    for (i, line) in text.lines().enumerate() {
+        parser
+            .statement(i + 1, line)
+            .map_err(|kind| error(i + 1, kind))?;
+    }
+    parser.finish().map_err(|(line, kind)| error(line, kind))
+}
+
+/// A `crease`, `corner` or `hole` tag, kept until every vertex and face is known.
+struct ElementTag {
+    line: usize,
+    kind: ElementKind,
+    ints: Vec<i64>,
+    floats: Vec<f32>,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum ElementKind {
+    Crease,
+    Corner,
+    Hole,
+}
+
+impl ElementKind {
+    fn name(self) -> &'static str {
+        match self {
+            ElementKind::Crease => "crease",
+            ElementKind::Corner => "corner",
+            ElementKind::Hole => "hole",
+        }
+    }
+}
+
+/// The line-by-line state of [`parse_obj`].
+#[derive(Default)]
+struct Parser {
+    mesh: Mesh,
+    uv_values: Vec<f64>,
+    uv_indices: Vec<u32>,
+    /// Whether face corners carry texture coordinates, and the line of the
+    /// first face corner, which decided it.
+    uv_mode: Option<(bool, usize)>,
+    tags: ShapeTags,
+    /// The line of the last tag setting each option of [`ShapeTags`], in field order.
+    option_lines: [usize; 4],
+    element_tags: Vec<ElementTag>,
+    warnings: Vec<ObjWarning>,
+}
+
+/// At most this many characters of a field are quoted in a message.
+const QUOTE_LIMIT: usize = 40;
+
+/// Text from a file made safe for a message: control characters and other
+/// unprintable ones are escaped as Rust writes them (`\0`, `\t`, `\u{1b}`...)
+/// and `\` is written `\\`, so that a message can never carry a terminal
+/// escape sequence or a line break. Quotes are kept as they are.
+pub(crate) fn escape(text: &str) -> Cow<'_, str> {
+    let plain = |c: char| c == '\'' || c == '"' || c.escape_debug().len() == 1;
+    if text.chars().all(plain) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if plain(c) {
+            out.push(c);
+        } else {
+            out.extend(c.escape_debug());
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// A field of the file for a message: at most [`QUOTE_LIMIT`] characters of
+/// it (then `...`), [`escape`]d.
+fn quote(field: &str) -> Cow<'_, str> {
+    match field.char_indices().nth(QUOTE_LIMIT) {
+        Some((end, _)) => Cow::Owned(format!("{}...", escape(&field[..end]))),
+        None => escape(field),
+    }
+}
+
+fn syntax(message: String) -> ObjErrorKind {
+    ObjErrorKind::Syntax(message)
+}
+
+/// Parses a coordinate named `name` of a `statement`, which must be a finite number.
+fn coordinate(field: &str, statement: &str, name: &str) -> Result<f64, ObjErrorKind> {
+    let value: f64 = field.parse().map_err(|_| {
+        syntax(format!(
+            "'{statement}' statement: {name} '{}' is not a number",
+            quote(field)
+        ))
+    })?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ObjErrorKind::NonFinite(format!(
+            "{name} = {} in a '{statement}' statement",
+            quote(field)
+        )))
+    }
+}
+
+/// The 0-based index of a 1-based or negative (relative) OBJ index among
+/// `count` elements defined so far.
+fn resolve(index: i64, count: usize, what: &'static str) -> Result<u32, ObjErrorKind> {
+    let out_of_range = || ObjErrorKind::IndexOutOfRange { what, index, count };
+    let zero_based = if index > 0 {
+        let i = (index - 1) as u64;
+        if i >= count as u64 {
+            return Err(out_of_range());
+        }
+        i
+    } else if index < 0 {
+        let back = index.unsigned_abs();
+        if back > count as u64 {
+            return Err(out_of_range());
+        }
+        count as u64 - back
+    } else {
+        return Err(out_of_range());
+    };
+    u32::try_from(zero_based).map_err(|_| {
+        syntax(format!(
+            "{what} index {index} does not fit the 32-bit indices of a mesh"
+        ))
+    })
+}
+
+impl Parser {
+    fn warn(&mut self, line: usize, message: String) {
+        self.warnings.push(ObjWarning { line, message });
+    }
+
+    /// Reads one line.
+    fn statement(&mut self, line: usize, text: &str) -> Result<(), ObjErrorKind> {
+        let text = match text.find('#') {
+            Some(i) => &text[..i],
+            None => text,
+        };
+        let mut fields = text.split_ascii_whitespace();
+        let Some(keyword) = fields.next() else {
+            return Ok(());
+        };
+        match keyword {
+            "v" => self.vertex(fields),
+            "vt" => self.texcoord(fields),
+            "vn" => Ok(()),
+            "f" => self.face(line, fields),
+            "t" => self.tag(line, fields),
+            "o" | "g" | "s" | "usemtl" | "mtllib" => Ok(()),
+            "l" | "p" => {
+                let what = if keyword == "l" { "line" } else { "point" };
+                self.warn(
+                    line,
+                    format!("'{keyword}' ({what}) elements are not supported; the line is ignored"),
+                );
+                Ok(())
+            }
+            _ => {
+                self.warn(
+                    line,
+                    format!(
+                        "unknown statement '{}'; the line is ignored",
+                        quote(keyword)
+                    ),
+                );
+                Ok(())
+            }
+        }
+    }
+
+    /// `v x y z [w]`, also accepting the common `v x y z r g b` colour extension.
+    fn vertex(&mut self, fields: SplitAsciiWhitespace<'_>) -> Result<(), ObjErrorKind> {
+        let mut raw = [""; 6];
+        let mut n = 0;
+        for field in fields {
+            if n < raw.len() {
+                raw[n] = field;
+            }
+            n += 1;
+        }
+        let names: &[&str] = match n {
+            3 => &["x", "y", "z"],
+            4 => &["x", "y", "z", "w"],
+            6 => &["x", "y", "z", "red", "green", "blue"],
+            _ => {
+                return Err(syntax(format!(
+                    "a 'v' statement needs x y z [w] (or x y z r g b), found {n} values"
+                )));
+            }
+        };
+        let mut xyz = [0.0; 3];
+        for (i, name) in names.iter().enumerate() {
+            let value = coordinate(raw[i], "v", name)?;
+            if i < 3 {
+                xyz[i] = value;
+            }
+        }
+        self.mesh.positions.push(DVec3::from_array(xyz));
+        Ok(())
+    }
+
+    /// `vt u v [w]`.
+    fn texcoord(&mut self, fields: SplitAsciiWhitespace<'_>) -> Result<(), ObjErrorKind> {
+        let mut uv = [0.0; 2];
+        let mut n = 0;
+        for field in fields {
+            if n < 3 {
+                let value = coordinate(field, "vt", ["u", "v", "w"][n])?;
+                if n < 2 {
+                    uv[n] = value;
+                }
+            }
+            n += 1;
+        }
+        if !(2..=3).contains(&n) {
+            return Err(syntax(format!(
+                "a 'vt' statement needs u v [w], found {n} values"
+            )));
+        }
+        self.uv_values.extend_from_slice(&uv);
+        Ok(())
+    }
+
+    /// `f v v/vt v//vn v/vt/vn ...`.
+    fn face(&mut self, line: usize, fields: SplitAsciiWhitespace<'_>) -> Result<(), ObjErrorKind> {
+        let size = fields.clone().count();
+        if size < 3 {
+            return Err(ObjErrorKind::FaceTooSmall(size));
+        }
+        if size > MAX_VALENCE {
+            return Err(ObjErrorKind::FaceTooLarge(size));
+        }
+        let vertex_count = self.mesh.positions.len();
+        let uv_count = self.uv_values.len() / 2;
+        for (k, field) in fields.enumerate() {
+            let corner = k + 1;
+            let mut parts = field.split('/');
+            let v = parts.next().unwrap_or("");
+            let vt = parts.next();
+            let vn = parts.next();
+            if parts.next().is_some() {
+                return Err(syntax(format!(
+                    "face corner {corner} '{}' has more than three '/'-separated indices",
+                    quote(field)
+                )));
+            }
+            let index = |text: &str, what: &str| -> Result<i64, ObjErrorKind> {
+                if text.is_empty() {
+                    return Err(syntax(format!(
+                        "face corner {corner} '{}': the {what} index is missing",
+                        quote(field)
+                    )));
+                }
+                text.parse().map_err(|_| {
+                    syntax(format!(
+                        "face corner {corner} '{}': {what} index '{}' is not an integer",
+                        quote(field),
+                        quote(text)
+                    ))
+                })
+            };
+            let vertex = resolve(index(v, "vertex")?, vertex_count, "vertex")?;
+            let uv = match (vt, vn) {
+                (None, _) => None,
+                (Some(""), Some(_)) => None,
+                (Some(t), _) => Some(resolve(
+                    index(t, "texture coordinate")?,
+                    uv_count,
+                    "texture coordinate",
+                )?),
+            };
+            if let Some(n) = vn {
+                // Normals are ignored, as OpenSubdiv ignores them: the index
+                // must be an integer, but is not checked against the `vn` count.
+                index(n, "normal")?;
+            }
+            self.check_uv_mode(line, corner, uv.is_some())?;
+            self.mesh.face_vertices.push(vertex);
+            if let Some(t) = uv {
+                self.uv_indices.push(t);
+            }
+        }
+        let end = u32::try_from(self.mesh.face_vertices.len())
+            .map_err(|_| syntax("too many face corners for 32-bit indices".into()))?;
+        self.mesh.face_offsets.push(end);
+        Ok(())
+    }
+
+    /// Either every face corner has a texture coordinate, or none has.
+    fn check_uv_mode(
+        &mut self,
+        line: usize,
+        corner: usize,
+        has_uv: bool,
+    ) -> Result<(), ObjErrorKind> {
+        let (mode, first_line) = *self.uv_mode.get_or_insert((has_uv, line));
+        if mode == has_uv {
+            return Ok(());
+        }
+        let this = if has_uv {
+            "has a texture coordinate"
+        } else {
+            "has none"
+        };
+        let first = if mode { "has one" } else { "has none" };
+        Err(ObjErrorKind::InconsistentTexcoords(if first_line == line {
+            format!("corner {corner} of this face {this} but its corner 1 {first}")
+        } else {
+            format!(
+                "corner {corner} of this face {this} but the first face corner (line {first_line}) {first}"
+            )
+        }))
+    }
+
+    /// `t NAME nI/nF/nS ints... floats... strings...`.
+    fn tag(
+        &mut self,
+        line: usize,
+        mut fields: SplitAsciiWhitespace<'_>,
+    ) -> Result<(), ObjErrorKind> {
+        let Some(name) = fields.next() else {
+            return Err(syntax("a 't' statement needs a tag name".into()));
+        };
+        let bad = |message: String| ObjErrorKind::BadTag {
+            tag: quote(name).into_owned(),
+            message,
+        };
+        let Some(counts) = fields.next() else {
+            return Err(bad(
+                "the argument counts 'ints/floats/strings' are missing".into()
+            ));
+        };
+        let parse_counts = || -> Option<[usize; 3]> {
+            let mut it = counts.split('/');
+            let c = [
+                it.next()?.parse().ok()?,
+                it.next()?.parse().ok()?,
+                it.next()?.parse().ok()?,
+            ];
+            it.next().is_none().then_some(c)
+        };
+        let [ni, nf, ns] = parse_counts().ok_or_else(|| {
+            bad(format!(
+                "the argument counts must be written 'ints/floats/strings', found '{}'",
+                quote(counts)
+            ))
+        })?;
+        let args: Vec<&str> = fields.collect();
+        let announced = ni.checked_add(nf).and_then(|n| n.checked_add(ns));
+        if announced != Some(args.len()) {
+            return Err(bad(format!(
+                "the counts {counts} announce {} arguments but {} follow",
+                announced.map_or_else(|| "too many".to_string(), |n| n.to_string()),
+                args.len()
+            )));
+        }
+        let ints = args[..ni]
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                s.parse::<i64>().map_err(|_| {
+                    bad(format!(
+                        "integer argument {} '{}' is not an integer",
+                        i + 1,
+                        quote(s)
+                    ))
+                })
+            })
+            .collect::<Result<Vec<i64>, _>>()?;
+        let float_args = &args[ni..ni + nf];
+        let floats = float_args
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                s.parse::<f32>().map_err(|_| {
+                    bad(format!(
+                        "float argument {} '{}' is not a number",
+                        i + 1,
+                        quote(s)
+                    ))
+                })
+            })
+            .collect::<Result<Vec<f32>, _>>()?;
+        let strings = &args[ni + nf..];
+        let shape = |want: [usize; 3]| -> Result<(), ObjErrorKind> {
+            if [ni, nf, ns] == want {
+                Ok(())
+            } else {
+                Err(bad(format!(
+                    "expects {}/{}/{} arguments, found {counts}",
+                    want[0], want[1], want[2]
+                )))
+            }
+        };
+        let sharpness_ok = |floats: &[f32]| -> Result<(), ObjErrorKind> {
+            match floats.iter().position(|s| !s.is_finite()) {
+                Some(i) => Err(bad(format!(
+                    "sharpness {} '{}' is not a finite number",
+                    i + 1,
+                    quote(float_args[i])
+                ))),
+                None => Ok(()),
+            }
+        };
+        let kind = match name {
+            "crease" => {
+                if ns != 0 {
+                    return Err(bad(format!("takes no string arguments, found {ns}")));
+                }
+                if ni < 2 {
+                    return Err(bad(format!(
+                        "needs a chain of at least 2 vertices, found {ni}"
+                    )));
+                }
+                let edges = ni - 1;
+                if nf != 1 && nf != edges {
+                    return Err(bad(if edges == 1 {
+                        format!("needs 1 sharpness, found {nf}")
+                    } else {
+                        format!(
+                            "{ni} vertices make {edges} edges: give 1 sharpness for all or {edges} (one per edge), found {nf}"
+                        )
+                    }));
+                }
+                sharpness_ok(&floats)?;
+                ElementKind::Crease
+            }
+            "corner" => {
+                if ns != 0 {
+                    return Err(bad(format!("takes no string arguments, found {ns}")));
+                }
+                if ni < 1 {
+                    return Err(bad("names no vertex".into()));
+                }
+                if nf != 1 && nf != ni {
+                    return Err(bad(format!(
+                        "give 1 sharpness for all {ni} vertices or one each, found {nf}"
+                    )));
+                }
+                sharpness_ok(&floats)?;
+                ElementKind::Corner
+            }
+            "hole" => {
+                if nf != 0 || ns != 0 {
+                    return Err(bad(format!(
+                        "takes only face indices (n/0/0), found {counts}"
+                    )));
+                }
+                if ni < 1 {
+                    return Err(bad("names no face".into()));
+                }
+                ElementKind::Hole
+            }
+            "interpolateboundary" => {
+                shape([1, 0, 0])?;
+                let value = match ints[0] {
+                    0 => BoundaryInterpolation::None,
+                    1 => BoundaryInterpolation::EdgeAndCorner,
+                    2 => BoundaryInterpolation::EdgeOnly,
+                    v => {
+                        return Err(bad(format!(
+                            "unknown value {v}: expected 0 (none), 1 (edge and corner) or 2 (edge only)"
+                        )));
+                    }
+                };
+                self.set_option(0, line, name);
+                self.tags.boundary = Some(value);
+                return Ok(());
+            }
+            "facevaryinginterpolateboundary" => {
+                shape([1, 0, 0])?;
+                let value = FVarLinearInterpolation::from_code(ints[0]).ok_or_else(|| {
+                    bad(format!(
+                        "unknown value {}: expected 0 (none) to 5 (all)",
+                        ints[0]
+                    ))
+                })?;
+                self.set_option(1, line, name);
+                self.tags.fvar = Some(value);
+                return Ok(());
+            }
+            "creasemethod" => {
+                shape([0, 0, 1])?;
+                let value = match strings[0] {
+                    "normal" => CreasingMethod::Uniform,
+                    "chaikin" => CreasingMethod::Chaikin,
+                    s => {
+                        return Err(bad(format!(
+                            "unknown value '{}': expected 'normal' or 'chaikin'",
+                            quote(s)
+                        )));
+                    }
+                };
+                self.set_option(2, line, name);
+                self.tags.creasing = Some(value);
+                return Ok(());
+            }
+            "smoothtriangles" => {
+                shape([0, 0, 1])?;
+                let value = match strings[0] {
+                    "catmark" => TriangleSubdivision::Catmark,
+                    "smooth" => TriangleSubdivision::Smooth,
+                    s => {
+                        return Err(bad(format!(
+                            "unknown value '{}': expected 'catmark' or 'smooth'",
+                            quote(s)
+                        )));
+                    }
+                };
+                self.set_option(3, line, name);
+                self.tags.triangles = Some(value);
+                return Ok(());
+            }
+            _ => {
+                self.warn(
+                    line,
+                    format!("unknown tag '{}'; the line is ignored", quote(name)),
+                );
+                return Ok(());
+            }
+        };
+        self.element_tags.push(ElementTag {
+            line,
+            kind,
+            ints,
+            floats,
+        });
+        Ok(())
+    }
+
+    /// Records the line of an option tag, warning when it overrides an earlier one.
+    fn set_option(&mut self, slot: usize, line: usize, name: &str) {
+        let previous = std::mem::replace(&mut self.option_lines[slot], line);
+        if previous != 0 {
+            self.warn(
+                line,
+                format!("this '{name}' tag overrides the one at line {previous}"),
+            );
+        }
+    }
+
+    /// Resolves the element tags and assembles the result.
+    fn finish(mut self) -> Result<ShapeFile, (usize, ObjErrorKind)> {
+        let vertex_count = self.mesh.positions.len();
+        let face_count = self.mesh.face_count();
+        for tag in &self.element_tags {
+            let (what, count) = match tag.kind {
+                ElementKind::Hole => ("face", face_count),
+                _ => ("vertex", vertex_count),
+            };
+            let mut indices = Vec::with_capacity(tag.ints.len());
+            for &index in &tag.ints {
+                if index < 0 || index as u64 >= count as u64 {
+                    return Err((
+                        tag.line,
+                        ObjErrorKind::TagOutOfRange {
+                            tag: tag.kind.name().to_string(),
+                            what,
+                            index,
+                            count,
+                        },
+                    ));
+                }
+                indices.push(index as u32);
+            }
+            let sharpness = |i: usize| {
+                if tag.floats.len() == 1 {
+                    tag.floats[0]
+                } else {
+                    tag.floats[i]
+                }
+            };
+            match tag.kind {
+                ElementKind::Crease => {
+                    self.mesh
+                        .creases
+                        .extend(indices.windows(2).enumerate().map(|(i, pair)| Crease {
+                            vertices: [pair[0], pair[1]],
+                            sharpness: sharpness(i),
+                        }));
+                }
+                ElementKind::Corner => {
+                    self.mesh
+                        .corners
+                        .extend(indices.iter().enumerate().map(|(i, &vertex)| Corner {
+                            vertex,
+                            sharpness: sharpness(i),
+                        }));
+                }
+                ElementKind::Hole => self.mesh.holes.extend_from_slice(&indices),
+            }
+        }
+        if let Some((true, _)) = self.uv_mode {
+            self.mesh.fvar_channels = vec![FVarChannel {
+                width: 2,
+                values: self.uv_values,
+                indices: self.uv_indices,
+            }];
+        }
+        Ok(ShapeFile {
+            mesh: self.mesh,
+            tags: self.tags,
+            warnings: self.warnings,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resolve_counts_relative_indices_from_the_end() {
+        assert_eq!(resolve(1, 3, "vertex"), Ok(0));
+        assert_eq!(resolve(3, 3, "vertex"), Ok(2));
+        assert_eq!(resolve(-1, 3, "vertex"), Ok(2));
+        assert_eq!(resolve(-3, 3, "vertex"), Ok(0));
+        for bad in [0, 4, -4, i64::MIN, i64::MAX] {
+            assert_eq!(
+                resolve(bad, 3, "vertex"),
+                Err(ObjErrorKind::IndexOutOfRange {
+                    what: "vertex",
+                    index: bad,
+                    count: 3
+                })
+            );
+        }
+    }
+
+    #[test]
+    fn long_fields_are_shortened_in_messages() {
+        let long = "x".repeat(100);
+        assert_eq!(quote(&long).len(), QUOTE_LIMIT + 3);
+        assert_eq!(quote("abc"), "abc");
+    }
+
+    #[test]
+    fn quoted_fields_escape_control_characters() {
+        assert!(matches!(
+            quote("plain 'text' \"é\" \u{fffd}"),
+            Cow::Borrowed(_)
+        ));
+        assert_eq!(quote("\u{1b}[2J"), "\\u{1b}[2J");
+        assert_eq!(quote("a\tb\0\r\u{7f}"), "a\\tb\\0\\r\\u{7f}");
+        assert_eq!(quote("back\\slash"), "back\\\\slash");
+        assert_eq!(quote("\u{202e}rtl"), "\\u{202e}rtl");
+        // The limit counts the field's characters, before escaping.
+        let long = "\u{1b}".repeat(100);
+        assert_eq!(
+            quote(&long),
+            format!("{}...", "\\u{1b}".repeat(QUOTE_LIMIT))
+        );
+        // Warnings quote the same way.
+        let shape = parse_obj("\u{1b}]0;title\u{7} 1 2\n", Path::new("<memory>")).unwrap();
+        assert_eq!(
+            shape.warnings[0].message,
+            "unknown statement '\\u{1b}]0;title\\u{7}'; the line is ignored"
+        );
+    }
+}
