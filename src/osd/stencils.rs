@@ -1,0 +1,180 @@
+//! OpenSubdiv's stencil tables (`Far::StencilTableFactory`,
+//! `Far::LimitStencilTableFactory`) and its CPU evaluator.
+
+use super::TopologyRefiner;
+use super::ffi;
+use super::shim::{ErrBuf, internal, to_i32};
+use super::{ERR_LEN, SDV_STENCIL_LIMIT, SDV_STENCIL_REFINED};
+use crate::error::{Buffer, Error, Result};
+use crate::stencil::{LimitStencilTable, StencilTable};
+use std::ptr::NonNull;
+
+impl TopologyRefiner {
+    fn stencils(&self, kind: i32) -> Result<StencilTable> {
+        let mut raw: *mut ffi::sdv_stencils = std::ptr::null_mut();
+        let mut err = ErrBuf::new();
+        // SAFETY: `raw` is live; `raw` output is written by the shim.
+        err.run(|e| unsafe {
+            ffi::sdv_stencils_create(self.raw.as_ptr(), kind, &mut raw, e, ERR_LEN)
+        })?;
+        let table =
+            NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
+        // Free the C++ table whatever happens below.
+        struct Owned(NonNull<ffi::sdv_stencils>);
+        impl Drop for Owned {
+            fn drop(&mut self) {
+                // SAFETY: created by sdv_stencils_create, freed once.
+                unsafe { ffi::sdv_stencils_destroy(self.0.as_ptr()) }
+            }
+        }
+        let table = Owned(table);
+        let (mut rows, mut nnz) = (0usize, 0usize);
+        // SAFETY: the table is live.
+        unsafe { ffi::sdv_stencils_size(table.0.as_ptr(), &mut rows, &mut nnz) };
+        let mut sizes = vec![0i32; rows];
+        let mut offsets = vec![0i32; rows];
+        let mut indices = vec![0i32; nnz];
+        let mut weights = vec![0f64; nnz];
+        // SAFETY: the buffers have the capacities passed, which the shim checks.
+        err.run(|e| unsafe {
+            ffi::sdv_stencils_export(
+                table.0.as_ptr(),
+                sizes.as_mut_ptr(),
+                offsets.as_mut_ptr(),
+                indices.as_mut_ptr(),
+                weights.as_mut_ptr(),
+                rows,
+                nnz,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        Ok(StencilTable {
+            sizes: sizes.into_iter().map(|v| v as u32).collect(),
+            offsets: offsets.into_iter().map(|v| v as u32).collect(),
+            indices: indices.into_iter().map(|v| v as u32).collect(),
+            weights,
+        })
+    }
+
+    /// OpenSubdiv's stencil table (`Far::StencilTableFactory`, vertex
+    /// interpolation, last level only) mapping base vertices to the vertices of
+    /// the last level.
+    pub fn stencil_table(&self) -> Result<StencilTable> {
+        self.stencils(SDV_STENCIL_REFINED)
+    }
+
+    /// Stencils of the limit positions and tangents at the vertices of the last
+    /// level, as `PrimvarRefiner::Limit` computes them from base vertices.
+    pub fn limit_stencil_table(&self) -> Result<LimitStencilTable> {
+        let all = self.stencils(SDV_STENCIL_LIMIT)?;
+        let n = all.len() / 3;
+        let block = |b: usize| {
+            let rows = b * n..(b + 1) * n;
+            let start = all.offsets.get(rows.start).copied().unwrap_or(0) as usize;
+            let end = if rows.end < all.len() {
+                all.offsets[rows.end] as usize
+            } else {
+                all.indices.len()
+            };
+            StencilTable {
+                sizes: all.sizes[rows.clone()].to_vec(),
+                offsets: all.offsets[rows].iter().map(|o| o - start as u32).collect(),
+                indices: all.indices[start..end].to_vec(),
+                weights: all.weights[start..end].to_vec(),
+            }
+        };
+        Ok(LimitStencilTable {
+            positions: block(0),
+            du: block(1),
+            dv: block(2),
+        })
+    }
+}
+
+/// OpenSubdiv's production stencil evaluation: a float `Far::StencilTable`
+/// for the last level, applied by `Osd::CpuEvaluator::EvalStencils`. Used to
+/// measure OpenSubdiv's per-frame cost against [`StencilTable::apply_par`].
+#[derive(Debug)]
+pub struct StencilEvaluator {
+    raw: NonNull<ffi::sdv_evaluator>,
+    controls: usize,
+    stencils: usize,
+}
+
+// SAFETY: the evaluator is immutable after creation; evaluation only reads it.
+unsafe impl Send for StencilEvaluator {}
+// SAFETY: see above.
+unsafe impl Sync for StencilEvaluator {}
+
+impl Drop for StencilEvaluator {
+    fn drop(&mut self) {
+        // SAFETY: created by sdv_evaluator_create, freed once.
+        unsafe { ffi::sdv_evaluator_destroy(self.raw.as_ptr()) }
+    }
+}
+
+impl StencilEvaluator {
+    /// Builds OpenSubdiv's float stencil table for the refiner's last level.
+    pub fn new(refiner: &TopologyRefiner) -> Result<Self> {
+        let mut raw: *mut ffi::sdv_evaluator = std::ptr::null_mut();
+        let mut err = ErrBuf::new();
+        // SAFETY: the refiner is live; `raw` receives a new evaluator.
+        err.run(|e| unsafe {
+            ffi::sdv_evaluator_create(refiner.raw.as_ptr(), &mut raw, e, ERR_LEN)
+        })?;
+        let raw = NonNull::new(raw).ok_or_else(|| internal("the shim returned no evaluator"))?;
+        let (mut controls, mut stencils) = (0i32, 0i32);
+        // SAFETY: the evaluator is live.
+        unsafe { ffi::sdv_evaluator_counts(raw.as_ptr(), &mut controls, &mut stencils) };
+        Ok(StencilEvaluator {
+            raw,
+            controls: controls as usize,
+            stencils: stencils as usize,
+        })
+    }
+
+    /// Number of stencils (vertices of the last level).
+    pub fn len(&self) -> usize {
+        self.stencils
+    }
+
+    /// Whether the table has no stencil.
+    pub fn is_empty(&self) -> bool {
+        self.stencils == 0
+    }
+
+    /// Applies the stencils to base data of `width` floats per vertex, into `dst`.
+    pub fn eval_into(&self, width: usize, src: &[f32], dst: &mut [f32]) -> Result<()> {
+        let mut err = ErrBuf::new();
+        let w = to_i32(width, "primvar components")?;
+        // SAFETY: both lengths are passed and checked by the shim against the
+        // table's counts before either buffer is touched.
+        err.run(|e| unsafe {
+            ffi::sdv_evaluator_eval_f32(
+                self.raw.as_ptr(),
+                w,
+                src.as_ptr(),
+                src.len(),
+                dst.as_mut_ptr(),
+                dst.len(),
+                e,
+                ERR_LEN,
+            )
+        })
+    }
+
+    /// Applies the stencils to base data of `width` floats per vertex.
+    pub fn eval(&self, width: usize, src: &[f32]) -> Result<Vec<f32>> {
+        if src.len() != self.controls * width {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Base,
+                expected: self.controls * width,
+                got: src.len(),
+            });
+        }
+        let mut dst = vec![0f32; self.stencils * width];
+        self.eval_into(width, src, &mut dst)?;
+        Ok(dst)
+    }
+}

@@ -1,0 +1,262 @@
+//! Topology queries on every refined level: counts, the relations of
+//! `Far::TopologyLevel` (read, or derived where a level leaves them out),
+//! whole levels as [`LevelTopology`] and borrowed [`Faces`].
+
+use super::{EdgeFaces, HoodBuf, Refiner};
+use crate::error::{Element, Error, Result};
+use crate::options::Scheme;
+use crate::output::{FVarTopology, LevelCounts, LevelTopology};
+use crate::rules::Rule;
+use crate::topology::Level;
+
+impl Refiner {
+    /// Element counts of `level` (`TopologyLevel::GetNumVertices` and friends).
+    pub fn level_counts(&self, level: u32) -> Result<LevelCounts> {
+        let l = self.internal_level(level)?;
+        Ok(LevelCounts {
+            vertices: l.vertex_count,
+            edges: l.edge_count(),
+            faces: l.face_count(),
+            face_vertices: l.face_vertices.members.len(),
+            full_topology: l.has_full_topology(),
+        })
+    }
+
+    /// The faces around vertex `v` of `level` and its edges, in OpenSubdiv's
+    /// order (`TopologyLevel::GetVertexFaces` and `GetVertexEdges`): read
+    /// from the level, or derived from the level before where the level
+    /// leaves them out (the level before a minimal last level of a smooth
+    /// mesh does not store them). Empty in a minimal last level, which has
+    /// no vertex relations, as in OpenSubdiv.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let torus = shapes::torus(6, 4);
+    /// let mut refiner = Refiner::new(&torus, &Options::default())?;
+    /// refiner.refine_uniform(UniformOptions::new(2))?;
+    /// // Level 1 leaves its vertex relations out: level 0 gives them.
+    /// let (faces, edges) = refiner.vertex_faces_and_edges(1, 0)?;
+    /// assert_eq!((faces.len(), edges.len()), (4, 4));
+    /// let level = refiner.level(1)?;
+    /// let [a, b] = level.edge_vertices[edges[0] as usize];
+    /// let other = if a == 0 { b } else { a };
+    /// assert_eq!(refiner.find_edge(1, 0, other)?, Some(edges[0]));
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn vertex_faces_and_edges(&self, level: u32, v: usize) -> Result<(Vec<u32>, Vec<u32>)> {
+        let l = self.internal_level(level)?;
+        if v >= l.vertex_count {
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v,
+                level,
+                count: l.vertex_count,
+            });
+        }
+        let mut buf = HoodBuf::default();
+        let (faces, edges) = self.vertex_hood(level as usize, v, &mut buf);
+        Ok((faces.to_vec(), edges.to_vec()))
+    }
+
+    /// The edge of `level` between vertices `v0` and `v1`
+    /// (`TopologyLevel::FindEdge`), or `None` (always in a minimal last
+    /// level, which has no edges), also on a level that derives its vertex
+    /// relations ([`Refiner::vertex_faces_and_edges`]); a vertex out of range
+    /// is an error.
+    pub fn find_edge(&self, level: u32, v0: u32, v1: u32) -> Result<Option<u32>> {
+        let l = self.internal_level(level)?;
+        if v1 as usize >= l.vertex_count {
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v1 as usize,
+                level,
+                count: l.vertex_count,
+            });
+        }
+        // Every edge around `v0` has `v0` for an end; the other must be `v1`.
+        let (_, edges) = self.vertex_faces_and_edges(level, v0 as usize)?;
+        Ok(edges.into_iter().find(|&e| {
+            let [a, b] = l.edge_vertices[e as usize];
+            if v0 != v1 { a == v1 || b == v1 } else { a == b }
+        }))
+    }
+
+    /// The faces of edge `e` of `level`, stored or derived
+    /// ([`Level::derived_relations`]).
+    pub(crate) fn edge_faces_of(&self, level: usize, e: usize) -> EdgeFaces<'_> {
+        let l = &self.levels[level];
+        if l.derived_relations {
+            EdgeFaces::Derived(crate::topology::refine::derive_edge_faces(
+                &self.levels[level - 1],
+                &self.refinements[level - 1],
+                self.options.scheme == Scheme::Loop,
+                e,
+            ))
+        } else {
+            EdgeFaces::Stored(l.edge_faces_of(e))
+        }
+    }
+
+    /// The faces of edge `e` of `level`, in OpenSubdiv's order
+    /// (`TopologyLevel::GetEdgeFaces`): read from the level, or derived from
+    /// the level before where the level leaves them out; empty in a minimal
+    /// last level.
+    pub fn edge_faces(&self, level: u32, e: usize) -> Result<Vec<u32>> {
+        let l = self.internal_level(level)?;
+        if e >= l.edge_count() {
+            return Err(Error::NoSuchElement {
+                element: Element::Edge,
+                index: e,
+                level,
+                count: l.edge_count(),
+            });
+        }
+        if !l.derived_relations && l.edge_faces.len() != l.edge_count() {
+            return Ok(Vec::new());
+        }
+        Ok(self.edge_faces_of(level as usize, e).as_slice().to_vec())
+    }
+
+    /// The edges of face `f` of `level`, edge `j` from the face's vertex `j`
+    /// to vertex `j + 1` (`TopologyLevel::GetFaceEdges`); empty in a minimal
+    /// last level, which has no edges.
+    pub fn face_edges(&self, level: u32, f: usize) -> Result<Vec<u32>> {
+        let l = self.internal_level(level)?;
+        if f >= l.face_count() {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: f,
+                level,
+                count: l.face_count(),
+            });
+        }
+        if l.face_edges.len() != l.face_vertices.members.len() {
+            return Ok(Vec::new());
+        }
+        Ok(l.face_edges_of(f).to_vec())
+    }
+
+    /// The subdivision rule of vertex `v` of `level` (smooth, dart, crease
+    /// or corner: `TopologyLevel::GetVertexRule`) and whether it lies on a
+    /// boundary (`TopologyLevel::IsVertexBoundary`).
+    pub fn vertex_rule(&self, level: u32, v: usize) -> Result<(Rule, bool)> {
+        let l = self.internal_level(level)?;
+        if v >= l.vertex_count {
+            return Err(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v,
+                level,
+                count: l.vertex_count,
+            });
+        }
+        let tag = l.vertex_tag(v);
+        Ok((tag.rule(), tag.boundary()))
+    }
+
+    /// The deepest refined level.
+    pub fn max_level(&self) -> u32 {
+        (self.levels.len() - 1) as u32
+    }
+
+    /// Internal topology of `level`.
+    pub(crate) fn internal_level(&self, level: u32) -> Result<&Level> {
+        self.levels
+            .get(level as usize)
+            .ok_or_else(|| Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level(),
+            })
+    }
+
+    /// The topology of `level` as OpenSubdiv reports it (edge-vertices of the
+    /// last level only with full topology).
+    pub fn level(&self, level: u32) -> Result<LevelTopology> {
+        let l = self.internal_level(level)?;
+        let full = level == 0
+            || level < self.max_level()
+            || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
+        Ok(LevelTopology {
+            vertex_count: l.vertex_count,
+            edge_count: l.edge_count(),
+            face_offsets: l.face_vertices.offsets_slice().into_owned(),
+            face_vertices: l.face_vertices.members.to_vec(),
+            edge_vertices: if full {
+                l.edge_vertices.to_vec()
+            } else {
+                Vec::new()
+            },
+            // Tables of default values are stored empty: expand them.
+            edge_sharpness: if !l.edge_sharpness.is_empty() {
+                l.edge_sharpness.to_vec()
+            } else if l.has_full_topology() {
+                vec![0.0; l.edge_count()]
+            } else {
+                // A minimal last level keeps no edge sharpness: recompute it.
+                let parent = &self.levels[level as usize - 1];
+                crate::topology::refine::child_edge_sharpness(
+                    parent,
+                    &self.refinements[level as usize - 1],
+                    self.options.creasing,
+                    l.edge_count(),
+                )
+            },
+            vertex_sharpness: (0..l.vertex_count)
+                .map(|v| l.vertex_sharpness_at(v))
+                .collect(),
+            face_holes: (0..l.face_count()).map(|f| l.is_hole(f)).collect(),
+            fvar: self
+                .fvar
+                .iter()
+                .map(|channel| FVarTopology {
+                    value_count: channel[level as usize].value_count(),
+                    face_values: channel[level as usize].face_values().to_vec(),
+                })
+                .collect(),
+        })
+    }
+
+    /// The faces of `level`, borrowed from the refiner: what a writer of that
+    /// level needs, without [`Refiner::level`]'s copy of every table (at
+    /// level 4 of a 10,000-quad torus that copy is over 50 MB).
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let mut r = Refiner::new(&shapes::cube(), &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let faces = r.faces(2)?;
+    /// assert_eq!(faces.offsets.len(), 6 * 16 + 1);
+    /// assert_eq!(faces.vertices[..4], r.level(2)?.face_vertices[..4]);
+    /// assert!(faces.holes.is_none());
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn faces(&self, level: u32) -> Result<Faces<'_>> {
+        let l = self.internal_level(level)?;
+        Ok(Faces {
+            offsets: l.face_vertices.offsets_slice(),
+            vertices: &l.face_vertices.members,
+            // Stored only when some face is a hole.
+            holes: (!l.face_holes.is_empty()).then_some(&l.face_holes[..]),
+            fvar_face_values: self
+                .fvar
+                .iter()
+                .map(|channel| channel[level as usize].face_values())
+                .collect(),
+        })
+    }
+}
+
+/// The faces of one level, borrowed from a [`Refiner`] ([`Refiner::faces`]).
+#[derive(Debug, Clone)]
+pub struct Faces<'a> {
+    /// Start of each face in `vertices`, plus one final entry (built here
+    /// when the level's faces all have the same size and store no offsets).
+    pub offsets: std::borrow::Cow<'a, [u32]>,
+    /// The vertices of every face, concatenated.
+    pub vertices: &'a [u32],
+    /// One flag per face (`true`: a hole), or `None` when no face is a hole.
+    pub holes: Option<&'a [bool]>,
+    /// Per face-varying channel, the value index of every face corner
+    /// (parallel to `vertices`).
+    pub fvar_face_values: Vec<&'a [u32]>,
+}

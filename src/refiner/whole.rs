@@ -1,0 +1,223 @@
+//! Whole refinements in one call: [`refine`] (every level, every primvar,
+//! limits) and [`refine_last`] (the smallest footprint for the last level).
+
+use super::{Kind, Refiner};
+use crate::error::{Buffer, Error, Result};
+use crate::limits::check_level;
+use crate::mesh::Mesh;
+use crate::options::Request;
+use crate::options::{Options, UniformOptions};
+use crate::output::{LevelCounts, Limit, Refinement, Values};
+use crate::real::Precision;
+use crate::real::Real;
+use crate::topology::{Build, Level, Table, refine_level};
+use glam::{DVec3, Vec3};
+
+/// Refines `mesh` to `uniform.level` and interpolates `base` (vertex data of
+/// `width` components per base vertex) along the way, releasing each level's
+/// topology and data as soon as the next level's data exists: the smallest
+/// memory footprint for "just the last level's values". Returns the element
+/// counts of every level and the last level's values as [`Values`] (equal to
+/// [`Refiner::interpolate_last`] after [`Refiner::refine_uniform`]).
+/// Face-varying channels of `mesh` are not refined.
+///
+/// ```
+/// use subdiv::{refiner, shapes, Options, UniformOptions};
+/// let torus = shapes::torus(8, 6);
+/// let base: Vec<f32> = torus.positions.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+/// let (counts, last) = refiner::refine_last(&torus, &Options::default(), UniformOptions::new(3), 3, &base)?;
+/// assert_eq!(counts.len(), 4);
+/// assert_eq!(last.len(), 3 * counts[3].vertices);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn refine_last<T: Real>(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    width: usize,
+    base: &[T],
+) -> Result<(Vec<LevelCounts>, Values<T>)> {
+    check_level(mesh, options, uniform.level)?;
+    let mut r = Refiner::new(mesh, options)?;
+    r.fvar.clear();
+    if width == 0 {
+        return Err(Error::ZeroWidth);
+    }
+    if base.len() != r.levels[0].vertex_count * width {
+        return Err(Error::BufferLength {
+            buffer: Buffer::Base,
+            expected: r.levels[0].vertex_count * width,
+            got: base.len(),
+        });
+    }
+    let mut counts = vec![r.level_counts(0)?];
+    let mut data = Table::from_slice(base);
+    for level in 1..=uniform.level as usize {
+        let (refinement, child) = refine_level(
+            &r.levels[level - 1],
+            &r.options,
+            uniform.order_vertices_from_faces_first,
+            Build::for_level(
+                level,
+                uniform.level as usize,
+                !uniform.full_topology_in_last_level,
+            ),
+        );
+        r.refinements.push(refinement);
+        r.levels.push(child);
+        r.check_unpaired_smooth_step(level - 1)?;
+        counts.push(r.level_counts(level as u32)?);
+        let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
+        r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
+        data = next;
+        // Nothing reads the grandparent any more (the parent's vertex
+        // relations, when derived, are read from it while interpolating this
+        // level): only this local refiner held it.
+        if level >= 2 {
+            r.levels[level - 2] = Level::default();
+        }
+    }
+    Ok((counts, Values(data)))
+}
+
+/// Refines a mesh uniformly with the native engine as `request` says (a
+/// [`UniformOptions`] is a request in `f64` without limits): the topology,
+/// positions and face-varying values of every level, and limit values at
+/// the last level when asked. [`crate::Engine::refine`] does the same with
+/// either engine.
+///
+/// ```
+/// use subdiv::{refiner, shapes, Options, Precision, Request, UniformOptions};
+/// let cube = shapes::cube();
+/// let r = refiner::refine(&cube, &Options::default(), UniformOptions::new(2))?;
+/// assert_eq!(r.positions[2].len(), 98);
+/// let with_limit = refiner::refine(&cube, &Options::default(), Request::new(1).limit(true))?;
+/// assert_eq!(with_limit.limit.unwrap().positions.len(), 26);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Result<Refinement> {
+    let request = request.into();
+    let (precision, limit) = (request.precision, request.limit);
+    // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
+    let uniform = request.effective_uniform();
+    check_level(mesh, options, uniform.level)?;
+    let mut refiner = Refiner::new(mesh, options)?;
+    refiner.refine_uniform(uniform)?;
+    let levels = (0..=uniform.level)
+        .map(|l| refiner.level(l))
+        .collect::<Result<Vec<_>>>()?;
+    let positions = match precision {
+        Precision::F64 => refiner.refine_positions(&mesh.positions)?,
+        Precision::F32 => {
+            let base: Vec<Vec3> = mesh.positions.iter().map(|p| p.as_vec3()).collect();
+            refiner
+                .refine_positions_f32(&base)?
+                .into_iter()
+                .map(|l| l.into_iter().map(|p| p.as_dvec3()).collect())
+                .collect()
+        }
+    };
+    let fvar_widths: Vec<usize> = mesh.fvar_channels.iter().map(|c| c.width).collect();
+    let fvar_values = match precision {
+        Precision::F64 => refine_fvar::<f64>(&refiner, mesh)?,
+        Precision::F32 => refine_fvar::<f32>(&refiner, mesh)?,
+    };
+    let limit = if limit {
+        let last: Vec<f64> = positions
+            .last()
+            .expect("level 0")
+            .iter()
+            .flat_map(|p| p.to_array())
+            .collect();
+        let data = match precision {
+            Precision::F64 => refiner.limit(3, &last)?,
+            Precision::F32 => {
+                let narrow: Vec<f32> = last.iter().map(|&x| x as f32).collect();
+                let d = refiner.limit(3, &narrow)?;
+                let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
+                crate::output::LimitData {
+                    positions: widen(d.positions),
+                    du: widen(d.du),
+                    dv: widen(d.dv),
+                }
+            }
+        };
+        let points = |v: &[f64]| {
+            v.chunks_exact(3)
+                .map(|c| DVec3::new(c[0], c[1], c[2]))
+                .collect::<Vec<_>>()
+        };
+        Some(Limit {
+            positions: points(&data.positions),
+            du: points(&data.du),
+            dv: points(&data.dv),
+            fvar_values: limit_fvar(
+                &refiner,
+                mesh,
+                precision,
+                fvar_values.last().expect("level 0"),
+            )?,
+        })
+    } else {
+        None
+    };
+    Ok(Refinement {
+        options: *options,
+        uniform,
+        precision,
+        levels,
+        positions,
+        fvar_widths,
+        fvar_values,
+        limit,
+    })
+}
+
+/// Limit values of every face-varying channel, from the last level's values.
+fn limit_fvar(
+    refiner: &Refiner,
+    mesh: &Mesh,
+    precision: Precision,
+    last: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>> {
+    mesh.fvar_channels
+        .iter()
+        .enumerate()
+        .map(|(c, ch)| match precision {
+            Precision::F64 => refiner.limit_face_varying(c, ch.width, &last[c]),
+            Precision::F32 => {
+                let narrow: Vec<f32> = last[c].iter().map(|&x| x as f32).collect();
+                Ok(refiner
+                    .limit_face_varying(c, ch.width, &narrow)?
+                    .into_iter()
+                    .map(f64::from)
+                    .collect())
+            }
+        })
+        .collect()
+}
+
+/// Face-varying values of every level and channel (`[level][channel]`), in `T`.
+fn refine_fvar<T: Real>(refiner: &Refiner, mesh: &Mesh) -> Result<Vec<Vec<Vec<f64>>>> {
+    let mut current: Vec<Vec<T>> = mesh
+        .fvar_channels
+        .iter()
+        .map(|c| c.values.iter().map(|&v| T::from_f64(v)).collect())
+        .collect();
+    let widen = |data: &[Vec<T>]| {
+        data.iter()
+            .map(|c| c.iter().map(|v| v.to_f64()).collect())
+            .collect()
+    };
+    let mut out = vec![widen(&current)];
+    for level in 1..=refiner.max_level() {
+        current = mesh
+            .fvar_channels
+            .iter()
+            .enumerate()
+            .map(|(c, ch)| refiner.interpolate_face_varying(c, level, ch.width, &current[c]))
+            .collect::<Result<Vec<_>>>()?;
+        out.push(widen(&current));
+    }
+    Ok(out)
+}
