@@ -55,18 +55,22 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let report = bench::run(&inputs, args.quick, args.threads, |msg| {
+    let mut report = bench::run(&inputs, args.quick, args.threads, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let date = crate::date::today();
-    let mut text = report.markdown(&date);
     if args.inputs.is_empty() {
-        text.push_str(&bench::whole_process(&inputs[0], args.quick, args.threads));
-        text.push_str(&bench::obj_writer_rate(&inputs[0]));
+        match bench::whole_process(&inputs[0], args.quick, args.threads) {
+            Ok(w) => report.whole_process = Some(w),
+            Err(e) => report.skipped.push(format!("whole process: {e}")),
+        }
+        match bench::obj_writer_rate(&inputs[0]) {
+            Ok(o) => report.obj_writer = Some(o),
+            Err(e) => report.skipped.push(format!("OBJ writer: {e}")),
+        }
     }
-    text.push_str(&bench::targets(&report));
+    let text = report.markdown();
     outln!("{text}");
     if let Some(dir) = &args.out {
         let io = |e: std::io::Error| {

@@ -13,8 +13,6 @@ mod render;
 pub(crate) mod results;
 #[cfg(feature = "osd")]
 mod run;
-#[cfg(feature = "osd")]
-mod targets;
 #[cfg(all(test, feature = "osd"))]
 mod tests;
 #[cfg(feature = "osd")]
@@ -22,4 +20,4 @@ pub(crate) mod timing;
 
 pub(crate) use command::{BenchArgs, bench};
 #[cfg(feature = "osd")]
-use {parallel::*, process::*, results::*, run::*, targets::*, timing::*};
+use {parallel::*, process::*, results::*, run::*, timing::*};

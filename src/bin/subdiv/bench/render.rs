@@ -4,12 +4,15 @@ use super::*;
 use std::fmt::Write as _;
 
 impl BenchReport {
-    /// The report as a Markdown table.
-    pub fn markdown(&self, date: &str) -> String {
+    /// The report as Markdown: the comparison table, then the stencil
+    /// bandwidth, OpenSubdiv alone, parallel use, whole programs and the OBJ
+    /// writer.
+    pub fn markdown(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "Measured {date} on {} ({} native thread(s)); memory bandwidth {:.1} GB/s (a copy on as many threads).\n",
+            "Measured {} on {} ({} native thread(s)); memory bandwidth {:.1} GB/s (a copy on as many threads).\n",
+            self.date,
             self.machine,
             self.threads,
             self.bandwidth / 1e9
@@ -80,6 +83,22 @@ impl BenchReport {
                     unit = p.unit,
                 );
             }
+        }
+        if let Some(w) = &self.whole_process {
+            s.push_str(&w.markdown());
+        }
+        if let Some(o) = &self.obj_writer {
+            let _ = writeln!(
+                s,
+                "\nOBJ writer ({}, level {}, f64 positions, {:.0} MB): {:.0} MB/s",
+                o.input,
+                o.level,
+                o.bytes as f64 / 1e6,
+                o.mb_per_s()
+            );
+        }
+        for why in &self.skipped {
+            let _ = writeln!(s, "\nSkipped: {why}");
         }
         s
     }
@@ -205,6 +224,67 @@ impl BenchReport {
             r#"<line x1="{bx:.1}" y1="24" x2="{bx:.1}" y2="{yy}" stroke="black" stroke-dasharray="3,3"/></svg>"#
         );
         s.push('\n');
+        s
+    }
+}
+
+impl WholeProcess {
+    /// The section as Markdown: each program's median and peak memory, then
+    /// the ratios.
+    fn markdown(&self) -> String {
+        let mut s = format!(
+            "\nWhole process, {} at level {}, no output file (OpenSubdiv is single-threaded; medians of interleaved runs):\n",
+            self.input, self.level
+        );
+        for p in &self.programs {
+            let _ = write!(s, "  {}: {:.1} ms", p.name, p.seconds * 1e3);
+            if p.peak_bytes > 0 {
+                let _ = write!(
+                    s,
+                    ", peak memory {:.0} MiB",
+                    p.peak_bytes as f64 / 1048576.0
+                );
+            }
+            s.push('\n');
+        }
+        let native = self.program(ProgramKind::Native);
+        if let (Some(n), Some(o)) = (native, self.program(ProgramKind::Osd)) {
+            if n.peak_bytes > 0 && o.peak_bytes > 0 {
+                let _ = writeln!(
+                    s,
+                    "  peak memory native / subdiv --engine osd: {:.2}",
+                    n.peak_bytes as f64 / o.peak_bytes as f64
+                );
+            }
+        }
+        let Some(cpp) = self.program(ProgramKind::Cpp) else {
+            s.push_str("  C++ program: skipped (g++ or libosd-dev not available)\n");
+            return s;
+        };
+        if let (Some(n), Some(_)) = (native, self.program(ProgramKind::NativeAsTyped)) {
+            let _ = writeln!(
+                s,
+                "  speed-up over the C++ program with {} thread(s): {:.2}x",
+                self.threads,
+                cpp.seconds / n.seconds
+            );
+        }
+        if let Some(typed) = self.as_typed() {
+            let _ = writeln!(
+                s,
+                "  whole-process speed-up of `subdiv refine INPUT.obj --level {}` as typed ({} threads, its default) over the C++ program: {:.2}x",
+                self.level,
+                self.cores,
+                cpp.seconds / typed.seconds
+            );
+        }
+        if self.native_peak() > 0 && cpp.peak_bytes > 0 {
+            let _ = writeln!(
+                s,
+                "  peak memory native (the larger of its runs) / C++ program: {:.2}",
+                self.native_peak() as f64 / cpp.peak_bytes as f64
+            );
+        }
         s
     }
 }

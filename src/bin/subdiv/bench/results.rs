@@ -45,9 +45,13 @@ pub struct AloneRow {
     pub interleaved: f64,
 }
 
-/// A whole benchmark run.
+/// A whole benchmark run: what `subdiv bench` prints and writes as
+/// bench.json. Measurements and ratios only; the project's own targets are
+/// judged from the JSON by scripts/check-targets.py.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct BenchReport {
+    /// The date (UTC, YYYY-MM-DD).
+    pub date: String,
     /// When and where it ran.
     pub machine: String,
     /// Native threads used.
@@ -66,6 +70,97 @@ pub struct BenchReport {
     pub parallel: Vec<ParallelRow>,
     /// OpenSubdiv alone against OpenSubdiv interleaved, per input.
     pub osd_alone: Vec<AloneRow>,
+    /// Whole programs on the first input (standard inputs only).
+    pub whole_process: Option<WholeProcess>,
+    /// The OBJ writer's rate on the first input (standard inputs only).
+    pub obj_writer: Option<ObjWriterRate>,
+    /// Sections that could not run, with the reason.
+    pub skipped: Vec<String>,
+}
+
+/// Which program a whole-process run is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProgramKind {
+    /// `subdiv refine` natively on the bench's `--threads` threads.
+    Native,
+    /// `subdiv refine` natively as typed (every core), when that differs.
+    NativeAsTyped,
+    /// `subdiv refine --engine osd`.
+    Osd,
+    /// The C++ program against OpenSubdiv (cpp/osd_driver.cpp).
+    Cpp,
+}
+
+/// One program of the whole-process section.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ProgramResult {
+    /// Which program.
+    pub kind: ProgramKind,
+    /// Its description.
+    pub name: String,
+    /// Median wall time, seconds.
+    pub seconds: f64,
+    /// Peak resident memory it reported, bytes (0: not reported).
+    pub peak_bytes: u64,
+}
+
+/// Whole programs refining the same OBJ file, interleaved.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct WholeProcess {
+    /// The input.
+    pub input: String,
+    /// The refinement level.
+    pub level: u32,
+    /// The bench's native threads.
+    pub threads: usize,
+    /// The machine's cores (what `subdiv refine` uses as typed).
+    pub cores: usize,
+    /// Every program, in the order run.
+    pub programs: Vec<ProgramResult>,
+}
+
+impl WholeProcess {
+    /// The program of `kind`, if it ran.
+    pub fn program(&self, kind: ProgramKind) -> Option<&ProgramResult> {
+        self.programs.iter().find(|p| p.kind == kind)
+    }
+
+    /// `subdiv refine` as a user types it: every core.
+    pub fn as_typed(&self) -> Option<&ProgramResult> {
+        self.program(ProgramKind::NativeAsTyped)
+            .or_else(|| self.program(ProgramKind::Native))
+    }
+
+    /// The larger peak memory of the native runs.
+    pub fn native_peak(&self) -> u64 {
+        self.programs
+            .iter()
+            .filter(|p| matches!(p.kind, ProgramKind::Native | ProgramKind::NativeAsTyped))
+            .map(|p| p.peak_bytes)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// The OBJ writer's best time writing one refined level.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ObjWriterRate {
+    /// The input.
+    pub input: String,
+    /// The level written.
+    pub level: u32,
+    /// The file's size.
+    pub bytes: u64,
+    /// The best of three writes, seconds.
+    pub seconds: f64,
+}
+
+impl ObjWriterRate {
+    /// Megabytes (10^6 bytes) per second.
+    pub fn mb_per_s(&self) -> f64 {
+        self.bytes as f64 / self.seconds / 1e6
+    }
 }
 
 /// One comparison of the parallel-use section.

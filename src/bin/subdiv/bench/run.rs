@@ -235,6 +235,7 @@ pub fn run(
         reps,
     )?);
     Ok(BenchReport {
+        date: crate::date::today(),
         machine: machine_description(),
         threads,
         bandwidth,
@@ -242,5 +243,8 @@ pub fn run(
         stencil_bandwidth,
         parallel,
         osd_alone,
+        whole_process: None,
+        obj_writer: None,
+        skipped: Vec::new(),
     })
 }

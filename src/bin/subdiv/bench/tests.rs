@@ -2,7 +2,9 @@
 //! there, with positive times, after the engines' results were checked
 //! equal; and the runner of its whole-process section. Structure only:
 //! nothing here asserts a timing beyond a program's own sleep.
-use super::results::{AloneRow, BenchReport};
+use super::results::{
+    AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row, WholeProcess,
+};
 use crate::bench;
 use subdiv::shapes::BenchShape;
 use subdiv::{Scheme, shapes};
@@ -70,11 +72,6 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
     }
 
     let report = BenchReport {
-        machine: "test".into(),
-        threads: 2,
-        bandwidth: 1e9,
-        rows: Vec::new(),
-        stencil_bandwidth: None,
         parallel: vec![f, m],
         osd_alone: vec![AloneRow {
             input: "torus".into(),
@@ -83,8 +80,9 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
             alone: 0.0875,
             interleaved: 0.0894,
         }],
+        ..empty_report(2)
     };
-    let text = report.markdown("today");
+    let text = report.markdown();
     assert!(text.contains("| frames (3, level 2) |"), "{text}");
     assert!(text.contains("| meshes (4, level 2) |"), "{text}");
     assert!(text.contains("Parallel use (2 thread(s)"), "{text}");
@@ -145,4 +143,162 @@ fn whole_processes_run_interleaved_and_keep_their_results() {
     let mut missing = vec![("absent".to_string(), Command::new("/nonexistent/program"))];
     let e = bench::interleaved_processes(&mut missing, 1).unwrap_err();
     assert!(e.to_string().contains("absent could not start"), "{e}");
+}
+
+/// A report with nothing measured yet.
+fn empty_report(threads: usize) -> BenchReport {
+    BenchReport {
+        date: "2026-11-25".into(),
+        machine: "test".into(),
+        threads,
+        bandwidth: 1e9,
+        rows: Vec::new(),
+        stencil_bandwidth: None,
+        parallel: Vec::new(),
+        osd_alone: Vec::new(),
+        whole_process: None,
+        obj_writer: None,
+        skipped: Vec::new(),
+    }
+}
+
+fn row(task: &str, native: f64, osd: f64) -> Row {
+    Row {
+        input: "torus".into(),
+        scheme: "catmark".into(),
+        level: 4,
+        task: task.into(),
+        native,
+        osd,
+        vertices: 1,
+    }
+}
+
+/// The whole-process section and the OBJ writer are printed as
+/// measurements and ratios, with no target in the product's output.
+#[test]
+fn whole_process_and_writer_are_measurements_only() {
+    let program = |kind, name: &str, seconds, peak_bytes| ProgramResult {
+        kind,
+        name: name.into(),
+        seconds,
+        peak_bytes,
+    };
+    let report = BenchReport {
+        rows: vec![row("topology + positions", 0.010, 0.040)],
+        whole_process: Some(WholeProcess {
+            input: "torus 100x100 quads".into(),
+            level: 4,
+            threads: 1,
+            cores: 2,
+            programs: vec![
+                program(ProgramKind::Native, "native, 1 thread(s)", 0.100, 200 << 20),
+                program(
+                    ProgramKind::NativeAsTyped,
+                    "native, every core (2)",
+                    0.060,
+                    190 << 20,
+                ),
+                program(ProgramKind::Osd, "osd", 0.300, 400 << 20),
+                program(ProgramKind::Cpp, "C++", 0.330, 440 << 20),
+            ],
+        }),
+        obj_writer: Some(ObjWriterRate {
+            input: "torus 100x100 quads".into(),
+            level: 4,
+            bytes: 250_000_000,
+            seconds: 0.5,
+        }),
+        ..empty_report(1)
+    };
+    let text = report.markdown();
+    for expected in [
+        "  native, every core (2): 60.0 ms, peak memory 190 MiB\n",
+        "  peak memory native / subdiv --engine osd: 0.50\n",
+        "  speed-up over the C++ program with 1 thread(s): 3.30x\n",
+        "over the C++ program: 5.50x\n",
+        "  peak memory native (the larger of its runs) / C++ program: 0.45\n",
+        "OBJ writer (torus 100x100 quads, level 4, f64 positions, 250 MB): 500 MB/s\n",
+    ] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert!(!text.contains("target") && !text.contains("met"), "{text}");
+}
+
+/// scripts/check-targets.py reads the JSON the bench writes: the topology +
+/// positions target is judged against OpenSubdiv's faster time, alone when
+/// sharing the allocator slowed it down; every other target is checked, and
+/// the exit status says whether all were met.
+#[test]
+fn the_targets_script_reads_the_bench_json() {
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/check-targets.py");
+    let dir = tempfile::tempdir().unwrap();
+    let check = |report: &BenchReport| {
+        let path = dir.path().join("bench.json");
+        std::fs::write(&path, serde_json::to_string(report).unwrap()).unwrap();
+        let out = std::process::Command::new("python3")
+            .arg(script)
+            .arg(&path)
+            .output()
+            .expect("python3 runs");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
+    };
+    let alone = |alone, interleaved| AloneRow {
+        input: "torus".into(),
+        scheme: "catmark".into(),
+        level: 4,
+        alone,
+        interleaved,
+    };
+    // Slowed down when interleaved: judged against OpenSubdiv alone.
+    let slowed = BenchReport {
+        rows: vec![row("topology + positions", 0.010, 0.040)],
+        osd_alone: vec![alone(0.025, 0.040)],
+        ..empty_report(1)
+    };
+    let (code, text) = check(&slowed);
+    assert!(
+        text.contains(
+            "torus catmark, 1 thread(s): 2.50x against OpenSubdiv alone (25.0 ms; 4.00x interleaved) (target 3x) NOT MET"
+        ),
+        "{text}"
+    );
+    assert_eq!(code, Some(1), "{text}");
+    // Alone was slower: judged on the interleaved time; all met.
+    let mut fair = BenchReport {
+        rows: vec![
+            row("topology + positions", 0.010, 0.031),
+            row("stencil apply (f32)", 0.010, 0.050),
+        ],
+        osd_alone: vec![alone(0.035, 0.031)],
+        stencil_bandwidth: Some((0.6e9, 0.1e9)),
+        obj_writer: Some(ObjWriterRate {
+            input: "torus".into(),
+            level: 4,
+            bytes: 300_000_000,
+            seconds: 1.0,
+        }),
+        ..empty_report(1)
+    };
+    let (code, text) = check(&fair);
+    for expected in [
+        "torus catmark, 1 thread(s): 3.10x (target 3x) met",
+        "stencil apply (f32), torus catmark: 5.00x (target 4x) met",
+        "stencil apply bandwidth, 1 thread(s): 60% of measured (target 50%) met",
+        "OBJ writer (torus, level 4): 300 MB/s (target 200 MB/s) met",
+    ] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert_eq!(code, Some(0), "{text}");
+    // Two threads ask for 5x.
+    fair.threads = 2;
+    let (code, text) = check(&fair);
+    assert!(
+        text.contains("2 thread(s): 3.10x (target 5x) NOT MET"),
+        "{text}"
+    );
+    assert_eq!(code, Some(1));
 }
