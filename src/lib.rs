@@ -45,6 +45,7 @@ pub mod error;
 pub mod io;
 pub mod level;
 pub mod mesh;
+pub mod nurbs;
 pub mod options;
 pub mod patch;
 pub mod real;
