@@ -292,6 +292,28 @@ impl KnotVector {
         }
         d + self.knots[d..=n + 1].partition_point(|&u| u <= t) - 1
     }
+
+    /// The vector with `t` inserted after the knot `u_k` (`u_k ≤ t ≤ u_{k+1}`).
+    pub(crate) fn with_knot_after(&self, k: usize, t: f64) -> Self {
+        let mut knots = Vec::with_capacity(self.knots.len() + 1);
+        knots.extend_from_slice(&self.knots[..=k]);
+        knots.push(t);
+        knots.extend_from_slice(&self.knots[k + 1..]);
+        KnotVector {
+            knots,
+            degree: self.degree,
+            periodic: false,
+        }
+    }
+
+    /// An open vector of these knots, unchecked (the caller keeps the invariants).
+    pub(crate) fn from_raw(knots: Vec<f64>, degree: usize) -> Self {
+        KnotVector {
+            knots,
+            degree,
+            periodic: false,
+        }
+    }
 }
 
 /// Degree 1 and up.
