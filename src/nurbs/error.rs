@@ -181,3 +181,13 @@ pub enum NurbsError {
         source: Box<NurbsError>,
     },
 }
+
+impl NurbsError {
+    /// This error, attributed to the direction `direction` of a surface.
+    pub(crate) fn along(self, direction: Direction) -> Self {
+        NurbsError::Surface {
+            direction,
+            source: Box::new(self),
+        }
+    }
+}

@@ -8,6 +8,8 @@
 //!   closed, optionally rational; evaluation by de Boor's algorithm,
 //!   derivatives, sampling, knot insertion (Boehm), knot refinement (Piegl
 //!   and Tiller's A5.4), Bézier decomposition, splitting.
+//! - [`NurbsSurface`]: the tensor product, with the same operations along u
+//!   or v, and a conversion from [`ControlGrid`](crate::patch::ControlGrid).
 //!
 //! Every constructor and operation validates its input and returns a typed
 //! [`NurbsError`]; nothing panics on bad input.
@@ -100,6 +102,9 @@
 //!   knots of `b` are `(k - d)/2`, from `-d/2` on), which no insertion into
 //!   the domain does; both polygons describe the same curve on `[0, n - d]`.
 //!   For Chaikin, `Q_0 = P_0` and `Q_{2n-3} = P_{n-1}` are the only differences.
+//!
+//! [`NurbsSurface::from_control_grid`] states the same for
+//! [`ControlGrid`](crate::patch::ControlGrid), direction by direction.
 
 mod basis;
 mod curve;
@@ -107,7 +112,9 @@ mod error;
 mod hom;
 mod insert;
 mod knots;
+mod surface;
 
 pub use curve::{BezierSegment, CurveDerivatives, NurbsCurve};
 pub use error::NurbsError;
 pub use knots::KnotVector;
+pub use surface::{BezierPatch, NurbsSurface, SurfaceDerivatives};
