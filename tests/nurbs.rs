@@ -618,6 +618,40 @@ fn bezier_segments_and_split_pieces_reproduce_the_curve() {
     }
 }
 
+#[test]
+fn high_degrees_keep_the_shape_too() {
+    let mut rng = Rng(43);
+    for degree in 6..=10 {
+        for clamped in [false, true] {
+            let knots = random_knots(&mut rng, degree, degree + 4, clamped);
+            let n = knots.control_count();
+            let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let weights = Some((0..n).map(|_| 0.5 + rng.next().abs()).collect());
+            let c = NurbsCurve::from_knot_vector(points, knots, weights).unwrap();
+            let (a, b) = c.domain();
+            // The domain's end too, where it is a simple knot (unclamped).
+            let end = if clamped { a + 0.9 * (b - a) } else { b };
+            let ts = [
+                a + 0.31 * (b - a),
+                a + 0.31 * (b - a),
+                end,
+                a + 0.8 * (b - a),
+            ];
+            let one_by_one = c.insert_many(&ts).unwrap();
+            let at_once = c.refine_knots(&ts).unwrap();
+            assert!(curve_gap(&c, &one_by_one) < 1e-11, "d={degree}");
+            assert!(curve_gap(&c, &at_once) < 1e-11, "d={degree}");
+            for s in c.to_bezier().unwrap() {
+                for t in params((s.start, s.end), 10) {
+                    assert_close(s.eval(t), c.eval(t).unwrap(), 1e-11, "bezier");
+                }
+            }
+            let (left, right) = c.split(a + 0.5 * (b - a)).unwrap();
+            assert!(curve_gap(&left, &c) < 1e-11 && curve_gap(&right, &c) < 1e-11);
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------
 // closed curves
 // ---------------------------------------------------------------------------
@@ -1355,6 +1389,52 @@ proptest! {
             let p = c.eval(t).unwrap();
             prop_assert!((q.eval(t).unwrap() - p).length() <= tol);
             prop_assert!((r.eval(t).unwrap() - p).length() <= tol);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Broken inputs are refused with the variant that names the break.
+    #[test]
+    fn bad_input_is_refused_with_its_variant(
+        c in arb_curve(),
+        which in 0usize..4,
+        at in any::<prop::sample::Index>(),
+    ) {
+        let (d, points, knots) = (c.degree(), c.points().to_vec(), c.knots().as_slice().to_vec());
+        match which {
+            0 => {
+                // A knot made smaller than its predecessor.
+                let index = 1 + at.index(knots.len() - 1);
+                let mut bad = knots.clone();
+                bad[index] = bad[index - 1] - 0.5;
+                let e = NurbsCurve::new(points, d, bad.clone(), None).unwrap_err();
+                let first = (1..bad.len()).find(|&i| bad[i] < bad[i - 1]).unwrap();
+                prop_assert_eq!(e, NurbsError::DecreasingKnots { index: first, previous: bad[first - 1], value: bad[first] });
+            }
+            1 => {
+                // One knot too many or too few.
+                let mut bad = knots.clone();
+                if at.index(2) == 0 { bad.pop(); } else { bad.push(bad[bad.len() - 1] + 1.0); }
+                let e = NurbsCurve::new(points.clone(), d, bad.clone(), None).unwrap_err();
+                prop_assert_eq!(e, NurbsError::WrongKnotCount { expected: points.len() + d + 1, got: bad.len() });
+            }
+            2 => {
+                // A non-positive weight.
+                let index = at.index(points.len());
+                let mut w = vec![1.0; points.len()];
+                w[index] = -(index as f64);
+                let e = NurbsCurve::new(points, d, knots, Some(w.clone())).unwrap_err();
+                prop_assert_eq!(e, NurbsError::BadWeight { index, weight: w[index] });
+            }
+            _ => {
+                // A parameter outside the domain.
+                let (start, end) = c.domain();
+                let t = if at.index(2) == 0 { start - 1e-9 - at.index(5) as f64 } else { end + 1e-9 };
+                prop_assert_eq!(c.eval(t).unwrap_err(), NurbsError::OutsideDomain { t, start, end });
+            }
         }
     }
 }
