@@ -57,7 +57,7 @@ pub(crate) mod topology;
 #[allow(unsafe_code)]
 pub mod osd;
 
-pub use classic::{curve, doo_sabin, patch};
+pub use classic::{curve, doo_sabin, nurbs, patch};
 pub use error::{
     Buffer, Element, Error, LevelRefusal, ObjError, ObjErrorKind, OsdError, OsdErrorKind, Result,
     StencilFault,

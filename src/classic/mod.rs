@@ -8,11 +8,16 @@
 //!   B-spline basis, B-spline curve evaluation and flattening.
 //! - [`patch`]: tensor-product uniform B-spline control grids (biquadratic,
 //!   bicubic, any degree), split and evaluated.
+//! - [`nurbs`]: B-splines and NURBS over any knot vector — de Boor
+//!   evaluation, knot insertion and refinement, Bézier extraction, splitting;
+//!   curves and tensor-product surfaces. The uniform schemes above are its
+//!   special cases (midpoint insertion).
 //! - [`doo_sabin`]: Doo-Sabin refinement of polygon meshes.
 //!
 //! Each is re-exported at the crate root (`subdiv::curve`, `subdiv::patch`,
-//! `subdiv::doo_sabin`).
+//! `subdiv::doo_sabin`, `subdiv::nurbs`).
 
 pub mod curve;
 pub mod doo_sabin;
+pub mod nurbs;
 pub mod patch;
