@@ -4,7 +4,7 @@ use clap::Args;
 use subdiv::{Engine, Request};
 
 use crate::Failure;
-use crate::args::*;
+use crate::args::{MeshArgs, SchemeArg, load, parse_levels};
 
 #[derive(Args)]
 pub(crate) struct CompareArgs {

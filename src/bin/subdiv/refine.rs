@@ -10,7 +10,7 @@ use subdiv::{
 };
 
 use crate::Failure;
-use crate::args::*;
+use crate::args::{MeshArgs, SchemeArg, load, parse};
 
 #[derive(Args)]
 pub(crate) struct RefineArgs {

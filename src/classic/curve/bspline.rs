@@ -1,7 +1,10 @@
 //! The uniform B-spline basis, B-spline curves (evaluation, derivatives) and
 //! adaptive flattening of their limit curve.
 
-use super::*;
+use super::{
+    CurveError, CurveScheme, MAX_FLATTEN_DEPTH, MAX_POINTS, Point, bspline_step, check_points, mid,
+    refined_count,
+};
 
 /// The uniform (cardinal) B-spline of degree `degree` on the knots
 /// `0, 1, …, degree + 1`, from its truncated-power definition:

@@ -52,18 +52,11 @@
 //! all. [`write_mesh_obj`] and [`mesh_to_obj_string`] write a whole [`Mesh`]
 //! including its tags, so that [`parse_obj`] gives the same mesh back.
 
-use crate::error::{Error, ObjError, ObjErrorKind};
-use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
+use crate::mesh::Mesh;
 use crate::options::{
     BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options, TriangleSubdivision,
 };
-use crate::real::Precision;
-use glam::DVec3;
-use std::borrow::Cow;
 use std::fmt;
-use std::io::{self, BufWriter, Write};
-use std::path::Path;
-use std::str::SplitAsciiWhitespace;
 
 mod read;
 mod write;

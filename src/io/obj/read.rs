@@ -1,6 +1,15 @@
 //! The OBJ reader: statements, `t` tags, file:line errors.
 
-use super::*;
+use super::{ObjWarning, ShapeFile, ShapeTags};
+use crate::error::{ObjError, ObjErrorKind};
+use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
+use crate::options::{
+    BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, TriangleSubdivision,
+};
+use glam::DVec3;
+use std::borrow::Cow;
+use std::path::Path;
+use std::str::SplitAsciiWhitespace;
 
 /// Reads an OBJ shape file.
 ///

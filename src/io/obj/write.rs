@@ -1,7 +1,12 @@
 //! The OBJ writer: `%.17g` / `%.9g` numbers, UVs, faces without holes, atomic files.
 
-use super::*;
+use crate::error::Error;
 use crate::io::number::{g_format, push_u64};
+use crate::mesh::Mesh;
+use crate::real::Precision;
+use glam::DVec3;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
 
 /// What [`write_obj_to`] writes: positions, faces and optional UVs, borrowed.
 #[derive(Debug, Clone, Copy)]

@@ -32,7 +32,6 @@ pub(crate) fn bench(_args: &BenchArgs) -> Result<(), Failure> {
 
 #[cfg(feature = "osd")]
 pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
-    use crate::bench;
     let inputs = if args.inputs.is_empty() {
         subdiv::shapes::bench_shapes(args.quick)
     } else {
@@ -55,17 +54,17 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let mut report = bench::run(&inputs, args.quick, args.threads, |msg| {
+    let mut report = super::run::run(&inputs, args.quick, args.threads, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
     bar.finish_and_clear();
     if args.inputs.is_empty() {
-        match bench::whole_process(&inputs[0], args.quick, args.threads) {
+        match super::process::whole_process(&inputs[0], args.quick, args.threads) {
             Ok(w) => report.whole_process = Some(w),
             Err(e) => report.skipped.push(format!("whole process: {e}")),
         }
-        match bench::obj_writer_rate(&inputs[0]) {
+        match super::process::obj_writer_rate(&inputs[0]) {
             Ok(o) => report.obj_writer = Some(o),
             Err(e) => report.skipped.push(format!("OBJ writer: {e}")),
         }

@@ -19,5 +19,3 @@ mod tests;
 pub(crate) mod timing;
 
 pub(crate) use command::{BenchArgs, bench};
-#[cfg(feature = "osd")]
-use {parallel::*, process::*, results::*, run::*, timing::*};

@@ -1,6 +1,7 @@
 //! The parallel-use section: many frames of one mesh, many meshes.
 
-use super::*;
+use super::results::{ParallelRow, Row};
+use super::timing::interleaved;
 use crate::Failure;
 use std::hint::black_box;
 use subdiv::mesh::Mesh;

@@ -1,6 +1,6 @@
 //! The benchmark report as Markdown and SVG plots.
 
-use super::*;
+use super::results::{BenchReport, LevelSeries, ProgramKind, Row, WholeProcess};
 use std::fmt::Write as _;
 
 impl BenchReport {

@@ -1,6 +1,10 @@
 //! The in-process comparisons of `subdiv bench`.
 
-use super::*;
+use super::parallel::{
+    PARALLEL_COUNT, PARALLEL_LEVEL, deformed_frames, frames_row, many_meshes, meshes_row,
+};
+use super::results::{AloneRow, BenchReport, Row};
+use super::timing::{interleaved, machine_description, measure_bandwidth};
 use crate::Failure;
 use std::hint::black_box;
 use subdiv::options::{Options, UniformOptions};

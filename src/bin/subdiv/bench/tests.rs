@@ -2,10 +2,11 @@
 //! there, with positive times, after the engines' results were checked
 //! equal; and the runner of its whole-process section. Structure only:
 //! nothing here asserts a timing beyond a program's own sleep.
+use super::parallel::{deformed_frames, frames_row, many_meshes, meshes_row};
+use super::process::interleaved_processes;
 use super::results::{
     AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row, WholeProcess,
 };
-use crate::bench;
 use subdiv::shapes::BenchShape;
 use subdiv::{Scheme, shapes};
 
@@ -19,7 +20,7 @@ pub(crate) fn pool() -> rayon::ThreadPool {
 #[test]
 pub(crate) fn deformed_frames_are_distinct_and_finite() {
     let torus = shapes::torus(6, 4);
-    let frames = bench::deformed_frames(&torus, 4);
+    let frames = deformed_frames(&torus, 4);
     assert_eq!(frames.len(), 4);
     for (i, f) in frames.iter().enumerate() {
         assert_eq!(f.len(), 3 * torus.positions.len());
@@ -37,17 +38,17 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
         scheme: Scheme::Catmark,
         max_level: 2,
     };
-    let frames = bench::deformed_frames(&input.mesh, 3);
+    let frames = deformed_frames(&input.mesh, 3);
     // frames_row refines once and checks the first frame bit for bit against
     // OpenSubdiv before timing: Ok means the check passed.
-    let f = bench::frames_row(&pool, &input, &frames, 2, 1).unwrap();
+    let f = frames_row(&pool, &input, &frames, 2, 1).unwrap();
     assert_eq!((f.unit.as_str(), f.count), ("frames", 3));
     assert_eq!(f.row.task, "frames (3, level 2)");
     assert_eq!(f.row.level, 2);
     // Level 2 of a 6x4 torus: 24 faces -> 96 -> 384, as many vertices.
     assert_eq!(f.row.vertices, 3 * 384);
 
-    let meshes = bench::many_meshes(4, true);
+    let meshes = many_meshes(4, true);
     assert_eq!(meshes.len(), 4);
     let schemes: Vec<Scheme> = meshes.iter().map(|m| m.scheme).collect();
     assert_eq!(
@@ -59,7 +60,7 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
             Scheme::Catmark
         ]
     );
-    let m = bench::meshes_row(&pool, &meshes, 2, 1).unwrap();
+    let m = meshes_row(&pool, &meshes, 2, 1).unwrap();
     assert_eq!((m.unit.as_str(), m.count), ("meshes", 4));
     assert_eq!(m.row.task, "meshes (4, level 2)");
     assert_eq!(m.row.scheme, "catmark+loop");
@@ -125,7 +126,7 @@ fn whole_processes_run_interleaved_and_keep_their_results() {
         ),
         ("fast".to_string(), shell("echo peak_memory_bytes 5 >&2")),
     ];
-    let runs = bench::interleaved_processes(&mut programs, 3).unwrap();
+    let runs = interleaved_processes(&mut programs, 3).unwrap();
     assert_eq!(runs.len(), 3);
     assert_eq!(runs[0].peak_bytes, 7);
     assert!(runs[0].seconds >= 0.2, "{runs:?}");
@@ -138,10 +139,10 @@ fn whole_processes_run_interleaved_and_keep_their_results() {
         ("fine".to_string(), shell("true")),
         ("broken".to_string(), shell("exit 3")),
     ];
-    let e = bench::interleaved_processes(&mut failing, 2).unwrap_err();
+    let e = interleaved_processes(&mut failing, 2).unwrap_err();
     assert!(e.to_string().contains("broken failed"), "{e}");
     let mut missing = vec![("absent".to_string(), Command::new("/nonexistent/program"))];
-    let e = bench::interleaved_processes(&mut missing, 1).unwrap_err();
+    let e = interleaved_processes(&mut missing, 1).unwrap_err();
     assert!(e.to_string().contains("absent could not start"), "{e}");
 }
 

@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use crate::Failure;
-use crate::args::*;
+use crate::args::parse_levels;
 
 #[derive(Args)]
 pub(crate) struct ReportArgs {
@@ -40,7 +40,9 @@ pub(crate) fn report(_args: &ReportArgs) -> Result<(), Failure> {
 /// `subdiv report`: conformance and benchmarks on the embedded set or on OBJ files.
 #[cfg(feature = "osd")]
 pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
-    use crate::report::{self, Settings};
+    use super::inputs::{embedded_inputs, read_input};
+    use super::run::{run, steps};
+    use super::settings::Settings;
     let mut settings = Settings::new(args.quick);
     if let Some((a, b)) = args.levels {
         settings.first_level = a;
@@ -48,11 +50,11 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
     }
     settings.tolerance = args.tolerance;
     let inputs = if args.inputs.is_empty() {
-        report::embedded_inputs()
+        embedded_inputs()
     } else {
         let mut v = Vec::with_capacity(args.inputs.len());
         for path in &args.inputs {
-            let (input, warnings) = report::read_input(path)?;
+            let (input, warnings) = read_input(path)?;
             for w in warnings {
                 eprintln!("subdiv: warning: {}: {w}", path.display());
             }
@@ -60,13 +62,13 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
         }
         v
     };
-    let bar = indicatif::ProgressBar::new(report::steps(&inputs, &settings));
+    let bar = indicatif::ProgressBar::new(steps(&inputs, &settings));
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {wide_msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
-    let result = report::run(&inputs, &settings, |msg| {
+    let result = run(&inputs, &settings, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     });

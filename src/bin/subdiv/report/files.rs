@@ -1,6 +1,8 @@
 //! Writing the report's files.
 
-use super::*;
+use super::format::slug;
+use super::plot::{deviation_svg, time_svg};
+use super::results::Report;
 use std::path::Path;
 use subdiv::io::atomic::write_bytes as write_atomically;
 use subdiv::{Error, Result};

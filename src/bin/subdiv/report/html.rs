@@ -1,7 +1,10 @@
 //! The report as a self-contained HTML page.
 
+use super::format::{format_deviation, format_ms, format_worst, options_label, slug};
 use super::markdown::sentence;
-use super::*;
+use super::plot::{deviation_svg, inline_svg, time_svg};
+use super::results::{InputReport, Report};
+use super::settings::{MAX_PICTURE_FACES, Settings};
 use std::fmt::Write as _;
 use subdiv::io::svg::escape;
 

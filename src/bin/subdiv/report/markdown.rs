@@ -1,6 +1,8 @@
 //! The report as text and Markdown.
 
-use super::*;
+use super::format::{format_deviation, format_ms, format_worst, options_label, slug};
+use super::results::{InputReport, Report};
+use super::settings::Settings;
 use std::fmt::Write as _;
 
 impl Report {

@@ -52,5 +52,3 @@ mod settings;
 mod tests;
 
 pub(crate) use command::{ReportArgs, report};
-#[cfg(feature = "osd")]
-use {format::*, inputs::*, picture::*, plot::*, results::*, run::*, settings::*};

@@ -1,6 +1,10 @@
 //! The refined shape, each face coloured by its deviation from OpenSubdiv.
 
-use super::*;
+use super::format::{format_deviation, slug};
+use super::inputs::{Input, edge_face_counts};
+use super::plot::{deviation_color, hex, scale_position, svg_open};
+use super::results::Picture;
+use super::settings::MAX_PICTURE_FACES;
 use glam::{DVec2, DVec3};
 use std::fmt::Write as _;
 use subdiv::Refinement;

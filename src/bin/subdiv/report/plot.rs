@@ -1,6 +1,7 @@
 //! The report's SVG plots: deviation per level and time per level.
 
-use super::*;
+use super::results::{InputReport, LevelResult, LimitResult, SetResult};
+use super::settings::Settings;
 use glam::DVec3;
 use std::fmt::Write as _;
 use subdiv::io::svg::escape;

@@ -1,6 +1,6 @@
 //! What a report found: per level, per option set, per input.
 
-use super::*;
+use super::settings::Settings;
 use subdiv::options::Options;
 
 #[derive(Debug, Clone, PartialEq)]

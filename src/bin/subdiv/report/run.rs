@@ -1,15 +1,18 @@
 //! Running the report: comparisons, limits and timings.
 
-use super::*;
+use super::format::options_label;
+use super::inputs::{Input, edge_face_counts, option_sets, traits};
+use super::picture::picture;
+use super::results::{InputReport, LevelResult, LimitResult, Picture, Report, SetResult, Timing};
+use super::settings::Settings;
 use crate::Failure;
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Instant;
-use subdiv::check_level;
 use subdiv::compare::{bbox_diagonal, compare};
 use subdiv::mesh::Mesh;
 use subdiv::options::{Options, Scheme, UniformOptions};
-use subdiv::{Engine, LevelTopology, Refinement, Request, Result, osd, refiner};
+use subdiv::{Engine, LevelTopology, Refinement, Request, Result, check_level, osd, refiner};
 
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs

@@ -1,4 +1,9 @@
-use super::*;
+use super::format::{format_deviation, format_worst, slug};
+use super::inputs::{embedded_inputs, option_sets};
+use super::picture::picture;
+use super::plot::{deviation_color, hex};
+use super::run::run;
+use super::settings::Settings;
 use subdiv::compare::bbox_diagonal;
 use subdiv::{Scheme, UniformOptions, refiner};
 
