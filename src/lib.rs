@@ -2,20 +2,51 @@
 //!
 //! `subdiv` refines polygon meshes the way Pixar's OpenSubdiv does — same vertex
 //! order, same faces, same positions to rounding — and compares its results
-//! with OpenSubdiv itself, vertex by vertex.
+//! with OpenSubdiv itself, vertex by vertex. It also implements the classic
+//! curve and patch schemes the subject starts with.
 //!
 //! ```text
-//!  OBJ + "t" tags ──► Mesh (validated) ──► engine ──► levels: topology + primvars ──► OBJ / compare
-//!                                            ├── osd:    C++ shim over OpenSubdiv 3.5 (feature "osd")
-//!                                            └── native: pure Rust (in progress)
+//!  OBJ + "t" tags ──► Mesh (validated) ──► Engine + Request ──► Refinement: every level's
+//!  (io::obj)          (mesh)               │                   topology, primvars, limit
+//!                                          ├── Native: rules → topology → refiner (pure Rust)
+//!                                          └── Osd:    C++ shim over OpenSubdiv 3.5 (feature "osd")
+//!  Refinement ──► io::obj (OBJ out) · compare (native against osd) · stencil (apply per frame)
 //! ```
 //!
-//! The crate has two engines sharing one [`Mesh`] and one set of [`Options`]:
-//! the **osd** engine ([`osd`], feature `osd`, on by default) is a thin bridge
-//! over Debian's OpenSubdiv, and the **native** engine is pure Rust.
+//! ## Crate map
+//!
+//! **Engine** — the surface the two engines share, and the native engine:
+//! - [`Mesh`] ([`mesh`]): positions, faces, creases, corners, holes,
+//!   face-varying channels, and their validation;
+//! - [`Options`], [`UniformOptions`], [`Request`] and [`Engine`]
+//!   ([`options`]): OpenSubdiv's `Sdc`/`Far` options, what one refinement
+//!   computes, which engine; [`limits`]: levels refused before allocating;
+//! - [`Engine::refine`] ([`engine`]): the one way to drive either engine,
+//!   returning the engine-neutral [`output`] types ([`Refinement`],
+//!   [`LevelTopology`], [`Limit`], [`Values`]);
+//! - [`refiner`]: the native engine (OpenSubdiv's `Far`), built on
+//!   [`rules`] (`Sdc`: masks per scheme) and a crate-private topology layer
+//!   (`Vtr`: flat tables per level, and their splitting);
+//! - [`stencil`]: stencil tables and their fast apply kernels;
+//! - `osd` (feature `osd`): the bridge to OpenSubdiv, the only module with
+//!   `unsafe`;
+//! - [`compare`]: level-by-level comparison of two refinements;
+//! - [`error`]: typed errors ([`Error`]); [`names`]: one naming mechanism for
+//!   option values ([`Named`]); [`real`]: `f32`/`f64` ([`Real`], [`Precision`]).
+//!
+//! **Classic** — [`classic`]: curves ([`curve`]), knot-vector B-splines and
+//! NURBS ([`nurbs`]), tensor patches ([`patch`]), Doo-Sabin ([`doo_sabin`]).
+//!
+//! **I/O** — [`io`]: OBJ with OpenSubdiv's tags, points files, SVG
+//! pictures, exact `%g` numbers, atomic writes. [`shapes`]: meshes generated
+//! in code (the test corpus, the report set, the benchmark inputs).
+//!
+//! The `subdiv` command-line application (feature `cli`, on by default) is
+//! a separate binary (`src/bin/subdiv/`); a program that depends on this
+//! crate with `default-features = false` builds neither it nor the C++ bridge.
 //!
 //! ```
-//! use subdiv::{Mesh, Options};
+//! use subdiv::{Engine, Mesh, Options, Request};
 //! use glam::DVec3;
 //!
 //! // A unit quad with one sharp edge.
@@ -26,9 +57,11 @@
 //! mesh.add_crease(0, 1, 10.0);
 //! mesh.validate()?;
 //! let options = Options::shape_file_defaults();
+//! let native = Engine::Native.refine(&mesh, &options, Request::new(2))?;
+//! assert_eq!(native.last_level().face_count(), 16);
 //! # #[cfg(feature = "osd")] {
-//! let refined = subdiv::osd::refine(&mesh, &options, subdiv::UniformOptions::new(2))?;
-//! assert_eq!(refined.last_level().face_count(), 16);
+//! let osd = Engine::Osd.refine(&mesh, &options, Request::new(2))?;
+//! assert_eq!(osd.positions, native.positions); // bit for bit
 //! # }
 //! # Ok::<(), subdiv::Error>(())
 //! ```

@@ -296,7 +296,7 @@ pub enum Engine {
     /// The pure-Rust engine ([`crate::refiner`]).
     #[default]
     Native,
-    /// OpenSubdiv through the C++ bridge ([`crate::osd`], feature `osd`).
+    /// OpenSubdiv through the C++ bridge (`subdiv::osd`, feature `osd`).
     Osd,
 }
 

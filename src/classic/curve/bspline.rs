@@ -121,7 +121,7 @@ impl<P: Point> BSplineCurve<P> {
     }
 
     /// The same curve with half the knot spacing: the control polygon refined
-    /// once by [`bspline`], with `refined.eval(2 s) = self.eval(s)`.
+    /// once by [`bspline`](super::bspline), with `refined.eval(2 s) = self.eval(s)`.
     pub fn refine(&self) -> Result<Self, CurveError> {
         refined_count(
             self.points.len(),

@@ -30,7 +30,7 @@
 //! carry a `w` or, as a common extension, an RGB colour, both ignored.
 //!
 //! Every error names its file, its 1-based line and what is wrong
-//! ([`ObjError`]). Harmless oddities — unknown statements, `l` and `p`
+//! ([`ObjError`](crate::ObjError)). Harmless oddities — unknown statements, `l` and `p`
 //! elements, unknown tags — become [`ObjWarning`]s, never silent misreadings.
 //!
 //! ## Why not `tobj`

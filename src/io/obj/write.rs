@@ -193,7 +193,7 @@ pub fn write_obj(path: &Path, data: &ObjOutput<'_>) -> Result<(), Error> {
     crate::io::atomic::write_with(path, |file| write_obj_to(file, data))
 }
 
-/// Writes a [`Mesh`] as OBJ text with its tags, so that [`parse_obj`] reads
+/// Writes a [`Mesh`] as OBJ text with its tags, so that [`parse_obj`](super::parse_obj) reads
 /// the same mesh back (exactly, with [`Precision::F64`]).
 ///
 /// Writes the positions, face-varying channel 0 as `vt` when its width is 2
