@@ -28,13 +28,16 @@ run: deps
 test: deps
 	$(CARGO) test --all-features
 	$(CARGO) build --no-default-features
+	$(CARGO) build --no-default-features --features cli
 	$(CARGO) test --no-default-features --lib
 
 lint: deps
 	$(CARGO) fmt --check
 	$(CARGO) clippy --all-targets --all-features -- -D warnings
 	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
+	$(CARGO) clippy --all-targets --no-default-features --features cli -- -D warnings
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --all-features
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --no-default-features
 
 fmt:
 	$(CARGO) fmt
