@@ -59,6 +59,7 @@ struct ShimError : std::runtime_error {
 };
 
 [[noreturn]] void fail(const std::string &msg) { throw ShimError(SDV_ERR_INVALID, msg); }
+[[noreturn]] void fail_unsafe(const std::string &msg) { throw ShimError(SDV_ERR_UNSAFE, msg); }
 
 void write_err(char *err, size_t err_len, const char *msg) {
     if (!err || err_len == 0) return;
@@ -282,6 +283,109 @@ void need_limit_topology(const sdv_refiner &rr) {
              "(refine with full_topology_in_last_level)");
 }
 
+// OpenSubdiv 3.5's PrimvarRefiner::Limit (far/primvarRefiner.h) sizes its
+// buffers by the last level's maximum valence M (TopologyRefiner::
+// GetMaxValence: for uniform refinement the last level's, since every level's
+// is at least its parent's): one index buffer of 1 + 2M entries holding a
+// vertex's edge neighbours then, when a mask has face weights, its face
+// neighbours; and per mask (position, and two tangents) 1 + 2M weights laid
+// out as [vertex | M edge weights | M face weights]. A refined level's M is
+// computed, not counted (vtr/refinement.cpp: max(parent M, 4 or 6,
+// 2 + parent max edge-faces (twice that for triangles))), and a non-manifold
+// vertex can have more faces than that: then the face weights run into the
+// next mask (wrong limits) or past the buffer (heap corruption). The counts
+// below are those of Sdc's limit masks (sdc/catmarkScheme.h, loopScheme.h,
+// bilinearScheme.h) per rule: a smooth or dart vertex uses its face count for
+// both edge and face weights (Catmull-Clark; Loop: edge weights only), with
+// two faces Catmull-Clark uses the corner masks; a crease uses its edges
+// (tangents also its faces under Catmull-Clark); a corner's position has no
+// neighbour and its tangents use its edges (bilinear: two edges, always).
+struct MaskCounts {
+    int edges = 0, faces = 0;
+};
+
+void mask_counts(Sdc::SchemeType scheme, Sdc::Crease::Rule rule, int n_edges, int n_faces, MaskCounts &pos,
+                 MaskCounts &tan) {
+    bool smooth = rule == Sdc::Crease::RULE_SMOOTH || rule == Sdc::Crease::RULE_DART;
+    if (scheme == Sdc::SCHEME_BILINEAR) {
+        pos = {0, 0};
+        tan = {2, 0};
+    } else if (scheme == Sdc::SCHEME_LOOP) {
+        if (smooth) {
+            pos = {n_faces, 0};
+            tan = {n_faces, 0};
+        } else if (rule == Sdc::Crease::RULE_CREASE) {
+            pos = {n_edges, 0};
+            tan = {n_edges, 0};
+        } else {
+            pos = {0, 0};
+            tan = {n_edges, 0};
+        }
+    } else {
+        if (smooth && n_faces != 2) {
+            pos = {n_faces, n_faces};
+            tan = {n_faces, n_faces};
+        } else if (rule == Sdc::Crease::RULE_CREASE) {
+            pos = {n_edges, 0};
+            tan = {n_edges, n_faces};
+        } else {
+            pos = {0, 0};
+            tan = {n_edges, 0};
+        }
+    }
+}
+
+// Refuses a refiner on which PrimvarRefiner::Limit would overrun its masks;
+// `tangents`: Limit with tangents (three masks) or positions only.
+void check_limit_masks(const Far::TopologyRefiner &refiner, bool tangents) {
+    const int last = refiner.GetMaxLevel();
+    const Far::TopologyLevel &l = refiner.GetLevel(last);
+    const long long m = refiner.GetMaxValence();
+    const Sdc::SchemeType scheme = refiner.GetSchemeType();
+    for (int v = 0; v < l.GetNumVertices(); ++v) {
+        int n_edges = l.GetVertexEdges(v).size();
+        if (n_edges == 0) continue; // Limit copies such a vertex
+        int n_faces = l.GetVertexFaces(v).size();
+        MaskCounts pos, tan;
+        mask_counts(scheme, l.GetVertexRule(v), n_edges, n_faces, pos, tan);
+        if (!tangents) tan = {0, 0};
+        bool gathers_faces = pos.faces > 0 || tan.faces > 0;
+        long long indices = n_edges + (gathers_faces ? n_faces : 0);
+        int edge_weights = std::max(pos.edges, tan.edges);
+        int face_weights = std::max(pos.faces, tan.faces);
+        if (indices > 1 + 2 * m || edge_weights > m || face_weights > m) {
+            fail_unsafe("vertex " + str(v) + " of level " + str(last) + " has " + str(n_edges) + " edges and " +
+                        str(n_faces) + " faces, more than OpenSubdiv 3.5's PrimvarRefiner::Limit sizes its masks "
+                        "for (maximum valence " + str(m) + "): it would write past them");
+        }
+    }
+}
+
+// The same for PrimvarRefiner::LimitFaceVarying (one position mask laid out as
+// [vertex | one weight per vertex edge | face weights] in 1 + 2M weights, and
+// the vertex's edge values gathered into M entries), at the vertices whose
+// values it evaluates with the vertex's own mask: those where the channel's
+// topology matches the vertex's (not purely linear channels).
+void check_limit_fvar_masks(const Far::TopologyRefiner &refiner, int channel) {
+    if (refiner.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
+    const int last = refiner.GetMaxLevel();
+    const Far::TopologyLevel &l = refiner.GetLevel(last);
+    const long long m = refiner.GetMaxValence();
+    const Sdc::SchemeType scheme = refiner.GetSchemeType();
+    for (int v = 0; v < l.GetNumVertices(); ++v) {
+        int n_edges = l.GetVertexEdges(v).size();
+        if (n_edges == 0 || !l.DoesVertexFVarTopologyMatch(v, channel)) continue;
+        int n_faces = l.GetVertexFaces(v).size();
+        MaskCounts pos, tan;
+        mask_counts(scheme, l.GetVertexRule(v), n_edges, n_faces, pos, tan);
+        if (n_edges > m || pos.edges > n_edges || n_edges + pos.faces > 2 * m) {
+            fail_unsafe("vertex " + str(v) + " of level " + str(last) + " has " + str(n_edges) + " edges and " +
+                        str(n_faces) + " faces, more than OpenSubdiv 3.5's PrimvarRefiner::LimitFaceVarying "
+                        "sizes its masks for (maximum valence " + str(m) + "): it would write past them");
+        }
+    }
+}
+
 template <class T>
 void limit(const sdv_refiner *r, int32_t width, const T *src, size_t src_len, T *pos, T *tan1, T *tan2,
            size_t dst_len) {
@@ -293,6 +397,7 @@ void limit(const sdv_refiner *r, int32_t width, const T *src, size_t src_len, T 
     long long n = rr.refiner->GetLevel(rr.refiner->GetMaxLevel()).GetNumVertices();
     check_len(src_len, n * width, "source primvar buffer");
     check_len(dst_len, n * width, "limit buffer");
+    check_limit_masks(*rr.refiner, tan1 != nullptr);
     Far::PrimvarRefinerReal<T> pr(*rr.refiner);
     Buf<T> s{const_cast<T *>(src), width};
     Buf<T> p{pos, width};
@@ -351,6 +456,7 @@ void limit_fvar(const sdv_refiner *r, int32_t channel, int32_t width, const T *s
     check_len(src_len, n * width, "source face-varying buffer");
     check_len(dst_len, n * width, "limit buffer");
     if (rr.refiner->GetMaxLevel() == 0) check_base_fvar_values_for_limit(*rr.refiner, channel);
+    check_limit_fvar_masks(*rr.refiner, channel);
     Far::PrimvarRefinerReal<T> pr(*rr.refiner);
     Buf<T> s{const_cast<T *>(src), width};
     Buf<T> d{dst, width};
@@ -400,6 +506,7 @@ void append_rows(sdv_stencils &s, std::vector<SparseRow> const &rows) {
 sdv_stencils *limit_stencils(const sdv_refiner &rr) {
     need_limit_topology(rr);
     Far::TopologyRefiner const &tr = *rr.refiner;
+    check_limit_masks(tr, true);
     Far::PrimvarRefinerReal<double> pr(tr);
     std::vector<SparseRow> cur(tr.GetLevel(0).GetNumVertices());
     for (size_t i = 0; i < cur.size(); ++i) cur[i].terms.emplace_back((int32_t)i, 1.0);

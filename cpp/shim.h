@@ -26,7 +26,8 @@ enum {
     SDV_ERR_INVALID = -1,  /* bad argument or descriptor */
     SDV_ERR_OSD = -2,      /* OpenSubdiv reported an error */
     SDV_ERR_CAPACITY = -3, /* an output buffer is too small */
-    SDV_ERR_INTERNAL = -4  /* an exception, out of memory */
+    SDV_ERR_INTERNAL = -4, /* an exception, out of memory */
+    SDV_ERR_UNSAFE = -5    /* OpenSubdiv would read or write out of bounds on this input */
 };
 
 /* Opaque refiner: owns a Far::TopologyRefiner. */

@@ -398,6 +398,31 @@ pub fn icosahedron() -> Mesh {
     )
 }
 
+/// A "book": `pages` faces hinged on one edge (vertices 0 and 1), each a
+/// triangle (`corners == 3`) or a quad (`corners == 4`, any other value
+/// counts as 4), fanned around the spine. With three or more pages the spine
+/// is non-manifold, so both engines make it infinitely sharp; its refined
+/// edge points have `2 × pages` faces, which is what overruns OpenSubdiv
+/// 3.5's limit masks from about 13 pages on.
+pub fn book(pages: u32, corners: u32) -> Mesh {
+    let mut m = Mesh::default();
+    m.positions.push(DVec3::ZERO);
+    m.positions.push(DVec3::X);
+    for p in 0..pages {
+        let a = TAU * p as f64 / pages.max(1) as f64;
+        let out = DVec3::new(0.0, a.cos(), a.sin());
+        if corners == 3 {
+            m.positions.push(DVec3::new(0.5, 0.0, 0.0) + out);
+            m.add_face(&[0, 1, 2 + p]);
+        } else {
+            m.positions.push(DVec3::X + out);
+            m.positions.push(out);
+            m.add_face(&[0, 1, 2 + 2 * p, 3 + 2 * p]);
+        }
+    }
+    m
+}
+
 /// Three quads sharing one edge (a non-manifold "fin") plus a quad on each side.
 pub fn fin() -> Mesh {
     mesh(

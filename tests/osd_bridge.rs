@@ -549,3 +549,156 @@ fn base_level_fvar_limit_with_values_beyond_the_vertex_values_is_refused() {
         .is_ok()
     );
 }
+
+/// The masks OpenSubdiv 3.5's `PrimvarRefiner::Limit` would write at each
+/// vertex of the last level, re-derived here from the native engine's
+/// topology and rules (the same as OpenSubdiv's, index by index) and from
+/// Sdc's limit masks: (edge weights, face weights) of the position mask and
+/// of the tangent masks. Catmull-Clark: smooth/dart vertices use their face
+/// count for both (two faces: corner masks), creases their edges (tangents
+/// also their faces), corners no neighbour (tangents their edges); Loop: edge
+/// weights only; bilinear: corner masks (tangents: two edges).
+fn limit_mask_counts(
+    scheme: Scheme,
+    rule: subdiv::rules::Rule,
+    edges: usize,
+    faces: usize,
+) -> [(usize, usize); 2] {
+    use subdiv::rules::Rule;
+    let smooth = matches!(rule, Rule::Smooth | Rule::Dart);
+    match scheme {
+        Scheme::Bilinear => [(0, 0), (2, 0)],
+        Scheme::Loop if smooth => [(faces, 0), (faces, 0)],
+        Scheme::Loop if rule == Rule::Crease => [(edges, 0), (edges, 0)],
+        Scheme::Loop => [(0, 0), (edges, 0)],
+        Scheme::Catmark if smooth && faces != 2 => [(faces, faces), (faces, faces)],
+        Scheme::Catmark if rule == Rule::Crease => [(edges, 0), (edges, faces)],
+        Scheme::Catmark => [(0, 0), (edges, 0)],
+    }
+}
+
+/// Whether `Limit` with tangents would overrun its buffers on `n`'s last
+/// level: a mask with more edge or face weights than the level's maximum
+/// valence M, or more neighbours than its index buffer of 1 + 2M holds. M is
+/// OpenSubdiv's computed value: the base level's largest face, vertex-face or
+/// vertex-edge count, then at each level at least 4 (6 for triangle splits)
+/// and 2 + the base's largest edge-face count (twice that for triangles).
+fn limit_overruns(n: &subdiv::refiner::Refiner, scheme: Scheme) -> Option<usize> {
+    let base = n.level(0).unwrap();
+    let hoods: Vec<(Vec<u32>, Vec<u32>)> = (0..base.vertex_count)
+        .map(|v| n.vertex_faces_and_edges(0, v).unwrap())
+        .collect();
+    let mut m = hoods
+        .iter()
+        .map(|(f, e)| f.len().max(e.len()))
+        .chain(base.faces().map(<[u32]>::len))
+        .max()
+        .unwrap();
+    let edge_faces = (0..base.edge_count)
+        .map(|e| n.edge_faces(0, e).unwrap().len())
+        .max()
+        .unwrap();
+    let (regular, factor) = if scheme == Scheme::Loop {
+        (6, 2)
+    } else {
+        (4, 1)
+    };
+    for _ in 0..n.max_level() {
+        m = m.max(regular).max(2 + factor * edge_faces);
+    }
+    let last = n.max_level();
+    (0..n.level_counts(last).unwrap().vertices).find(|&v| {
+        let (faces, edges) = n.vertex_faces_and_edges(last, v).unwrap();
+        if edges.is_empty() {
+            return false;
+        }
+        let (rule, _) = n.vertex_rule(last, v).unwrap();
+        let masks = limit_mask_counts(scheme, rule, edges.len(), faces.len());
+        let gathers_faces = masks.iter().any(|&(_, f)| f > 0);
+        let indices = edges.len() + if gathers_faces { faces.len() } else { 0 };
+        indices > 1 + 2 * m || masks.iter().any(|&(e, f)| e > m || f > m)
+    })
+}
+
+/// OpenSubdiv 3.5's `PrimvarRefiner::Limit` sizes its masks by a computed
+/// maximum valence, and a non-manifold vertex can have more faces than that:
+/// with 14 pages on one spine it wrote past its buffer (a crash), with 13 it
+/// gave wrong limits. The bridge refuses exactly the refinements whose masks
+/// overrun (`OsdErrorKind::Unsafe`, before OpenSubdiv is called), and every
+/// limit it does evaluate equals the native engine's. Run under
+/// AddressSanitizer by scripts/asan.sh.
+#[test]
+fn limit_is_refused_exactly_where_opensubdiv_overruns_its_masks() {
+    let (mut refused, mut evaluated) = (0, 0);
+    for (pages, corners) in [2, 3, 4, 6, 8, 12, 13, 14, 15, 20]
+        .into_iter()
+        .flat_map(|p| [(p, 3), (p, 4)])
+    {
+        let mesh = shapes::book(pages, corners);
+        let schemes: &[Scheme] = if corners == 3 {
+            &[Scheme::Catmark, Scheme::Loop, Scheme::Bilinear]
+        } else {
+            &[Scheme::Catmark, Scheme::Bilinear]
+        };
+        for &scheme in schemes {
+            for level in 0..=3 {
+                let ctx = format!("{pages} pages of {corners} corners, {scheme}, level {level}");
+                let options = Options::shape_file_defaults().with_scheme(scheme);
+                let uniform = UniformOptions::new(level).full_topology(true);
+                let mut n = subdiv::refiner::Refiner::new(&mesh, &options).unwrap();
+                n.refine_uniform(uniform).unwrap();
+                let mut o = TopologyRefiner::new(&mesh, &options).unwrap();
+                o.refine_uniform(uniform).unwrap();
+                let base: Vec<f64> = mesh.flat_positions();
+                let last = o.interpolate_last(3, &base).unwrap();
+                let overrun = limit_overruns(&n, scheme);
+                match (o.limit(3, &last), overrun) {
+                    (Err(Error::Osd(e)), Some(v)) => {
+                        assert_eq!(e.kind, OsdErrorKind::Unsafe, "{ctx}: {e}");
+                        assert!(
+                            e.message
+                                .starts_with(&format!("vertex {v} of level {level} ")),
+                            "{ctx}: {e}"
+                        );
+                        refused += 1;
+                    }
+                    (Ok(lo), None) => {
+                        let ln = n.limit(3, &last).unwrap();
+                        for (a, b) in [
+                            (&ln.positions, &lo.positions),
+                            (&ln.du, &lo.du),
+                            (&ln.dv, &lo.dv),
+                        ] {
+                            let d = a
+                                .iter()
+                                .zip(b)
+                                .map(|(x, y)| (x - y).abs())
+                                .fold(0.0, f64::max);
+                            assert!(
+                                d < 1e-12,
+                                "{ctx}: native and OpenSubdiv limits differ by {d:e}"
+                            );
+                        }
+                        evaluated += 1;
+                    }
+                    (result, predicted) => {
+                        panic!(
+                            "{ctx}: predicted overrun {predicted:?}, bridge gave {:?}",
+                            result.err()
+                        )
+                    }
+                }
+                // Limit stencils run the same masks.
+                assert_eq!(
+                    o.limit_stencil_table().is_err(),
+                    overrun.is_some(),
+                    "{ctx}: limit stencils"
+                );
+            }
+        }
+    }
+    assert!(
+        refused >= 20 && evaluated >= 60,
+        "refused {refused}, evaluated {evaluated}"
+    );
+}

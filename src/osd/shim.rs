@@ -40,6 +40,7 @@ impl ErrBuf {
         let (kind, message) = match status {
             ffi::SDV_ERR_INVALID => (Kind::Refused, msg),
             ffi::SDV_ERR_OSD => (Kind::Failed, msg),
+            ffi::SDV_ERR_UNSAFE => (Kind::Unsafe, msg),
             ffi::SDV_ERR_CAPACITY => (Kind::Internal, format!("internal buffer mismatch: {msg}")),
             _ if msg.is_empty() => (Kind::Internal, format!("shim status {status}")),
             _ => (Kind::Internal, msg),

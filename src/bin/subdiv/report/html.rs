@@ -233,7 +233,7 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
         match &set.limit {
             Some(l) => {
                 let title = format!(
-                    "level {}: positions {}, tangents {}{}{}",
+                    "level {}: positions {}, tangents {}{}",
                     l.level,
                     format_deviation(l.position_deviation),
                     format_deviation(l.tangent_deviation),
@@ -241,30 +241,25 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
                         ", face-varying {}",
                         format_deviation(f)
                     )),
-                    if l.known_difference_vertices > 0 {
-                        format!(
-                            "; {} non-manifold vertices with OpenSubdiv's known tangent difference",
-                            l.known_difference_vertices
-                        )
-                    } else {
-                        String::new()
-                    }
                 );
                 let class = if l.agrees {
                     deviation_class(l.deviation(), s.tolerance)
                 } else {
                     "fail"
                 };
-                let known = if l.known_difference_vertices > 0 {
-                    "<sup>†</sup>"
-                } else {
-                    ""
-                };
                 let _ = write!(
                     out,
-                    "<td class=\"n {class}\" title=\"{}\">{}{known}</td>",
+                    "<td class=\"n {class}\" title=\"{}\">{}</td>",
                     escape(&title),
                     format_deviation(l.deviation())
+                );
+            }
+            None if set.limit_refused.is_some() => {
+                let why = set.limit_refused.as_deref().unwrap_or_default();
+                let _ = write!(
+                    out,
+                    "<td class=\"n\" title=\"{}\">not compared<sup>‡</sup></td>",
+                    escape(why)
                 );
             }
             None => out.push_str("<td class=\"n\">-</td>"),
@@ -279,8 +274,8 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
         out.push_str("</tr>\n");
     }
     out.push_str("</tbody></table>\n");
-    if i.known_differences() > 0 {
-        out.push_str("<p class=\"note\">† Limit tangents differ at vertices on non-manifold edges: OpenSubdiv 3.5 sizes the limit masks by the level's maximum valence and overwrites a weight there (docs/CONFORMANCE.md, “Known differences”). Limit positions agree; these tangents are not counted.</p>\n");
+    if i.limit_refusals() > 0 {
+        out.push_str("<p class=\"note\">‡ Not compared: OpenSubdiv 3.5's PrimvarRefiner::Limit would write past its masks at this input's high-valence non-manifold vertices, so the bridge does not call it (docs/CONFORMANCE.md, “Known differences”); the native engine evaluates the limit. Hover for the vertex.</p>\n");
     }
     out
 }

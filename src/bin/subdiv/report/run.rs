@@ -1,7 +1,7 @@
 //! Running the report: comparisons, limits and timings.
 
 use super::format::options_label;
-use super::inputs::{Input, edge_face_counts, option_sets, traits};
+use super::inputs::{Input, option_sets, traits};
 use super::picture::picture;
 use super::results::{InputReport, LevelResult, LimitResult, Picture, Report, SetResult, Timing};
 use super::settings::Settings;
@@ -12,7 +12,7 @@ use std::time::Instant;
 use subdiv::compare::{bbox_diagonal, compare};
 use subdiv::mesh::Mesh;
 use subdiv::options::{Options, Scheme, UniformOptions};
-use subdiv::{Engine, LevelTopology, Refinement, Request, Result, check_level, osd, refiner};
+use subdiv::{Engine, Error, OsdErrorKind, Refinement, Request, Result, check_level, osd, refiner};
 
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs
@@ -156,23 +156,27 @@ pub(crate) fn compare_set(
         levels: Vec::new(),
         limit: None,
         error: None,
+        limit_refused: None,
     };
-    let both = |limit: bool| -> std::result::Result<(Refinement, Refinement), String> {
+    let both = |limit: bool| -> std::result::Result<(Refinement, Refinement), (Engine, Error)> {
         let request = Request::new(settings.last_level).limit(limit);
         let run = |engine: Engine| {
-            engine.refine(mesh, options, request).map_err(|e| {
-                format!(
-                    "{engine} engine{}: {e}",
-                    if limit { " (limit)" } else { "" }
-                )
-            })
+            engine
+                .refine(mesh, options, request)
+                .map_err(|e| (engine, e))
         };
         Ok((run(Engine::Native)?, run(Engine::Osd)?))
+    };
+    let failed = |(engine, e): (Engine, Error), limit: bool| {
+        format!(
+            "{engine} engine{}: {e}",
+            if limit { " (limit)" } else { "" }
+        )
     };
     let pair = match both(false) {
         Ok(pair) => pair,
         Err(e) => {
-            result.error = Some(e);
+            result.error = Some(failed(e, false));
             return (result, None);
         }
     };
@@ -198,24 +202,12 @@ pub(crate) fn compare_set(
                 result.error = Some("an engine returned no limit".into());
             }
         }
-        Err(e) => result.error = Some(e),
+        Err((Engine::Osd, Error::Osd(e))) if e.kind == OsdErrorKind::Unsafe => {
+            result.limit_refused = Some(e.message)
+        }
+        Err(e) => result.error = Some(failed(e, true)),
     }
     (result, Some(pair))
-}
-
-/// Vertices of a level that lie on an edge shared by more than two faces.
-pub(crate) fn nonmanifold_vertices(level: &LevelTopology) -> Vec<bool> {
-    let mut out = vec![false; level.vertex_count];
-    for ((a, b), n) in edge_face_counts(level.faces()) {
-        if n > 2 {
-            for v in [a, b] {
-                if let Some(x) = out.get_mut(v as usize) {
-                    *x = true;
-                }
-            }
-        }
-    }
-    out
 }
 
 pub(crate) fn compare_limit(n: &Refinement, o: &Refinement, tolerance: f64) -> Option<LimitResult> {
@@ -233,26 +225,13 @@ pub(crate) fn compare_limit(n: &Refinement, o: &Refinement, tolerance: f64) -> O
     for (a, b) in ln.positions.iter().zip(&lo.positions) {
         position = position.max(dist(*a, *b));
     }
-    let nonmanifold = nonmanifold_vertices(o.last_level());
     let mut tangent = if ln.du.len() == lo.du.len() && ln.dv.len() == lo.dv.len() {
         0.0f64
     } else {
         f64::INFINITY
     };
-    let mut known = 0;
-    for (i, ((a, b), (c, d))) in ln
-        .du
-        .iter()
-        .zip(&lo.du)
-        .zip(ln.dv.iter().zip(&lo.dv))
-        .enumerate()
-    {
-        let dev = dist(*a, *b).max(dist(*c, *d));
-        if nonmanifold.get(i).copied().unwrap_or(false) {
-            known += usize::from(dev > tolerance);
-        } else {
-            tangent = tangent.max(dev);
-        }
+    for ((a, b), (c, d)) in ln.du.iter().zip(&lo.du).zip(ln.dv.iter().zip(&lo.dv)) {
+        tangent = tangent.max(dist(*a, *b)).max(dist(*c, *d));
     }
     let fvar = (!lo.fvar_values.is_empty() || !ln.fvar_values.is_empty()).then(|| {
         let mut worst = if ln.fvar_values.len() == lo.fvar_values.len() {
@@ -278,7 +257,6 @@ pub(crate) fn compare_limit(n: &Refinement, o: &Refinement, tolerance: f64) -> O
         position_deviation: position,
         tangent_deviation: tangent,
         fvar_deviation: fvar,
-        known_difference_vertices: known,
         agrees,
     })
 }
