@@ -138,6 +138,18 @@ pub enum Error {
     /// OpenSubdiv (through the bridge) refused or failed.
     #[error(transparent)]
     Osd(#[from] OsdError),
+    /// A large buffer could not be allocated (the machine's memory, `ulimit
+    /// -v` or a cgroup limit): nothing was aborted, the process goes on.
+    #[error(
+        "out of memory{}: {bytes} bytes could not be allocated",
+        level.map_or(String::new(), |l| format!(" refining level {l}"))
+    )]
+    OutOfMemory {
+        /// The size of the allocation that failed.
+        bytes: usize,
+        /// The level being refined or interpolated, when known.
+        level: Option<u32>,
+    },
     /// Reading or writing a file failed.
     #[error("{}: {source}", path.display())]
     Io {

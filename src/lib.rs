@@ -69,6 +69,7 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
+mod alloc;
 pub mod classic;
 pub mod compare;
 pub mod engine;

@@ -67,18 +67,101 @@ pub fn check_level_counts(faces: usize, corners: usize, scheme: Scheme, level: u
     Ok(())
 }
 
-/// Memory available to a new allocation, from `/proc/meminfo` where there is one.
-fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+/// Memory a new allocation of this process can get: the least of the
+/// machine's available memory (`MemAvailable`), what the address-space and
+/// data-size limits (`ulimit -v`, `ulimit -d`: RLIMIT_AS, RLIMIT_DATA) leave
+/// above what the process already uses, and what its cgroup's memory limit
+/// leaves (v2 `memory.max`, v1 `memory.limit_in_bytes`, less the usage).
+/// `None` where none of these can be read (not Linux).
+pub fn available_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let limits = std::fs::read_to_string("/proc/self/limits").unwrap_or_default();
+    let meminfo = std::fs::read_to_string("/proc/meminfo").unwrap_or_default();
+    [
+        kib_field(&meminfo, "MemAvailable:"),
+        rlimit_headroom(&limits, "Max address space", kib_field(&status, "VmSize:")),
+        rlimit_headroom(&limits, "Max data size", kib_field(&status, "VmData:")),
+        cgroup_headroom(),
+    ]
+    .into_iter()
+    .flatten()
+    .min()
+}
+
+/// A `Name:  1234 kB` field of a /proc file, in bytes.
+fn kib_field(text: &str, name: &str) -> Option<u64> {
+    let line = text.lines().find(|l| l.starts_with(name))?;
+    let kib: u64 = line[name.len()..].split_whitespace().next()?.parse().ok()?;
+    Some(kib.saturating_mul(1024))
+}
+
+/// What the soft resource limit `name` of /proc/self/limits leaves above
+/// `used` bytes; `None` when unlimited or unknown.
+fn rlimit_headroom(limits: &str, name: &str, used: Option<u64>) -> Option<u64> {
+    let line = limits.lines().find(|l| l.starts_with(name))?;
+    let soft: u64 = line[name.len()..].split_whitespace().next()?.parse().ok()?;
+    Some(soft.saturating_sub(used.unwrap_or(0)))
+}
+
+/// What the process's memory cgroup leaves: its limit less its usage
+/// (cgroup v2, else v1); `None` without a limit.
+fn cgroup_headroom() -> Option<u64> {
+    let cgroups = std::fs::read_to_string("/proc/self/cgroup").ok()?;
+    let read =
+        |path: String| -> Option<u64> { std::fs::read_to_string(path).ok()?.trim().parse().ok() };
+    for line in cgroups.lines() {
+        let mut parts = line.splitn(3, ':');
+        let (id, controllers, path) = (parts.next()?, parts.next()?, parts.next()?);
+        let (limit, usage) = if id == "0" && controllers.is_empty() {
+            let dir = format!("/sys/fs/cgroup{path}");
+            (
+                read(format!("{dir}/memory.max")),
+                read(format!("{dir}/memory.current")),
+            )
+        } else if controllers.split(',').any(|c| c == "memory") {
+            let dir = format!("/sys/fs/cgroup/memory{path}");
+            (
+                read(format!("{dir}/memory.limit_in_bytes")),
+                read(format!("{dir}/memory.usage_in_bytes")),
+            )
+        } else {
+            continue;
+        };
+        // v1 writes "no limit" as a huge number (PAGE_COUNTER_MAX pages).
+        if let Some(limit) = limit.filter(|&l| l < 1 << 60) {
+            return Some(limit.saturating_sub(usage.unwrap_or(0)));
+        }
+    }
+    None
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::shapes;
+
+    #[test]
+    fn resource_limits_are_read_from_proc() {
+        let limits = "Limit                     Soft Limit           Hard Limit           Units\n\
+                      Max data size             unlimited            unlimited            bytes\n\
+                      Max address space         4294967296           unlimited            bytes\n";
+        assert_eq!(
+            rlimit_headroom(limits, "Max address space", Some(1 << 30)),
+            Some(3 << 30)
+        );
+        assert_eq!(
+            rlimit_headroom(limits, "Max data size", Some(1 << 30)),
+            None
+        );
+        let status = "Name:\tsubdiv\nVmSize:\t  102400 kB\nVmData:\t 2048 kB\n";
+        assert_eq!(kib_field(status, "VmSize:"), Some(100 << 20));
+        assert_eq!(kib_field(status, "VmData:"), Some(2 << 20));
+        assert_eq!(kib_field(status, "VmRSS:"), None);
+        // This process: whatever limits it has, the least is a number.
+        if std::path::Path::new("/proc/meminfo").exists() {
+            assert!(available_memory().is_some_and(|a| a > 0));
+        }
+    }
 
     #[test]
     fn absurd_levels_are_refused() {

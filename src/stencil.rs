@@ -63,7 +63,7 @@ impl StencilTable {
     pub fn apply_par(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
         use rayon::prelude::*;
         self.check_apply(width, base)?;
-        let mut out = vec![0.0; self.len() * width];
+        let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
         out.par_chunks_mut(width * 256)
             .enumerate()
             .for_each(|(block, chunk)| {
@@ -192,7 +192,7 @@ impl StencilTable {
     /// Applies the table to base data of `width` components per vertex.
     pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
         self.check_apply(width, base)?;
-        let mut out = vec![0.0; self.len() * width];
+        let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
         for (i, dst) in out.chunks_exact_mut(width).enumerate() {
             self.apply_row(i, width, base, dst);
         }
@@ -408,7 +408,7 @@ impl StencilTableF32 {
             count: usize::MAX,
             bits: usize::BITS,
         })?;
-        let mut out = vec![0.0; len];
+        let mut out = crate::alloc::try_vec(0.0, len)?;
         self.apply_into(width, base, &mut out)?;
         Ok(out)
     }

@@ -4,6 +4,7 @@
 use super::ffi;
 use super::shim::{ErrBuf, ShimReal, check_length, internal, to_i32, with_shim_type};
 use super::{ERR_LEN, SDV_FACE_VARYING, SDV_VARYING, SDV_VERTEX};
+use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, OsdError, OsdErrorKind, Result};
 use crate::mesh::Mesh;
 use crate::options::{Options, UniformOptions};
@@ -272,8 +273,8 @@ impl TopologyRefiner {
         let l = level as i32;
         let mut err = ErrBuf::new();
 
-        let mut sizes = vec![0i32; counts.faces];
-        let mut verts = vec![0i32; counts.face_vertices];
+        let mut sizes = try_vec(0i32, counts.faces)?;
+        let mut verts = try_vec(0i32, counts.face_vertices)?;
         // SAFETY: each buffer is passed with its true length; the shim checks
         // the lengths against its counts before writing.
         err.run(|e| unsafe {
@@ -302,7 +303,7 @@ impl TopologyRefiner {
                 ffi::sdv_level_edge_vertices(r, l, edges.as_mut_ptr(), edges.len(), e, ERR_LEN)
             })?;
         }
-        let mut edge_sharpness = vec![0f32; counts.edges];
+        let mut edge_sharpness = try_vec(0f32, counts.edges)?;
         // SAFETY: as above.
         err.run(|e| unsafe {
             ffi::sdv_level_edge_sharpness(
@@ -314,7 +315,7 @@ impl TopologyRefiner {
                 ERR_LEN,
             )
         })?;
-        let mut vertex_sharpness = vec![0f32; counts.vertices];
+        let mut vertex_sharpness = try_vec(0f32, counts.vertices)?;
         // SAFETY: as above.
         err.run(|e| unsafe {
             ffi::sdv_level_vertex_sharpness(
@@ -326,7 +327,7 @@ impl TopologyRefiner {
                 ERR_LEN,
             )
         })?;
-        let mut holes = vec![0u8; counts.faces];
+        let mut holes = try_vec(0u8, counts.faces)?;
         // SAFETY: as above.
         err.run(|e| unsafe {
             ffi::sdv_level_face_holes(r, l, holes.as_mut_ptr(), holes.len(), e, ERR_LEN)
@@ -339,7 +340,7 @@ impl TopologyRefiner {
             err.run(|e| unsafe {
                 ffi::sdv_level_fvar_value_count(r, l, channel, &mut value_count, e, ERR_LEN)
             })?;
-            let mut values = vec![0i32; counts.face_vertices];
+            let mut values = try_vec(0i32, counts.face_vertices)?;
             // SAFETY: as above.
             err.run(|e| unsafe {
                 ffi::sdv_level_fvar_face_values(
@@ -442,7 +443,7 @@ impl TopologyRefiner {
             Buffer::Source
         };
         check_length(buffer, from * width, src.len())?;
-        let mut dst = vec![T::default(); to * width];
+        let mut dst = try_vec(T::default(), to * width)?;
         let mut err = ErrBuf::new();
         let (channel, width) = (
             to_i32(channel, "face-varying channels")?,
@@ -526,9 +527,9 @@ impl TopologyRefiner {
         let n = last.vertices * width;
         check_length(Buffer::Source, n, src.len())?;
         let mut out = LimitData {
-            positions: vec![T::default(); n],
-            du: vec![T::default(); n],
-            dv: vec![T::default(); n],
+            positions: try_vec(T::default(), n)?,
+            du: try_vec(T::default(), n)?,
+            dv: try_vec(T::default(), n)?,
         };
         let mut err = ErrBuf::new();
         let width = to_i32(width, "primvar components")?;
@@ -569,7 +570,7 @@ impl TopologyRefiner {
         }
         let n = self.fvar_value_count(self.max_level(), channel)? * width;
         check_length(Buffer::FaceVaryingSource, n, src.len())?;
-        let mut dst = vec![T::default(); n];
+        let mut dst = try_vec(T::default(), n)?;
         let mut err = ErrBuf::new();
         let (channel, width) = (
             to_i32(channel, "face-varying channels")?,

@@ -5,6 +5,7 @@ use super::TopologyRefiner;
 use super::ffi;
 use super::shim::{ErrBuf, internal, to_i32};
 use super::{ERR_LEN, SDV_STENCIL_LIMIT, SDV_STENCIL_REFINED};
+use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, Result};
 use crate::stencil::{LimitStencilTable, StencilTable};
 use std::ptr::NonNull;
@@ -31,10 +32,10 @@ impl TopologyRefiner {
         let (mut rows, mut nnz) = (0usize, 0usize);
         // SAFETY: the table is live.
         unsafe { ffi::sdv_stencils_size(table.0.as_ptr(), &mut rows, &mut nnz) };
-        let mut sizes = vec![0i32; rows];
-        let mut offsets = vec![0i32; rows];
-        let mut indices = vec![0i32; nnz];
-        let mut weights = vec![0f64; nnz];
+        let mut sizes = try_vec(0i32, rows)?;
+        let mut offsets = try_vec(0i32, rows)?;
+        let mut indices = try_vec(0i32, nnz)?;
+        let mut weights = try_vec(0f64, nnz)?;
         // SAFETY: the buffers have the capacities passed, which the shim checks.
         err.run(|e| unsafe {
             ffi::sdv_stencils_export(
@@ -173,7 +174,7 @@ impl StencilEvaluator {
                 got: src.len(),
             });
         }
-        let mut dst = vec![0f32; self.stencils * width];
+        let mut dst = try_vec(0f32, self.stencils * width)?;
         self.eval_into(width, src, &mut dst)?;
         Ok(dst)
     }

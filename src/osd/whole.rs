@@ -1,6 +1,7 @@
 //! A whole refinement through OpenSubdiv in one call: [`refine`].
 
 use super::TopologyRefiner;
+use crate::alloc::collect_n;
 use crate::error::Result;
 use crate::limits::check_level;
 use crate::mesh::Mesh;
@@ -11,24 +12,25 @@ use crate::real::{Precision, Real};
 use glam::DVec3;
 
 fn flatten<T: Real>(points: &[DVec3]) -> Vec<T> {
-    points
+    let flat = points
         .iter()
-        .flat_map(|p| [T::from_f64(p.x), T::from_f64(p.y), T::from_f64(p.z)])
-        .collect()
+        .flat_map(|p| [T::from_f64(p.x), T::from_f64(p.y), T::from_f64(p.z)]);
+    collect_n(3 * points.len(), flat)
 }
 
 fn unflatten<T: Real>(data: &[T]) -> Vec<DVec3> {
-    data.chunks_exact(3)
-        .map(|c| DVec3::new(c[0].to_f64(), c[1].to_f64(), c[2].to_f64()))
-        .collect()
+    let points = data
+        .chunks_exact(3)
+        .map(|c| DVec3::new(c[0].to_f64(), c[1].to_f64(), c[2].to_f64()));
+    collect_n(data.len() / 3, points)
 }
 
 fn widen<T: Real>(data: &[T]) -> Vec<f64> {
-    data.iter().map(|v| v.to_f64()).collect()
+    collect_n(data.len(), data.iter().map(|v| v.to_f64()))
 }
 
 fn narrow<T: Real>(data: &[f64]) -> Vec<T> {
-    data.iter().map(|&v| T::from_f64(v)).collect()
+    collect_n(data.len(), data.iter().map(|&v| T::from_f64(v)))
 }
 
 /// Refines a mesh uniformly with OpenSubdiv as `request` says (a
@@ -38,11 +40,13 @@ fn narrow<T: Real>(data: &[f64]) -> Vec<T> {
 /// the last level (which then keeps its full topology). The same as
 /// [`crate::refiner::refine`], through OpenSubdiv.
 pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Result<Refinement> {
-    let request = request.into();
-    match request.precision {
-        Precision::F32 => refine_typed::<f32>(mesh, options, &request),
-        Precision::F64 => refine_typed::<f64>(mesh, options, &request),
-    }
+    crate::alloc::guard(None, || {
+        let request = request.into();
+        match request.precision {
+            Precision::F32 => refine_typed::<f32>(mesh, options, &request),
+            Precision::F64 => refine_typed::<f64>(mesh, options, &request),
+        }
+    })
 }
 
 fn refine_typed<T: Real>(mesh: &Mesh, options: &Options, request: &Request) -> Result<Refinement> {

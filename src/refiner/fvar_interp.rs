@@ -62,31 +62,33 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
-            channel,
-            count: self.fvar.len(),
-        })?;
-        if level == 0 || level > self.max_level() {
-            return Err(Error::NoSuchLevel {
-                level,
-                first: 1,
-                last: self.max_level(),
-            });
-        }
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
-        if src.len() != parent.value_count() * width {
-            return Err(Error::BufferLength {
-                buffer: Buffer::FaceVaryingSource,
-                expected: parent.value_count() * width,
-                got: src.len(),
-            });
-        }
-        let mut dst = vec![T::ZERO; child.value_count() * width];
-        self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
-        Ok(dst)
+        crate::alloc::guard(Some(level), || {
+            let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+                channel,
+                count: self.fvar.len(),
+            })?;
+            if level == 0 || level > self.max_level() {
+                return Err(Error::NoSuchLevel {
+                    level,
+                    first: 1,
+                    last: self.max_level(),
+                });
+            }
+            if width == 0 {
+                return Err(Error::ZeroWidth);
+            }
+            let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
+            if src.len() != parent.value_count() * width {
+                return Err(Error::BufferLength {
+                    buffer: Buffer::FaceVaryingSource,
+                    expected: parent.value_count() * width,
+                    got: src.len(),
+                });
+            }
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.value_count() * width);
+            self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
+            Ok(dst)
+        })
     }
 
     /// One level of one channel: face points, edge points, vertex points.
@@ -280,103 +282,109 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
-            channel,
-            count: self.fvar.len(),
-        })?;
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        let level = self.levels.last().expect("base level");
-        if !level.has_full_topology() {
-            return Err(Error::NeedsFullTopology);
-        }
-        let fvar = levels.last().expect("base channel");
-        if src.len() != fvar.value_count() * width {
-            return Err(Error::BufferLength {
-                buffer: Buffer::FaceVaryingSource,
-                expected: fvar.value_count() * width,
-                got: src.len(),
-            });
-        }
-        let mut dst = vec![T::ZERO; src.len()];
-        let mut acc = vec![T::ZERO; width];
-        let mut mask = crate::rules::Mask::<T>::new();
-        let mut edge_sharpness = Vec::new();
-        let mut edge_values = Vec::new();
-        let row = |i: u32| &src[i as usize * width..(i as usize + 1) * width];
-        let add = |acc: &mut [T], r: &[T], w: T| {
-            for (a, &s) in acc.iter_mut().zip(r) {
-                *a += s * w;
+        crate::alloc::guard(None, || {
+            let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+                channel,
+                count: self.fvar.len(),
+            })?;
+            if width == 0 {
+                return Err(Error::ZeroWidth);
             }
-        };
-        // OpenSubdiv writes these two weights as single-precision literals.
-        let sixth = T::from_f32(1.0f32 / 6.0f32);
-        let two_thirds = T::from_f32(2.0f32 / 3.0f32);
-        for v in 0..level.vertex_count {
-            let count = fvar.vertex_value_count(v);
-            let edges = level.vertex_edges_of(v);
-            let store = |dst: &mut [T], value: u32, acc: &[T]| {
-                let i = value as usize * width;
-                dst[i..i + width].copy_from_slice(acc);
+            let level = self.levels.last().expect("base level");
+            if !level.has_full_topology() {
+                return Err(Error::NeedsFullTopology);
+            }
+            let fvar = levels.last().expect("base channel");
+            if src.len() != fvar.value_count() * width {
+                return Err(Error::BufferLength {
+                    buffer: Buffer::FaceVaryingSource,
+                    expected: fvar.value_count() * width,
+                    got: src.len(),
+                });
+            }
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, src.len());
+            let mut acc = vec![T::ZERO; width];
+            let mut mask = crate::rules::Mask::<T>::new();
+            let mut edge_sharpness = Vec::new();
+            let mut edge_values = Vec::new();
+            let row = |i: u32| &src[i as usize * width..(i as usize + 1) * width];
+            let add = |acc: &mut [T], r: &[T], w: T| {
+                for (a, &s) in acc.iter_mut().zip(r) {
+                    *a += s * w;
+                }
             };
-            if edges.is_empty() || fvar.is_linear() {
-                for s in 0..count {
-                    let value = fvar.vertex_value(v, s);
-                    store(&mut dst, value, row(value));
-                }
-                continue;
-            }
-            let tags = fvar.vertex_value_tags(v);
-            if !tags[0].is_mismatch() {
-                edge_sharpness.clear();
-                edge_sharpness.extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
-                let faces = level.vertex_faces_of(v);
-                let hood = crate::rules::VertexNeighborhood {
-                    sharpness: level.vertex_sharpness_at(v),
-                    edge_sharpness: &edge_sharpness,
-                    face_count: faces.len(),
-                    child_sharpness: level.vertex_sharpness_at(v),
-                    child_edge_sharpness: &[],
+            // OpenSubdiv writes these two weights as single-precision literals.
+            let sixth = T::from_f32(1.0f32 / 6.0f32);
+            let two_thirds = T::from_f32(2.0f32 / 3.0f32);
+            for v in 0..level.vertex_count {
+                let count = fvar.vertex_value_count(v);
+                let edges = level.vertex_edges_of(v);
+                let store = |dst: &mut [T], value: u32, acc: &[T]| {
+                    let i = value as usize * width;
+                    dst[i..i + width].copy_from_slice(acc);
                 };
-                self.rules
-                    .vertex_limit_position_mask(&hood, level.vertex_tag(v).rule(), &mut mask);
-                let value = fvar.vertex_value(v, 0);
-                acc.fill(T::ZERO);
-                if !mask.face.is_empty() {
-                    for ((&f, &k), &w) in faces
-                        .iter()
-                        .zip(level.vertex_face_locals(v))
-                        .zip(&mask.face)
-                    {
-                        let values = fvar.face_values_of(level, f as usize);
-                        add(&mut acc, row(values[(k as usize + 2) % values.len()]), w);
-                    }
-                }
-                if !mask.edge.is_empty() {
-                    fvar.vertex_edge_values(level, v, &mut edge_values);
-                    for (&ev, &w) in edge_values.iter().zip(&mask.edge) {
-                        add(&mut acc, row(ev), w);
-                    }
-                }
-                add(&mut acc, row(value), mask.vertex[0]);
-                store(&mut dst, value, &acc);
-            } else {
-                for (s, tag) in tags.iter().enumerate().take(count) {
-                    let value = fvar.vertex_value(v, s);
-                    if tag.is_corner() {
+                if edges.is_empty() || fvar.is_linear() {
+                    for s in 0..count {
+                        let value = fvar.vertex_value(v, s);
                         store(&mut dst, value, row(value));
-                    } else {
-                        let [a, b] = fvar.crease_end_values(level, v, s);
-                        acc.fill(T::ZERO);
-                        add(&mut acc, row(a), sixth);
-                        add(&mut acc, row(b), sixth);
-                        add(&mut acc, row(value), two_thirds);
-                        store(&mut dst, value, &acc);
+                    }
+                    continue;
+                }
+                let tags = fvar.vertex_value_tags(v);
+                if !tags[0].is_mismatch() {
+                    edge_sharpness.clear();
+                    edge_sharpness
+                        .extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
+                    let faces = level.vertex_faces_of(v);
+                    let hood = crate::rules::VertexNeighborhood {
+                        sharpness: level.vertex_sharpness_at(v),
+                        edge_sharpness: &edge_sharpness,
+                        face_count: faces.len(),
+                        child_sharpness: level.vertex_sharpness_at(v),
+                        child_edge_sharpness: &[],
+                    };
+                    self.rules.vertex_limit_position_mask(
+                        &hood,
+                        level.vertex_tag(v).rule(),
+                        &mut mask,
+                    );
+                    let value = fvar.vertex_value(v, 0);
+                    acc.fill(T::ZERO);
+                    if !mask.face.is_empty() {
+                        for ((&f, &k), &w) in faces
+                            .iter()
+                            .zip(level.vertex_face_locals(v))
+                            .zip(&mask.face)
+                        {
+                            let values = fvar.face_values_of(level, f as usize);
+                            add(&mut acc, row(values[(k as usize + 2) % values.len()]), w);
+                        }
+                    }
+                    if !mask.edge.is_empty() {
+                        fvar.vertex_edge_values(level, v, &mut edge_values);
+                        for (&ev, &w) in edge_values.iter().zip(&mask.edge) {
+                            add(&mut acc, row(ev), w);
+                        }
+                    }
+                    add(&mut acc, row(value), mask.vertex[0]);
+                    store(&mut dst, value, &acc);
+                } else {
+                    for (s, tag) in tags.iter().enumerate().take(count) {
+                        let value = fvar.vertex_value(v, s);
+                        if tag.is_corner() {
+                            store(&mut dst, value, row(value));
+                        } else {
+                            let [a, b] = fvar.crease_end_values(level, v, s);
+                            acc.fill(T::ZERO);
+                            add(&mut acc, row(a), sixth);
+                            add(&mut acc, row(b), sixth);
+                            add(&mut acc, row(value), two_thirds);
+                            store(&mut dst, value, &acc);
+                        }
                     }
                 }
             }
-        }
-        Ok(dst)
+            Ok(dst)
+        })
     }
 }

@@ -204,60 +204,64 @@ impl Refiner {
     /// `full_topology_in_last_level`. Parallel over blocks of vertices in
     /// the current rayon pool.
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
-        use rayon::prelude::*;
-        let level = self.check_limit_source(width, src)?;
-        let n = level.vertex_count * width;
-        let mut out = LimitData {
-            positions: vec![T::ZERO; n],
-            du: vec![T::ZERO; n],
-            dv: vec![T::ZERO; n],
-        };
-        let block = BLOCK * width;
-        out.positions
-            .par_chunks_mut(block)
-            .zip(out.du.par_chunks_mut(block))
-            .zip(out.dv.par_chunks_mut(block))
-            .enumerate()
-            .for_each(|(b, ((pos, du), dv))| {
-                let mut masks = LimitMasks::<T>::new();
-                let rows = pos
-                    .chunks_exact_mut(width)
-                    .zip(du.chunks_exact_mut(width))
-                    .zip(dv.chunks_exact_mut(width));
-                for (k, ((p, d1), d2)) in rows.enumerate() {
-                    let v = b * BLOCK + k;
-                    if !masks.compute(self, level, v, true) {
-                        p.copy_from_slice(&src[v * width..(v + 1) * width]);
-                        continue;
+        crate::alloc::guard(None, || {
+            use rayon::prelude::*;
+            let level = self.check_limit_source(width, src)?;
+            let n = level.vertex_count * width;
+            let mut out = LimitData {
+                positions: crate::alloc::vec_or_unwind(T::ZERO, n),
+                du: crate::alloc::vec_or_unwind(T::ZERO, n),
+                dv: crate::alloc::vec_or_unwind(T::ZERO, n),
+            };
+            let block = BLOCK * width;
+            out.positions
+                .par_chunks_mut(block)
+                .zip(out.du.par_chunks_mut(block))
+                .zip(out.dv.par_chunks_mut(block))
+                .enumerate()
+                .for_each(|(b, ((pos, du), dv))| {
+                    let mut masks = LimitMasks::<T>::new();
+                    let rows = pos
+                        .chunks_exact_mut(width)
+                        .zip(du.chunks_exact_mut(width))
+                        .zip(dv.chunks_exact_mut(width));
+                    for (k, ((p, d1), d2)) in rows.enumerate() {
+                        let v = b * BLOCK + k;
+                        if !masks.compute(self, level, v, true) {
+                            p.copy_from_slice(&src[v * width..(v + 1) * width]);
+                            continue;
+                        }
+                        let [mp, m1, m2] = masks.masks();
+                        apply(mp, &masks, v, width, src, p);
+                        apply(m1, &masks, v, width, src, d1);
+                        apply(m2, &masks, v, width, src, d2);
                     }
-                    let [mp, m1, m2] = masks.masks();
-                    apply(mp, &masks, v, width, src, p);
-                    apply(m1, &masks, v, width, src, d1);
-                    apply(m2, &masks, v, width, src, d2);
-                }
-            });
-        Ok(out)
+                });
+            Ok(out)
+        })
     }
 
     /// Limit values only, at the vertices of the last level (parallel as
     /// [`limit`](Self::limit)).
     pub fn limit_positions<T: Real>(&self, width: usize, src: &[T]) -> Result<Vec<T>> {
-        use rayon::prelude::*;
-        let level = self.check_limit_source(width, src)?;
-        let mut out = vec![T::ZERO; level.vertex_count * width];
-        out.par_chunks_mut(BLOCK * width)
-            .enumerate()
-            .for_each(|(b, out)| {
-                let mut masks = LimitMasks::<T>::new();
-                for (k, p) in out.chunks_exact_mut(width).enumerate() {
-                    let v = b * BLOCK + k;
-                    if !masks.compute(self, level, v, false) {
-                        p.copy_from_slice(&src[v * width..(v + 1) * width]);
-                        continue;
+        crate::alloc::guard(None, || {
+            use rayon::prelude::*;
+            let level = self.check_limit_source(width, src)?;
+            let mut out = crate::alloc::vec_or_unwind(T::ZERO, level.vertex_count * width);
+            out.par_chunks_mut(BLOCK * width)
+                .enumerate()
+                .for_each(|(b, out)| {
+                    let mut masks = LimitMasks::<T>::new();
+                    for (k, p) in out.chunks_exact_mut(width).enumerate() {
+                        let v = b * BLOCK + k;
+                        if !masks.compute(self, level, v, false) {
+                            p.copy_from_slice(&src[v * width..(v + 1) * width]);
+                            continue;
+                        }
+                        apply(masks.masks()[0], &masks, v, width, src, p);
                     }
-                    apply(masks.masks()[0], &masks, v, width, src, p);
-                }
-            });
-        Ok(out)
+                });
+            Ok(out)
+        })
     }
 }

@@ -103,51 +103,53 @@ impl Refiner {
     /// Builds the base level of a mesh (validated first; a mesh without faces
     /// is [`Error::EmptyMesh`], as in the `osd` engine).
     pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
-        let validation = mesh.validate()?;
-        if options.scheme == Scheme::Loop {
-            if let Some((face, size)) = mesh
-                .faces()
-                .map(<[u32]>::len)
-                .enumerate()
-                .find(|&(_, n)| n != 3)
-            {
-                return Err(Error::NotTriangles {
-                    scheme: Scheme::Loop,
-                    face,
-                    corners: size,
+        crate::alloc::guard(None, || {
+            let validation = mesh.validate()?;
+            if options.scheme == Scheme::Loop {
+                if let Some((face, size)) = mesh
+                    .faces()
+                    .map(<[u32]>::len)
+                    .enumerate()
+                    .find(|&(_, n)| n != 3)
+                {
+                    return Err(Error::NotTriangles {
+                        scheme: Scheme::Loop,
+                        face,
+                        corners: size,
+                    });
+                }
+            }
+            if mesh.face_count() == 0 {
+                return Err(Error::EmptyMesh);
+            }
+            let base = build_base_level(mesh, options);
+            if let Some(v) = crate::topology::unpaired_smooth_vertex(&base) {
+                return Err(Error::UnpairedSmoothVertex {
+                    level: 0,
+                    vertex: v,
                 });
             }
-        }
-        if mesh.face_count() == 0 {
-            return Err(Error::EmptyMesh);
-        }
-        let base = build_base_level(mesh, options);
-        if let Some(v) = crate::topology::unpaired_smooth_vertex(&base) {
-            return Err(Error::UnpairedSmoothVertex {
-                level: 0,
-                vertex: v,
-            });
-        }
-        let fvar = mesh
-            .fvar_channels
-            .iter()
-            .map(|c| {
-                vec![fvar::build_base(
-                    &base,
-                    options,
-                    c.value_count(),
-                    &c.indices,
-                )]
+            let fvar = mesh
+                .fvar_channels
+                .iter()
+                .map(|c| {
+                    vec![fvar::build_base(
+                        &base,
+                        options,
+                        c.value_count(),
+                        &c.indices,
+                    )]
+                })
+                .collect();
+            Ok(Refiner {
+                options: *options,
+                rules: SchemeRules::new(options),
+                levels: vec![base],
+                refinements: Vec::new(),
+                uniform: None,
+                fvar,
+                warnings: validation.warnings,
             })
-            .collect();
-        Ok(Refiner {
-            options: *options,
-            rules: SchemeRules::new(options),
-            levels: vec![base],
-            refinements: Vec::new(),
-            uniform: None,
-            fvar,
-            warnings: validation.warnings,
         })
     }
 
@@ -163,6 +165,21 @@ impl Refiner {
 
     /// Refines uniformly to `uniform.level`, discarding any earlier refinement.
     pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
+        let result = crate::alloc::guard(Some(uniform.level), || self.refine_levels(uniform));
+        if result.is_err() {
+            // Nothing half-refined stays behind: back to the base level.
+            self.levels.truncate(1);
+            self.refinements.clear();
+            for channel in &mut self.fvar {
+                channel.truncate(1);
+            }
+            self.uniform = None;
+        }
+        result
+    }
+
+    /// [`Refiner::refine_uniform`]'s work; on an error the caller resets.
+    fn refine_levels(&mut self, uniform: UniformOptions) -> Result<()> {
         let base = &self.levels[0];
         check_level_counts(
             base.face_count(),
@@ -195,15 +212,7 @@ impl Refiner {
             self.refinements.push(r);
             self.levels.push(child);
         }
-        if let Err(e) = self.check_unpaired_smooth() {
-            self.levels.truncate(1);
-            self.refinements.clear();
-            for channel in &mut self.fvar {
-                channel.truncate(1);
-            }
-            self.uniform = None;
-            return Err(e);
-        }
+        self.check_unpaired_smooth()?;
         self.uniform = Some(uniform);
         Ok(())
     }
@@ -274,10 +283,12 @@ impl Refiner {
     /// Interpolates vertex data of `width` components from level `level - 1`
     /// to `level` (`PrimvarRefiner::Interpolate`).
     pub fn interpolate<T: Real>(&self, level: u32, width: usize, src: &[T]) -> Result<Vec<T>> {
-        let n = self.internal_level(level)?.vertex_count;
-        let mut dst = vec![T::ZERO; n * width];
-        self.interpolate_into(level, width, src, &mut dst)?;
-        Ok(dst)
+        crate::alloc::guard(Some(level), || {
+            let n = self.internal_level(level)?.vertex_count;
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, n * width);
+            self.interpolate_into(level, width, src, &mut dst)?;
+            Ok(dst)
+        })
     }
 
     /// [`Refiner::interpolate`] into a [`Table`]: memory from the pool of
@@ -298,9 +309,11 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) -> Result<()> {
-        self.check_buffers(level, width, src, dst)?;
-        self.interpolate_level(Kind::Vertex, level as usize, width, src, dst);
-        Ok(())
+        crate::alloc::guard(Some(level), || {
+            self.check_buffers(level, width, src, dst)?;
+            self.interpolate_level(Kind::Vertex, level as usize, width, src, dst);
+            Ok(())
+        })
     }
 
     /// Interpolates varying data (linearly) from level `level - 1` to `level`
@@ -311,11 +324,13 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let n = self.internal_level(level)?.vertex_count;
-        let mut dst = vec![T::ZERO; n * width];
-        self.check_buffers(level, width, src, &dst)?;
-        self.interpolate_level(Kind::Varying, level as usize, width, src, &mut dst);
-        Ok(dst)
+        crate::alloc::guard(Some(level), || {
+            let n = self.internal_level(level)?.vertex_count;
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, n * width);
+            self.check_buffers(level, width, src, &dst)?;
+            self.interpolate_level(Kind::Varying, level as usize, width, src, &mut dst);
+            Ok(dst)
+        })
     }
 
     /// Interpolates vertex data through every level: `result[l]` is level `l`,
@@ -337,12 +352,14 @@ impl Refiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn interpolate_all<T: Real>(&self, width: usize, base: &[T]) -> Result<Vec<Values<T>>> {
-        let mut out = vec![Values(Table::from_slice(base))];
-        for level in 1..=self.max_level() {
-            let next = self.interpolate_table(level, width, out.last().expect("non-empty"))?;
-            out.push(Values(next));
-        }
-        Ok(out)
+        crate::alloc::guard(None, || {
+            let mut out = vec![Values(Table::from_slice(base))];
+            for level in 1..=self.max_level() {
+                let next = self.interpolate_table(level, width, out.last().expect("non-empty"))?;
+                out.push(Values(next));
+            }
+            Ok(out)
+        })
     }
 
     /// Interpolates vertex data through every level and returns the last
@@ -363,11 +380,13 @@ impl Refiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Values<T>> {
-        let mut current = Table::from_slice(base);
-        for level in 1..=self.max_level() {
-            current = self.interpolate_table(level, width, &current)?;
-        }
-        Ok(Values(current))
+        crate::alloc::guard(None, || {
+            let mut current = Table::from_slice(base);
+            for level in 1..=self.max_level() {
+                current = self.interpolate_table(level, width, &current)?;
+            }
+            Ok(Values(current))
+        })
     }
 
     /// Positions of every level, from base positions, in `f64`.
@@ -377,9 +396,8 @@ impl Refiner {
             .interpolate_all(3, &flat)?
             .into_iter()
             .map(|l| {
-                l.chunks_exact(3)
-                    .map(|c| DVec3::new(c[0], c[1], c[2]))
-                    .collect()
+                let points = l.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2]));
+                crate::alloc::collect_n(l.len() / 3, points)
             })
             .collect())
     }
@@ -391,9 +409,8 @@ impl Refiner {
             .interpolate_all(3, &flat)?
             .into_iter()
             .map(|l| {
-                l.chunks_exact(3)
-                    .map(|c| Vec3::new(c[0], c[1], c[2]))
-                    .collect()
+                let points = l.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2]));
+                crate::alloc::collect_n(l.len() / 3, points)
             })
             .collect())
     }

@@ -158,9 +158,11 @@ impl Refiner {
     /// level (as `Far::StencilTableFactory` with vertex interpolation and no
     /// intermediate levels). Weights are computed in `f64`.
     pub fn stencil_table(&self) -> Result<StencilTable> {
-        Ok(self
-            .rows_of_level::<f64>(self.levels.len() - 1)
-            .into_table())
+        crate::alloc::guard(None, || {
+            Ok(self
+                .rows_of_level::<f64>(self.levels.len() - 1)
+                .into_table())
+        })
     }
 
     /// The same stencils with weights computed in `f32` all along, as
@@ -196,44 +198,46 @@ impl Refiner {
     /// Stencils of the limit positions and both tangents at the vertices of
     /// the last level, from base vertices.
     pub fn limit_stencil_table(&self) -> Result<LimitStencilTable> {
-        let last = self.levels.len() - 1;
-        if !self.levels[last].has_full_topology() {
-            return Err(crate::Error::NeedsFullTopology);
-        }
-        let rows = self.rows_of_level::<f64>(last);
-        let level = &self.levels[last];
-        let base = self.levels[0].vertex_count;
-        let mut builders = [
-            RowBuilder::<f64>::new(base),
-            RowBuilder::new(base),
-            RowBuilder::new(base),
-        ];
-        let mut out = LimitStencilTable::default();
-        let mut masks = LimitMasks::<f64>::new();
-        for v in 0..level.vertex_count {
-            let has_masks = masks.compute(self, level, v, true);
-            let tables = [&mut out.positions, &mut out.du, &mut out.dv];
-            for (k, (builder, table)) in builders.iter_mut().zip(tables).enumerate() {
-                if has_masks {
-                    let mask = masks.masks()[k];
-                    for (&p, &w) in masks.face_points.iter().zip(&mask.face) {
-                        let (i, x) = rows.get(p);
-                        builder.add_row(i, x, w);
-                    }
-                    for (&p, &w) in masks.edge_points.iter().zip(&mask.edge) {
-                        let (i, x) = rows.get(p);
-                        builder.add_row(i, x, w);
-                    }
-                    let (i, x) = rows.get(v as u32);
-                    builder.add_row(i, x, mask.vertex[0]);
-                } else if k == 0 {
-                    let (i, x) = rows.get(v as u32);
-                    builder.add_row(i, x, 1.0);
-                }
-                builder.finish_into(table);
+        crate::alloc::guard(None, || {
+            let last = self.levels.len() - 1;
+            if !self.levels[last].has_full_topology() {
+                return Err(crate::Error::NeedsFullTopology);
             }
-        }
-        Ok(out)
+            let rows = self.rows_of_level::<f64>(last);
+            let level = &self.levels[last];
+            let base = self.levels[0].vertex_count;
+            let mut builders = [
+                RowBuilder::<f64>::new(base),
+                RowBuilder::new(base),
+                RowBuilder::new(base),
+            ];
+            let mut out = LimitStencilTable::default();
+            let mut masks = LimitMasks::<f64>::new();
+            for v in 0..level.vertex_count {
+                let has_masks = masks.compute(self, level, v, true);
+                let tables = [&mut out.positions, &mut out.du, &mut out.dv];
+                for (k, (builder, table)) in builders.iter_mut().zip(tables).enumerate() {
+                    if has_masks {
+                        let mask = masks.masks()[k];
+                        for (&p, &w) in masks.face_points.iter().zip(&mask.face) {
+                            let (i, x) = rows.get(p);
+                            builder.add_row(i, x, w);
+                        }
+                        for (&p, &w) in masks.edge_points.iter().zip(&mask.edge) {
+                            let (i, x) = rows.get(p);
+                            builder.add_row(i, x, w);
+                        }
+                        let (i, x) = rows.get(v as u32);
+                        builder.add_row(i, x, mask.vertex[0]);
+                    } else if k == 0 {
+                        let (i, x) = rows.get(v as u32);
+                        builder.add_row(i, x, 1.0);
+                    }
+                    builder.finish_into(table);
+                }
+            }
+            Ok(out)
+        })
     }
 }
 
@@ -465,40 +469,42 @@ impl Refiner {
     /// The refinement to the last level as per-level stencils in `T`: apply
     /// it to new base positions (animation frames) without recomputing masks.
     pub fn factorized_stencils<T: crate::Real>(&self) -> Result<FactorizedStencils<T>> {
-        let mut steps = Vec::with_capacity(self.levels.len() - 1);
-        for level in 1..self.levels.len() {
-            let r = &self.refinements[level - 1];
-            let parent = &self.levels[level - 1];
-            let nf = if r.has_face_points() {
-                parent.face_count()
-            } else {
-                0
-            };
-            let mut step = Step {
-                child_count: self.levels[level].vertex_count,
-                blocks: [
-                    (r.first_vertex_from_faces as usize, nf),
-                    (r.first_vertex_from_edges as usize, parent.edge_count()),
-                    (r.first_vertex_from_vertices as usize, parent.vertex_count),
-                ],
-                offsets: vec![0],
-                ..Step::default()
-            };
-            self.walk_masks::<T>(Kind::Vertex, level, |_child, terms| {
-                for &(source, w) in terms {
-                    step.source.push(match source {
-                        Source::Parent(i) => i,
-                        Source::Child(i) => i | CHILD_BIT,
-                    });
-                    step.weight.push(w);
-                }
-                step.offsets.push(step.source.len() as u32);
-            });
-            steps.push(step);
-        }
-        Ok(FactorizedStencils {
-            base_count: self.levels[0].vertex_count,
-            steps,
+        crate::alloc::guard(None, || {
+            let mut steps = Vec::with_capacity(self.levels.len() - 1);
+            for level in 1..self.levels.len() {
+                let r = &self.refinements[level - 1];
+                let parent = &self.levels[level - 1];
+                let nf = if r.has_face_points() {
+                    parent.face_count()
+                } else {
+                    0
+                };
+                let mut step = Step {
+                    child_count: self.levels[level].vertex_count,
+                    blocks: [
+                        (r.first_vertex_from_faces as usize, nf),
+                        (r.first_vertex_from_edges as usize, parent.edge_count()),
+                        (r.first_vertex_from_vertices as usize, parent.vertex_count),
+                    ],
+                    offsets: vec![0],
+                    ..Step::default()
+                };
+                self.walk_masks::<T>(Kind::Vertex, level, |_child, terms| {
+                    for &(source, w) in terms {
+                        step.source.push(match source {
+                            Source::Parent(i) => i,
+                            Source::Child(i) => i | CHILD_BIT,
+                        });
+                        step.weight.push(w);
+                    }
+                    step.offsets.push(step.source.len() as u32);
+                });
+                steps.push(step);
+            }
+            Ok(FactorizedStencils {
+                base_count: self.levels[0].vertex_count,
+                steps,
+            })
         })
     }
 }

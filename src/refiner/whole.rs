@@ -2,6 +2,7 @@
 //! limits) and [`refine_last`] (the smallest footprint for the last level).
 
 use super::{Kind, Refiner};
+use crate::alloc::collect_n;
 use crate::error::{Buffer, Error, Result};
 use crate::limits::check_level;
 use crate::mesh::Mesh;
@@ -37,47 +38,49 @@ pub fn refine_last<T: Real>(
     width: usize,
     base: &[T],
 ) -> Result<(Vec<LevelCounts>, Values<T>)> {
-    check_level(mesh, options, uniform.level)?;
-    let mut r = Refiner::new(mesh, options)?;
-    r.fvar.clear();
-    if width == 0 {
-        return Err(Error::ZeroWidth);
-    }
-    if base.len() != r.levels[0].vertex_count * width {
-        return Err(Error::BufferLength {
-            buffer: Buffer::Base,
-            expected: r.levels[0].vertex_count * width,
-            got: base.len(),
-        });
-    }
-    let mut counts = vec![r.level_counts(0)?];
-    let mut data = Table::from_slice(base);
-    for level in 1..=uniform.level as usize {
-        let (refinement, child) = refine_level(
-            &r.levels[level - 1],
-            &r.options,
-            uniform.order_vertices_from_faces_first,
-            Build::for_level(
-                level,
-                uniform.level as usize,
-                !uniform.full_topology_in_last_level,
-            ),
-        );
-        r.refinements.push(refinement);
-        r.levels.push(child);
-        r.check_unpaired_smooth_step(level - 1)?;
-        counts.push(r.level_counts(level as u32)?);
-        let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
-        r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
-        data = next;
-        // Nothing reads the grandparent any more (the parent's vertex
-        // relations, when derived, are read from it while interpolating this
-        // level): only this local refiner held it.
-        if level >= 2 {
-            r.levels[level - 2] = Level::default();
+    crate::alloc::guard(Some(uniform.level), || {
+        check_level(mesh, options, uniform.level)?;
+        let mut r = Refiner::new(mesh, options)?;
+        r.fvar.clear();
+        if width == 0 {
+            return Err(Error::ZeroWidth);
         }
-    }
-    Ok((counts, Values(data)))
+        if base.len() != r.levels[0].vertex_count * width {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Base,
+                expected: r.levels[0].vertex_count * width,
+                got: base.len(),
+            });
+        }
+        let mut counts = vec![r.level_counts(0)?];
+        let mut data = Table::from_slice(base);
+        for level in 1..=uniform.level as usize {
+            let (refinement, child) = refine_level(
+                &r.levels[level - 1],
+                &r.options,
+                uniform.order_vertices_from_faces_first,
+                Build::for_level(
+                    level,
+                    uniform.level as usize,
+                    !uniform.full_topology_in_last_level,
+                ),
+            );
+            r.refinements.push(refinement);
+            r.levels.push(child);
+            r.check_unpaired_smooth_step(level - 1)?;
+            counts.push(r.level_counts(level as u32)?);
+            let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
+            r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
+            data = next;
+            // Nothing reads the grandparent any more (the parent's vertex
+            // relations, when derived, are read from it while interpolating this
+            // level): only this local refiner held it.
+            if level >= 2 {
+                r.levels[level - 2] = Level::default();
+            }
+        }
+        Ok((counts, Values(data)))
+    })
 }
 
 /// Refines a mesh uniformly with the native engine as `request` says (a
@@ -96,80 +99,82 @@ pub fn refine_last<T: Real>(
 /// # Ok::<(), subdiv::Error>(())
 /// ```
 pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Result<Refinement> {
-    let request = request.into();
-    let (precision, limit) = (request.precision, request.limit);
-    // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
-    let uniform = request.effective_uniform();
-    check_level(mesh, options, uniform.level)?;
-    let mut refiner = Refiner::new(mesh, options)?;
-    refiner.refine_uniform(uniform)?;
-    let levels = (0..=uniform.level)
-        .map(|l| refiner.level(l))
-        .collect::<Result<Vec<_>>>()?;
-    let positions = match precision {
-        Precision::F64 => refiner.refine_positions(&mesh.positions)?,
-        Precision::F32 => {
-            let base: Vec<Vec3> = mesh.positions.iter().map(|p| p.as_vec3()).collect();
-            refiner
-                .refine_positions_f32(&base)?
-                .into_iter()
-                .map(|l| l.into_iter().map(|p| p.as_dvec3()).collect())
-                .collect()
-        }
-    };
-    let fvar_widths: Vec<usize> = mesh.fvar_channels.iter().map(|c| c.width).collect();
-    let fvar_values = match precision {
-        Precision::F64 => refine_fvar::<f64>(&refiner, mesh)?,
-        Precision::F32 => refine_fvar::<f32>(&refiner, mesh)?,
-    };
-    let limit = if limit {
-        let last: Vec<f64> = positions
-            .last()
-            .expect("level 0")
-            .iter()
-            .flat_map(|p| p.to_array())
-            .collect();
-        let data = match precision {
-            Precision::F64 => refiner.limit(3, &last)?,
+    crate::alloc::guard(None, || {
+        let request = request.into();
+        let (precision, limit) = (request.precision, request.limit);
+        // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
+        let uniform = request.effective_uniform();
+        check_level(mesh, options, uniform.level)?;
+        let mut refiner = Refiner::new(mesh, options)?;
+        refiner.refine_uniform(uniform)?;
+        let levels = (0..=uniform.level)
+            .map(|l| refiner.level(l))
+            .collect::<Result<Vec<_>>>()?;
+        let positions = match precision {
+            Precision::F64 => refiner.refine_positions(&mesh.positions)?,
             Precision::F32 => {
-                let narrow: Vec<f32> = last.iter().map(|&x| x as f32).collect();
-                let d = refiner.limit(3, &narrow)?;
-                let widen = |v: Vec<f32>| v.into_iter().map(f64::from).collect::<Vec<f64>>();
-                crate::output::LimitData {
-                    positions: widen(d.positions),
-                    du: widen(d.du),
-                    dv: widen(d.dv),
-                }
+                let base: Vec<Vec3> = mesh.positions.iter().map(|p| p.as_vec3()).collect();
+                refiner
+                    .refine_positions_f32(&base)?
+                    .into_iter()
+                    .map(|l| collect_n(l.len(), l.iter().map(|p| p.as_dvec3())))
+                    .collect()
             }
         };
-        let points = |v: &[f64]| {
-            v.chunks_exact(3)
-                .map(|c| DVec3::new(c[0], c[1], c[2]))
-                .collect::<Vec<_>>()
+        let fvar_widths: Vec<usize> = mesh.fvar_channels.iter().map(|c| c.width).collect();
+        let fvar_values = match precision {
+            Precision::F64 => refine_fvar::<f64>(&refiner, mesh)?,
+            Precision::F32 => refine_fvar::<f32>(&refiner, mesh)?,
         };
-        Some(Limit {
-            positions: points(&data.positions),
-            du: points(&data.du),
-            dv: points(&data.dv),
-            fvar_values: limit_fvar(
-                &refiner,
-                mesh,
-                precision,
-                fvar_values.last().expect("level 0"),
-            )?,
+        let limit = if limit {
+            let last_points = positions.last().expect("level 0");
+            let last: Vec<f64> = collect_n(
+                3 * last_points.len(),
+                last_points.iter().flat_map(|p| p.to_array()),
+            );
+            let data = match precision {
+                Precision::F64 => refiner.limit(3, &last)?,
+                Precision::F32 => {
+                    let narrow: Vec<f32> = collect_n(last.len(), last.iter().map(|&x| x as f32));
+                    let d = refiner.limit(3, &narrow)?;
+                    let widen = |v: Vec<f32>| collect_n(v.len(), v.into_iter().map(f64::from));
+                    crate::output::LimitData {
+                        positions: widen(d.positions),
+                        du: widen(d.du),
+                        dv: widen(d.dv),
+                    }
+                }
+            };
+            let points = |v: &[f64]| {
+                collect_n(
+                    v.len() / 3,
+                    v.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])),
+                )
+            };
+            Some(Limit {
+                positions: points(&data.positions),
+                du: points(&data.du),
+                dv: points(&data.dv),
+                fvar_values: limit_fvar(
+                    &refiner,
+                    mesh,
+                    precision,
+                    fvar_values.last().expect("level 0"),
+                )?,
+            })
+        } else {
+            None
+        };
+        Ok(Refinement {
+            options: *options,
+            uniform,
+            precision,
+            levels,
+            positions,
+            fvar_widths,
+            fvar_values,
+            limit,
         })
-    } else {
-        None
-    };
-    Ok(Refinement {
-        options: *options,
-        uniform,
-        precision,
-        levels,
-        positions,
-        fvar_widths,
-        fvar_values,
-        limit,
     })
 }
 
@@ -206,7 +211,7 @@ fn refine_fvar<T: Real>(refiner: &Refiner, mesh: &Mesh) -> Result<Vec<Vec<Vec<f6
         .collect();
     let widen = |data: &[Vec<T>]| {
         data.iter()
-            .map(|c| c.iter().map(|v| v.to_f64()).collect())
+            .map(|c| collect_n(c.len(), c.iter().map(|v| v.to_f64())))
             .collect()
     };
     let mut out = vec![widen(&current)];

@@ -91,7 +91,7 @@ impl<T: Pod> Table<T> {
                 t
             }
             None => Table {
-                repr: Repr::Vec(vec![T::zeroed(); len]),
+                repr: Repr::Vec(crate::alloc::vec_or_unwind(T::zeroed(), len)),
             },
         }
     }
@@ -105,7 +105,7 @@ impl<T: Pod> Table<T> {
         let mut t = match Self::mapped(len, map_threshold()) {
             Some((t, _)) => t,
             None => Table {
-                repr: Repr::Vec(vec![T::zeroed(); len]),
+                repr: Repr::Vec(crate::alloc::vec_or_unwind(T::zeroed(), len)),
             },
         };
         // Debug builds (the test suite) poison the values, all bits set (NaN
@@ -161,7 +161,7 @@ impl<T: Pod> Table<T> {
                 t
             }
             None => Table {
-                repr: Repr::Vec(vec![value; len]),
+                repr: Repr::Vec(crate::alloc::vec_or_unwind(value, len)),
             },
         }
     }

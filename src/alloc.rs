@@ -1,0 +1,105 @@
+//! Large allocations that fail with an error instead of aborting.
+//!
+//! Rust aborts the process when an ordinary allocation fails. The engine's
+//! large buffers (topology tables, primvar and limit buffers, refinement
+//! results) are allocated fallibly instead: a refinement that runs out of
+//! memory — under `ulimit -v`, a cgroup limit or a full machine — returns
+//! [`Error::OutOfMemory`] naming the size, and leaves the process running.
+//!
+//! Topology tables are built deep inside the refiner, which does not thread
+//! errors through every table it fills; a table that cannot get its memory
+//! unwinds with an [`AllocFailure`] (without the panic hook: nothing is
+//! printed), and [`guard`] at the public entry points turns it back into the
+//! error. Every other payload keeps unwinding.
+
+use crate::error::{Error, Result};
+use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
+
+/// The payload a failed large allocation unwinds with.
+pub(crate) struct AllocFailure {
+    /// The bytes that could not be allocated.
+    pub(crate) bytes: usize,
+}
+
+/// Unwinds with an [`AllocFailure`] of `bytes`, to be caught by [`guard`].
+pub(crate) fn fail(bytes: usize) -> ! {
+    resume_unwind(Box::new(AllocFailure { bytes }))
+}
+
+/// Runs `f`, turning an [`AllocFailure`] raised inside it into
+/// [`Error::OutOfMemory`] (with `level`, the level being refined or read, when
+/// there is one).
+pub(crate) fn guard<R>(level: Option<u32>, f: impl FnOnce() -> Result<R>) -> Result<R> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(result) => result,
+        Err(payload) => match payload.downcast::<AllocFailure>() {
+            Ok(failure) => Err(Error::OutOfMemory {
+                bytes: failure.bytes,
+                level,
+            }),
+            Err(other) => resume_unwind(other),
+        },
+    }
+}
+
+/// `len` copies of `value` in a vector allocated fallibly.
+pub(crate) fn try_vec<T: Clone>(value: T, len: usize) -> Result<Vec<T>> {
+    let mut v = Vec::new();
+    reserve(&mut v, len)?;
+    v.resize(len, value);
+    Ok(v)
+}
+
+/// Reserves room for `additional` more elements, fallibly.
+pub(crate) fn reserve<T>(v: &mut Vec<T>, additional: usize) -> Result<()> {
+    v.try_reserve_exact(additional)
+        .map_err(|_| Error::OutOfMemory {
+            bytes: additional.saturating_mul(size_of::<T>()),
+            level: None,
+        })
+}
+
+/// A vector of `len` copies of `value`, or an unwinding [`AllocFailure`]:
+/// for code under a [`guard`] that cannot return an error.
+pub(crate) fn vec_or_unwind<T: Clone>(value: T, len: usize) -> Vec<T> {
+    match try_vec(value, len) {
+        Ok(v) => v,
+        Err(_) => fail(len.saturating_mul(size_of::<T>())),
+    }
+}
+
+/// Collects `iter`, expected to yield about `len` items, into a vector whose
+/// room for `len` is allocated fallibly ([`AllocFailure`] on failure): for
+/// the large per-level copies made under a [`guard`].
+pub(crate) fn collect_n<T>(len: usize, iter: impl IntoIterator<Item = T>) -> Vec<T> {
+    let mut v = Vec::new();
+    if v.try_reserve_exact(len).is_err() {
+        fail(len.saturating_mul(size_of::<T>()));
+    }
+    v.extend(iter);
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn failures_become_errors_and_other_panics_go_on() {
+        let oom = guard(Some(3), || -> Result<()> { fail(1 << 40) }).unwrap_err();
+        assert!(matches!(oom, Error::OutOfMemory { bytes, level: Some(3) } if bytes == 1 << 40));
+        assert_eq!(
+            oom.to_string(),
+            "out of memory refining level 3: 1099511627776 bytes could not be allocated"
+        );
+        // An allocation no machine has: an error, not an abort.
+        let huge = try_vec(0u64, usize::MAX / 16).unwrap_err();
+        assert!(
+            matches!(huge, Error::OutOfMemory { level: None, .. }),
+            "{huge}"
+        );
+        let caught = catch_unwind(|| guard(None, || -> Result<()> { panic!("not ours") }));
+        assert!(caught.is_err());
+        assert_eq!(guard(None, || Ok(7)).unwrap(), 7);
+    }
+}
