@@ -688,3 +688,75 @@ fn newell_normal(mesh: &Mesh, verts: &[u32]) -> DVec3 {
 pub fn write_svg(path: &Path, svg: &str) -> Result<(), Error> {
     super::atomic::write_bytes(path, svg.as_bytes())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(closed: bool) -> NurbsCurve<DVec2> {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let p: Vec<DVec2> = [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.)]
+            .iter()
+            .chain(&[(-1., -1.), (0., -1.), (1., -1.), (1., 0.)])
+            .map(|&(x, y)| DVec2::new(x, y))
+            .collect();
+        let w = [1.0, h, 1.0, h, 1.0, h, 1.0, h, 1.0];
+        if closed {
+            let breaks = vec![0., 1., 1., 2., 2., 3., 3., 4., 4.];
+            NurbsCurve::closed(p[..8].to_vec(), 2, breaks, Some(w[..8].to_vec())).unwrap()
+        } else {
+            let knots = vec![0., 0., 0., 1., 1., 2., 2., 3., 3., 4., 4., 4.];
+            NurbsCurve::new(p, 2, knots, Some(w.to_vec())).unwrap()
+        }
+    }
+
+    #[test]
+    fn knot_marks_are_the_distinct_knots_of_the_domain() {
+        let open = knot_marks(&circle(false)).unwrap();
+        let ts: Vec<(f64, usize)> = open.iter().map(|m| (m.t, m.multiplicity)).collect();
+        assert_eq!(ts, [(0., 3), (1., 2), (2., 2), (3., 2), (4., 3)]);
+        for (m, p) in open
+            .iter()
+            .zip([(1., 0.), (0., 1.), (-1., 0.), (0., -1.), (1., 0.)])
+        {
+            assert!((m.point - DVec2::new(p.0, p.1)).length() < 1e-15);
+        }
+        // Closed: the break point s_n = 4 is s_0 again and is left out.
+        let closed = knot_marks(&circle(true)).unwrap();
+        let ts: Vec<f64> = closed.iter().map(|m| m.t).collect();
+        assert_eq!(ts, [0., 1., 2., 3.]);
+    }
+
+    #[test]
+    fn dense_samples_take_48_points_a_span_within_bounds() {
+        // Four spans: 193 points, raised to the minimum of 201.
+        assert_eq!(dense_samples(&circle(false)).unwrap().len(), 201);
+        let p: Vec<DVec2> = (0..20)
+            .map(|i| DVec2::new(i as f64, (i % 3) as f64))
+            .collect();
+        let line = NurbsCurve::new(p, 1, (0..22).map(f64::from).collect(), None).unwrap();
+        assert_eq!(dense_samples(&line).unwrap().len(), 19 * 48 + 1);
+    }
+
+    #[test]
+    fn knots_at_one_point_share_a_label() {
+        let c = circle(false);
+        let square = c.points().to_vec();
+        let svg = nurbs_curve_svg(
+            "circle",
+            &c,
+            &[Layer {
+                label: "control polygon",
+                points: &square,
+                closed: false,
+            }],
+            &Projection::PLAN,
+        )
+        .unwrap();
+        // 0 and 4 are both at (1, 0), at the right edge: one label, turned left.
+        assert!(svg.contains("text-anchor=\"end\">0 (\u{d7}3), 4 (\u{d7}3)</text>"));
+        assert_eq!(svg.matches("<text x=").count(), 1 + 2 + 4 + 1); // title, legend, labels, knots legend
+        assert!(svg.contains("curve (degree 2, rational)"));
+        assert!(svg.contains("5 distinct knots"));
+    }
+}
