@@ -44,6 +44,17 @@ fn curve(input: &Path, args: &[&str]) -> String {
     stdout(&o)
 }
 
+/// Runs `subdiv curve INPUT ARGS... -o OUT` (OUT a fresh file named `out`),
+/// asserting success and nothing on stdout; returns OUT and its text.
+fn curve_to_file(input: &Path, args: &[&str], out: &str) -> (PathBuf, String) {
+    let path = tmp(out);
+    let mut all = args.to_vec();
+    all.extend_from_slice(&["-o", path.to_str().unwrap()]);
+    assert!(curve(input, &all).is_empty(), "{all:?}: text on stdout");
+    let text = std::fs::read_to_string(&path).unwrap();
+    (path, text)
+}
+
 /// Runs `subdiv curve INPUT ARGS...`, expecting failure with `code`; returns stderr.
 fn curve_fails(input: &Path, args: &[&str], code: i32) -> String {
     let mut all = vec!["curve", input.to_str().unwrap()];
@@ -220,25 +231,28 @@ fn circle_weights() -> String {
     list(&[1.0, H, 1.0, H, 1.0, H, 1.0, H, 1.0])
 }
 
+/// The circle's `--degree`, `--knots` and `--weights` (`weights` from
+/// [`circle_weights`]), then `extra`.
+fn circle_args<'a>(weights: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "--degree",
+        "2",
+        "--knots",
+        CIRCLE_KNOTS,
+        "--weights",
+        weights,
+    ];
+    args.extend_from_slice(extra);
+    args
+}
+
 #[test]
 fn the_rational_circle_samples_lie_on_the_unit_circle() {
     let input = write("square.txt", SQUARE);
     let weights = circle_weights();
     for n in [2usize, 9, 100, 1001] {
         let count = n.to_string();
-        let text = curve(
-            &input,
-            &[
-                "--degree",
-                "2",
-                "--knots",
-                CIRCLE_KNOTS,
-                "--weights",
-                &weights,
-                "--samples",
-                &count,
-            ],
-        );
+        let text = curve(&input, &circle_args(&weights, &["--samples", &count]));
         let p = points(&text);
         assert_eq!(p.len(), n);
         assert!(header(&text, "knots").is_none(), "samples come alone");
@@ -251,19 +265,7 @@ fn the_rational_circle_samples_lie_on_the_unit_circle() {
         assert!(close(&p[n - 1], &[1.0, 0.0], 1e-15));
     }
     // Nine samples at t = 0, 0.5, 1, ...: the points at 0°, 45°, 90°, ...
-    let text = curve(
-        &input,
-        &[
-            "--degree",
-            "2",
-            "--knots",
-            CIRCLE_KNOTS,
-            "--weights",
-            &weights,
-            "--samples",
-            "9",
-        ],
-    );
+    let text = curve(&input, &circle_args(&weights, &["--samples", "9"]));
     for (k, q) in points(&text).iter().enumerate() {
         let a = std::f64::consts::FRAC_PI_4 * k as f64;
         assert!(close(q, &[a.cos(), a.sin()], 1e-12), "sample {k}: {q:?}");
@@ -274,24 +276,11 @@ fn the_rational_circle_samples_lie_on_the_unit_circle() {
 fn knots_and_weights_lines_read_back_as_input() {
     let input = write("square-insert.txt", SQUARE);
     let weights = circle_weights();
-    let out = tmp("circle-inserted.txt");
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--degree",
-        "2",
-        "--knots",
-        CIRCLE_KNOTS,
-        "--weights",
-        &weights,
-        "--insert",
-        "0.5,2.25,2.25",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stdout(&o).is_empty());
-    let text = std::fs::read_to_string(&out).unwrap();
+    let (out, text) = curve_to_file(
+        &input,
+        &circle_args(&weights, &["--insert", "0.5,2.25,2.25"]),
+        "circle-inserted.txt",
+    );
     let lines: Vec<&str> = text.lines().collect();
     assert!(lines[0].starts_with("# knots "), "{text}");
     assert!(lines[1].starts_with("# weights "), "{text}");
@@ -442,21 +431,18 @@ fn balanced(svg: &str) -> bool {
 #[test]
 fn svg_draws_the_polygons_the_curve_and_its_knots() {
     let input = write("yamaguchi-svg.txt", YAMAGUCHI);
-    let out = tmp("yamaguchi.svg");
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--degree",
-        "3",
-        "--knots",
-        YAMAGUCHI_KNOTS,
-        "--insert",
-        "2.8",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let svg = std::fs::read_to_string(&out).unwrap();
+    let (_, svg) = curve_to_file(
+        &input,
+        &[
+            "--degree",
+            "3",
+            "--knots",
+            YAMAGUCHI_KNOTS,
+            "--insert",
+            "2.8",
+        ],
+        "yamaguchi.svg",
+    );
     assert!(svg.starts_with("<svg"), "{svg}");
     assert!(svg.trim_end().ends_with("</svg>"));
     assert!(balanced(&svg), "{svg}");
@@ -478,24 +464,8 @@ fn svg_draws_the_polygons_the_curve_and_its_knots() {
 
     // The circle with --samples: the samples are a layer of their own.
     let input = write("square-svg.txt", SQUARE);
-    let out = tmp("circle.svg");
     let w = circle_weights();
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--degree",
-        "2",
-        "--knots",
-        CIRCLE_KNOTS,
-        "--weights",
-        &w,
-        "--samples",
-        "12",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let svg = std::fs::read_to_string(&out).unwrap();
+    let (_, svg) = curve_to_file(&input, &circle_args(&w, &["--samples", "12"]), "circle.svg");
     assert!(balanced(&svg));
     for text in [
         "NURBS curve of degree 2",
