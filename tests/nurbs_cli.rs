@@ -99,6 +99,15 @@ fn close(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// before them, the uniform knots u_k = k - 3, a knot inserted at 2.8.
 const YAMAGUCHI: &str = "# P0..P5\n0 10\n10 40\n30 50\n40 55\n60 20\n80 90\n";
 const YAMAGUCHI_KNOTS: &str = "-3,-2,-1,0,1,2,3,4,5,6";
+/// The example's insertion, with `--knots K` as two arguments.
+const YAMAGUCHI_INSERT: [&str; 6] = [
+    "--degree",
+    "3",
+    "--knots",
+    YAMAGUCHI_KNOTS,
+    "--insert",
+    "2.8",
+];
 
 #[test]
 fn yamaguchi_example_6_10_through_the_cli() {
@@ -138,17 +147,7 @@ fn yamaguchi_example_6_10_through_the_cli() {
     );
     assert_eq!(format!("({:.0}, {:.0})", q[4][0], q[4][1]), "(52, 34)");
     // `--knots -3,...` (a separate argument) gives the same file.
-    let spaced = curve(
-        &input,
-        &[
-            "--degree",
-            "3",
-            "--knots",
-            YAMAGUCHI_KNOTS,
-            "--insert",
-            "2.8",
-        ],
-    );
+    let spaced = curve(&input, &YAMAGUCHI_INSERT);
     assert_eq!(spaced, text);
 }
 
@@ -431,18 +430,7 @@ fn balanced(svg: &str) -> bool {
 #[test]
 fn svg_draws_the_polygons_the_curve_and_its_knots() {
     let input = write("yamaguchi-svg.txt", YAMAGUCHI);
-    let (_, svg) = curve_to_file(
-        &input,
-        &[
-            "--degree",
-            "3",
-            "--knots",
-            YAMAGUCHI_KNOTS,
-            "--insert",
-            "2.8",
-        ],
-        "yamaguchi.svg",
-    );
+    let (_, svg) = curve_to_file(&input, &YAMAGUCHI_INSERT, "yamaguchi.svg");
     assert!(svg.starts_with("<svg"), "{svg}");
     assert!(svg.trim_end().ends_with("</svg>"));
     assert!(balanced(&svg), "{svg}");
