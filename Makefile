@@ -1,20 +1,29 @@
 # subdiv — the two set-up commands:
 #   make run    install what is missing, build in release mode, run the main job:
 #               `subdiv report` on the embedded set, into ./report/
-#   make test   install what is missing, run the whole test suite
+#   make test   install what is missing, run the whole test suite, then cross-check
+#               `subdiv curve --knots` against geomdl (NURBS-Python) in .venv
 # Both install the system packages they need with apt-get (as root) when missing.
 
 SHELL := /bin/bash
 CARGO ?= cargo
 APT_PACKAGES := libosd-dev libclang-dev clang g++ pkg-config
+# The Python environment of scripts/check-nurbs.py (geomdl is pure Python).
+VENV := .venv
+GEOMDL := geomdl==5.4.0
 
-.PHONY: run test deps lint fmt check-no-osd clean
+.PHONY: run test deps lint fmt check-no-osd check-nurbs clean
 
 deps:
 	@missing=""; \
 	for p in $(APT_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
 	done; \
+	if ! command -v python3 >/dev/null 2>&1; then \
+	  missing="$$missing python3 python3-venv"; \
+	elif ! python3 -c 'import ensurepip, venv' >/dev/null 2>&1; then \
+	  missing="$$missing python3-venv"; \
+	fi; \
 	if [ -n "$$missing" ]; then \
 	  echo "installing:$$missing"; \
 	  if [ "$$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi; \
@@ -27,9 +36,22 @@ run: deps
 
 test: deps
 	$(CARGO) test --all-features
+	$(MAKE) --no-print-directory check-nurbs
 	$(CARGO) build --no-default-features
 	$(CARGO) build --no-default-features --features cli
 	$(CARGO) test --no-default-features --lib
+
+# `subdiv curve --knots` against geomdl on random curves (issue #22): .venv is
+# made when missing and geomdl installed into it when missing (no network
+# needed once it is there).
+check-nurbs: deps $(VENV)/bin/pip
+	@$(VENV)/bin/python -c 'import geomdl' 2>/dev/null || \
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check '$(GEOMDL)'
+	$(CARGO) build --all-features
+	$(VENV)/bin/python scripts/check-nurbs.py target/debug/subdiv
+
+$(VENV)/bin/pip:
+	python3 -m venv $(VENV) || { rm -rf $(VENV); echo "python3 -m venv failed"; exit 1; }
 
 lint: deps
 	$(CARGO) fmt --check

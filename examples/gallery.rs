@@ -1,6 +1,7 @@
 //! Writes the README's gallery: SVG pictures of every curve scheme (open and
 //! closed, levels in colours), of B-splines of several degrees, of an adaptive
-//! flattening, and of Doo-Sabin and Catmull-Clark cubes.
+//! flattening, of a NURBS circle with its knots, and of Doo-Sabin and
+//! Catmull-Clark cubes.
 //!
 //! ```text
 //! cargo run --example gallery            # into docs/gallery/
@@ -12,6 +13,7 @@ use std::path::{Path, PathBuf};
 use subdiv::curve::{self, CurveScheme};
 use subdiv::doo_sabin::{self, Boundary, Weights};
 use subdiv::io::svg::{self, Layer, MeshPanel, MeshStyle, Projection};
+use subdiv::nurbs::NurbsCurve;
 use subdiv::{Mesh, Options, UniformOptions};
 
 type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
@@ -152,6 +154,52 @@ fn main() -> Result<()> {
             ],
             &Projection::PLAN,
         ),
+    )?;
+
+    // The unit circle as a rational quadratic (NURBS), before and after
+    // inserting the knots 0.5 and 2.5, with its knots marked.
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let square: Vec<DVec2> = [
+        (1., 0.),
+        (1., 1.),
+        (0., 1.),
+        (-1., 1.),
+        (-1., 0.),
+        (-1., -1.),
+        (0., -1.),
+        (1., -1.),
+        (1., 0.),
+    ]
+    .iter()
+    .map(|&(x, y)| DVec2::new(x, y))
+    .collect();
+    let circle = NurbsCurve::new(
+        square.clone(),
+        2,
+        vec![0., 0., 0., 1., 1., 2., 2., 3., 3., 4., 4., 4.],
+        Some(vec![1.0, h, 1.0, h, 1.0, h, 1.0, h, 1.0]),
+    )?;
+    let finer = circle.insert_many(&[0.5, 2.5])?;
+    write(
+        &dir,
+        "nurbs-circle.svg",
+        &svg::nurbs_curve_svg(
+            "The unit circle as a rational quadratic (NURBS)",
+            &finer,
+            &[
+                Layer {
+                    label: "control polygon (9 points)",
+                    points: &square,
+                    closed: false,
+                },
+                Layer {
+                    label: "after inserting 0.5 and 2.5 (11 points)",
+                    points: finer.points(),
+                    closed: false,
+                },
+            ],
+            &Projection::PLAN,
+        )?,
     )?;
 
     // Cubes: Doo-Sabin and Catmull-Clark, levels 0 to 3.

@@ -3,7 +3,10 @@
 //!
 //! Curves are drawn as the classic figures draw them: the control polygon in
 //! grey, dashed, with its points as dots, and each refinement level (or a
-//! flattened limit curve) in its own colour, with a legend. Meshes are drawn
+//! flattened limit curve) in its own colour, with a legend. A B-spline or
+//! NURBS curve ([`nurbs_curve_svg`]) is drawn with its knots: a diamond at
+//! the curve point of each distinct knot of the domain, labelled with its
+//! value. Meshes are drawn
 //! as an orthographic projection ([`Projection`]), either as shaded faces with
 //! their edges (painter's algorithm: faces sorted back to front) or as a plain
 //! wireframe. Everything is deterministic: the same input gives the same file.
@@ -22,7 +25,9 @@
 
 use crate::curve::Point;
 use crate::error::Error;
+use crate::io::number::format_g;
 use crate::mesh::Mesh;
+use crate::nurbs::{NurbsCurve, NurbsError};
 use glam::{DVec2, DVec3};
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -204,6 +209,122 @@ pub fn curve_svg<P: Point>(
     layers: &[Layer<'_, P>],
     projection: &Projection,
 ) -> String {
+    curve_figure(title, layers, &[], projection)
+}
+
+/// A knot marked on a curve figure: the curve point `C(t)` at a distinct
+/// knot `t` of the domain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KnotMark<P> {
+    /// The knot value.
+    pub t: f64,
+    /// How many times it occurs in the knot vector.
+    pub multiplicity: usize,
+    /// The curve point `C(t)`.
+    pub point: P,
+}
+
+/// The knot marks of a curve: one per distinct knot of its domain
+/// `[u_d, u_{m-d}]`, at the curve point (a closed curve: the break points of
+/// one period, `s_n` left out as the image of `s_0`).
+pub fn knot_marks<P: Point>(curve: &NurbsCurve<P>) -> Result<Vec<KnotMark<P>>, NurbsError> {
+    let mut breaks = curve.knots().breaks().to_vec();
+    breaks.dedup();
+    if curve.is_closed() {
+        breaks.pop();
+    }
+    breaks
+        .into_iter()
+        .map(|t| {
+            Ok(KnotMark {
+                t,
+                multiplicity: curve.knots().multiplicity(t),
+                point: curve.eval(t)?,
+            })
+        })
+        .collect()
+}
+
+/// The curve sampled densely enough to draw: 48 points per non-empty span
+/// of the domain, between 201 and 8001 in all, uniform in the parameter,
+/// both ends included.
+pub fn dense_samples<P: Point>(curve: &NurbsCurve<P>) -> Result<Vec<P>, NurbsError> {
+    let mut breaks = curve.knots().breaks().to_vec();
+    breaks.dedup();
+    let spans = breaks.len().saturating_sub(1);
+    curve.sample(spans.saturating_mul(48).saturating_add(1).clamp(201, 8001))
+}
+
+/// A curve figure with its knots marked ([`curve_svg`] plus a marker and a
+/// label per [`KnotMark`], and a legend line for them).
+pub fn curve_knots_svg<P: Point>(
+    title: &str,
+    layers: &[Layer<'_, P>],
+    marks: &[KnotMark<P>],
+    projection: &Projection,
+) -> String {
+    curve_figure(title, layers, marks, projection)
+}
+
+/// The figure of a B-spline or NURBS curve: `polygons` (the first drawn as
+/// the control polygon: pass e.g. the given control points, then the ones
+/// after an insertion), the curve itself sampled densely ([`dense_samples`]),
+/// and its knots marked ([`knot_marks`]).
+///
+/// ```
+/// use glam::DVec2;
+/// use subdiv::io::svg::{nurbs_curve_svg, Layer, Projection};
+/// use subdiv::nurbs::NurbsCurve;
+/// let p = vec![DVec2::ZERO, DVec2::new(1.0, 2.0), DVec2::new(3.0, 2.0), DVec2::new(4.0, 0.0)];
+/// let c = NurbsCurve::new(p.clone(), 2, vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0], None)?;
+/// let polygon = [Layer { label: "control polygon", points: &p, closed: false }];
+/// let svg = nurbs_curve_svg("quadratic", &c, &polygon, &Projection::PLAN)?;
+/// assert!(svg.starts_with("<svg") && svg.contains("3 distinct knots"));
+/// # Ok::<(), subdiv::nurbs::NurbsError>(())
+/// ```
+pub fn nurbs_curve_svg<P: Point>(
+    title: &str,
+    curve: &NurbsCurve<P>,
+    polygons: &[Layer<'_, P>],
+    projection: &Projection,
+) -> Result<String, NurbsError> {
+    let samples = dense_samples(curve)?;
+    let label = curve_label(curve);
+    let mut layers = polygons.to_vec();
+    layers.push(Layer {
+        label: &label,
+        points: &samples,
+        closed: false,
+    });
+    Ok(curve_figure(
+        title,
+        &layers,
+        &knot_marks(curve)?,
+        projection,
+    ))
+}
+
+/// `curve (degree d, rational, closed)`: the legend of a curve's layer.
+pub fn curve_label<P: Point>(curve: &NurbsCurve<P>) -> String {
+    format!(
+        "curve (degree {}{}{})",
+        curve.degree(),
+        if curve.is_rational() {
+            ", rational"
+        } else {
+            ""
+        },
+        if curve.is_closed() { ", closed" } else { "" }
+    )
+}
+
+/// [`curve_svg`] with knot marks.
+fn curve_figure<P: Point>(
+    title: &str,
+    layers: &[Layer<'_, P>],
+    marks: &[KnotMark<P>],
+    projection: &Projection,
+) -> String {
     const WIDTH: f64 = 640.0;
     const PLOT: f64 = 560.0;
     // Coordinates near f64::MAX would overflow the projection and the extent:
@@ -244,7 +365,8 @@ pub fn curve_svg<P: Point>(
     let plot_h = (extent.y * scale).max(40.0);
     let top = 44.0;
     let legend_top = top + plot_h + 24.0;
-    let height = legend_top + 20.0 * layers.len() as f64 + 8.0;
+    let rows = layers.len() + usize::from(!marks.is_empty());
+    let height = legend_top + 20.0 * rows as f64 + 8.0;
     let frame = Frame::fit(
         all,
         DVec2::new(PLOT, plot_h),
@@ -290,8 +412,93 @@ pub fn curve_svg<P: Point>(
             escape(layer.label)
         );
     }
+    if !marks.is_empty() {
+        let y = legend_top + 20.0 * layers.len() as f64;
+        draw_knot_marks(&mut out, marks, WIDTH, |p| {
+            frame.px(projection.project(p.to_dvec3() * shrink))
+        });
+        let _ = writeln!(out, "<g class=\"knot-legend\">");
+        diamond(&mut out, DVec2::new(60.0, y));
+        let count = marks.len();
+        let _ = writeln!(
+            out,
+            "<text x=\"90\" y=\"{:.1}\" font-size=\"13\">knots: C(t) at the {count} distinct knot{} of the domain</text>\n</g>",
+            y + 4.5,
+            if count == 1 { "" } else { "s" }
+        );
+    }
     out.push_str("</svg>\n");
     out
+}
+
+/// A knot marker: a diamond, white with a black outline.
+fn diamond(out: &mut String, c: DVec2) {
+    const R: f64 = 5.0;
+    let _ = writeln!(
+        out,
+        "<path d=\"M{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}Z\" fill=\"white\" stroke=\"black\" stroke-width=\"1.3\"/>",
+        c.x,
+        c.y - R,
+        c.x + R,
+        c.y,
+        c.x,
+        c.y + R,
+        c.x - R,
+        c.y
+    );
+}
+
+/// The knot markers, labelled with their values (and multiplicities above
+/// 1) while there are at most 24 of them.
+fn draw_knot_marks<P: Point>(
+    out: &mut String,
+    marks: &[KnotMark<P>],
+    width: f64,
+    px: impl Fn(P) -> DVec2,
+) {
+    let _ = writeln!(out, "<g class=\"knots\">");
+    for mark in marks {
+        diamond(out, px(mark.point));
+    }
+    if marks.len() <= 24 {
+        // One label per marker position: knots at the same point (the ends
+        // of a closed curve) share it.
+        let mut labels: Vec<(DVec2, String)> = Vec::new();
+        for mark in marks {
+            let c = px(mark.point);
+            let mut label = String::new();
+            format_g(mark.t, 6, &mut label);
+            if mark.multiplicity > 1 {
+                let _ = write!(label, " (\u{d7}{})", mark.multiplicity);
+            }
+            match labels.iter_mut().find(|(at, _)| at.distance(c) < 1.0) {
+                Some((_, text)) => {
+                    text.push_str(", ");
+                    text.push_str(&label);
+                }
+                None => labels.push((c, label)),
+            }
+        }
+        let _ = writeln!(out, "<g font-size=\"11\" fill=\"#333333\">");
+        for (c, label) in labels {
+            // Right of the marker, or left of it where the text (about 6.5
+            // pixels a character) would leave the picture.
+            let fits = c.x + 7.0 + 6.5 * label.chars().count() as f64 <= width;
+            let (x, anchor) = if fits {
+                (c.x + 7.0, "")
+            } else {
+                (c.x - 7.0, " text-anchor=\"end\"")
+            };
+            let _ = writeln!(
+                out,
+                "<text x=\"{x:.2}\" y=\"{:.2}\"{anchor}>{}</text>",
+                c.y - 7.0,
+                escape(&label)
+            );
+        }
+        let _ = writeln!(out, "</g>");
+    }
+    let _ = writeln!(out, "</g>");
 }
 
 /// The classic figure of a refinement: `levels[0]` is the control polygon,
@@ -480,4 +687,76 @@ fn newell_normal(mesh: &Mesh, verts: &[u32]) -> DVec3 {
 /// Writes an SVG text to `path` atomically.
 pub fn write_svg(path: &Path, svg: &str) -> Result<(), Error> {
     super::atomic::write_bytes(path, svg.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(closed: bool) -> NurbsCurve<DVec2> {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let p: Vec<DVec2> = [(1., 0.), (1., 1.), (0., 1.), (-1., 1.), (-1., 0.)]
+            .iter()
+            .chain(&[(-1., -1.), (0., -1.), (1., -1.), (1., 0.)])
+            .map(|&(x, y)| DVec2::new(x, y))
+            .collect();
+        let w = [1.0, h, 1.0, h, 1.0, h, 1.0, h, 1.0];
+        if closed {
+            let breaks = vec![0., 1., 1., 2., 2., 3., 3., 4., 4.];
+            NurbsCurve::closed(p[..8].to_vec(), 2, breaks, Some(w[..8].to_vec())).unwrap()
+        } else {
+            let knots = vec![0., 0., 0., 1., 1., 2., 2., 3., 3., 4., 4., 4.];
+            NurbsCurve::new(p, 2, knots, Some(w.to_vec())).unwrap()
+        }
+    }
+
+    #[test]
+    fn knot_marks_are_the_distinct_knots_of_the_domain() {
+        let open = knot_marks(&circle(false)).unwrap();
+        let ts: Vec<(f64, usize)> = open.iter().map(|m| (m.t, m.multiplicity)).collect();
+        assert_eq!(ts, [(0., 3), (1., 2), (2., 2), (3., 2), (4., 3)]);
+        for (m, p) in open
+            .iter()
+            .zip([(1., 0.), (0., 1.), (-1., 0.), (0., -1.), (1., 0.)])
+        {
+            assert!((m.point - DVec2::new(p.0, p.1)).length() < 1e-15);
+        }
+        // Closed: the break point s_n = 4 is s_0 again and is left out.
+        let closed = knot_marks(&circle(true)).unwrap();
+        let ts: Vec<f64> = closed.iter().map(|m| m.t).collect();
+        assert_eq!(ts, [0., 1., 2., 3.]);
+    }
+
+    #[test]
+    fn dense_samples_take_48_points_a_span_within_bounds() {
+        // Four spans: 193 points, raised to the minimum of 201.
+        assert_eq!(dense_samples(&circle(false)).unwrap().len(), 201);
+        let p: Vec<DVec2> = (0..20)
+            .map(|i| DVec2::new(i as f64, (i % 3) as f64))
+            .collect();
+        let line = NurbsCurve::new(p, 1, (0..22).map(f64::from).collect(), None).unwrap();
+        assert_eq!(dense_samples(&line).unwrap().len(), 19 * 48 + 1);
+    }
+
+    #[test]
+    fn knots_at_one_point_share_a_label() {
+        let c = circle(false);
+        let square = c.points().to_vec();
+        let svg = nurbs_curve_svg(
+            "circle",
+            &c,
+            &[Layer {
+                label: "control polygon",
+                points: &square,
+                closed: false,
+            }],
+            &Projection::PLAN,
+        )
+        .unwrap();
+        // 0 and 4 are both at (1, 0), at the right edge: one label, turned left.
+        assert!(svg.contains("text-anchor=\"end\">0 (\u{d7}3), 4 (\u{d7}3)</text>"));
+        assert_eq!(svg.matches("<text x=").count(), 1 + 2 + 4 + 1); // title, legend, labels, knots legend
+        assert!(svg.contains("curve (degree 2, rational)"));
+        assert!(svg.contains("5 distinct knots"));
+    }
 }

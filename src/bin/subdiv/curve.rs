@@ -1,8 +1,12 @@
-//! `subdiv curve`: refine or flatten a curve given as points.
+//! `subdiv curve`: refine or flatten a curve given as points, or (with
+//! `--knots`, in [`knots`]) insert knots into a B-spline or NURBS curve and
+//! sample it.
+
+mod knots;
 
 use clap::Args;
 use std::io::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use subdiv::curve::{CurveScheme, Point};
 
 use crate::Failure;
@@ -20,21 +24,35 @@ pub(crate) enum CurveSchemeArg {
 }
 
 #[derive(Args)]
+#[command(after_help = "\
+Examples:
+  subdiv curve polygon.txt --scheme chaikin --level 3 -o chaikin.svg
+  subdiv curve points.txt --degree 3 --knots=-3,-2,-1,0,1,2,3,4,5,6 --insert 2.8
+  subdiv curve square.txt --degree 2 --knots 0,0,0,1,1,2,2,3,3,4,4,4 \\
+               --weights 1,0.7071,1,0.7071,1,0.7071,1,0.7071,1 --samples 100
+  subdiv curve square.txt --degree 2 --knots 0,0,0,1,1,2,2,3,3,4,4,4 [...] -o circle.svg
+
+With --knots and neither --insert nor --samples, the control polygon is written
+as given, after its `# knots` line. Errors exit 1 and name the option; options
+that do not go together are usage errors (exit 2).")]
 pub(crate) struct CurveArgs {
     /// Input points: one per line, 2 or 3 numbers separated by spaces; `#` starts a comment.
     #[arg(value_name = "INPUT.txt")]
     pub(crate) input: PathBuf,
-    /// Curve scheme.
-    #[arg(long, value_enum)]
-    pub(crate) scheme: CurveSchemeArg,
-    /// B-spline degree, 1 to 15 (--scheme bspline only) [default: 3].
+    /// Curve scheme (not with --knots).
+    #[arg(long, value_enum, required_unless_present = "knots")]
+    pub(crate) scheme: Option<CurveSchemeArg>,
+    /// B-spline degree: 1 to 15 with --scheme bspline [default: 3]; the
+    /// degree of the curve with --knots (required there).
     #[arg(long, value_name = "D")]
     pub(crate) degree: Option<usize>,
     /// Four-point tension w (--scheme four-point only) [default: 1/16]; any finite
     /// value; 0 < w < 0.15 gives smooth curves.
     #[arg(long, value_name = "W", allow_negative_numbers = true)]
     pub(crate) tension: Option<f64>,
-    /// The polygon is closed (its last point joins its first).
+    /// The polygon is closed (its last point joins its first); with --knots,
+    /// the curve is periodic and --knots gives the n + 1 break points s0..sn of
+    /// one period for its n distinct points.
     #[arg(long)]
     pub(crate) closed: bool,
     /// Refinement levels [default: 1].
@@ -43,8 +61,55 @@ pub(crate) struct CurveArgs {
     /// Flatten the limit curve (chaikin, bspline) into a polyline within EPS of it.
     #[arg(long, value_name = "EPS", allow_negative_numbers = true)]
     pub(crate) tolerance: Option<f64>,
-    /// Output: `.svg` draws the control polygon and each level in its own colour,
-    /// any other name gets the points as text; without it the text goes to stdout.
+    /// The knots of a B-spline or NURBS curve of degree --degree: n + d + 2
+    /// non-decreasing numbers for n + 1 points, comma-separated; negative
+    /// values as `--knots=-3,-2,-1,0,...` or `--knots -3,-2,-1,0,...`.
+    #[arg(
+        long,
+        value_name = "K0,K1,...",
+        value_parser = knots::parse_list,
+        allow_hyphen_values = true,
+        requires = "degree",
+        conflicts_with_all = ["scheme", "level", "tolerance", "tension"],
+        help_heading = "B-splines and NURBS (--knots)"
+    )]
+    pub(crate) knots: Option<knots::NumberList>,
+    /// With --knots: the weights of a rational curve (NURBS), one positive
+    /// number per control point (per distinct point with --closed).
+    #[arg(
+        long,
+        value_name = "W0,W1,...",
+        value_parser = knots::parse_list,
+        allow_hyphen_values = true,
+        requires = "knots",
+        help_heading = "B-splines and NURBS (--knots)"
+    )]
+    pub(crate) weights: Option<knots::NumberList>,
+    /// With --knots: insert these knots, each once, in order (a repeated value
+    /// inserts again), and write the new control polygon after a `# knots`
+    /// line (and a `# weights` line for a rational curve).
+    #[arg(
+        long,
+        value_name = "T1,T2,...",
+        value_parser = knots::parse_list,
+        allow_hyphen_values = true,
+        requires = "knots",
+        conflicts_with = "samples",
+        help_heading = "B-splines and NURBS (--knots)"
+    )]
+    pub(crate) insert: Option<knots::NumberList>,
+    /// With --knots: write N ≥ 2 curve points at parameters spaced uniformly
+    /// over the domain [k_D, k_{m-D}], both ends included.
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "knots",
+        help_heading = "B-splines and NURBS (--knots)"
+    )]
+    pub(crate) samples: Option<usize>,
+    /// Output: `.svg` draws the control polygon and each level in its own
+    /// colour (with --knots: the control polygon, the curve and its knots), any
+    /// other name gets the points as text; without it the text goes to stdout.
     #[arg(short, long, value_name = "OUT.txt|OUT.svg")]
     pub(crate) output: Option<PathBuf>,
 }
@@ -52,7 +117,10 @@ pub(crate) struct CurveArgs {
 /// `subdiv curve`: refine or flatten a curve given as one point per line.
 pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
     let message = |e: &dyn std::fmt::Display| Failure::Message(e.to_string());
-    let scheme = match args.scheme {
+    let Some(scheme_arg) = args.scheme else {
+        return knots::curve(args);
+    };
+    let scheme = match scheme_arg {
         CurveSchemeArg::Chaikin => CurveScheme::Chaikin,
         CurveSchemeArg::Bspline => CurveScheme::BSpline {
             degree: args.degree.unwrap_or(3),
@@ -62,13 +130,13 @@ pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
         },
         CurveSchemeArg::Jarek => CurveScheme::Jarek,
     };
-    if args.degree.is_some() && args.scheme != CurveSchemeArg::Bspline {
+    if args.degree.is_some() && scheme_arg != CurveSchemeArg::Bspline {
         return Err(Failure::Message(format!(
             "--degree applies to --scheme bspline only ({} is not a B-spline of a chosen degree)",
             scheme.name()
         )));
     }
-    if args.tension.is_some() && args.scheme != CurveSchemeArg::FourPoint {
+    if args.tension.is_some() && scheme_arg != CurveSchemeArg::FourPoint {
         return Err(Failure::Message(
             "--tension applies to --scheme four-point only".into(),
         ));
@@ -148,11 +216,7 @@ pub(crate) fn run_curve<P: Point>(
     };
     let result = layers.last().map_or(&[][..], |l| l.1.as_slice());
     match &args.output {
-        Some(path)
-            if path
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("svg")) =>
-        {
+        Some(path) if is_svg(path) => {
             let drawn: Vec<subdiv::io::svg::Layer<'_, P>> = layers
                 .iter()
                 .map(|(label, points, closed)| subdiv::io::svg::Layer {
@@ -168,9 +232,25 @@ pub(crate) fn run_curve<P: Point>(
             );
             subdiv::io::svg::write_svg(path, &svg)?;
         }
-        Some(path) => subdiv::io::points::write_points(path, result)?,
+        _ => write_text(
+            args.output.as_deref(),
+            &subdiv::io::points::format_points(result),
+        )?,
+    }
+    Ok(())
+}
+
+/// Whether `path` names an SVG file (by its extension).
+pub(crate) fn is_svg(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+}
+
+/// Writes `text` atomically to `output`, or to stdout without one.
+pub(crate) fn write_text(output: Option<&Path>, text: &str) -> Result<(), Failure> {
+    match output {
+        Some(path) => subdiv::io::atomic::write_bytes(path, text.as_bytes())?,
         None => {
-            let text = subdiv::io::points::format_points(result);
             let mut out = std::io::stdout().lock();
             out.write_all(text.as_bytes())
                 .and_then(|()| out.flush())

@@ -57,7 +57,8 @@ pub(crate) enum Command {
     Refine(RefineArgs),
     /// Refine with both engines and compare them level by level, vertex by vertex.
     Compare(CompareArgs),
-    /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme.
+    /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme,
+    /// or insert knots into a B-spline or NURBS curve and sample it (--knots).
     Curve(CurveArgs),
     /// Benchmark the native engine against OpenSubdiv, side by side in the same run.
     Bench(BenchArgs),

@@ -19,8 +19,8 @@ pub enum NurbsError {
     /// Fewer control points than the degree needs: `d + 1` for an open curve,
     /// `max(d, 2)` distinct points for a closed one.
     #[error(
-        "a {} curve of degree {degree} needs at least {needed} control points, got {got}",
-        if *.closed { "closed" } else { "open" }
+        "{} curve of degree {degree} needs at least {needed} control points, got {got}",
+        if *.closed { "a closed" } else { "an open" }
     )]
     TooFewPoints {
         /// The degree.
