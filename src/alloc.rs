@@ -80,6 +80,17 @@ pub(crate) fn collect_n<T>(len: usize, iter: impl IntoIterator<Item = T>) -> Vec
     v
 }
 
+/// An empty vector with room for `capacity` elements, allocated fallibly
+/// ([`AllocFailure`] on failure).
+pub(crate) fn with_capacity<T>(capacity: usize) -> Vec<T> {
+    collect_n(capacity, std::iter::empty())
+}
+
+/// A copy of `values` allocated fallibly ([`collect_n`]).
+pub(crate) fn copied<T: Copy>(values: &[T]) -> Vec<T> {
+    collect_n(values.len(), values.iter().copied())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -268,117 +268,120 @@ impl TopologyRefiner {
 
     /// The whole topology of `level`, face-varying channels included.
     pub fn level(&self, level: u32) -> Result<LevelTopology> {
-        let counts = self.level_counts(level)?;
-        let r = self.raw.as_ptr();
-        let l = level as i32;
-        let mut err = ErrBuf::new();
+        crate::alloc::guard(Some(level), || {
+            let counts = self.level_counts(level)?;
+            let r = self.raw.as_ptr();
+            let l = level as i32;
+            let mut err = ErrBuf::new();
 
-        let mut sizes = try_vec(0i32, counts.faces)?;
-        let mut verts = try_vec(0i32, counts.face_vertices)?;
-        // SAFETY: each buffer is passed with its true length; the shim checks
-        // the lengths against its counts before writing.
-        err.run(|e| unsafe {
-            ffi::sdv_level_faces(
-                r,
-                l,
-                sizes.as_mut_ptr(),
-                sizes.len(),
-                verts.as_mut_ptr(),
-                verts.len(),
-                e,
-                ERR_LEN,
-            )
-        })?;
-        let mut edges = vec![
-            0i32;
-            if counts.full_topology {
-                2 * counts.edges
-            } else {
-                0
-            }
-        ];
-        if counts.full_topology {
-            // SAFETY: as above.
+            let mut sizes = try_vec(0i32, counts.faces)?;
+            let mut verts = try_vec(0i32, counts.face_vertices)?;
+            // SAFETY: each buffer is passed with its true length; the shim checks
+            // the lengths against its counts before writing.
             err.run(|e| unsafe {
-                ffi::sdv_level_edge_vertices(r, l, edges.as_mut_ptr(), edges.len(), e, ERR_LEN)
-            })?;
-        }
-        let mut edge_sharpness = try_vec(0f32, counts.edges)?;
-        // SAFETY: as above.
-        err.run(|e| unsafe {
-            ffi::sdv_level_edge_sharpness(
-                r,
-                l,
-                edge_sharpness.as_mut_ptr(),
-                edge_sharpness.len(),
-                e,
-                ERR_LEN,
-            )
-        })?;
-        let mut vertex_sharpness = try_vec(0f32, counts.vertices)?;
-        // SAFETY: as above.
-        err.run(|e| unsafe {
-            ffi::sdv_level_vertex_sharpness(
-                r,
-                l,
-                vertex_sharpness.as_mut_ptr(),
-                vertex_sharpness.len(),
-                e,
-                ERR_LEN,
-            )
-        })?;
-        let mut holes = try_vec(0u8, counts.faces)?;
-        // SAFETY: as above.
-        err.run(|e| unsafe {
-            ffi::sdv_level_face_holes(r, l, holes.as_mut_ptr(), holes.len(), e, ERR_LEN)
-        })?;
-
-        let mut fvar = Vec::with_capacity(self.fvar_channels);
-        for channel in 0..self.fvar_channels as i32 {
-            let mut value_count = 0i32;
-            // SAFETY: as above.
-            err.run(|e| unsafe {
-                ffi::sdv_level_fvar_value_count(r, l, channel, &mut value_count, e, ERR_LEN)
-            })?;
-            let mut values = try_vec(0i32, counts.face_vertices)?;
-            // SAFETY: as above.
-            err.run(|e| unsafe {
-                ffi::sdv_level_fvar_face_values(
+                ffi::sdv_level_faces(
                     r,
                     l,
-                    channel,
-                    values.as_mut_ptr(),
-                    values.len(),
+                    sizes.as_mut_ptr(),
+                    sizes.len(),
+                    verts.as_mut_ptr(),
+                    verts.len(),
                     e,
                     ERR_LEN,
                 )
             })?;
-            fvar.push(FVarTopology {
-                value_count: value_count as usize,
-                face_values: values.into_iter().map(|v| v as u32).collect(),
-            });
-        }
+            let mut edges = try_vec(
+                0i32,
+                if counts.full_topology {
+                    2 * counts.edges
+                } else {
+                    0
+                },
+            )?;
+            if counts.full_topology {
+                // SAFETY: as above.
+                err.run(|e| unsafe {
+                    ffi::sdv_level_edge_vertices(r, l, edges.as_mut_ptr(), edges.len(), e, ERR_LEN)
+                })?;
+            }
+            let mut edge_sharpness = try_vec(0f32, counts.edges)?;
+            // SAFETY: as above.
+            err.run(|e| unsafe {
+                ffi::sdv_level_edge_sharpness(
+                    r,
+                    l,
+                    edge_sharpness.as_mut_ptr(),
+                    edge_sharpness.len(),
+                    e,
+                    ERR_LEN,
+                )
+            })?;
+            let mut vertex_sharpness = try_vec(0f32, counts.vertices)?;
+            // SAFETY: as above.
+            err.run(|e| unsafe {
+                ffi::sdv_level_vertex_sharpness(
+                    r,
+                    l,
+                    vertex_sharpness.as_mut_ptr(),
+                    vertex_sharpness.len(),
+                    e,
+                    ERR_LEN,
+                )
+            })?;
+            let mut holes = try_vec(0u8, counts.faces)?;
+            // SAFETY: as above.
+            err.run(|e| unsafe {
+                ffi::sdv_level_face_holes(r, l, holes.as_mut_ptr(), holes.len(), e, ERR_LEN)
+            })?;
 
-        let mut face_offsets = Vec::with_capacity(counts.faces + 1);
-        face_offsets.push(0u32);
-        let mut acc = 0u32;
-        for s in &sizes {
-            acc += *s as u32;
-            face_offsets.push(acc);
-        }
-        Ok(LevelTopology {
-            vertex_count: counts.vertices,
-            edge_count: counts.edges,
-            face_offsets,
-            face_vertices: verts.into_iter().map(|v| v as u32).collect(),
-            edge_vertices: edges
-                .chunks_exact(2)
-                .map(|e| [e[0] as u32, e[1] as u32])
-                .collect(),
-            edge_sharpness,
-            vertex_sharpness,
-            face_holes: holes.into_iter().map(|h| h != 0).collect(),
-            fvar,
+            let mut fvar = Vec::with_capacity(self.fvar_channels);
+            for channel in 0..self.fvar_channels as i32 {
+                let mut value_count = 0i32;
+                // SAFETY: as above.
+                err.run(|e| unsafe {
+                    ffi::sdv_level_fvar_value_count(r, l, channel, &mut value_count, e, ERR_LEN)
+                })?;
+                let mut values = try_vec(0i32, counts.face_vertices)?;
+                // SAFETY: as above.
+                err.run(|e| unsafe {
+                    ffi::sdv_level_fvar_face_values(
+                        r,
+                        l,
+                        channel,
+                        values.as_mut_ptr(),
+                        values.len(),
+                        e,
+                        ERR_LEN,
+                    )
+                })?;
+                fvar.push(FVarTopology {
+                    value_count: value_count as usize,
+                    face_values: values.into_iter().map(|v| v as u32).collect(),
+                });
+            }
+
+            let mut face_offsets = Vec::new();
+            crate::alloc::reserve(&mut face_offsets, counts.faces + 1)?;
+            face_offsets.push(0u32);
+            let mut acc = 0u32;
+            for s in &sizes {
+                acc += *s as u32;
+                face_offsets.push(acc);
+            }
+            Ok(LevelTopology {
+                vertex_count: counts.vertices,
+                edge_count: counts.edges,
+                face_offsets,
+                face_vertices: verts.into_iter().map(|v| v as u32).collect(),
+                edge_vertices: crate::alloc::collect_n(
+                    edges.len() / 2,
+                    edges.chunks_exact(2).map(|e| [e[0] as u32, e[1] as u32]),
+                ),
+                edge_sharpness,
+                vertex_sharpness,
+                face_holes: holes.into_iter().map(|h| h != 0).collect(),
+                fvar,
+            })
         })
     }
 

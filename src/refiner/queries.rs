@@ -3,6 +3,7 @@
 //! whole levels as [`LevelTopology`] and borrowed [`Faces`].
 
 use super::{EdgeFaces, HoodBuf, Refiner};
+use crate::alloc::{collect_n, copied, vec_or_unwind};
 use crate::error::{Element, Error, Result};
 use crate::options::Scheme;
 use crate::output::{FVarTopology, LevelCounts, LevelTopology};
@@ -172,47 +173,50 @@ impl Refiner {
     /// The topology of `level` as OpenSubdiv reports it (edge-vertices of the
     /// last level only with full topology).
     pub fn level(&self, level: u32) -> Result<LevelTopology> {
-        let l = self.internal_level(level)?;
-        let full = level == 0
-            || level < self.max_level()
-            || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
-        Ok(LevelTopology {
-            vertex_count: l.vertex_count,
-            edge_count: l.edge_count(),
-            face_offsets: l.face_vertices.offsets_slice().into_owned(),
-            face_vertices: l.face_vertices.members.to_vec(),
-            edge_vertices: if full {
-                l.edge_vertices.to_vec()
-            } else {
-                Vec::new()
-            },
-            // Tables of default values are stored empty: expand them.
-            edge_sharpness: if !l.edge_sharpness.is_empty() {
-                l.edge_sharpness.to_vec()
-            } else if l.has_full_topology() {
-                vec![0.0; l.edge_count()]
-            } else {
-                // A minimal last level keeps no edge sharpness: recompute it.
-                let parent = &self.levels[level as usize - 1];
-                crate::topology::refine::child_edge_sharpness(
-                    parent,
-                    &self.refinements[level as usize - 1],
-                    self.options.creasing,
-                    l.edge_count(),
-                )
-            },
-            vertex_sharpness: (0..l.vertex_count)
-                .map(|v| l.vertex_sharpness_at(v))
-                .collect(),
-            face_holes: (0..l.face_count()).map(|f| l.is_hole(f)).collect(),
-            fvar: self
-                .fvar
-                .iter()
-                .map(|channel| FVarTopology {
-                    value_count: channel[level as usize].value_count(),
-                    face_values: channel[level as usize].face_values().to_vec(),
-                })
-                .collect(),
+        crate::alloc::guard(Some(level), || {
+            let l = self.internal_level(level)?;
+            let full = level == 0
+                || level < self.max_level()
+                || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
+            Ok(LevelTopology {
+                vertex_count: l.vertex_count,
+                edge_count: l.edge_count(),
+                face_offsets: copied(&l.face_vertices.offsets_slice()),
+                face_vertices: copied(&l.face_vertices.members),
+                edge_vertices: if full {
+                    copied(&l.edge_vertices)
+                } else {
+                    Vec::new()
+                },
+                // Tables of default values are stored empty: expand them.
+                edge_sharpness: if !l.edge_sharpness.is_empty() {
+                    copied(&l.edge_sharpness)
+                } else if l.has_full_topology() {
+                    vec_or_unwind(0.0, l.edge_count())
+                } else {
+                    // A minimal last level keeps no edge sharpness: recompute it.
+                    let parent = &self.levels[level as usize - 1];
+                    crate::topology::refine::child_edge_sharpness(
+                        parent,
+                        &self.refinements[level as usize - 1],
+                        self.options.creasing,
+                        l.edge_count(),
+                    )
+                },
+                vertex_sharpness: collect_n(
+                    l.vertex_count,
+                    (0..l.vertex_count).map(|v| l.vertex_sharpness_at(v)),
+                ),
+                face_holes: collect_n(l.face_count(), (0..l.face_count()).map(|f| l.is_hole(f))),
+                fvar: self
+                    .fvar
+                    .iter()
+                    .map(|channel| FVarTopology {
+                        value_count: channel[level as usize].value_count(),
+                        face_values: copied(channel[level as usize].face_values()),
+                    })
+                    .collect(),
+            })
         })
     }
 

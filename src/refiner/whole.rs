@@ -191,12 +191,9 @@ fn limit_fvar(
         .map(|(c, ch)| match precision {
             Precision::F64 => refiner.limit_face_varying(c, ch.width, &last[c]),
             Precision::F32 => {
-                let narrow: Vec<f32> = last[c].iter().map(|&x| x as f32).collect();
-                Ok(refiner
-                    .limit_face_varying(c, ch.width, &narrow)?
-                    .into_iter()
-                    .map(f64::from)
-                    .collect())
+                let narrow: Vec<f32> = collect_n(last[c].len(), last[c].iter().map(|&x| x as f32));
+                let limit = refiner.limit_face_varying(c, ch.width, &narrow)?;
+                Ok(collect_n(limit.len(), limit.into_iter().map(f64::from)))
             }
         })
         .collect()

@@ -36,11 +36,11 @@ struct Chains {
 impl Chains {
     fn new(elements: usize, capacity: usize) -> Self {
         Chains {
-            head: vec![NONE; elements],
-            tail: vec![NONE; elements],
-            count: vec![0; elements],
-            next: Vec::with_capacity(capacity),
-            value: Vec::with_capacity(capacity),
+            head: crate::alloc::vec_or_unwind(NONE, elements),
+            tail: crate::alloc::vec_or_unwind(NONE, elements),
+            count: crate::alloc::vec_or_unwind(0, elements),
+            next: crate::alloc::with_capacity(capacity),
+            value: crate::alloc::with_capacity(capacity),
         }
     }
 
@@ -82,8 +82,8 @@ impl Chains {
     }
 
     fn into_relation(self) -> Relation {
-        let mut offsets = Vec::with_capacity(self.head.len() + 1);
-        let mut members = Vec::with_capacity(self.value.len());
+        let mut offsets = crate::alloc::with_capacity(self.head.len() + 1);
+        let mut members = crate::alloc::with_capacity(self.value.len());
         offsets.push(0);
         for e in 0..self.head.len() {
             members.extend(self.iter(e));
@@ -103,14 +103,14 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     )
     .compact();
     let corners = face_vertices.members.len();
-    let mut face_edges = vec![0u32; corners];
-    let mut edge_vertices: Vec<[u32; 2]> = Vec::with_capacity(2 * nv);
+    let mut face_edges = crate::alloc::vec_or_unwind(0u32, corners);
+    let mut edge_vertices: Vec<[u32; 2]> = crate::alloc::with_capacity(2 * nv);
     let mut edge_faces = Chains::new(0, corners);
     let mut vertex_edges = Chains::new(nv, 2 * corners);
     let mut non_manifold_edges: Vec<u32> = Vec::new();
 
     // Vertex-faces are known up front: every corner adds its face to its vertex.
-    let mut vf_offsets = vec![0u32; nv + 1];
+    let mut vf_offsets = crate::alloc::vec_or_unwind(0u32, nv + 1);
     for &v in &face_vertices.members {
         vf_offsets[v as usize + 1] += 1;
     }
@@ -118,7 +118,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         vf_offsets[i + 1] += vf_offsets[i];
     }
     let mut vf_fill = vf_offsets.clone();
-    let mut vf_members = vec![0u32; corners];
+    let mut vf_members = crate::alloc::vec_or_unwind(0u32, corners);
 
     for f in 0..face_vertices.len() {
         let range = face_vertices.range(f);
@@ -314,7 +314,7 @@ fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32
 /// is, and where an edge sits in each face. Repeated members of a face (only
 /// possible when non-manifold) are assigned in order of occurrence.
 fn populate_local_indices(level: &mut Level) {
-    let mut vfl = vec![0u16; level.vertex_faces.members.len()];
+    let mut vfl = crate::alloc::vec_or_unwind(0u16, level.vertex_faces.members.len());
     for v in 0..level.vertex_count {
         let range = level.vertex_faces.range(v);
         let mut last = NONE;
@@ -334,7 +334,7 @@ fn populate_local_indices(level: &mut Level) {
             last = f;
         }
     }
-    let mut vel = vec![0u16; level.vertex_edges.members.len()];
+    let mut vel = crate::alloc::vec_or_unwind(0u16, level.vertex_edges.members.len());
     for v in 0..level.vertex_count {
         let range = level.vertex_edges.range(v);
         for i in range.clone() {
@@ -347,7 +347,7 @@ fn populate_local_indices(level: &mut Level) {
             };
         }
     }
-    let mut efl = vec![0u16; level.edge_faces.members.len()];
+    let mut efl = crate::alloc::vec_or_unwind(0u16, level.edge_faces.members.len());
     for e in 0..level.edge_count() {
         let range = level.edge_faces.range(e);
         let mut last = NONE;

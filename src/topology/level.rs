@@ -179,7 +179,7 @@ impl Level {
     /// Makes face `f` a hole, allocating the hole flags at the first hole.
     pub(crate) fn set_hole(&mut self, f: usize) {
         if self.face_holes.is_empty() {
-            self.face_holes = vec![false; self.face_count()];
+            self.face_holes = crate::alloc::vec_or_unwind(false, self.face_count());
         }
         self.face_holes[f] = true;
     }

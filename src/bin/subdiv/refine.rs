@@ -192,9 +192,23 @@ pub(crate) fn write_native_last(
     let (positions, uv_values) = match precision {
         Precision::F64 => last_values::<f64>(&r, mesh)?,
         Precision::F32 => {
-            let widen = |v: &[f32]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
+            // A copy as large as the level: allocated fallibly.
+            let widen = |v: &[f32]| -> Result<Vec<f64>, Error> {
+                let mut out = Vec::new();
+                out.try_reserve_exact(v.len())
+                    .map_err(|_| Error::OutOfMemory {
+                        bytes: v.len() * size_of::<f64>(),
+                        level: Some(uniform.level),
+                    })?;
+                out.extend(v.iter().map(|&x| f64::from(x)));
+                Ok(out)
+            };
             let (positions, uv) = last_values::<f32>(&r, mesh)?;
-            (Values::from(widen(&positions)), uv.as_deref().map(widen))
+            let uv = match uv {
+                Some(uv) => Some(widen(&uv)?),
+                None => None,
+            };
+            (Values::from(widen(&positions)?), uv)
         }
     };
     let faces = r.faces(uniform.level)?;

@@ -49,10 +49,10 @@ pub fn build_base(
     let mut fvar = ChannelLevel {
         mode,
         value_count,
-        face_values: indices.to_vec(),
-        edge_tags: vec![FVarEdgeTag::default(); level.edge_count()],
-        value_offsets: Vec::with_capacity(nv + 1),
-        face_siblings: vec![0; level.vertex_faces.members.len()],
+        face_values: crate::alloc::copied(indices),
+        edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), level.edge_count()),
+        value_offsets: crate::alloc::with_capacity(nv + 1),
+        face_siblings: crate::alloc::vec_or_unwind(0, level.vertex_faces.members.len()),
         value_indices: Vec::new(),
         value_tags: Vec::new(),
         crease_ends: Vec::new(),
@@ -67,7 +67,7 @@ pub fn build_base(
     let sharpen_darts = sharpen_both_if_one_corner || mode.linear_boundaries;
 
     // First pass: split edges, siblings and the number of values per vertex.
-    let mut mismatch = vec![false; nv];
+    let mut mismatch = crate::alloc::vec_or_unwind(false, nv);
     let mut around: Vec<u32> = Vec::with_capacity(level.max_valence);
     let mut unique: Vec<u32> = Vec::with_capacity(level.max_valence);
     let mut siblings: Vec<u16> = Vec::with_capacity(level.max_valence);
@@ -193,10 +193,10 @@ pub fn build_base(
 
     // Second pass: the value of each sibling, and the tags of mismatched values.
     let total = total as usize;
-    fvar.value_indices = vec![0; total];
-    fvar.value_tags = vec![ValueTag::default(); total];
+    fvar.value_indices = crate::alloc::vec_or_unwind(0, total);
+    fvar.value_tags = crate::alloc::vec_or_unwind(ValueTag::default(), total);
     if mode.has_crease_ends() {
-        fvar.crease_ends = vec![[0, 0]; total];
+        fvar.crease_ends = crate::alloc::vec_or_unwind([0, 0], total);
     }
     let mut spans: Vec<Span> = Vec::with_capacity(level.max_valence);
     for (v, &mismatched) in mismatch.iter().enumerate() {

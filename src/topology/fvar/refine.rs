@@ -66,7 +66,7 @@ pub fn refine(
     // Values per child vertex: one per face point; one per edge point, or one
     // per incident face across a split edge; as many per vertex child as its
     // parent had when mismatched.
-    let mut counts = vec![0u32; ncv];
+    let mut counts = crate::alloc::vec_or_unwind(0u32, ncv);
     if r.has_face_points() {
         for f in 0..nf {
             counts[r.face_child(f) as usize] = 1;
@@ -87,7 +87,7 @@ pub fn refine(
             p.vertex_value_count(v) as u32
         };
     }
-    let mut value_offsets = Vec::with_capacity(ncv + 1);
+    let mut value_offsets = crate::alloc::with_capacity(ncv + 1);
     let mut total = 0u32;
     value_offsets.push(0);
     for &c in &counts {
@@ -100,13 +100,13 @@ pub fn refine(
         mode,
         value_count: total,
         face_values: Vec::new(),
-        edge_tags: vec![FVarEdgeTag::default(); child.edge_count()],
+        edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), child.edge_count()),
         value_offsets,
-        face_siblings: vec![0; child.vertex_faces.members.len()],
+        face_siblings: crate::alloc::vec_or_unwind(0, child.vertex_faces.members.len()),
         value_indices: Vec::new(),
-        value_tags: vec![ValueTag::default(); total],
+        value_tags: crate::alloc::vec_or_unwind(ValueTag::default(), total),
         crease_ends: if mode.has_crease_ends() {
-            vec![[0, 0]; total]
+            crate::alloc::vec_or_unwind([0, 0], total)
         } else {
             Vec::new()
         },
@@ -205,12 +205,11 @@ pub fn refine(
 
     // Face values: each corner's vertex value, offset by its sibling.
     fvar.face_values = if total > ncv {
-        let mut values: Vec<u32> = child
-            .face_vertices
-            .members
-            .iter()
-            .map(|&v| fvar.value_offsets[v as usize])
-            .collect();
+        let corners = &child.face_vertices.members;
+        let mut values: Vec<u32> = crate::alloc::collect_n(
+            corners.len(),
+            corners.iter().map(|&v| fvar.value_offsets[v as usize]),
+        );
         for (c, _) in counts.iter().enumerate().filter(|&(_, &n)| n > 1) {
             let range = child.vertex_faces.range(c);
             for i in range {
@@ -224,7 +223,7 @@ pub fn refine(
         }
         values
     } else {
-        child.face_vertices.members.to_vec()
+        crate::alloc::copied(&child.face_vertices.members)
     };
     fvar
 }

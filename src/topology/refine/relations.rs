@@ -52,13 +52,13 @@ impl TableWriter {
                     ended: 0,
                 },
                 None => {
-                    let mut offsets = Vec::with_capacity(elements + 1);
+                    let mut offsets = crate::alloc::with_capacity(elements + 1);
                     offsets.push(0);
                     Starts::Table(offsets)
                 }
             },
-            members: Vec::with_capacity(members),
-            locals: locals.then(|| Vec::with_capacity(members)),
+            members: crate::alloc::with_capacity(members),
+            locals: locals.then(|| crate::alloc::with_capacity(members)),
             expected: (elements, members),
         }
     }

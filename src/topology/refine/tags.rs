@@ -59,7 +59,7 @@ pub(super) fn child_holes(parent: &Level, child_faces: usize, four_per_face: boo
     if parent.face_holes.is_empty() {
         return Vec::new();
     }
-    let mut holes = vec![false; child_faces];
+    let mut holes = crate::alloc::vec_or_unwind(false, child_faces);
     let mut any = false;
     for (f, _) in parent.face_holes.iter().enumerate().filter(|(_, h)| **h) {
         let range = if four_per_face {
@@ -148,7 +148,7 @@ pub fn child_edge_sharpness(
     method: CreasingMethod,
     child_edges: usize,
 ) -> Vec<f32> {
-    let mut out = vec![0.0; child_edges];
+    let mut out = crate::alloc::vec_or_unwind(0.0, child_edges);
     if parent.edge_sharpness.is_empty() {
         // Every parent edge is smooth, so are its halves.
         return out;
