@@ -1,18 +1,80 @@
-//! Atomic file output: a file appears under its final name only when it was
-//! written whole.
+//! Output files that appear whole or not at all.
 //!
-//! The data goes to a temporary file in the destination's directory (named
-//! `.NAME.XXXXXX.tmp`, with the permissions a plain `File::create` gives),
-//! which is renamed over the destination at the end; on any failure the
-//! temporary file is removed and the destination is left as it was.
+//! A regular file is written to a temporary file in the destination's
+//! directory (named `.NAME.XXXXXX.tmp`, with the permissions a plain
+//! `File::create` gives), which is renamed over the destination at the end;
+//! on any failure the temporary file is removed and the destination is left
+//! as it was. A symbolic link is followed: its target is written, atomically
+//! in the target's directory, and the link stays. A destination that exists
+//! and is not a regular file (a FIFO, a terminal, `/dev/stdout`) cannot be
+//! replaced by a rename and is written directly.
+//!
+//! A process that is interrupted while writing (SIGINT, SIGTERM, SIGHUP)
+//! should call [`remove_pending`] from its signal handler: the temporary
+//! files being written are registered until they are renamed or removed.
 
 use crate::error::Error;
 use std::fs::File;
 use std::io::{self, Write as _};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
-/// Writes `path` atomically: `write` fills a temporary file in the same
-/// directory, which is then renamed to `path`. Errors name `path`.
+/// Temporary files being written right now.
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes every temporary file being written (for a signal handler that is
+/// about to end the process) and returns how many it removed.
+pub fn remove_pending() -> usize {
+    let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    let removed = pending
+        .drain(..)
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count();
+    removed
+}
+
+/// Registers a temporary file for [`remove_pending`] while it lives.
+struct Registered(PathBuf);
+
+impl Registered {
+    fn new(path: &Path) -> Self {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        pending.push(path.to_path_buf());
+        Registered(path.to_path_buf())
+    }
+}
+
+impl Drop for Registered {
+    fn drop(&mut self) {
+        let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        pending.retain(|p| *p != self.0);
+    }
+}
+
+/// Where writing `path` really goes: `path`, or the file a chain of
+/// symbolic links at `path` leads to (at most 40 links, as the kernel
+/// allows).
+fn destination(path: &Path) -> io::Result<PathBuf> {
+    let mut target = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&target) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = std::fs::read_link(&target)?;
+                target = match target.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(target),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// Writes `path` atomically (see the module documentation): `write` fills a
+/// temporary file in the destination's directory, which is then renamed to
+/// the destination. Errors name `path` and say what is wrong with it (a
+/// directory, a missing directory), never the temporary file.
 pub fn write_with(
     path: &Path,
     write: impl FnOnce(&mut File) -> io::Result<()>,
@@ -21,16 +83,39 @@ pub fn write_with(
         path: path.to_path_buf(),
         source,
     };
-    let file_name = path.file_name().ok_or_else(|| {
-        io_error(io::Error::new(
-            io::ErrorKind::InvalidInput,
-            "the path does not name a file",
-        ))
-    })?;
-    let dir = match path.parent() {
+    let plain = |message: String| io_error(io::Error::other(message));
+    let target = destination(path).map_err(io_error)?;
+    match std::fs::metadata(&target) {
+        Ok(meta) if meta.is_dir() => return Err(plain("it is a directory".into())),
+        Ok(meta) if !meta.is_file() => {
+            // A FIFO, a terminal, a device: written in place.
+            let mut file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(&target)
+                .map_err(io_error)?;
+            return write(&mut file).map_err(io_error);
+        }
+        _ => {}
+    }
+    let file_name = target
+        .file_name()
+        .ok_or_else(|| plain("the path does not name a file".into()))?;
+    let dir = match target.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
+    match std::fs::metadata(dir) {
+        Ok(meta) if !meta.is_dir() => {
+            return Err(plain(format!("{} is not a directory", dir.display())));
+        }
+        Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            return Err(plain(format!(
+                "the directory {} does not exist",
+                dir.display()
+            )));
+        }
+        _ => {}
+    }
     let mut prefix = std::ffi::OsString::from(".");
     prefix.push(file_name);
     prefix.push(".");
@@ -44,12 +129,82 @@ pub fn write_with(
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
     let mut temp = builder.tempfile_in(dir).map_err(io_error)?;
+    let registered = Registered::new(temp.path());
     write(temp.as_file_mut()).map_err(io_error)?;
-    temp.persist(path).map_err(|e| io_error(e.error))?;
+    temp.persist(&target).map_err(|e| io_error(e.error))?;
+    drop(registered);
     Ok(())
 }
 
 /// Writes `bytes` to `path` atomically (see [`write_with`]).
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     write_with(path, |file| file.write_all(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn files_appear_whole_links_are_followed_and_errors_name_the_path() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out.txt");
+        write_bytes(&out, b"one").unwrap();
+        assert_eq!(std::fs::read(&out).unwrap(), b"one");
+        // A failing writer leaves the old file and no temporary file.
+        let err = write_with(&out, |f| {
+            f.write_all(b"half")?;
+            Err(io::Error::other("interrupted"))
+        })
+        .unwrap_err();
+        assert!(
+            err.to_string().starts_with(&out.display().to_string()),
+            "{err}"
+        );
+        assert_eq!(std::fs::read(&out).unwrap(), b"one");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        // While writing, the temporary file is pending; remove_pending
+        // removes it (what a signal handler does).
+        let seen = write_with(&dir.path().join("second.txt"), |f| {
+            f.write_all(b"x")?;
+            let ours = |p: &PathBuf| {
+                p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with(".second.txt."))
+            };
+            let pending = PENDING.lock().unwrap().clone();
+            assert!(pending.iter().any(|p| ours(p) && p.exists()), "{pending:?}");
+            Ok(())
+        });
+        seen.unwrap();
+        let ours = |p: &PathBuf| p.parent() == Some(dir.path());
+        assert!(!PENDING.lock().unwrap().iter().any(ours));
+        // Directories and missing directories are named as such.
+        let err = write_bytes(dir.path(), b"x").unwrap_err().to_string();
+        assert!(err.ends_with("it is a directory"), "{err}");
+        let err = write_bytes(&dir.path().join("missing/deeper/o.obj"), b"x")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("does not exist") && !err.contains(".o.obj."),
+            "{err}"
+        );
+        #[cfg(unix)]
+        {
+            // A link is written through: the target changes, the link stays.
+            let target = dir.path().join("target.txt");
+            let link = dir.path().join("link.txt");
+            std::os::unix::fs::symlink("target.txt", &link).unwrap();
+            write_bytes(&link, b"through").unwrap();
+            assert!(
+                std::fs::symlink_metadata(&link)
+                    .unwrap()
+                    .file_type()
+                    .is_symlink()
+            );
+            assert_eq!(std::fs::read(&target).unwrap(), b"through");
+            // /dev/null is not a regular file: written in place, not replaced.
+            write_bytes(Path::new("/dev/null"), b"gone").unwrap();
+            assert!(!std::fs::metadata("/dev/null").unwrap().is_file());
+        }
+    }
 }

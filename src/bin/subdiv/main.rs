@@ -93,7 +93,25 @@ impl From<Error> for Failure {
     }
 }
 
+/// On SIGINT, SIGTERM or SIGHUP, removes the temporary files of the outputs
+/// being written (their final names never appear half-written) and ends the
+/// process as the signal would have (a parent sees the signal).
+fn remove_temporary_files_on_signals() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return; // no handler: the default behaviour, temporary files included
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            subdiv::io::atomic::remove_pending();
+            let _ = signal_hook::low_level::emulate_default_handler(signal);
+            std::process::exit(128 + signal);
+        }
+    });
+}
+
 fn main() -> ExitCode {
+    remove_temporary_files_on_signals();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Refine(args) => refine::refine(&args),
