@@ -26,11 +26,10 @@ static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// about to end the process) and returns how many it removed.
 pub fn remove_pending() -> usize {
     let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
-    let removed = pending
+    pending
         .drain(..)
         .filter(|p| std::fs::remove_file(p).is_ok())
-        .count();
-    removed
+        .count()
 }
 
 /// Registers a temporary file for [`remove_pending`] while it lives.
