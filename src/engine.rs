@@ -68,6 +68,7 @@ impl Engine {
     ) -> Result<Vec<LevelCounts>> {
         let request = request.into();
         let uniform = request.uniform;
+        crate::limits::check_precision(mesh, request.precision)?;
         match self {
             Engine::Native => {
                 use crate::refiner::refine_last;

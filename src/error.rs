@@ -2,6 +2,7 @@
 
 use crate::mesh::{MAX_VALENCE, MeshError};
 use crate::options::Scheme;
+use crate::real::Precision;
 use std::fmt;
 use std::path::PathBuf;
 use thiserror::Error;
@@ -138,6 +139,22 @@ pub enum Error {
     /// OpenSubdiv (through the bridge) refused or failed.
     #[error(transparent)]
     Osd(#[from] OsdError),
+    /// A value of the mesh that the requested precision cannot hold (beyond
+    /// `f32`'s range, about 3.4e38): refining it in `f32` would give
+    /// infinities.
+    #[error(
+        "{what} {index} has the value {value:e}, beyond the range of {precision}; refine in f64"
+    )]
+    BeyondPrecision {
+        /// What holds the value: "vertex" or "face-varying value".
+        what: &'static str,
+        /// Its index.
+        index: usize,
+        /// The value.
+        value: f64,
+        /// The precision asked for.
+        precision: Precision,
+    },
     /// A large buffer could not be allocated (the machine's memory, `ulimit
     /// -v` or a cgroup limit): nothing was aborted, the process goes on.
     #[error(

@@ -96,7 +96,7 @@ pub use error::{
     Buffer, Element, Error, LevelRefusal, ObjError, ObjErrorKind, OsdError, OsdErrorKind, Result,
     StencilFault,
 };
-pub use limits::check_level;
+pub use limits::{check_level, check_precision};
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
 pub use names::{Named, ParseNameError};
 pub use options::{

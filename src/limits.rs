@@ -5,6 +5,7 @@
 use crate::error::{Error, LevelRefusal, Result};
 use crate::mesh::Mesh;
 use crate::options::{MAX_LEVEL, Options, Scheme};
+use crate::real::Precision;
 
 /// Refuses a level before anything is allocated: above [`MAX_LEVEL`], one whose
 /// face-vertex count would not fit OpenSubdiv's 32-bit indices, or one whose
@@ -16,6 +17,32 @@ pub fn check_level(mesh: &Mesh, options: &Options, level: u32) -> Result<()> {
         options.scheme,
         level,
     )
+}
+
+/// Refuses a mesh whose positions or face-varying values `precision` cannot
+/// hold (in `f32`, anything beyond about ±3.4e38 would become infinite).
+pub fn check_precision(mesh: &Mesh, precision: Precision) -> Result<()> {
+    if precision == Precision::F64 {
+        return Ok(());
+    }
+    let fits = |x: f64| (x as f32).is_finite();
+    let beyond = |what, index, value| Error::BeyondPrecision {
+        what,
+        index,
+        value,
+        precision,
+    };
+    for (v, p) in mesh.positions.iter().enumerate() {
+        if let Some(&x) = p.to_array().iter().find(|&&x| !fits(x)) {
+            return Err(beyond("vertex", v, x));
+        }
+    }
+    for channel in &mesh.fvar_channels {
+        if let Some((i, &x)) = channel.values.iter().enumerate().find(|(_, x)| !fits(**x)) {
+            return Err(beyond("face-varying value", i / channel.width.max(1), x));
+        }
+    }
+    Ok(())
 }
 
 /// Bytes per refined face corner and per refined vertex that a refinement

@@ -83,19 +83,21 @@ pub fn write_with(
         source,
     };
     let plain = |message: String| io_error(io::Error::other(message));
-    let target = destination(path).map_err(io_error)?;
-    match std::fs::metadata(&target) {
+    // What the path leads to, links followed by the kernel (also through
+    // /proc/self/fd, whose pipes are no path a rename could reach).
+    match std::fs::metadata(path) {
         Ok(meta) if meta.is_dir() => return Err(plain("it is a directory".into())),
         Ok(meta) if !meta.is_file() => {
-            // A FIFO, a terminal, a device: written in place.
+            // A FIFO, a terminal, a pipe, a device: written in place.
             let mut file = std::fs::OpenOptions::new()
                 .write(true)
-                .open(&target)
+                .open(path)
                 .map_err(io_error)?;
             return write(&mut file).map_err(io_error);
         }
         _ => {}
     }
+    let target = destination(path).map_err(io_error)?;
     let file_name = target
         .file_name()
         .ok_or_else(|| plain("the path does not name a file".into()))?;

@@ -147,6 +147,8 @@ pub enum PointsErrorKind {
 /// # Ok::<(), subdiv::io::points::PointsError>(())
 /// ```
 pub fn parse_points(text: &str, file: &Path) -> Result<PointsFile, PointsError> {
+    // A UTF-8 byte-order mark, as some editors write, is not a point.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let error = |line: usize, kind| PointsError {
         file: file.to_path_buf(),
         line,

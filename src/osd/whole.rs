@@ -3,7 +3,7 @@
 use super::TopologyRefiner;
 use crate::alloc::collect_n;
 use crate::error::Result;
-use crate::limits::check_level;
+use crate::limits::{check_level, check_precision};
 use crate::mesh::Mesh;
 use crate::options::Options;
 use crate::options::Request;
@@ -52,6 +52,7 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
 fn refine_typed<T: Real>(mesh: &Mesh, options: &Options, request: &Request) -> Result<Refinement> {
     let (uniform, limit) = (request.effective_uniform(), request.limit);
     check_level(mesh, options, uniform.level)?;
+    check_precision(mesh, request.precision)?;
     let mut refiner = TopologyRefiner::new(mesh, options)?;
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)

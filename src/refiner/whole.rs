@@ -4,7 +4,7 @@
 use super::{Kind, Refiner};
 use crate::alloc::collect_n;
 use crate::error::{Buffer, Error, Result};
-use crate::limits::check_level;
+use crate::limits::{check_level, check_precision};
 use crate::mesh::Mesh;
 use crate::options::Request;
 use crate::options::{Options, UniformOptions};
@@ -105,6 +105,7 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
         // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
         let uniform = request.effective_uniform();
         check_level(mesh, options, uniform.level)?;
+        check_precision(mesh, precision)?;
         let mut refiner = Refiner::new(mesh, options)?;
         refiner.refine_uniform(uniform)?;
         let levels = (0..=uniform.level)

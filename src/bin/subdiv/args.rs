@@ -96,6 +96,61 @@ pub(crate) fn parse_levels(s: &str) -> Result<(u32, u32), String> {
     Ok((a, b))
 }
 
+/// `--tolerance`: a finite number, zero or more.
+pub(crate) fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        Ok(t) => Err(format!(
+            "the tolerance must be a finite number, 0 or more; {t} is not"
+        )),
+        Err(_) => Err(format!("'{s}' is not a number")),
+    }
+}
+
+/// `--level`: 0 to [`subdiv::MAX_LEVEL`].
+pub(crate) fn parse_level(s: &str) -> Result<u32, String> {
+    let max = subdiv::MAX_LEVEL;
+    match s.trim().parse::<i64>() {
+        Ok(l) if (0..=i64::from(max)).contains(&l) => Ok(l as u32),
+        Ok(l) if l < 0 => Err(format!("a level is 0 or more; {l} is not")),
+        Ok(l) => Err(format!("level {l} is deeper than the supported {max}")),
+        Err(_) => Err(format!("'{s}' is not a level (0 to {max})")),
+    }
+}
+
+/// Prints the warnings of one input: each distinct message at most
+/// [`REPEATS`] times, then how many more lines said the same.
+pub(crate) fn print_warnings<'a>(
+    name: &str,
+    warnings: impl IntoIterator<Item = (usize, &'a str, String)>,
+) {
+    let mut seen: Vec<(&str, usize, usize)> = Vec::new();
+    for (line, key, text) in warnings {
+        match seen.iter_mut().find(|(k, _, _)| *k == key) {
+            Some((_, count, _)) if *count >= REPEATS => *count += 1,
+            Some((_, count, _)) => {
+                *count += 1;
+                eprintln!("subdiv: warning: {name}: {text}");
+            }
+            None => {
+                seen.push((key, 1, line));
+                eprintln!("subdiv: warning: {name}: {text}");
+            }
+        }
+    }
+    for (key, count, first) in seen {
+        if count > REPEATS {
+            eprintln!(
+                "subdiv: warning: {name}: {} more lines like line {first} ({key})",
+                count - REPEATS
+            );
+        }
+    }
+}
+
+/// How often one warning is printed before it is counted instead.
+const REPEATS: usize = 5;
+
 /// A named option value, for clap (`value_parser = parse::<T>`).
 pub(crate) fn parse<T: FromStr<Err = ParseNameError>>(s: &str) -> Result<T, String> {
     s.parse().map_err(|e: ParseNameError| e.to_string())
@@ -110,7 +165,7 @@ pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> 
         ),
         (None, Some(name)) => {
             let mesh = subdiv::shapes::by_name(name).ok_or_else(|| {
-                Failure::Message(format!(
+                Failure::Usage(format!(
                     "unknown built-in shape '{name}' (known: {})",
                     subdiv::shapes::NAMES.join(", ")
                 ))
@@ -126,24 +181,31 @@ pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> 
         }
         (None, None) => unreachable!("clap requires an input or --builtin"),
     };
-    for w in &shape.warnings {
-        if args.strict {
-            return Err(Failure::Message(format!(
-                "{name}:{}: {} (--strict)",
-                w.line, w.message
-            )));
-        }
-        eprintln!("subdiv: warning: {name}: {w}");
+    if let (true, Some(w)) = (args.strict, shape.warnings.first()) {
+        return Err(Failure::Message(format!(
+            "{name}:{}: {} (a warning; --strict makes it an error)",
+            w.line, w.message
+        )));
     }
+    print_warnings(
+        &name,
+        shape
+            .warnings
+            .iter()
+            .map(|w| (w.line, w.message.as_str(), w.to_string())),
+    );
     let validation = if args.strict {
         shape.mesh.validate_strict()
     } else {
         shape.mesh.validate()
     }
     .map_err(|e| Failure::Message(format!("{name}: invalid mesh: {e}")))?;
-    for w in &validation.warnings {
-        eprintln!("subdiv: warning: {name}: {w}");
-    }
+    let texts: Vec<String> = validation
+        .warnings
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    print_warnings(&name, texts.iter().map(|t| (0, t.as_str(), t.clone())));
     let mut options = shape.options();
     if let SchemeArg::Osd(scheme) = args.scheme {
         options.scheme = scheme;

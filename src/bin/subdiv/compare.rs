@@ -1,10 +1,10 @@
 //! `subdiv compare`: both engines, level by level.
 
 use clap::Args;
-use subdiv::{Engine, Request};
+use subdiv::{Engine, Error, Request};
 
 use crate::Failure;
-use crate::args::{MeshArgs, SchemeArg, load, parse_levels};
+use crate::args::{MeshArgs, SchemeArg, load, parse_levels, parse_tolerance};
 
 #[derive(Args)]
 pub(crate) struct CompareArgs {
@@ -14,7 +14,7 @@ pub(crate) struct CompareArgs {
     #[arg(long, default_value = "1..4", value_parser = parse_levels)]
     pub(crate) levels: (u32, u32),
     /// Largest accepted deviation, relative to the bounding-box diagonal.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value = "1e-6", value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
     /// Print the report as JSON.
     #[arg(long)]
@@ -54,12 +54,18 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     }
     let (name, mesh, options) = load(&args.mesh)?;
     let (first, last) = args.levels;
-    subdiv::check_level(&mesh, &options, last)?;
-    let request = Request::new(last)
-        .faces_first(args.mesh.faces_first)
-        .precision(args.mesh.precision);
-    let native = Engine::Native.refine(&mesh, &options, request)?;
-    let osd = Engine::Osd.refine(&mesh, &options, request)?;
+    // Every error from here on names the input (unless it names its own file).
+    let refine = || -> Result<_, Error> {
+        subdiv::check_level(&mesh, &options, last)?;
+        subdiv::check_precision(&mesh, args.mesh.precision)?;
+        let request = Request::new(last)
+            .faces_first(args.mesh.faces_first)
+            .precision(args.mesh.precision);
+        let native = Engine::Native.refine(&mesh, &options, request)?;
+        let osd = Engine::Osd.refine(&mesh, &options, request)?;
+        Ok((native, osd))
+    };
+    let (native, osd) = refine().map_err(|e| Failure::from(e).in_input(&name))?;
     let rows: Vec<CompareRow> = subdiv::compare::compare(&native, &osd)
         .into_iter()
         .filter(|c| c.level >= first)

@@ -5,11 +5,11 @@
 mod knots;
 
 use clap::Args;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use subdiv::curve::{CurveScheme, Point};
 
 use crate::Failure;
+use crate::output::write_output;
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub(crate) enum CurveSchemeArg {
@@ -131,13 +131,13 @@ pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
         CurveSchemeArg::Jarek => CurveScheme::Jarek,
     };
     if args.degree.is_some() && scheme_arg != CurveSchemeArg::Bspline {
-        return Err(Failure::Message(format!(
+        return Err(Failure::Usage(format!(
             "--degree applies to --scheme bspline only ({} is not a B-spline of a chosen degree)",
             scheme.name()
         )));
     }
     if args.tension.is_some() && scheme_arg != CurveSchemeArg::FourPoint {
-        return Err(Failure::Message(
+        return Err(Failure::Usage(
             "--tension applies to --scheme four-point only".into(),
         ));
     }
@@ -230,10 +230,11 @@ pub(crate) fn run_curve<P: Point>(
                 &drawn,
                 &subdiv::io::svg::Projection::for_points::<P>(),
             );
-            subdiv::io::svg::write_svg(path, &svg)?;
+            write_output(path, Some(&args.input), |w| w.write_all(svg.as_bytes()))?;
         }
         _ => write_text(
             args.output.as_deref(),
+            &args.input,
             &subdiv::io::points::format_points(result),
         )?,
     }
@@ -246,16 +247,9 @@ pub(crate) fn is_svg(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
 }
 
-/// Writes `text` atomically to `output`, or to stdout without one.
-pub(crate) fn write_text(output: Option<&Path>, text: &str) -> Result<(), Failure> {
-    match output {
-        Some(path) => subdiv::io::atomic::write_bytes(path, text.as_bytes())?,
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(text.as_bytes())
-                .and_then(|()| out.flush())
-                .map_err(|e| Failure::Message(format!("cannot write to stdout: {e}")))?;
-        }
-    }
-    Ok(())
+/// Writes `text` to `output` (atomically, or stdout for `-`), or to stdout
+/// without one; `input` is refused as the output.
+pub(crate) fn write_text(output: Option<&Path>, input: &Path, text: &str) -> Result<(), Failure> {
+    let output = output.unwrap_or(Path::new("-"));
+    write_output(output, Some(input), |w| w.write_all(text.as_bytes()))
 }

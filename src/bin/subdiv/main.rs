@@ -31,6 +31,7 @@ mod compare;
 mod curve;
 #[cfg(feature = "osd")]
 mod date;
+mod output;
 mod refine;
 mod report;
 
@@ -73,21 +74,44 @@ pub(crate) enum Command {
 
 /// Why the tool stopped.
 #[derive(Debug)]
+/// Exit statuses (README, "Exit status"): 0 success, [`Failure::Error`] and
+/// [`Failure::Message`] 1, [`Failure::Usage`] 2 (as clap's own usage
+/// errors), [`Failure::Differ`] 3, [`Failure::Unavailable`] 4.
 pub(crate) enum Failure {
-    /// A real error: exit 1.
+    /// A real error (bad input, I/O, memory, an engine failing): exit 1.
     Error(Error),
-    /// A feature this build does not offer yet: exit 2.
-    Unavailable(String),
-    /// `compare` found a difference (already reported): exit 3.
+    /// A command line that does not make sense: exit 2.
+    Usage(String),
+    /// `compare` or `report` found a difference (already reported): exit 3.
     Differ,
-    /// An error of the curve or Doo-Sabin tools, already worded: exit 1.
+    /// A feature this build or engine does not offer (the osd engine not
+    /// built, a scheme OpenSubdiv lacks, an input OpenSubdiv would overrun
+    /// its buffers on): exit 4.
+    Unavailable(String),
+    /// An error already worded (naming its input): exit 1.
     Message(String),
+}
+
+impl Failure {
+    /// The failure of a command on input `name`: an error that does not name
+    /// a file of its own gets the input's name in front.
+    pub(crate) fn in_input(self, name: &str) -> Failure {
+        match self {
+            Failure::Error(e @ (Error::Io { .. } | Error::Obj(_))) => Failure::Error(e),
+            Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
+            Failure::Unavailable(m) => Failure::Unavailable(format!("{name}: {m}")),
+            other => other,
+        }
+    }
 }
 
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         match e {
             Error::OsdUnavailable => Failure::Unavailable(e.to_string()),
+            Error::Osd(ref osd) if osd.kind == subdiv::OsdErrorKind::Unsafe => {
+                Failure::Unavailable(e.to_string())
+            }
             e => Failure::Error(e),
         }
     }
@@ -131,9 +155,13 @@ fn main() -> ExitCode {
             eprintln!("subdiv: error: {e}");
             ExitCode::from(1)
         }
-        Err(Failure::Unavailable(msg)) => {
-            eprintln!("subdiv: {msg}");
+        Err(Failure::Usage(msg)) => {
+            eprintln!("subdiv: usage error: {msg}");
             ExitCode::from(2)
+        }
+        Err(Failure::Unavailable(msg)) => {
+            eprintln!("subdiv: not available: {msg}");
+            ExitCode::from(4)
         }
         Err(Failure::Differ) => ExitCode::from(3),
         Err(Failure::Message(msg)) => {

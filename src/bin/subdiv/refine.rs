@@ -10,7 +10,8 @@ use subdiv::{
 };
 
 use crate::Failure;
-use crate::args::{MeshArgs, SchemeArg, load, parse};
+use crate::args::{MeshArgs, SchemeArg, load, parse, parse_level};
+use crate::output::write_output;
 
 #[derive(Args)]
 pub(crate) struct RefineArgs {
@@ -20,7 +21,7 @@ pub(crate) struct RefineArgs {
     #[arg(short, long, value_name = "OUT.obj")]
     pub(crate) output: Option<PathBuf>,
     /// Refinement level (0..=10).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value = "2", value_parser = parse_level, allow_negative_numbers = true)]
     pub(crate) level: u32,
     /// Refinement engine: native or osd.
     #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
@@ -76,76 +77,120 @@ pub(crate) fn summary(
     )
 }
 
+/// How many faces of `level` are holes (left out of every output): the
+/// children of the base level's holes (tagged, or on a boundary that
+/// `BoundaryInterpolation::None` leaves out), one per corner in a quad split
+/// and four per triangle in a Loop split, then four per face at each level.
+/// Zero without holes; computed only when the mesh can have some.
+pub(crate) fn hole_faces(mesh: &Mesh, options: &Options, level: u32) -> Result<usize, Failure> {
+    if mesh.holes.is_empty() && options.boundary != subdiv::BoundaryInterpolation::None {
+        return Ok(0);
+    }
+    let base = subdiv::refiner::Refiner::new(mesh, options)?.level(0)?;
+    let holes = base
+        .faces()
+        .zip(&base.face_holes)
+        .filter(|(_, hole)| **hole);
+    Ok(match level {
+        0 => holes.count(),
+        _ => {
+            let split = |face: &[u32]| match options.scheme {
+                subdiv::Scheme::Loop => 4,
+                _ => face.len(),
+            };
+            let first: usize = holes.map(|(face, _)| split(face)).sum();
+            first << (2 * (level - 1))
+        }
+    })
+}
+
+/// The summary's note on holes: how many of the last level's faces an
+/// output would leave out.
+fn holes_note(holes: usize) -> String {
+    match holes {
+        0 => String::new(),
+        n => format!(" ({n} of the last level's faces are holes: outputs leave them out)"),
+    }
+}
+
 pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
     if args.mesh.scheme == SchemeArg::DooSabin {
         return refine_doo_sabin(args);
     }
     if args.doo_sabin_weights.is_some() || args.doo_sabin_boundary.is_some() {
-        return Err(Failure::Message(
+        return Err(Failure::Usage(
             "--doo-sabin-weights and --doo-sabin-boundary need --scheme doo-sabin".into(),
         ));
     }
     let (name, mesh, options) = load(&args.mesh)?;
+    // Every error from here on names the input (unless it names its own file).
+    refine_loaded(args, &name, &mesh, &options).map_err(|f| f.in_input(&name))?;
+    if args.peak_memory {
+        eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
+    }
+    Ok(())
+}
+
+/// `refine` on a loaded mesh.
+fn refine_loaded(
+    args: &RefineArgs,
+    name: &str,
+    mesh: &Mesh,
+    options: &Options,
+) -> Result<(), Failure> {
+    let (mesh, options) = (mesh, *options);
     let request = Request::new(args.level)
         .faces_first(args.mesh.faces_first)
         .precision(args.mesh.precision)
         .limit(args.limit);
-    subdiv::check_level(&mesh, &options, args.level)?;
+    subdiv::check_level(mesh, &options, args.level)?;
+    subdiv::check_precision(mesh, args.mesh.precision)?;
     let start = Instant::now();
-    // Name the input in engine errors (an empty file, a mesh OpenSubdiv refuses).
-    let name_errors = |f: Failure| match f {
-        Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
-        other => other,
-    };
     let precision = args.mesh.precision;
     if args.output.is_none() && !args.limit && mesh.fvar_channels.is_empty() {
         let counts: Vec<(usize, usize)> = args
             .engine
-            .refine_counts(&mesh, &options, request)
-            .map_err(|e| name_errors(e.into()))?
+            .refine_counts(mesh, &options, request)?
             .iter()
             .map(|c| (c.vertices, c.faces))
             .collect();
         let seconds = start.elapsed().as_secs_f64();
+        let holes = hole_faces(mesh, &options, args.level)?;
         outln!(
-            "{}",
+            "{}{}",
             summary(
-                &name,
+                name,
                 args.engine,
                 &options,
                 precision,
                 &counts,
                 false,
                 seconds
-            )
+            ),
+            holes_note(holes)
         );
     } else if let (Engine::Native, false, Some(path)) = (args.engine, args.limit, &args.output) {
-        write_native_last(path, &mesh, &options, request.uniform, precision)
-            .map_err(name_errors)?;
+        let input = args.mesh.input.as_deref();
+        write_native_last(path, input, mesh, &options, request.uniform, precision)?;
     } else {
-        let r = args
-            .engine
-            .refine(&mesh, &options, request)
-            .map_err(|e| name_errors(e.into()))?;
+        let r = args.engine.refine(mesh, &options, request)?;
         let seconds = start.elapsed().as_secs_f64();
         match &args.output {
-            Some(path) => write_output(path, &r)?,
+            Some(path) => write_refinement(path, args.mesh.input.as_deref(), &r)?,
             None => outln!(
-                "{}",
+                "{}{}",
                 summary(
-                    &name,
+                    name,
                     args.engine,
                     &r.options,
                     r.precision,
                     &refinement_counts(&r),
                     r.limit.is_some(),
                     seconds
-                )
+                ),
+                holes_note(r.last_level().face_holes.iter().filter(|&&h| h).count())
             ),
         }
-    }
-    if args.peak_memory {
-        eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
     }
     Ok(())
 }
@@ -164,6 +209,7 @@ pub(crate) fn peak_memory() -> Option<u64> {
 /// level. The file is the same, byte for byte.
 pub(crate) fn write_native_last(
     path: &Path,
+    input: Option<&Path>,
     mesh: &Mesh,
     options: &Options,
     uniform: UniformOptions,
@@ -224,23 +270,25 @@ pub(crate) fn write_native_last(
         }),
         _ => None,
     };
-    subdiv::io::write_obj(
-        path,
-        &ObjOutput {
-            // Flat f64 triples are DVec3s: no second copy of the positions.
-            positions: bytemuck::cast_slice(&positions[..]),
-            face_offsets: &faces.offsets,
-            face_vertices: faces.vertices,
-            holes: faces.holes,
-            uv,
-            precision,
-        },
-    )?;
-    Ok(())
+    let data = ObjOutput {
+        // Flat f64 triples are DVec3s: no second copy of the positions.
+        positions: bytemuck::cast_slice(&positions[..]),
+        face_offsets: &faces.offsets,
+        face_vertices: faces.vertices,
+        holes: faces.holes,
+        uv,
+        precision,
+    };
+    write_output(path, input, |w| subdiv::io::write_obj_to(w, &data))
 }
 
-/// Writes the last level (or its limit) in OpenSubdiv's order; holes are left out.
-pub(crate) fn write_output(path: &Path, r: &Refinement) -> Result<(), Failure> {
+/// Writes the last level (or its limit) in OpenSubdiv's order; holes are left
+/// out. `input`, the file read, is refused as the output.
+pub(crate) fn write_refinement(
+    path: &Path,
+    input: Option<&Path>,
+    r: &Refinement,
+) -> Result<(), Failure> {
     let level = r.last_level();
     let (positions, uv_values) = match &r.limit {
         Some(limit) => (
@@ -265,8 +313,7 @@ pub(crate) fn write_output(path: &Path, r: &Refinement) -> Result<(), Failure> {
         uv,
         precision: r.precision,
     };
-    subdiv::io::write_obj(path, &data)?;
-    Ok(())
+    write_output(path, input, |w| subdiv::io::write_obj_to(w, &data))
 }
 
 /// `subdiv refine --scheme doo-sabin`: the native Doo-Sabin refiner.
@@ -295,7 +342,7 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
         (m.faces_first, "--faces-first"),
     ] {
         if given {
-            return Err(Failure::Message(format!(
+            return Err(Failure::Usage(format!(
                 "{flag} does not apply to --scheme doo-sabin (see --doo-sabin-weights and --doo-sabin-boundary)"
             )));
         }
@@ -332,7 +379,9 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
     let seconds = start.elapsed().as_secs_f64();
     let last = levels.last().unwrap_or(&mesh);
     match &args.output {
-        Some(path) => subdiv::io::write_mesh_obj(path, last, Precision::F64)?,
+        Some(path) => write_output(path, args.mesh.input.as_deref(), |w| {
+            subdiv::io::write_mesh_obj_to(w, last, Precision::F64)
+        })?,
         None => {
             let counts = |f: fn(&Mesh) -> usize| {
                 levels

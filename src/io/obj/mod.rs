@@ -109,13 +109,20 @@ impl ShapeTags {
 pub struct ObjWarning {
     /// 1-based line number.
     pub line: usize,
-    /// What was questionable and what was done about it.
+    /// What was questionable.
     pub message: String,
+    /// Whether the line was skipped (an unknown statement or tag, an
+    /// unsupported element); otherwise it was read.
+    pub ignored: bool,
 }
 
 impl fmt::Display for ObjWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "line {}: {}", self.line, self.message)
+        write!(f, "line {}: {}", self.line, self.message)?;
+        if self.ignored {
+            f.write_str("; the line is ignored")?;
+        }
+        Ok(())
     }
 }
 

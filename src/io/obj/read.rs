@@ -95,6 +95,26 @@ struct Parser {
     warnings: Vec<ObjWarning>,
 }
 
+/// Why `text` is no `i64`: an integer too large, or no integer at all.
+fn not_an_integer(text: &str) -> &'static str {
+    let digits = text.strip_prefix(['-', '+']).unwrap_or(text);
+    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        "is out of range"
+    } else {
+        "is not an integer"
+    }
+}
+
+/// What is wrong with `text` as an `f32` sharpness that parsed to a
+/// non-finite value: beyond `f32`'s range, or not finite at all.
+fn not_a_finite_f32(text: &str) -> &'static str {
+    if text.parse::<f64>().is_ok_and(f64::is_finite) {
+        "is beyond the range of f32 (about ±3.4e38)"
+    } else {
+        "is not a finite number"
+    }
+}
+
 /// At most this many characters of a field are quoted in a message.
 const QUOTE_LIMIT: usize = 40;
 
@@ -176,8 +196,12 @@ fn resolve(index: i64, count: usize, what: &'static str) -> Result<u32, ObjError
 }
 
 impl Parser {
-    fn warn(&mut self, line: usize, message: String) {
-        self.warnings.push(ObjWarning { line, message });
+    fn warn(&mut self, line: usize, message: String, ignored: bool) {
+        self.warnings.push(ObjWarning {
+            line,
+            message,
+            ignored,
+        });
     }
 
     /// Reads one line.
@@ -201,17 +225,16 @@ impl Parser {
                 let what = if keyword == "l" { "line" } else { "point" };
                 self.warn(
                     line,
-                    format!("'{keyword}' ({what}) elements are not supported; the line is ignored"),
+                    format!("'{keyword}' ({what}) elements are not supported"),
+                    true,
                 );
                 Ok(())
             }
             _ => {
                 self.warn(
                     line,
-                    format!(
-                        "unknown statement '{}'; the line is ignored",
-                        quote(keyword)
-                    ),
+                    format!("unknown statement '{}'", quote(keyword)),
+                    true,
                 );
                 Ok(())
             }
@@ -303,9 +326,10 @@ impl Parser {
                 }
                 text.parse().map_err(|_| {
                     syntax(format!(
-                        "face corner {corner} '{}': {what} index '{}' is not an integer",
+                        "face corner {corner} '{}': {what} index '{}' {}",
                         quote(field),
-                        quote(text)
+                        quote(text),
+                        not_an_integer(text)
                     ))
                 })
             };
@@ -410,9 +434,10 @@ impl Parser {
             .map(|(i, s)| {
                 s.parse::<i64>().map_err(|_| {
                     bad(format!(
-                        "integer argument {} '{}' is not an integer",
+                        "integer argument {} '{}' {}",
                         i + 1,
-                        quote(s)
+                        quote(s),
+                        not_an_integer(s)
                     ))
                 })
             })
@@ -445,9 +470,10 @@ impl Parser {
         let sharpness_ok = |floats: &[f32]| -> Result<(), ObjErrorKind> {
             match floats.iter().position(|s| !s.is_finite()) {
                 Some(i) => Err(bad(format!(
-                    "sharpness {} '{}' is not a finite number",
+                    "sharpness {} '{}' {}",
                     i + 1,
-                    quote(float_args[i])
+                    quote(float_args[i]),
+                    not_a_finite_f32(float_args[i])
                 ))),
                 None => Ok(()),
             }
@@ -562,10 +588,7 @@ impl Parser {
                 return Ok(());
             }
             _ => {
-                self.warn(
-                    line,
-                    format!("unknown tag '{}'; the line is ignored", quote(name)),
-                );
+                self.warn(line, format!("unknown tag '{}'", quote(name)), true);
                 return Ok(());
             }
         };
@@ -585,6 +608,7 @@ impl Parser {
             self.warn(
                 line,
                 format!("this '{name}' tag overrides the one at line {previous}"),
+                false,
             );
         }
     }
@@ -704,7 +728,12 @@ mod tests {
         let shape = parse_obj("\u{1b}]0;title\u{7} 1 2\n", Path::new("<memory>")).unwrap();
         assert_eq!(
             shape.warnings[0].message,
-            "unknown statement '\\u{1b}]0;title\\u{7}'; the line is ignored"
+            "unknown statement '\\u{1b}]0;title\\u{7}'"
+        );
+        assert!(shape.warnings[0].ignored);
+        assert_eq!(
+            shape.warnings[0].to_string(),
+            "line 1: unknown statement '\\u{1b}]0;title\\u{7}'; the line is ignored"
         );
     }
 }

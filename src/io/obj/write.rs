@@ -72,7 +72,34 @@ fn check_output(data: &ObjOutput<'_>) -> io::Result<()> {
             )));
         }
     }
+    // Never an `inf` or `nan` in the file: the reader would refuse it.
+    let finite = |x: f64| match data.precision {
+        Precision::F64 => x.is_finite(),
+        Precision::F32 => (x as f32).is_finite(),
+    };
+    let not_finite = |what: &str, index: usize, x: f64| {
+        invalid(format!(
+            "{what} {index} has the value {x:e}, which {} cannot write as a finite number{}",
+            data.precision,
+            if data.precision == Precision::F32 && x.is_finite() {
+                " (beyond its range: use f64)"
+            } else {
+                ""
+            }
+        ))
+    };
+    if let Some((v, x)) = data.positions.iter().enumerate().find_map(|(v, p)| {
+        p.to_array()
+            .into_iter()
+            .find(|&x| !finite(x))
+            .map(|x| (v, x))
+    }) {
+        return Err(not_finite("vertex", v, x));
+    }
     if let Some(uv) = &data.uv {
+        if let Some((i, &x)) = uv.values.iter().enumerate().find(|(_, x)| !finite(**x)) {
+            return Err(not_finite("texture coordinate", i / uv.width.max(1), x));
+        }
         if uv.width == 0 || uv.values.len() % uv.width != 0 {
             return Err(invalid(format!(
                 "{} UV components do not make values of width {}",

@@ -2,7 +2,7 @@
 
 use super::results::{ObjWriterRate, ProgramKind, ProgramResult, WholeProcess};
 use super::timing::median;
-use crate::refine::write_output;
+use crate::refine::write_refinement;
 use std::time::Instant;
 use subdiv::shapes::BenchShape;
 use subdiv::{Options, Precision, UniformOptions};
@@ -72,7 +72,7 @@ pub(crate) fn obj_writer_rate(input: &BenchShape) -> Result<ObjWriterRate, Strin
     let mut best = f64::MAX;
     for _ in 0..3 {
         let t = Instant::now();
-        write_output(&path, &r).map_err(|_| "the temporary file could not be written")?;
+        write_refinement(&path, None, &r).map_err(|_| "the temporary file could not be written")?;
         best = best.min(t.elapsed().as_secs_f64());
     }
     Ok(ObjWriterRate {

@@ -96,14 +96,14 @@ fn plural(n: usize) -> &'static str {
 /// `subdiv curve --knots ...`.
 pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
     let (Some(knots), Some(degree)) = (&args.knots, args.degree) else {
-        return Err(Failure::Message(
+        return Err(Failure::Usage(
             "give --scheme, or --knots with --degree".into(),
         ));
     };
     if let Some(n) = args.samples
         && n < 2
     {
-        return Err(Failure::Message(format!(
+        return Err(Failure::Usage(format!(
             "--samples: {n} asked for; at least 2 are needed (the domain's two ends)"
         )));
     }
@@ -144,15 +144,14 @@ fn run<P: Point>(
         Some(path) if is_svg(path) => {
             let text = picture(args, &given, &curve, inserted, samples.as_deref())
                 .map_err(|e| explain(e, Stage::Sample, args, count, degree))?;
-            svg::write_svg(path, &text)?;
-            Ok(())
+            crate::output::write_output(path, Some(&args.input), |w| w.write_all(text.as_bytes()))
         }
         output => {
             let text = match &samples {
                 Some(s) => format_points(s),
                 None => polygon_text(&curve),
             };
-            write_text(output.as_deref(), &text)
+            write_text(output.as_deref(), &args.input, &text)
         }
     }
 }

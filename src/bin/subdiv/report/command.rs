@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use crate::Failure;
-use crate::args::parse_levels;
+use crate::args::{parse_levels, parse_tolerance};
 
 #[derive(Args)]
 pub(crate) struct ReportArgs {
@@ -26,7 +26,7 @@ pub(crate) struct ReportArgs {
     #[arg(long)]
     pub(crate) quick: bool,
     /// Largest accepted deviation, relative to the bounding-box diagonal.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value = "1e-6", value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
 }
 

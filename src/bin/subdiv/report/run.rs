@@ -35,13 +35,13 @@ pub fn run(
 ) -> std::result::Result<Report, Failure> {
     let start = Instant::now();
     if settings.first_level > settings.last_level {
-        return Err(Failure::Message(format!(
+        return Err(Failure::Usage(format!(
             "the level range {}..{} is empty",
             settings.first_level, settings.last_level
         )));
     }
     if settings.tolerance.is_nan() || settings.tolerance < 0.0 {
-        return Err(Failure::Message(format!(
+        return Err(Failure::Usage(format!(
             "the tolerance {} is not a non-negative number",
             settings.tolerance
         )));
