@@ -1,6 +1,8 @@
 //! Subdivision curves against hand-derived values and analytic curves, and the
 //! `subdiv curve` command.
 
+mod support;
+
 use glam::{DVec2, DVec3};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -9,29 +11,11 @@ use subdiv::curve::{
     flatness_bound,
 };
 use subdiv::io::points::{Points, PointsErrorKind};
+use support::Rng;
 
 // ---------------------------------------------------------------------------
 // helpers
 // ---------------------------------------------------------------------------
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn v2(&mut self) -> DVec2 {
-        DVec2::new(self.next() * 3.0, self.next() * 3.0)
-    }
-    fn v3(&mut self) -> DVec3 {
-        DVec3::new(self.next() * 3.0, self.next() * 3.0, self.next() * 3.0)
-    }
-}
 
 /// Small integer points: every operation of the schemes on them is exact.
 fn int_points(n: usize, seed: u64) -> Vec<DVec2> {
@@ -266,7 +250,7 @@ fn jarek_hand_values_and_kept_end_points() {
     // The ends stay at every level, for random input too.
     let r = {
         let mut rng = Rng(11);
-        (0..5).map(|_| rng.v3()).collect::<Vec<_>>()
+        (0..5).map(|_| rng.v3(3.0)).collect::<Vec<_>>()
     };
     let fine = curve::refine(&r, CurveScheme::Jarek, false, 5).unwrap();
     assert_eq!(fine[0], r[0]);
@@ -276,7 +260,7 @@ fn jarek_hand_values_and_kept_end_points() {
 #[test]
 fn jarek_is_half_way_between_the_cubic_bspline_and_the_four_point_scheme() {
     let mut rng = Rng(21);
-    let p: Vec<DVec3> = (0..9).map(|_| rng.v3()).collect();
+    let p: Vec<DVec3> = (0..9).map(|_| rng.v3(3.0)).collect();
     let j = curve::jarek(&p, true).unwrap();
     let f = curve::four_point(&p, DEFAULT_TENSION, true).unwrap();
     let b = curve::bspline(&p, 3, true).unwrap();
@@ -374,9 +358,9 @@ fn after_k_levels_the_polygon_controls_the_same_curve_at_half_the_knot_spacing()
     let mut rng = Rng(2024);
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2()).collect();
+            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2(3.0)).collect();
             check_refinement_identity(&p2, degree, closed);
-            let p3: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3()).collect();
+            let p3: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3(3.0)).collect();
             check_refinement_identity(&p3, degree, closed);
         }
     }
@@ -385,7 +369,7 @@ fn after_k_levels_the_polygon_controls_the_same_curve_at_half_the_knot_spacing()
 #[test]
 fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
     let mut rng = Rng(8);
-    let p: Vec<DVec2> = (0..6).map(|_| rng.v2()).collect();
+    let p: Vec<DVec2> = (0..6).map(|_| rng.v2(3.0)).collect();
     let c = BSplineCurve::new(p.clone(), 3, false).unwrap();
     let b = c.segment_bezier(1).unwrap();
     assert!(c.segment_bezier(3).is_none());
@@ -396,7 +380,7 @@ fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
     assert!(close(b[3], (p[2] + p[3] * 4.0 + p[4]) / 6.0));
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3()).collect();
+            let p: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3(3.0)).collect();
             let c = BSplineCurve::new(p, degree, closed).unwrap();
             for seg in 0..c.segment_count() {
                 let bez = c.segment_bezier(seg).unwrap();
@@ -423,7 +407,7 @@ fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
 #[test]
 fn closed_curves_are_periodic_and_open_ones_refuse_outside_parameters() {
     let mut rng = Rng(5);
-    let p: Vec<DVec2> = (0..5).map(|_| rng.v2()).collect();
+    let p: Vec<DVec2> = (0..5).map(|_| rng.v2(3.0)).collect();
     let closed = BSplineCurve::new(p.clone(), 3, true).unwrap();
     for s in [0.0, 0.3, 2.7, 4.99] {
         let a = closed.eval(s).unwrap();
@@ -450,7 +434,7 @@ fn chaikin_limit_is_the_parabolas_between_edge_midpoints() {
     // polygon after k levels lie on it at t = frac(a / 2^k).
     let mut rng = Rng(77);
     for closed in [false, true] {
-        let p: Vec<DVec2> = (0..7).map(|_| rng.v2()).collect();
+        let p: Vec<DVec2> = (0..7).map(|_| rng.v2(3.0)).collect();
         let n = p.len();
         let parabola = |i: usize, t: f64| {
             let m0 = (p[i % n] + p[(i + 1) % n]) / 2.0;
@@ -562,8 +546,8 @@ fn flattening_stays_within_the_tolerance_of_the_analytic_curve() {
     let mut rng = Rng(31);
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2()).collect();
-            let p3: Vec<DVec3> = (0..degree + 4).map(|_| rng.v3()).collect();
+            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2(3.0)).collect();
+            let p3: Vec<DVec3> = (0..degree + 4).map(|_| rng.v3(3.0)).collect();
             let c2 = BSplineCurve::new(p2, degree, closed).unwrap();
             let c3 = BSplineCurve::new(p3, degree, closed).unwrap();
             let mut last = 0;
@@ -589,7 +573,7 @@ fn chaikin_flattening_uses_as_few_points_as_midpoint_splitting_allows() {
     // exactly 2^k pieces, k the least with D / 4^(k+1) <= eps.
     let mut rng = Rng(4);
     for closed in [false, true] {
-        let p: Vec<DVec2> = (0..8).map(|_| rng.v2()).collect();
+        let p: Vec<DVec2> = (0..8).map(|_| rng.v2(3.0)).collect();
         let n = p.len();
         let segments = if closed { n } else { n - 2 };
         for eps in [0.3, 0.05, 0.007, 4e-4] {
@@ -620,7 +604,7 @@ fn flatness_bound_is_exact_for_quadratics_and_bounds_cubics() {
     assert_eq!(flatness_bound(&b), 1.0);
     let mut rng = Rng(12);
     for _ in 0..50 {
-        let c: Vec<DVec3> = (0..4).map(|_| rng.v3()).collect();
+        let c: Vec<DVec3> = (0..4).map(|_| rng.v3(3.0)).collect();
         let bound = flatness_bound(&c);
         let mut max: f64 = 0.0;
         for i in 0..=1000 {
@@ -924,7 +908,7 @@ fn bad_input_is_a_typed_error_never_a_panic() {
 #[test]
 fn points_text_round_trips_exactly_at_17_digits() {
     let mut rng = Rng(3);
-    let p: Vec<DVec3> = (0..50).map(|_| rng.v3() * 1e-3).collect();
+    let p: Vec<DVec3> = (0..50).map(|_| rng.v3(3.0) * 1e-3).collect();
     let text = subdiv::io::points::format_points(&p);
     let back = subdiv::io::points::parse_points(&text, Path::new("x")).unwrap();
     assert_eq!(back.points, Points::Spatial(p));

@@ -1,6 +1,8 @@
 //! Doo-Sabin subdivision: weights, topology, the biquadratic B-spline on
 //! regular grids, boundaries, and `subdiv refine --scheme doo-sabin`.
 
+mod support;
+
 use glam::{DMat3, DVec3};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -9,19 +11,7 @@ use subdiv::Mesh;
 use subdiv::curve::{self, CurveScheme};
 use subdiv::doo_sabin::{self, Boundary, DooSabinError, DooSabinOptions, Weights, corner_weights};
 use subdiv::patch::ControlGrid;
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
+use support::Rng;
 
 const ALL_OPTIONS: [DooSabinOptions; 4] = [
     DooSabinOptions {
