@@ -1,12 +1,15 @@
 //! What the integration tests share: running the `subdiv` binary, scratch
 //! directories, a deterministic random generator, OBJ text of generated
-//! meshes and random control grids.
+//! meshes, random control grids, and the corpus of malformed files
+//! ([`malformed`]).
 //!
 //! Each test crate includes it with `mod support;` (`#[path =
 //! "../support/mod.rs"] mod support;` from a crate in a folder, like
 //! `tests/cli/`) and uses what it needs; the rest is dead code there.
 
 #![allow(dead_code)]
+
+pub mod malformed;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
