@@ -3,8 +3,8 @@
 //! Tests that refine with `--engine osd` need the `osd` feature; errors found
 //! before any refinement are the same without it.
 
-use crate::quad_grid;
 use crate::support::{scratch, stderr, stdout, subdiv, write};
+use crate::{engines, quad_grid};
 // Used by the tests that refine with OpenSubdiv only.
 #[cfg(feature = "osd")]
 use {crate::quad_grid_mesh, crate::support::obj_text, std::path::Path, subdiv::FVarChannel};
@@ -255,6 +255,37 @@ fn precision_and_limit_change_the_numbers() {
         assert_eq!(significant, digits, "{prec}: {z}");
         let expected = 0.3 * 9.0 / 16.0;
         assert!((z.parse::<f64>().unwrap() - expected).abs() < 1e-7, "{z}");
+    }
+}
+
+/// `--peak-memory` (hidden; the whole-process benchmark reads it): one
+/// `peak_memory_bytes N` line on stderr, N the process's peak resident memory.
+#[test]
+fn peak_memory_is_printed_on_stderr() {
+    let dir = scratch("refine-peak-memory");
+    let input = write(&dir, "grid.obj", &quad_grid());
+    for engine in engines() {
+        let o = subdiv(&[
+            "refine",
+            input.to_str().unwrap(),
+            "--level",
+            "2",
+            "--engine",
+            engine,
+            "--peak-memory",
+        ]);
+        assert!(o.status.success(), "{engine}: {}", stderr(&o));
+        let err = stderr(&o);
+        let values: Vec<u64> = err
+            .lines()
+            .filter_map(|l| l.strip_prefix("peak_memory_bytes "))
+            .map(|n| n.parse().unwrap_or_else(|e| panic!("{engine}: {n:?}: {e}")))
+            .collect();
+        assert_eq!(values.len(), 1, "{engine}: {err}");
+        assert!(values[0] > 1 << 20, "{engine}: {} bytes", values[0]);
+        // The summary still goes to stdout, and nothing else to stderr.
+        assert!(stdout(&o).contains("vertices 9→25→81"), "{}", stdout(&o));
+        assert_eq!(err.lines().count(), 1, "{engine}: {err}");
     }
 }
 
