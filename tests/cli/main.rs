@@ -1,6 +1,7 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
-//! (`refine`, `compare`, `curve`, `report`), Doo-Sabin through `refine`, and
-//! every file of the malformed corpus through `refine` and `curve`.
+//! (`refine`, `compare`, `curve`, `report`), B-spline and NURBS curves
+//! through `curve --knots`, Doo-Sabin through `refine`, and every file of the
+//! malformed corpus through `refine` and `curve`.
 //!
 //! Each test writes into its own directory ([`support::scratch`]). The
 //! library's side of these features is tested in the crates beside this
@@ -13,6 +14,7 @@ mod support;
 #[cfg(feature = "osd")]
 mod compare;
 mod curve;
+mod curve_knots;
 mod doo_sabin;
 mod malformed;
 mod refine;
