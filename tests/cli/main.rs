@@ -1,7 +1,8 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
 //! (`refine`, `compare`, `curve`, `report`), B-spline and NURBS curves
-//! through `curve --knots`, Doo-Sabin through `refine`, and every file of the
-//! malformed corpus through `refine` and `curve`.
+//! through `curve --knots`, Doo-Sabin through `refine`, every file of the
+//! malformed corpus through `refine` and `curve`, and exhausted memory under
+//! `ulimit -v`.
 //!
 //! Each test writes into its own directory ([`support::scratch`]). The
 //! library's side of these features is tested in the crates beside this
@@ -17,6 +18,9 @@ mod curve;
 mod curve_knots;
 mod doo_sabin;
 mod malformed;
+// `ulimit` in `sh`.
+#[cfg(unix)]
+mod memory_limits;
 mod refine;
 #[cfg(feature = "osd")]
 mod report;
