@@ -30,6 +30,34 @@ pub fn cube() -> Mesh {
     )
 }
 
+/// The same unit cube as [`cube`], numbered as OpenSubdiv's Far tutorials
+/// number it (`far_tutorial_0`): vertices (-½,-½,½), (½,-½,½), (-½,½,½),
+/// (½,½,½), (-½,½,-½), (½,½,-½), (-½,-½,-½), (½,-½,-½), and the faces z+,
+/// y+, z-, y-, x+, x-. Creases and corners written for OpenSubdiv's cube
+/// (as in the conformance tests) name the same vertices on it.
+pub fn tutorial_cube() -> Mesh {
+    mesh(
+        &[
+            [-0.5, -0.5, 0.5],
+            [0.5, -0.5, 0.5],
+            [-0.5, 0.5, 0.5],
+            [0.5, 0.5, 0.5],
+            [-0.5, 0.5, -0.5],
+            [0.5, 0.5, -0.5],
+            [-0.5, -0.5, -0.5],
+            [0.5, -0.5, -0.5],
+        ],
+        &[
+            &[0, 1, 3, 2], // z+
+            &[2, 3, 5, 4], // y+
+            &[4, 5, 7, 6], // z-
+            &[6, 7, 1, 0], // y-
+            &[1, 7, 5, 3], // x+
+            &[6, 0, 2, 4], // x-
+        ],
+    )
+}
+
 /// The cube with a face-varying UV channel: each face maps to its own unit
 /// square, so the channel splits along every edge of the cube.
 pub fn cube_with_uvs() -> Mesh {
@@ -242,6 +270,42 @@ mod tests {
             assert!(directed.contains(&(b, a)));
         }
     }
+
+    #[test]
+    fn tutorial_cube_and_octahedron_are_closed() {
+        for (name, m, vertices, faces) in [
+            ("tutorial cube", tutorial_cube(), 8, 6),
+            ("octahedron", octahedron(), 6, 8),
+        ] {
+            assert!(m.validate().unwrap().warnings.is_empty(), "{name}");
+            assert_eq!((m.vertex_count(), m.face_count()), (vertices, faces));
+            // Closed and consistently oriented: each directed edge once, its reverse once.
+            let mut directed = std::collections::HashSet::new();
+            for f in m.faces() {
+                for j in 0..f.len() {
+                    assert!(directed.insert((f[j], f[(j + 1) % f.len()])), "{name}");
+                }
+            }
+            assert!(
+                directed.iter().all(|&(a, b)| directed.contains(&(b, a))),
+                "{name}"
+            );
+        }
+        // The same cube as `cube`, numbered differently.
+        let mut a: Vec<[i64; 3]> = cube()
+            .positions
+            .iter()
+            .map(|p| (*p * 2.0).as_i64vec3().to_array())
+            .collect();
+        let mut b: Vec<[i64; 3]> = tutorial_cube()
+            .positions
+            .iter()
+            .map(|p| (*p * 2.0).as_i64vec3().to_array())
+            .collect();
+        a.sort_unstable();
+        b.sort_unstable();
+        assert_eq!(a, b);
+    }
 }
 
 /// A mesh from a list of points and faces given as slices.
@@ -394,6 +458,33 @@ pub fn icosahedron() -> Mesh {
             &[6, 2, 10],
             &[8, 6, 7],
             &[9, 8, 1],
+        ],
+    )
+}
+
+/// A regular octahedron (8 triangles, every vertex of valence 4): the
+/// vertices ±x, ±y, ±z in that order (+x, -x, +y, -y, +z, -z), the four
+/// faces around +z first. A closed triangle mesh for Loop, or for
+/// Catmull-Clark's treatment of triangles.
+pub fn octahedron() -> Mesh {
+    mesh(
+        &[
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ],
+        &[
+            &[0, 2, 4],
+            &[2, 1, 4],
+            &[1, 3, 4],
+            &[3, 0, 4],
+            &[2, 0, 5],
+            &[1, 2, 5],
+            &[3, 1, 5],
+            &[0, 3, 5],
         ],
     )
 }

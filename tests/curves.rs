@@ -1,37 +1,20 @@
-//! Subdivision curves against hand-derived values and analytic curves, and the
-//! `subdiv curve` command.
+//! Subdivision curves against hand-derived values and analytic curves, and
+//! points files. (`subdiv curve` is tested in `tests/cli/curve.rs`.)
+
+mod support;
 
 use glam::{DVec2, DVec3};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 use subdiv::curve::{
     self, BSplineCurve, CurveError, CurveScheme, DEFAULT_TENSION, MAX_DEGREE, Point, bspline_basis,
     flatness_bound,
 };
 use subdiv::io::points::{Points, PointsErrorKind};
+use support::Rng;
 
 // ---------------------------------------------------------------------------
 // helpers
 // ---------------------------------------------------------------------------
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn v2(&mut self) -> DVec2 {
-        DVec2::new(self.next() * 3.0, self.next() * 3.0)
-    }
-    fn v3(&mut self) -> DVec3 {
-        DVec3::new(self.next() * 3.0, self.next() * 3.0, self.next() * 3.0)
-    }
-}
 
 /// Small integer points: every operation of the schemes on them is exact.
 fn int_points(n: usize, seed: u64) -> Vec<DVec2> {
@@ -266,7 +249,7 @@ fn jarek_hand_values_and_kept_end_points() {
     // The ends stay at every level, for random input too.
     let r = {
         let mut rng = Rng(11);
-        (0..5).map(|_| rng.v3()).collect::<Vec<_>>()
+        (0..5).map(|_| rng.v3(3.0)).collect::<Vec<_>>()
     };
     let fine = curve::refine(&r, CurveScheme::Jarek, false, 5).unwrap();
     assert_eq!(fine[0], r[0]);
@@ -276,7 +259,7 @@ fn jarek_hand_values_and_kept_end_points() {
 #[test]
 fn jarek_is_half_way_between_the_cubic_bspline_and_the_four_point_scheme() {
     let mut rng = Rng(21);
-    let p: Vec<DVec3> = (0..9).map(|_| rng.v3()).collect();
+    let p: Vec<DVec3> = (0..9).map(|_| rng.v3(3.0)).collect();
     let j = curve::jarek(&p, true).unwrap();
     let f = curve::four_point(&p, DEFAULT_TENSION, true).unwrap();
     let b = curve::bspline(&p, 3, true).unwrap();
@@ -374,9 +357,9 @@ fn after_k_levels_the_polygon_controls_the_same_curve_at_half_the_knot_spacing()
     let mut rng = Rng(2024);
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2()).collect();
+            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2(3.0)).collect();
             check_refinement_identity(&p2, degree, closed);
-            let p3: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3()).collect();
+            let p3: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3(3.0)).collect();
             check_refinement_identity(&p3, degree, closed);
         }
     }
@@ -385,7 +368,7 @@ fn after_k_levels_the_polygon_controls_the_same_curve_at_half_the_knot_spacing()
 #[test]
 fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
     let mut rng = Rng(8);
-    let p: Vec<DVec2> = (0..6).map(|_| rng.v2()).collect();
+    let p: Vec<DVec2> = (0..6).map(|_| rng.v2(3.0)).collect();
     let c = BSplineCurve::new(p.clone(), 3, false).unwrap();
     let b = c.segment_bezier(1).unwrap();
     assert!(c.segment_bezier(3).is_none());
@@ -396,7 +379,7 @@ fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
     assert!(close(b[3], (p[2] + p[3] * 4.0 + p[4]) / 6.0));
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3()).collect();
+            let p: Vec<DVec3> = (0..degree + 3).map(|_| rng.v3(3.0)).collect();
             let c = BSplineCurve::new(p, degree, closed).unwrap();
             for seg in 0..c.segment_count() {
                 let bez = c.segment_bezier(seg).unwrap();
@@ -423,7 +406,7 @@ fn segment_bezier_points_of_a_cubic_and_evaluation_agree() {
 #[test]
 fn closed_curves_are_periodic_and_open_ones_refuse_outside_parameters() {
     let mut rng = Rng(5);
-    let p: Vec<DVec2> = (0..5).map(|_| rng.v2()).collect();
+    let p: Vec<DVec2> = (0..5).map(|_| rng.v2(3.0)).collect();
     let closed = BSplineCurve::new(p.clone(), 3, true).unwrap();
     for s in [0.0, 0.3, 2.7, 4.99] {
         let a = closed.eval(s).unwrap();
@@ -450,7 +433,7 @@ fn chaikin_limit_is_the_parabolas_between_edge_midpoints() {
     // polygon after k levels lie on it at t = frac(a / 2^k).
     let mut rng = Rng(77);
     for closed in [false, true] {
-        let p: Vec<DVec2> = (0..7).map(|_| rng.v2()).collect();
+        let p: Vec<DVec2> = (0..7).map(|_| rng.v2(3.0)).collect();
         let n = p.len();
         let parabola = |i: usize, t: f64| {
             let m0 = (p[i % n] + p[(i + 1) % n]) / 2.0;
@@ -562,8 +545,8 @@ fn flattening_stays_within_the_tolerance_of_the_analytic_curve() {
     let mut rng = Rng(31);
     for degree in 1..=5 {
         for closed in [false, true] {
-            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2()).collect();
-            let p3: Vec<DVec3> = (0..degree + 4).map(|_| rng.v3()).collect();
+            let p2: Vec<DVec2> = (0..degree + 4).map(|_| rng.v2(3.0)).collect();
+            let p3: Vec<DVec3> = (0..degree + 4).map(|_| rng.v3(3.0)).collect();
             let c2 = BSplineCurve::new(p2, degree, closed).unwrap();
             let c3 = BSplineCurve::new(p3, degree, closed).unwrap();
             let mut last = 0;
@@ -589,7 +572,7 @@ fn chaikin_flattening_uses_as_few_points_as_midpoint_splitting_allows() {
     // exactly 2^k pieces, k the least with D / 4^(k+1) <= eps.
     let mut rng = Rng(4);
     for closed in [false, true] {
-        let p: Vec<DVec2> = (0..8).map(|_| rng.v2()).collect();
+        let p: Vec<DVec2> = (0..8).map(|_| rng.v2(3.0)).collect();
         let n = p.len();
         let segments = if closed { n } else { n - 2 };
         for eps in [0.3, 0.05, 0.007, 4e-4] {
@@ -620,7 +603,7 @@ fn flatness_bound_is_exact_for_quadratics_and_bounds_cubics() {
     assert_eq!(flatness_bound(&b), 1.0);
     let mut rng = Rng(12);
     for _ in 0..50 {
-        let c: Vec<DVec3> = (0..4).map(|_| rng.v3()).collect();
+        let c: Vec<DVec3> = (0..4).map(|_| rng.v3(3.0)).collect();
         let bound = flatness_bound(&c);
         let mut max: f64 = 0.0;
         for i in 0..=1000 {
@@ -924,7 +907,7 @@ fn bad_input_is_a_typed_error_never_a_panic() {
 #[test]
 fn points_text_round_trips_exactly_at_17_digits() {
     let mut rng = Rng(3);
-    let p: Vec<DVec3> = (0..50).map(|_| rng.v3() * 1e-3).collect();
+    let p: Vec<DVec3> = (0..50).map(|_| rng.v3(3.0) * 1e-3).collect();
     let text = subdiv::io::points::format_points(&p);
     let back = subdiv::io::points::parse_points(&text, Path::new("x")).unwrap();
     assert_eq!(back.points, Points::Spatial(p));
@@ -987,436 +970,4 @@ fn points_parse_errors_name_the_line() {
         "in.txt:4: the input ends after 2 points; chaikin on an open polygon needs at least 3"
     );
     assert!(ok.require(&CurveScheme::Jarek, false).is_ok());
-}
-
-// ---------------------------------------------------------------------------
-// the command line
-// ---------------------------------------------------------------------------
-
-fn subdiv(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-        .args(args)
-        .output()
-        .expect("run subdiv")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("curves");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let path = tmp(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-const ZIGZAG: &str = "# a zigzag\n0 0\n1 2\n3 2   # the top\n4 0\n";
-
-#[test]
-fn cli_chaikin_prints_the_refined_points() {
-    let input = write("zigzag.txt", ZIGZAG);
-    let o = subdiv(&["curve", input.to_str().unwrap(), "--scheme", "chaikin"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(
-        stdout(&o),
-        "0.25 0.5\n0.75 1.5\n1.5 2\n2.5 2\n3.25 1.5\n3.75 0.5\n"
-    );
-}
-
-#[test]
-fn cli_every_scheme_matches_the_library_at_17_digits() {
-    let text = "0.1 0.2 0.3\n1.7 -2.2 0\n3.3 2.9 1e-3\n4 0.5 -1\n5.5 1 2\n";
-    let input = write("spatial.txt", text);
-    let p = match subdiv::io::points::parse_points(text, Path::new("x"))
-        .unwrap()
-        .points
-    {
-        Points::Spatial(p) => p,
-        other => panic!("{other:?}"),
-    };
-    let cases: [(&[&str], CurveScheme); 5] = [
-        (&["--scheme", "chaikin"], CurveScheme::Chaikin),
-        (&["--scheme", "bspline"], CurveScheme::bspline(3)),
-        (
-            &["--scheme", "bspline", "--degree", "4"],
-            CurveScheme::bspline(4),
-        ),
-        (&["--scheme", "four-point"], CurveScheme::four_point()),
-        (&["--scheme", "jarek"], CurveScheme::Jarek),
-    ];
-    for (flags, scheme) in cases {
-        for closed in [false, true] {
-            let mut args = vec!["curve", input.to_str().unwrap(), "--level", "3"];
-            args.extend_from_slice(flags);
-            if closed {
-                args.push("--closed");
-            }
-            let o = subdiv(&args);
-            assert!(o.status.success(), "{args:?}: {}", stderr(&o));
-            let expected = curve::refine(&p, scheme, closed, 3).unwrap();
-            assert_eq!(
-                stdout(&o),
-                subdiv::io::points::format_points(&expected),
-                "{args:?}"
-            );
-        }
-    }
-    // Default: one level.
-    let o = subdiv(&["curve", input.to_str().unwrap(), "--scheme", "jarek"]);
-    assert_eq!(stdout(&o).lines().count(), 9);
-    // Tension.
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--scheme",
-        "four-point",
-        "--tension",
-        "0",
-    ]);
-    let expected = curve::refine(&p, CurveScheme::bspline(1), false, 1).unwrap();
-    assert_eq!(stdout(&o), subdiv::io::points::format_points(&expected));
-}
-
-#[test]
-fn cli_writes_text_and_svg_files_atomically() {
-    let input = write("zigzag-out.txt", ZIGZAG);
-    let out = tmp("refined.txt");
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--scheme",
-        "bspline",
-        "--degree",
-        "2",
-        "--closed",
-        "--level",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(stdout(&o), "");
-    let text = std::fs::read_to_string(&out).unwrap();
-    assert_eq!(text.lines().count(), 16);
-    let svg_path = tmp("refined.svg");
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--scheme",
-        "four-point",
-        "--level",
-        "3",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let svg = std::fs::read_to_string(&svg_path).unwrap();
-    assert!(svg.starts_with("<svg"));
-    assert!(svg.trim_end().ends_with("</svg>"));
-    // The control polygon and three levels, each in its own colour.
-    assert_eq!(svg.matches("<polyline").count(), 4);
-    for label in [
-        "control polygon (4 points)",
-        "level 1 (7 points)",
-        "level 2 (13 points)",
-        "level 3 (25 points)",
-    ] {
-        assert!(svg.contains(label), "{label}");
-    }
-    for k in 0..4 {
-        assert!(svg.contains(subdiv::io::svg::layer_color(k)));
-    }
-    // No temporary file is left behind.
-    let dir = out.parent().unwrap();
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
-        assert!(!name.ends_with(".tmp"), "{name}");
-    }
-}
-
-#[test]
-fn cli_tolerance_flattens_chaikin_and_bspline_only() {
-    let input = write("zigzag-flat.txt", ZIGZAG);
-    let p = [
-        DVec2::new(0.0, 0.0),
-        DVec2::new(1.0, 2.0),
-        DVec2::new(3.0, 2.0),
-        DVec2::new(4.0, 0.0),
-    ];
-    for (scheme, name) in [
-        (CurveScheme::Chaikin, "chaikin"),
-        (CurveScheme::bspline(3), "bspline"),
-    ] {
-        let o = subdiv(&[
-            "curve",
-            input.to_str().unwrap(),
-            "--scheme",
-            name,
-            "--tolerance",
-            "0.001",
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let expected = curve::flatten(&p, scheme, false, 1e-3).unwrap();
-        assert_eq!(
-            stdout(&o),
-            subdiv::io::points::format_points(&expected.points)
-        );
-    }
-    let svg = tmp("flat.svg");
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--scheme",
-        "chaikin",
-        "--closed",
-        "--tolerance",
-        "0.01",
-        "-o",
-        svg.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = std::fs::read_to_string(&svg).unwrap();
-    assert_eq!(text.matches("<polygon").count(), 2);
-    assert!(text.contains("flattened to 1e-2"));
-    for scheme in ["four-point", "jarek"] {
-        let o = subdiv(&[
-            "curve",
-            input.to_str().unwrap(),
-            "--scheme",
-            scheme,
-            "--tolerance",
-            "0.01",
-        ]);
-        assert_eq!(o.status.code(), Some(1));
-        assert!(
-            stderr(&o).contains("no closed-form limit curve"),
-            "{}",
-            stderr(&o)
-        );
-    }
-    for eps in ["0", "-1", "nan"] {
-        let o = subdiv(&[
-            "curve",
-            input.to_str().unwrap(),
-            "--scheme",
-            "chaikin",
-            "--tolerance",
-            eps,
-        ]);
-        assert_eq!(o.status.code(), Some(1), "{eps}");
-        assert!(stderr(&o).contains("tolerance"), "{}", stderr(&o));
-    }
-    // --level and --tolerance exclude each other (a usage error).
-    let o = subdiv(&[
-        "curve",
-        input.to_str().unwrap(),
-        "--scheme",
-        "chaikin",
-        "--tolerance",
-        "0.1",
-        "--level",
-        "2",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-}
-
-#[test]
-fn cli_malformed_input_is_an_error_naming_the_line() {
-    let cases: [(&str, &str, &[&str], &str); 9] = [
-        (
-            "one.txt",
-            "0 0\n# x\n5\n",
-            &["jarek"],
-            "one.txt:3: a point needs 2 or 3 numbers, this line has 1",
-        ),
-        (
-            "four.txt",
-            "0 0 0\n1 1 1 1\n",
-            &["jarek"],
-            "four.txt:2: a point needs 2 or 3 numbers, this line has 4",
-        ),
-        (
-            "mixed.txt",
-            "0 0\n1 1\n2 2 2\n",
-            &["jarek"],
-            "mixed.txt:3: a 3-D point after 2-D points (the first point is on line 1)",
-        ),
-        (
-            "word.txt",
-            "0 0\n1 one\n",
-            &["jarek"],
-            "word.txt:2: 'one' is not a number",
-        ),
-        (
-            "inf.txt",
-            "0 0\n1 inf\n",
-            &["jarek"],
-            "inf.txt:2: 'inf' is not a finite number",
-        ),
-        (
-            "few-chaikin.txt",
-            "0 0\n1 1\n",
-            &["chaikin"],
-            "few-chaikin.txt:2: the input ends after 2 points; chaikin on an open polygon needs at least 3",
-        ),
-        (
-            "few-bspline.txt",
-            "0 0\n1 1\n2 0\n3 1\n\n",
-            &["bspline", "--degree", "4"],
-            "few-bspline.txt:5: the input ends after 4 points; bspline on an open polygon needs at least 5",
-        ),
-        (
-            "few-closed.txt",
-            "0 0\n1 1\n",
-            &["four-point", "--closed"],
-            "few-closed.txt:2: the input ends after 2 points; four-point on a closed polygon needs at least 3",
-        ),
-        (
-            "empty.txt",
-            "# nothing\n",
-            &["jarek"],
-            "empty.txt:1: the input ends after 0 points; jarek on an open polygon needs at least 2",
-        ),
-    ];
-    for (name, text, flags, message) in cases {
-        let input = write(name, text);
-        let out = tmp(&format!("{name}.out.txt"));
-        let mut args = vec![
-            "curve",
-            input.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--scheme",
-        ];
-        args.extend_from_slice(flags);
-        let o = subdiv(&args);
-        assert_eq!(o.status.code(), Some(1), "{name}");
-        let err = stderr(&o);
-        assert!(err.contains(message), "{name}: {err}");
-        assert!(!out.exists(), "{name}: no output on error");
-    }
-}
-
-#[test]
-fn cli_bad_options_are_errors() {
-    let input = write("zigzag-opts.txt", ZIGZAG);
-    let run = |flags: &[&str]| {
-        let mut args = vec!["curve", input.to_str().unwrap()];
-        args.extend_from_slice(flags);
-        subdiv(&args)
-    };
-    let o = run(&["--scheme", "bspline", "--degree", "0"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("B-spline degree 0 is not supported"));
-    let o = run(&["--scheme", "bspline", "--degree", "16"]);
-    assert_eq!(o.status.code(), Some(1));
-    let o = run(&["--scheme", "chaikin", "--degree", "2"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("--degree applies to --scheme bspline only"));
-    let o = run(&["--scheme", "jarek", "--tension", "0.1"]);
-    assert_eq!(o.status.code(), Some(1));
-    let o = run(&["--scheme", "four-point", "--tension", "nan"]);
-    assert_eq!(o.status.code(), Some(1));
-    let o = run(&["--scheme", "four-point", "--level", "60"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("more than"), "{}", stderr(&o));
-    let o = run(&["--scheme", "cubic"]);
-    assert_eq!(o.status.code(), Some(2));
-    let o = subdiv(&["curve", "/nonexistent/points.txt", "--scheme", "chaikin"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("/nonexistent/points.txt"));
-    // Level 0 writes the input back.
-    let o = run(&["--scheme", "jarek", "--level", "0"]);
-    assert_eq!(stdout(&o), "0 0\n1 2\n3 2\n4 0\n");
-}
-
-#[test]
-fn cli_never_prints_inf_or_nan() {
-    let huge = write(
-        "huge.txt",
-        "1.7e308 1.7e308\n1.7e308 -1.7e308\n-1.7e308 1.7e308\n1.7e308 1.6e308\n",
-    );
-    let zigzag = write("zigzag-tension.txt", ZIGZAG);
-    let mut cases: Vec<(&Path, Vec<&str>)> = Vec::new();
-    for flags in [
-        &["chaikin"][..],
-        &["bspline"],
-        &["bspline", "--degree", "1"],
-        &["four-point"],
-        &["jarek"],
-    ] {
-        for closed in [false, true] {
-            let mut f = flags.to_vec();
-            if closed {
-                f.push("--closed");
-            }
-            cases.push((&huge, f));
-        }
-    }
-    for tension in ["1e308", "1e300", "-1e300", "1e20"] {
-        cases.push((&zigzag, vec!["four-point", "--tension", tension]));
-    }
-    for (input, flags) in cases {
-        let mut args = vec!["curve", input.to_str().unwrap(), "--level", "4", "--scheme"];
-        args.extend(&flags);
-        let o = subdiv(&args);
-        let (out, err) = (stdout(&o), stderr(&o));
-        let lower = out.to_lowercase();
-        assert!(
-            !lower.contains("inf") && !lower.contains("nan"),
-            "{flags:?}"
-        );
-        match o.status.code() {
-            Some(0) => assert!(!out.is_empty(), "{flags:?}"),
-            Some(1) => {
-                assert!(out.is_empty(), "{flags:?}");
-                assert!(
-                    err.starts_with(&format!("subdiv: error: {}: level ", input.display()))
-                        && err.contains(" overflows: its point "),
-                    "{flags:?}: {err}"
-                );
-            }
-            code => panic!("{flags:?}: exit {code:?}: {err}"),
-        }
-    }
-    // The averaging schemes take any finite coordinates.
-    let o = subdiv(&[
-        "curve",
-        huge.to_str().unwrap(),
-        "--scheme",
-        "bspline",
-        "--level",
-        "4",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let o = subdiv(&[
-        "curve",
-        zigzag.to_str().unwrap(),
-        "--scheme",
-        "four-point",
-        "--tension",
-        "1e308",
-    ]);
-    assert_eq!(o.status.code(), Some(1));
-    assert_eq!(
-        stderr(&o),
-        format!(
-            "subdiv: error: {}: level 1 of four-point with tension 1e308 overflows: its point 1 \
-             would have a coordinate beyond the range of f64 (the coordinates or the tension are \
-             too large)\n",
-            zigzag.display()
-        )
-    );
 }

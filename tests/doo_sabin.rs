@@ -1,27 +1,16 @@
 //! Doo-Sabin subdivision: weights, topology, the biquadratic B-spline on
-//! regular grids, boundaries, and `subdiv refine --scheme doo-sabin`.
+//! regular grids, and boundaries. (`subdiv refine --scheme doo-sabin` is
+//! tested in `tests/cli/doo_sabin.rs`.)
+
+mod support;
 
 use glam::{DMat3, DVec3};
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use subdiv::Mesh;
 use subdiv::curve::{self, CurveScheme};
 use subdiv::doo_sabin::{self, Boundary, DooSabinError, DooSabinOptions, Weights, corner_weights};
 use subdiv::patch::ControlGrid;
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
+use support::Rng;
 
 const ALL_OPTIONS: [DooSabinOptions; 4] = [
     DooSabinOptions {
@@ -553,149 +542,4 @@ fn invalid_meshes_are_typed_errors() {
     assert_eq!("centroid".parse::<Weights>(), Ok(Weights::Centroid));
     assert_eq!("chaikin".parse::<Boundary>(), Ok(Boundary::Chaikin));
     assert!("smooth".parse::<Boundary>().is_err());
-}
-
-// ---------------------------------------------------------------------------
-// the command line
-// ---------------------------------------------------------------------------
-
-fn subdiv(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-        .args(args)
-        .output()
-        .expect("run subdiv")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("doo_sabin");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-#[test]
-fn cli_refine_doo_sabin() {
-    let o = subdiv(&[
-        "refine",
-        "--builtin",
-        "cube",
-        "--scheme",
-        "doo-sabin",
-        "--level",
-        "3",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let line = stdout(&o);
-    assert!(
-        line.starts_with(
-            "builtin:cube: doo-sabin (original, open boundary) level 3 (native, f64): vertices 8→24→96→384, faces 6→26→98→386;"
-        ),
-        "{line}"
-    );
-    let out = tmp("cube-ds.obj");
-    let o = subdiv(&[
-        "refine",
-        "--builtin",
-        "cube",
-        "--scheme",
-        "doo-sabin",
-        "--doo-sabin-weights",
-        "centroid",
-        "--doo-sabin-boundary",
-        "chaikin",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let read = subdiv::io::read_obj(&out).unwrap().mesh;
-    let opts = DooSabinOptions {
-        weights: Weights::Centroid,
-        boundary: Boundary::Chaikin,
-    };
-    let expected = doo_sabin::refine(&subdiv::shapes::cube(), &opts, 2).unwrap();
-    assert_eq!(
-        read.positions, expected[2].positions,
-        "17 digits read back exactly"
-    );
-    assert_eq!(read.face_vertices, expected[2].face_vertices);
-    assert_eq!(read.face_offsets, expected[2].face_offsets);
-}
-
-#[test]
-fn cli_doo_sabin_refusals() {
-    let run = |extra: &[&str]| {
-        let mut args = vec!["refine", "--builtin", "cube", "--scheme", "doo-sabin"];
-        args.extend_from_slice(extra);
-        subdiv(&args)
-    };
-    let o = run(&["--engine", "osd"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("OpenSubdiv has no Doo-Sabin scheme"),
-        "{}",
-        stderr(&o)
-    );
-    let o = run(&["--limit"]);
-    assert_eq!(o.status.code(), Some(2));
-    let o = run(&["--precision", "f32"]);
-    assert_eq!(o.status.code(), Some(2));
-    let o = run(&["--boundary", "edge-only"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stderr(&o).contains("--boundary does not apply"),
-        "{}",
-        stderr(&o)
-    );
-    let o = run(&["--level", "11"]);
-    assert_eq!(o.status.code(), Some(1));
-    let o = run(&["--doo-sabin-weights", "heavy"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("expected one of: original, centroid"));
-    let o = subdiv(&["compare", "--builtin", "cube", "--scheme", "doo-sabin"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("OpenSubdiv has no Doo-Sabin scheme"));
-    // The Doo-Sabin options need the scheme.
-    let o = subdiv(&[
-        "refine",
-        "--builtin",
-        "cube",
-        "--doo-sabin-weights",
-        "centroid",
-    ]);
-    assert_eq!(o.status.code(), Some(1));
-    // The OpenSubdiv schemes are unchanged, and the error lists doo-sabin.
-    let o = subdiv(&["refine", "--builtin", "cube"]);
-    assert!(o.status.success());
-    assert!(stdout(&o).contains("catmark level 2"), "{}", stdout(&o));
-    let o = subdiv(&["refine", "--builtin", "cube", "--scheme", "loop"]);
-    assert!(!o.status.success() || stdout(&o).contains("loop level 2"));
-    let o = subdiv(&["refine", "--builtin", "cube", "--scheme", "butterfly"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("expected one of: bilinear, catmark, loop, doo-sabin"),
-        "{}",
-        stderr(&o)
-    );
-    // Tags and UVs are ignored with a warning; --strict refuses them.
-    let o = subdiv(&["refine", "--builtin", "cube-uv", "--scheme", "doo-sabin"]);
-    assert!(o.status.success());
-    assert!(stderr(&o).contains("doo-sabin ignores"), "{}", stderr(&o));
-    let o = subdiv(&[
-        "refine",
-        "--builtin",
-        "cube-uv",
-        "--scheme",
-        "doo-sabin",
-        "--strict",
-    ]);
-    assert_eq!(o.status.code(), Some(1));
 }

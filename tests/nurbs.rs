@@ -4,34 +4,18 @@
 //! Bézier decomposition, splitting, closed curves, surfaces and the uniform
 //! control grids, typed errors, and property tests.
 
+mod support;
+
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use subdiv::curve::{self, BSplineCurve, bspline_basis};
 use subdiv::nurbs::{KnotVector, NurbsCurve, NurbsError, NurbsSurface};
 use subdiv::patch::{ControlGrid, Direction};
+use support::{Rng, TOPOLOGIES, wavy};
 
 // ---------------------------------------------------------------------------
 // helpers
 // ---------------------------------------------------------------------------
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-    fn v2(&mut self) -> DVec2 {
-        DVec2::new(self.next() * 5.0, self.next() * 5.0)
-    }
-    fn v3(&mut self) -> DVec3 {
-        DVec3::new(self.next() * 5.0, self.next() * 5.0, self.next() * 5.0)
-    }
-}
 
 const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
@@ -302,7 +286,7 @@ fn curve_derivatives_match_central_differences() {
         for rational in [false, true] {
             let knots = random_knots(&mut rng, degree, degree + 5, degree % 2 == 0);
             let n = knots.control_count();
-            let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let points: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
             let weights = rational.then(|| (0..n).map(|_| 0.3 + 2.0 * rng.next().abs()).collect());
             let c = NurbsCurve::new(points, degree, knots.as_slice().to_vec(), weights).unwrap();
             let breaks = c.knots().breaks().to_vec();
@@ -434,7 +418,7 @@ fn domain_midpoints(c: &NurbsCurve<DVec2>) -> Vec<f64> {
 fn inserting_every_midpoint_of_a_uniform_quadratic_is_chaikin() {
     let mut rng = Rng(3);
     for n in [3usize, 4, 7] {
-        let p: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+        let p: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
         // Closed: Q_j = Chaikin's j-th point for every j.
         let closed =
             NurbsCurve::from_bspline(&BSplineCurve::new(p.clone(), 2, true).unwrap()).unwrap();
@@ -470,7 +454,7 @@ fn inserting_every_midpoint_of_a_uniform_spline_is_one_averaging_level() {
     let mut rng = Rng(5);
     for degree in 1..=5 {
         for n in [degree.max(3), degree + 4] {
-            let p: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let p: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
             let b = curve::bspline(&p, degree, true).unwrap();
             let closed =
                 NurbsCurve::from_bspline(&BSplineCurve::new(p.clone(), degree, true).unwrap())
@@ -532,7 +516,7 @@ fn refinement_equals_sequential_insertion_at_ends_and_repeated_knots() {
         for clamped in [false, true] {
             let knots = random_knots(&mut rng, degree, degree + 4, clamped);
             let n = knots.control_count();
-            let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let points: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
             let c = NurbsCurve::from_knot_vector(points, knots, None).unwrap();
             let (a, b) = c.domain();
             let mut ts: Vec<f64> = c.to_open().knots().bezier_knots_for_test();
@@ -577,7 +561,7 @@ fn bezier_segments_and_split_pieces_reproduce_the_curve() {
         for (clamped, rational) in [(false, false), (true, false), (false, true), (true, true)] {
             let knots = random_knots(&mut rng, degree, degree + 5, clamped);
             let n = knots.control_count();
-            let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let points: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
             let weights = rational.then(|| (0..n).map(|_| 0.3 + rng.next().abs()).collect());
             let c = NurbsCurve::from_knot_vector(points, knots, weights).unwrap();
             let spans = c
@@ -625,7 +609,7 @@ fn high_degrees_keep_the_shape_too() {
         for clamped in [false, true] {
             let knots = random_knots(&mut rng, degree, degree + 4, clamped);
             let n = knots.control_count();
-            let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+            let points: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
             let weights = Some((0..n).map(|_| 0.5 + rng.next().abs()).collect());
             let c = NurbsCurve::from_knot_vector(points, knots, weights).unwrap();
             let (a, b) = c.domain();
@@ -661,7 +645,7 @@ fn closed_curves_are_periodic_and_stay_closed_under_insertion() {
     let mut rng = Rng(53);
     for degree in 1..=5 {
         let n = degree.max(2) + 2;
-        let p: Vec<DVec3> = (0..n).map(|_| rng.v3()).collect();
+        let p: Vec<DVec3> = (0..n).map(|_| rng.v3(5.0)).collect();
         let mut breaks = vec![0.5];
         for _ in 0..n {
             let last = *breaks.last().unwrap();
@@ -730,17 +714,6 @@ fn closed_curves_are_periodic_and_stay_closed_under_insertion() {
 // ---------------------------------------------------------------------------
 // surfaces
 // ---------------------------------------------------------------------------
-
-const TOPOLOGIES: [(bool, bool); 4] = [(false, false), (true, false), (false, true), (true, true)];
-
-fn wavy(nu: usize, nv: usize, degree: usize, cu: bool, cv: bool, seed: u64) -> ControlGrid {
-    let mut rng = Rng(seed);
-    let heights: Vec<f64> = (0..nu * nv).map(|_| rng.next()).collect();
-    ControlGrid::from_fn(nu, nv, degree, cu, cv, |i, j| {
-        DVec3::new(i as f64, j as f64, heights[j * nu + i])
-    })
-    .unwrap()
-}
 
 #[test]
 fn control_grids_evaluate_as_surfaces_over_uniform_knots() {
@@ -847,7 +820,7 @@ fn surface_operations_keep_the_shape() {
     let cyl = cylinder();
     let mut rng = Rng(61);
     let knots_v = KnotVector::new(vec![0., 0., 0., 0.4, 1.1, 2., 2., 2.], 2).unwrap();
-    let points: Vec<DVec3> = (0..7 * 5).map(|_| rng.v3()).collect();
+    let points: Vec<DVec3> = (0..7 * 5).map(|_| rng.v3(5.0)).collect();
     let weights: Vec<f64> = (0..7 * 5).map(|_| 0.5 + rng.next().abs()).collect();
     let knots_u = KnotVector::new(vec![-1., 0., 0.5, 1., 1., 2.5, 3., 3.2, 4., 5., 6.], 3).unwrap();
     let random = NurbsSurface::new(points, 7, 5, knots_u, knots_v, Some(weights)).unwrap();
@@ -926,7 +899,7 @@ fn surface_derivatives_match_central_differences() {
     let knots_u = KnotVector::new(vec![0., 0., 0., 0., 0.7, 1.5, 2., 2., 2., 2.], 3).unwrap();
     let knots_v = KnotVector::new(vec![-2., -1., 0., 1., 2.5, 3., 4.], 2).unwrap();
     for rational in [false, true] {
-        let points: Vec<DVec3> = (0..6 * 4).map(|_| rng.v3()).collect();
+        let points: Vec<DVec3> = (0..6 * 4).map(|_| rng.v3(5.0)).collect();
         let weights = rational.then(|| (0..6 * 4).map(|_| 0.4 + rng.next().abs()).collect());
         let s = NurbsSurface::new(points, 6, 4, knots_u.clone(), knots_v.clone(), weights).unwrap();
         for (u, v) in [(0.3, 0.5), (1.1, 1.7), (1.8, 2.2), (0.9, 0.2)] {
@@ -1272,7 +1245,7 @@ fn arb_curve() -> impl Strategy<Value = NurbsCurve<DVec2>> {
             let mut rng = Rng(seed | 1);
             let knots = random_knots(&mut rng, degree, degree + 1 + extra, clamped);
             let n = knots.control_count();
-            let points = (0..n).map(|_| rng.v2()).collect();
+            let points = (0..n).map(|_| rng.v2(5.0)).collect();
             let weights = rational.then(|| (0..n).map(|_| 0.2 + 4.0 * rng.next().abs()).collect());
             NurbsCurve::from_knot_vector(points, knots, weights).unwrap()
         })
@@ -1370,7 +1343,7 @@ proptest! {
     ) {
         let mut rng = Rng(seed | 1);
         let n = degree.max(2) + extra;
-        let points: Vec<DVec2> = (0..n).map(|_| rng.v2()).collect();
+        let points: Vec<DVec2> = (0..n).map(|_| rng.v2(5.0)).collect();
         let mut breaks = vec![rng.next()];
         for _ in 0..n {
             let last = *breaks.last().unwrap();

@@ -8,33 +8,30 @@
 //! byte-identical: same vertex order, same face-varying values, same faces,
 //! same doubles.
 //!
-//! The shapes are generated here, in code, after OpenSubdiv's regression
-//! shapes: creases, corners, holes, boundaries, n-gons, UV seams, non-manifold
-//! topology, Loop and bilinear meshes, and the less common `Sdc::Options`.
+//! The shapes are generated in code (`subdiv::shapes`, edited here where a
+//! case needs it, and written by the library's OBJ writer), after
+//! OpenSubdiv's regression shapes: creases, corners, holes, boundaries,
+//! n-gons, UV seams, non-manifold topology, Loop and bilinear meshes, and the
+//! less common `Sdc::Options`.
 
 #![cfg(feature = "osd")]
 
+mod support;
+
+use glam::DVec3;
 use std::fmt::Write as _;
 use std::fs;
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
+use subdiv::{FVarChannel, Mesh, shapes};
+use support::{obj_text, scratch, subdiv_bin};
 
 // ---------------------------------------------------------------------------
 // Harness
 
 const DRIVER_SOURCE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/cpp/osd_driver.cpp");
-
-/// Directory for inputs and outputs of this test binary.
-fn work_dir() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("osd_conformance");
-        fs::create_dir_all(&dir).expect("create the work directory");
-        dir
-    })
-}
 
 /// The reference driver, compiled once per test run.
 fn driver() -> &'static Path {
@@ -62,10 +59,6 @@ fn driver() -> &'static Path {
         fs::rename(&tmp, &exe).expect("install the reference driver");
         exe
     })
-}
-
-fn subdiv_bin() -> &'static str {
-    env!("CARGO_BIN_EXE_subdiv")
 }
 
 fn show(cmd: &Command) -> String {
@@ -168,15 +161,15 @@ fn compare(case: &str, engine: &str, level: u32, reference: &[u8], ours: &[u8]) 
     panic!("{msg}");
 }
 
-/// Refines `obj` with both programs at every level of `levels` and compares.
+/// Refines `obj` with both programs at every level of `levels` and compares,
+/// in a fresh directory named after the case.
 fn check(case: &str, obj: &str, flags: &[&str], levels: RangeInclusive<u32>) {
-    let dir = work_dir();
+    let dir = scratch(case);
     let input = dir.join(format!("{case}.obj"));
     fs::write(&input, obj).expect("write the input OBJ");
     for level in levels {
         let lv = level.to_string();
         let ref_out = dir.join(format!("{case}.L{level}.driver.obj"));
-        let _ = fs::remove_file(&ref_out);
 
         expect_success(
             &format!("{case} level {level}: reference driver"),
@@ -190,7 +183,6 @@ fn check(case: &str, obj: &str, flags: &[&str], levels: RangeInclusive<u32>) {
         // Both engines must write exactly the driver's file.
         for engine in ["osd", "native"] {
             let our_out = dir.join(format!("{case}.L{level}.{engine}.obj"));
-            let _ = fs::remove_file(&our_out);
             expect_success(
                 &format!("{case} level {level}: subdiv refine --engine {engine}"),
                 Command::new(subdiv_bin())
@@ -224,41 +216,14 @@ macro_rules! conformance {
 
 // ---------------------------------------------------------------------------
 // Shapes
+//
+// Meshes of `subdiv::shapes` (some edited: heights, UVs, a subset), written
+// by the library's OBJ writer, followed by raw tag lines. Only the two cubes
+// that exercise the OBJ syntax are written by hand.
 
-/// Builds OBJ text from positions, faces (0-based) and optional per-corner
-/// UVs (`uvs`, and 0-based uv indices parallel to `faces`), plus raw tag lines.
-/// UV values and, per face, the indices of its corners' values.
-type Uvs<'a> = (&'a [[f64; 2]], &'a [Vec<usize>]);
-
-fn obj(
-    positions: &[[f64; 3]],
-    faces: &[Vec<usize>],
-    uvs: Option<Uvs<'_>>,
-    tags: &[&str],
-) -> String {
-    let mut s = String::new();
-    for p in positions {
-        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
-    }
-    if let Some((values, _)) = uvs {
-        for t in values {
-            let _ = writeln!(s, "vt {} {}", t[0], t[1]);
-        }
-    }
-    for (i, f) in faces.iter().enumerate() {
-        s.push('f');
-        for (k, &v) in f.iter().enumerate() {
-            match uvs {
-                Some((_, fuv)) => {
-                    let _ = write!(s, " {}/{}", v + 1, fuv[i][k] + 1);
-                }
-                None => {
-                    let _ = write!(s, " {}", v + 1);
-                }
-            }
-        }
-        s.push('\n');
-    }
+/// OBJ text of `mesh` ([`support::obj_text`]), then `tags`, one per line.
+fn obj(mesh: &Mesh, tags: &[&str]) -> String {
+    let mut s = obj_text(mesh);
     for t in tags {
         s.push_str(t);
         s.push('\n');
@@ -266,30 +231,26 @@ fn obj(
     s
 }
 
-const CUBE_V: [[f64; 3]; 8] = [
-    [-0.5, -0.5, 0.5],
-    [0.5, -0.5, 0.5],
-    [-0.5, 0.5, 0.5],
-    [0.5, 0.5, 0.5],
-    [-0.5, 0.5, -0.5],
-    [0.5, 0.5, -0.5],
-    [-0.5, -0.5, -0.5],
-    [0.5, -0.5, -0.5],
-];
-
-fn cube_faces() -> Vec<Vec<usize>> {
-    vec![
-        vec![0, 1, 3, 2], // z+
-        vec![2, 3, 5, 4], // y+
-        vec![4, 5, 7, 6], // z-
-        vec![6, 7, 1, 0], // y-
-        vec![1, 7, 5, 3], // x+
-        vec![6, 0, 2, 4], // x-
-    ]
+/// A face-varying channel of 2-D values: `values`, and per face the indices
+/// of its corners' values.
+fn uv_channel(values: &[[f64; 2]], face_values: &[Vec<usize>]) -> FVarChannel {
+    FVarChannel {
+        width: 2,
+        values: values.iter().flatten().copied().collect(),
+        indices: face_values.iter().flatten().map(|&i| i as u32).collect(),
+    }
 }
 
+/// Sets the height of every vertex of a `shapes::grid(n, _)` from its column and row.
+fn set_heights(mesh: &mut Mesh, n: u32, z: impl Fn(u32, u32) -> f64) {
+    for (k, p) in (0u32..).zip(mesh.positions.iter_mut()) {
+        p.z = z(k % (n + 1), k / (n + 1));
+    }
+}
+
+/// The unit cube in OpenSubdiv's numbering (the tags below name its vertices).
 fn cube(tags: &[&str]) -> String {
-    obj(&CUBE_V, &cube_faces(), None, tags)
+    obj(&shapes::tutorial_cube(), tags)
 }
 
 /// A cube whose UVs are cut. The four faces around the x axis are a strip
@@ -299,6 +260,7 @@ fn cube(tags: &[&str]) -> String {
 /// two or three faces, and the strip's UVs are jittered so that its borders
 /// are not straight lines (linear and smooth face-varying boundaries differ).
 fn cube_uv_seam(tags: &[&str]) -> String {
+    let mut mesh = shapes::tutorial_cube();
     // Ring position of each vertex around the x axis, and its side (x- = 0).
     let ring = |v: usize| v / 2;
     let side = |v: usize| v % 2;
@@ -312,12 +274,12 @@ fn cube_uv_seam(tags: &[&str]) -> String {
             ]);
         }
     }
-    let faces = cube_faces();
     let mut face_uvs = Vec::new();
-    for (k, f) in faces.iter().enumerate().take(4) {
+    for (k, f) in mesh.faces().enumerate().take(4) {
         face_uvs.push(
             f.iter()
                 .map(|&v| {
+                    let v = v as usize;
                     // Face k spans ring positions k and k+1 (the last face wraps
                     // to position 4, a distinct UV on the seam).
                     let i = if ring(v) == k { k } else { k + 1 };
@@ -339,46 +301,27 @@ fn cube_uv_seam(tags: &[&str]) -> String {
         uvs.push(c);
     }
     face_uvs.push((base..base + 4).collect());
-    obj(&CUBE_V, &faces, Some((&uvs, &face_uvs)), tags)
+    mesh.fvar_channels.push(uv_channel(&uvs, &face_uvs));
+    obj(&mesh, tags)
 }
 
 /// An open `n` x `n` grid of quads in the xy plane, with a gentle bump in z.
-fn grid(n: usize, tags: &[&str]) -> String {
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let z = if (i + j) % 3 == 0 { 0.25 } else { 0.0 };
-            pos.push([i as f64, j as f64, z]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-        }
-    }
-    obj(&pos, &faces, None, tags)
+fn grid(n: u32, tags: &[&str]) -> String {
+    let mut mesh = shapes::grid(n, n);
+    mesh.fvar_channels.clear();
+    set_heights(
+        &mut mesh,
+        n,
+        |i, j| if (i + j) % 3 == 0 { 0.25 } else { 0.0 },
+    );
+    obj(&mesh, tags)
 }
 
 /// A grid with per-vertex UVs (no seams), for face-varying boundary modes.
-fn grid_uv(n: usize, tags: &[&str]) -> String {
-    let mut pos = Vec::new();
-    let mut uvs = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            pos.push([i as f64, j as f64, ((i * j) % 2) as f64 * 0.3]);
-            uvs.push([i as f64 / n as f64, j as f64 / n as f64]);
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-        }
-    }
-    obj(&pos, &faces, Some((&uvs, &faces)), tags)
+fn grid_uv(n: u32, tags: &[&str]) -> String {
+    let mut mesh = shapes::grid(n, n);
+    set_heights(&mut mesh, n, |i, j| ((i * j) % 2) as f64 * 0.3);
+    obj(&mesh, tags)
 }
 
 /// A 4 x 4 grid whose UVs are cut into four regions: the left half (A), the
@@ -388,16 +331,10 @@ fn grid_uv(n: usize, tags: &[&str]) -> String {
 /// gives a different result.
 fn grid_uv_regions(tags: &[&str]) -> String {
     let n = 4;
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            pos.push([
-                i as f64,
-                j as f64,
-                if (i + 2 * j) % 4 == 1 { 0.3 } else { 0.0 },
-            ]);
-        }
-    }
+    let mut mesh = shapes::grid(n as u32, n as u32);
+    set_heights(&mut mesh, n as u32, |i, j| {
+        if (i + 2 * j) % 4 == 1 { 0.3 } else { 0.0 }
+    });
     let region = |i: usize, j: usize| match (i >= 2, j >= 2) {
         (false, _) => 0,
         (true, false) => 1,
@@ -406,18 +343,13 @@ fn grid_uv_regions(tags: &[&str]) -> String {
     };
     let mut uvs: Vec<[f64; 2]> = Vec::new();
     let mut uv_of = std::collections::BTreeMap::new();
-    let mut faces = Vec::new();
     let mut face_uvs = Vec::new();
+    // The grid's faces, row by row, each from its lower-left corner (i, j)
+    // counterclockwise.
     for j in 0..n {
         for i in 0..n {
             let r = region(i, j);
             let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-            faces.push(
-                corners
-                    .iter()
-                    .map(|&(x, y)| y * (n + 1) + x)
-                    .collect::<Vec<_>>(),
-            );
             face_uvs.push(
                 corners
                     .iter()
@@ -435,248 +367,166 @@ fn grid_uv_regions(tags: &[&str]) -> String {
             );
         }
     }
-    obj(&pos, &faces, Some((&uvs, &face_uvs)), tags)
+    mesh.fvar_channels = vec![uv_channel(&uvs, &face_uvs)];
+    obj(&mesh, tags)
 }
 
-/// A pyramid on a regular pentagon: one 5-gon and five triangles.
+/// A pyramid on a regular pentagon: one 5-gon and five triangles, the apex
+/// straight above the centre.
 fn pyramid_pentagon(tags: &[&str]) -> String {
-    let mut pos = Vec::new();
-    for k in 0..5 {
-        let a = std::f64::consts::TAU * k as f64 / 5.0;
-        pos.push([a.cos(), a.sin(), 0.0]);
-    }
-    pos.push([0.0, 0.0, 1.25]);
-    let mut faces = vec![vec![4, 3, 2, 1, 0]];
-    for k in 0..5 {
-        faces.push(vec![k, (k + 1) % 5, 5]);
-    }
-    obj(&pos, &faces, None, tags)
+    let mut mesh = shapes::pyramid(5);
+    mesh.positions[5] = DVec3::new(0.0, 0.0, 1.25);
+    obj(&mesh, tags)
 }
 
-/// Three quads sharing the edge 0-1 (a non-manifold fin), on a base quad.
+/// Three quads sharing the edge 0-1 (a non-manifold fin), on a base quad:
+/// the fin of `shapes::fin` without its fourth quad.
 fn fin() -> String {
-    let pos = [
-        [0.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [-1.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 1.0, 1.0],
-    ];
-    let faces = vec![vec![0, 2, 3, 1], vec![1, 5, 4, 0], vec![0, 1, 7, 6]];
-    obj(&pos, &faces, None, &[])
+    let full = shapes::fin();
+    let faces: Vec<&[u32]> = full.faces().take(3).collect();
+    obj(&Mesh::from_faces(full.positions[..8].to_vec(), &faces), &[])
 }
 
 /// Two quads touching at one vertex only (a bowtie).
 fn bowtie() -> String {
-    let pos = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [2.0, 1.0, 0.5],
-        [2.0, 2.0, 0.0],
-        [1.0, 2.0, 0.5],
-    ];
-    let faces = vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]];
-    obj(&pos, &faces, None, &[])
+    let mesh = Mesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.5),
+            DVec3::new(2.0, 2.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.5),
+        ],
+        &[&[0, 1, 2, 3], &[2, 4, 5, 6]],
+    );
+    obj(&mesh, &[])
 }
 
 fn tetrahedron(tags: &[&str]) -> String {
-    let pos = [
-        [1.0, 1.0, 1.0],
-        [-1.0, -1.0, 1.0],
-        [-1.0, 1.0, -1.0],
-        [1.0, -1.0, -1.0],
-    ];
-    let faces = vec![vec![0, 1, 3], vec![0, 2, 1], vec![0, 3, 2], vec![1, 2, 3]];
-    obj(&pos, &faces, None, tags)
+    obj(&shapes::tetrahedron(), tags)
 }
 
 fn octahedron(tags: &[&str]) -> String {
-    let pos = [
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    let faces = vec![
-        vec![0, 2, 4],
-        vec![2, 1, 4],
-        vec![1, 3, 4],
-        vec![3, 0, 4],
-        vec![2, 0, 5],
-        vec![1, 2, 5],
-        vec![3, 1, 5],
-        vec![0, 3, 5],
-    ];
-    obj(&pos, &faces, None, tags)
+    obj(&shapes::octahedron(), tags)
 }
 
 fn icosahedron(tags: &[&str]) -> String {
-    let p = (1.0 + 5f64.sqrt()) / 2.0;
-    let pos = [
-        [-1.0, p, 0.0],
-        [1.0, p, 0.0],
-        [-1.0, -p, 0.0],
-        [1.0, -p, 0.0],
-        [0.0, -1.0, p],
-        [0.0, 1.0, p],
-        [0.0, -1.0, -p],
-        [0.0, 1.0, -p],
-        [p, 0.0, -1.0],
-        [p, 0.0, 1.0],
-        [-p, 0.0, -1.0],
-        [-p, 0.0, 1.0],
-    ];
-    let faces: Vec<Vec<usize>> = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ]
-    .iter()
-    .map(|f| f.to_vec())
-    .collect();
-    obj(&pos, &faces, None, tags)
+    obj(&shapes::icosahedron(), tags)
 }
 
 /// An open fan of five triangles around vertex 0 (the centre is on the
 /// boundary too: the sixth triangle is missing).
-fn triangle_fan(tags: &[&str]) -> String {
-    let mut pos = vec![[0.0, 0.0, 0.3]];
+fn triangle_fan_mesh() -> Mesh {
+    let mut mesh = Mesh::default();
+    mesh.positions.push(DVec3::new(0.0, 0.0, 0.3));
     for k in 0..6 {
         let a = std::f64::consts::TAU * k as f64 / 6.0;
-        pos.push([a.cos(), a.sin(), 0.0]);
+        mesh.positions.push(DVec3::new(a.cos(), a.sin(), 0.0));
     }
-    let faces: Vec<Vec<usize>> = (1..6).map(|k| vec![0, k, k + 1]).collect();
-    obj(&pos, &faces, None, tags)
+    for k in 1..6 {
+        mesh.add_face(&[0, k, k + 1]);
+    }
+    mesh
 }
 
-/// An open `n` x `n` grid of quads, each split into two triangles, with a bump.
-fn triangle_grid(n: usize, tags: &[&str]) -> String {
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let z = if i > 0 && j > 0 && i < n && j < n {
-                0.5
-            } else {
-                0.0
-            };
-            pos.push([i as f64, j as f64 + 0.1 * i as f64, z]);
-        }
+fn triangle_fan(tags: &[&str]) -> String {
+    obj(&triangle_fan_mesh(), tags)
+}
+
+/// An open `n` x `n` grid of quads, each split into two triangles along the
+/// same diagonal, sheared in y, with its interior vertices raised.
+fn triangle_grid(n: u32, tags: &[&str]) -> String {
+    let quads = shapes::grid(n, n);
+    let mut mesh = Mesh {
+        positions: quads.positions.clone(),
+        ..Mesh::default()
+    };
+    for (k, p) in (0u32..).zip(mesh.positions.iter_mut()) {
+        let (i, j) = (k % (n + 1), k / (n + 1));
+        p.y = j as f64 + 0.1 * i as f64;
+        p.z = if i > 0 && j > 0 && i < n && j < n {
+            0.5
+        } else {
+            0.0
+        };
     }
-    let mut faces = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces.push(vec![a, a + 1, a + n + 2]);
-            faces.push(vec![a, a + n + 2, a + n + 1]);
-        }
+    for f in quads.faces() {
+        mesh.add_face(&[f[0], f[1], f[2]]);
+        mesh.add_face(&[f[0], f[2], f[3]]);
     }
-    obj(&pos, &faces, None, tags)
+    obj(&mesh, tags)
 }
 
 /// The open fan with UVs cut between its first two and last three faces.
 fn triangle_fan_uv() -> String {
-    let text = triangle_fan(&[]);
+    let mut mesh = triangle_fan_mesh();
     let mut uvs: Vec<[f64; 2]> = Vec::new();
     let mut face_uvs = Vec::new();
-    let mut pos = Vec::new();
-    let mut faces = Vec::new();
-    for line in text.lines() {
-        let t: Vec<&str> = line.split_whitespace().collect();
-        match t[0] {
-            "v" => pos.push([
-                t[1].parse().unwrap(),
-                t[2].parse().unwrap(),
-                t[3].parse().unwrap(),
-            ]),
-            "f" => faces.push(
-                t[1..]
-                    .iter()
-                    .map(|x| x.parse::<usize>().unwrap() - 1)
-                    .collect::<Vec<_>>(),
-            ),
-            _ => {}
-        }
-    }
     let mut uv_of = std::collections::BTreeMap::new();
-    for (k, f) in faces.iter().enumerate() {
+    for (k, f) in mesh.faces().enumerate() {
         let region = usize::from(k >= 2);
         face_uvs.push(
             f.iter()
                 .map(|&v| {
                     *uv_of.entry((region, v)).or_insert_with(|| {
-                        let p: [f64; 3] = pos[v];
-                        uvs.push([0.5 + 0.4 * p[0] + 0.1 * region as f64, 0.5 + 0.45 * p[1]]);
+                        let p = mesh.positions[v as usize];
+                        uvs.push([0.5 + 0.4 * p.x + 0.1 * region as f64, 0.5 + 0.45 * p.y]);
                         uvs.len() - 1
                     })
                 })
                 .collect::<Vec<_>>(),
         );
     }
-    obj(&pos, &faces, Some((&uvs, &face_uvs)), &[])
+    mesh.fvar_channels.push(uv_channel(&uvs, &face_uvs));
+    obj(&mesh, &[])
 }
 
 /// Quads, triangles and a pentagon with UVs, for the bilinear scheme.
 fn mixed_uv() -> String {
-    let pos = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.1],
-        [2.0, 0.0, 0.0],
-        [0.0, 1.0, 0.2],
-        [1.0, 1.0, 0.0],
-        [2.0, 1.0, 0.3],
-        [3.0, 0.5, 0.0],
-        [1.5, 2.0, 0.4],
-    ];
-    let faces = vec![
-        vec![0, 1, 4, 3],
-        vec![1, 2, 5, 4],
-        vec![2, 6, 5],
-        vec![3, 4, 5, 7],
-    ];
-    let uvs: Vec<[f64; 2]> = pos.iter().map(|p| [p[0] / 3.0, p[1] / 2.0]).collect();
-    obj(&pos, &faces, Some((&uvs, &faces)), &[])
+    let mut mesh = Mesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.1),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.2),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.3),
+            DVec3::new(3.0, 0.5, 0.0),
+            DVec3::new(1.5, 2.0, 0.4),
+        ],
+        &[&[0, 1, 4, 3], &[1, 2, 5, 4], &[2, 6, 5], &[3, 4, 5, 7]],
+    );
+    mesh.fvar_channels.push(FVarChannel {
+        width: 2,
+        values: mesh
+            .positions
+            .iter()
+            .flat_map(|p| [p.x / 3.0, p.y / 2.0])
+            .collect(),
+        indices: mesh.face_vertices.clone(),
+    });
+    obj(&mesh, &[])
 }
 
 /// The cube written with every corner syntax: `v//vn`, `v/vt/vn` and
 /// negative (relative) indices, with comments, groups and smoothing lines.
 fn cube_obj_syntax() -> String {
+    let cube = shapes::tutorial_cube();
     let mut s = String::from("# cube, exotic syntax\no cube\n");
-    for p in CUBE_V {
-        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    for p in &cube.positions {
+        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
     }
     for t in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
         let _ = writeln!(s, "vt {} {}", t[0], t[1]);
     }
     s.push_str("vn 0 0 1\ng all\ns off\n");
-    for f in cube_faces() {
+    for f in cube.faces() {
         s.push('f');
-        for (k, v) in f.iter().enumerate() {
+        for (k, &v) in f.iter().enumerate() {
             // Negative indices: -8 is the first vertex, -4 the first vt, -1 the normal.
-            let vi = *v as i64 - 8;
+            let vi = i64::from(v) - 8;
             let ti = k as i64 - 4;
             let _ = write!(s, " {vi}/{ti}/-1");
         }
@@ -686,12 +536,13 @@ fn cube_obj_syntax() -> String {
 }
 
 fn cube_vn_only() -> String {
+    let cube = shapes::tutorial_cube();
     let mut s = String::new();
-    for p in CUBE_V {
-        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    for p in &cube.positions {
+        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
     }
     s.push_str("vn 0 0 1\n");
-    for f in cube_faces() {
+    for f in cube.faces() {
         s.push('f');
         for v in f {
             let _ = write!(s, " {}//1", v + 1);
@@ -805,10 +656,11 @@ conformance! {
 /// The reference driver gets the well-known counts of a Catmull-Clark cube.
 #[test]
 fn driver_cube_counts() {
-    let input = work_dir().join("driver_cube_counts.obj");
+    let dir = scratch("driver_cube_counts");
+    let input = dir.join("driver_cube_counts.obj");
     fs::write(&input, cube(&[])).unwrap();
     for (level, vertices, faces) in [(1, 26, 24), (2, 98, 96), (3, 386, 384)] {
-        let out = work_dir().join(format!("driver_cube_counts.L{level}.obj"));
+        let out = dir.join(format!("driver_cube_counts.L{level}.obj"));
         expect_success(
             "reference driver",
             Command::new(driver())
@@ -834,12 +686,11 @@ fn driver_cube_counts() {
 /// Loop refuses quads: both programs fail, and the crate leaves no output file.
 #[test]
 fn loop_on_quads_fails() {
-    let dir = work_dir();
+    let dir = scratch("loop_on_quads_fails");
     let input = dir.join("loop_on_quads_fails.obj");
     fs::write(&input, cube(&[])).unwrap();
 
     let ref_out = dir.join("loop_on_quads_fails.driver.obj");
-    let _ = fs::remove_file(&ref_out);
     let out = run(Command::new(driver())
         .arg(&input)
         .arg(&ref_out)
@@ -850,7 +701,6 @@ fn loop_on_quads_fails() {
     );
 
     let our_out = dir.join("loop_on_quads_fails.crate.obj");
-    let _ = fs::remove_file(&our_out);
     let mut cmd = Command::new(subdiv_bin());
     cmd.arg("refine")
         .arg(&input)
@@ -913,14 +763,14 @@ fn random_mesh(seed: u64) -> (String, bool) {
     let mut positions = Vec::new();
     for j in 0..=ny {
         for i in 0..=nx {
-            positions.push([
+            positions.push(DVec3::new(
                 i as f64 + 0.3 * rng.unit(),
                 j as f64 + 0.3 * rng.unit(),
                 rng.unit() - 0.5,
-            ]);
+            ));
         }
     }
-    let at = |i: usize, j: usize| j * (nx + 1) + i;
+    let at = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
     let mut faces = Vec::new();
     for j in 0..ny {
         for i in 0..nx {
@@ -953,7 +803,11 @@ fn random_mesh(seed: u64) -> (String, bool) {
         ));
     }
     let tags: Vec<&str> = tags.iter().map(String::as_str).collect();
-    (obj(&positions, &faces, None, &tags), all_triangles)
+    let faces: Vec<&[u32]> = faces.iter().map(Vec::as_slice).collect();
+    (
+        obj(&Mesh::from_faces(positions, &faces), &tags),
+        all_triangles,
+    )
 }
 
 #[test]

@@ -1,33 +1,11 @@
 //! Tensor-product B-spline patches: splitting against analytic evaluation.
 
+mod support;
+
 use glam::{DVec2, DVec3};
 use subdiv::curve::{self, CurveError, CurveScheme};
 use subdiv::patch::{ControlGrid, Direction, PatchError};
-
-/// A small deterministic generator (xorshift64*), values in [-1, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
-
-/// A wavy grid: x, y along the indices, a random height.
-fn wavy(nu: usize, nv: usize, degree: usize, cu: bool, cv: bool, seed: u64) -> ControlGrid {
-    let mut rng = Rng(seed);
-    let heights: Vec<f64> = (0..nu * nv).map(|_| rng.next()).collect();
-    ControlGrid::from_fn(nu, nv, degree, cu, cv, |i, j| {
-        DVec3::new(i as f64, j as f64, heights[j * nu + i])
-    })
-    .unwrap()
-}
-
-const TOPOLOGIES: [(bool, bool); 4] = [(false, false), (true, false), (false, true), (true, true)];
+use support::{TOPOLOGIES, wavy};
 
 #[test]
 fn counts_open_and_periodic() {

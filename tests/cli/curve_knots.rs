@@ -3,37 +3,8 @@
 //! and `# weights` lines read back, negative knots, closed curves, SVG
 //! output, and the errors with their messages and exit codes.
 
+use crate::support::{scratch, stderr, stdout, subdiv, write};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn subdiv(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-        .args(args)
-        .output()
-        .expect("run subdiv")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("nurbs_cli");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let path = tmp(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// Runs `subdiv curve INPUT ARGS...` and returns its stdout, asserting success.
 fn curve(input: &Path, args: &[&str]) -> String {
@@ -44,10 +15,10 @@ fn curve(input: &Path, args: &[&str]) -> String {
     stdout(&o)
 }
 
-/// Runs `subdiv curve INPUT ARGS... -o OUT` (OUT a fresh file named `out`),
-/// asserting success and nothing on stdout; returns OUT and its text.
+/// Runs `subdiv curve INPUT ARGS... -o OUT` (OUT the file `out` beside the
+/// input), asserting success and nothing on stdout; returns OUT and its text.
 fn curve_to_file(input: &Path, args: &[&str], out: &str) -> (PathBuf, String) {
-    let path = tmp(out);
+    let path = input.with_file_name(out);
     let mut all = args.to_vec();
     all.extend_from_slice(&["-o", path.to_str().unwrap()]);
     assert!(curve(input, &all).is_empty(), "{all:?}: text on stdout");
@@ -111,7 +82,8 @@ const YAMAGUCHI_INSERT: [&str; 6] = [
 
 #[test]
 fn yamaguchi_example_6_10_through_the_cli() {
-    let input = write("yamaguchi.txt", YAMAGUCHI);
+    let dir = scratch("curve-knots-yamaguchi");
+    let input = write(&dir, "yamaguchi.txt", YAMAGUCHI);
     let knots_arg = format!("--knots={YAMAGUCHI_KNOTS}");
     let text = curve(&input, &["--degree", "3", &knots_arg, "--insert", "2.8"]);
     let mut lines = text.lines();
@@ -153,8 +125,9 @@ fn yamaguchi_example_6_10_through_the_cli() {
 
 #[test]
 fn negative_knots_and_parameters_in_both_forms() {
+    let dir = scratch("curve-knots-negative");
     // The Yamaguchi curve shifted by -3: domain [-3, 0].
-    let input = write("shifted.txt", YAMAGUCHI);
+    let input = write(&dir, "shifted.txt", YAMAGUCHI);
     let knots = "-6,-5,-4,-3,-2,-1,0,1,2,3";
     let forms: [&[&str]; 4] = [
         &["--knots=-6,-5,-4,-3,-2,-1,0,1,2,3", "--insert=-0.2"],
@@ -194,7 +167,8 @@ fn negative_knots_and_parameters_in_both_forms() {
 
 #[test]
 fn inserting_repeats_and_keeps_the_order() {
-    let input = write("repeat.txt", YAMAGUCHI);
+    let dir = scratch("curve-knots-repeats");
+    let input = write(&dir, "repeat.txt", YAMAGUCHI);
     let text = curve(
         &input,
         &[
@@ -247,7 +221,8 @@ fn circle_args<'a>(weights: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
 
 #[test]
 fn the_rational_circle_samples_lie_on_the_unit_circle() {
-    let input = write("square.txt", SQUARE);
+    let dir = scratch("curve-knots-circle");
+    let input = write(&dir, "square.txt", SQUARE);
     let weights = circle_weights();
     for n in [2usize, 9, 100, 1001] {
         let count = n.to_string();
@@ -273,7 +248,8 @@ fn the_rational_circle_samples_lie_on_the_unit_circle() {
 
 #[test]
 fn knots_and_weights_lines_read_back_as_input() {
-    let input = write("square-insert.txt", SQUARE);
+    let dir = scratch("curve-knots-read-back");
+    let input = write(&dir, "square-insert.txt", SQUARE);
     let weights = circle_weights();
     let (out, text) = curve_to_file(
         &input,
@@ -325,9 +301,11 @@ fn knots_and_weights_lines_read_back_as_input() {
 
 #[test]
 fn closed_curves_take_the_break_points_of_one_period() {
+    let dir = scratch("curve-knots-closed");
     // The circle as a closed curve: 8 distinct points, break points
     // 0,1,1,2,2,3,3,4,4 (the last two are 4 = s_7 and its image s_8 = s_0 + T).
     let input = write(
+        &dir,
         "octagon.txt",
         "1 0\n1 1\n0 1\n-1 1\n-1 0\n-1 -1\n0 -1\n1 -1\n",
     );
@@ -357,7 +335,7 @@ fn closed_curves_take_the_break_points_of_one_period() {
     assert_eq!(points(&text).len(), 10);
     let knots = args_list(&text, "knots");
     let weights = args_list(&text, "weights");
-    let out = write("octagon-inserted.txt", &text);
+    let out = write(&dir, "octagon-inserted.txt", &text);
     let samples = curve(
         &out,
         &[
@@ -383,7 +361,8 @@ fn args_list(text: &str, name: &str) -> String {
 
 #[test]
 fn spatial_points_and_the_samples_ends() {
-    let input = write("helix.txt", "0 0 0\n1 0 1\n1 1 2\n0 1 3\n0 0 4\n");
+    let dir = scratch("curve-knots-spatial");
+    let input = write(&dir, "helix.txt", "0 0 0\n1 0 1\n1 1 2\n0 1 3\n0 0 4\n");
     let text = curve(
         &input,
         &[
@@ -429,7 +408,8 @@ fn balanced(svg: &str) -> bool {
 
 #[test]
 fn svg_draws_the_polygons_the_curve_and_its_knots() {
-    let input = write("yamaguchi-svg.txt", YAMAGUCHI);
+    let dir = scratch("curve-knots-svg");
+    let input = write(&dir, "yamaguchi-svg.txt", YAMAGUCHI);
     let (_, svg) = curve_to_file(&input, &YAMAGUCHI_INSERT, "yamaguchi.svg");
     assert!(svg.starts_with("<svg"), "{svg}");
     assert!(svg.trim_end().ends_with("</svg>"));
@@ -451,7 +431,7 @@ fn svg_draws_the_polygons_the_curve_and_its_knots() {
     assert_eq!(svg.matches("<path").count(), 6);
 
     // The circle with --samples: the samples are a layer of their own.
-    let input = write("square-svg.txt", SQUARE);
+    let input = write(&dir, "square-svg.txt", SQUARE);
     let w = circle_weights();
     let (_, svg) = curve_to_file(&input, &circle_args(&w, &["--samples", "12"]), "circle.svg");
     assert!(balanced(&svg));
@@ -468,7 +448,8 @@ fn svg_draws_the_polygons_the_curve_and_its_knots() {
 
 #[test]
 fn errors_name_the_option_and_exit_1() {
-    let input = write("errors.txt", YAMAGUCHI);
+    let dir = scratch("curve-knots-errors");
+    let input = write(&dir, "errors.txt", YAMAGUCHI);
     let cases: &[(&[&str], &str)] = &[
         (
             &["--degree", "3", "--knots", "-3,-2,-1,0,1,2,3,4,5"],
@@ -560,7 +541,7 @@ fn errors_name_the_option_and_exit_1() {
         ),
     ];
     for (args, message) in cases {
-        let out = tmp("not-written.txt");
+        let out = dir.join("not-written.txt");
         let mut all = args.to_vec();
         all.extend_from_slice(&["-o", out.to_str().unwrap()]);
         let err = curve_fails(&input, &all, 1);
@@ -569,14 +550,15 @@ fn errors_name_the_option_and_exit_1() {
         assert!(!out.exists(), "{args:?}: no output on error");
     }
     // A malformed input file: its line, as for the schemes.
-    let bad = write("bad-line.txt", "0 0\n1 x\n");
+    let bad = write(&dir, "bad-line.txt", "0 0\n1 x\n");
     let err = curve_fails(&bad, &["--degree", "1", "--knots", "0,1,2,3"], 1);
     assert!(err.contains("bad-line.txt:2: 'x' is not a number"), "{err}");
 }
 
 #[test]
 fn options_that_do_not_go_together_are_usage_errors() {
-    let input = write("usage.txt", YAMAGUCHI);
+    let dir = scratch("curve-knots-usage");
+    let input = write(&dir, "usage.txt", YAMAGUCHI);
     let k = YAMAGUCHI_KNOTS;
     let cases: &[(&[&str], &str)] = &[
         (

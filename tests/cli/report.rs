@@ -1,30 +1,9 @@
 //! `subdiv report`, run as a user runs it: on a small OBJ file, on the
 //! embedded set (quick), and on a corrupted file.
-#![cfg(feature = "osd")]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn subdiv(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-        .args(args)
-        .output()
-        .expect("run subdiv")
-}
-
-/// A fresh directory under the target's temporary directory.
-fn fresh_dir(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("report")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use crate::support::{scratch, stderr, stdout, subdiv};
+use std::path::PathBuf;
+use std::process::Output;
 
 /// A tagged quad mesh with UVs split along a seam, a semi-sharp crease and a
 /// corner: every kind of option applies to it.
@@ -61,7 +40,7 @@ t interpolateboundary 1/0/0 2
 
 /// Runs the report into a fresh directory; returns the output, report.md and report.html.
 fn run_report(name: &str, extra: &[&str]) -> (Output, String, String, PathBuf) {
-    let dir = fresh_dir(name);
+    let dir = scratch(&format!("report-{name}"));
     let out = dir.join("out");
     let mut args = vec!["report", "--quick", "--out", out.to_str().unwrap()];
     args.extend_from_slice(extra);
@@ -85,14 +64,14 @@ fn assert_self_contained(html: &str) {
 
 #[test]
 fn report_on_an_obj_file() {
-    let dir = fresh_dir("obj-input");
+    let dir = scratch("report-obj-input");
     let shape = dir.join("seam-crease.obj");
     std::fs::write(&shape, SHAPE).unwrap();
     let (o, md, html, out) = run_report("obj", &[shape.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "stderr: {}", text(&o.stderr));
-    let stdout = text(&o.stdout);
-    assert!(stdout.contains("seam-crease.obj"), "{stdout}");
-    assert!(stdout.contains("CONFORMS"), "{stdout}");
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    let summary = stdout(&o);
+    assert!(summary.contains("seam-crease.obj"), "{summary}");
+    assert!(summary.contains("CONFORMS"), "{summary}");
     for doc in [&md, &html] {
         assert!(doc.contains("seam-crease.obj"));
         assert!(doc.contains("CONFORMS"));
@@ -128,7 +107,7 @@ fn report_on_an_obj_file() {
 #[test]
 fn report_on_the_embedded_set() {
     let (o, md, html, _) = run_report("embedded", &[]);
-    assert_eq!(o.status.code(), Some(0), "stderr: {}", text(&o.stderr));
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
     let names = [
         "cube",
         "torus",
@@ -142,9 +121,9 @@ fn report_on_the_embedded_set() {
         "bilinear-prism",
         "fin",
     ];
-    let stdout = text(&o.stdout);
+    let summary = stdout(&o);
     for name in names {
-        assert!(stdout.contains(name), "{name} not in the summary");
+        assert!(summary.contains(name), "{name} not in the summary");
         assert!(
             md.contains(&format!("## {name}")),
             "{name} not in report.md"
@@ -168,13 +147,13 @@ fn report_on_the_embedded_set() {
 
 #[test]
 fn a_corrupted_obj_is_an_error_with_file_and_line() {
-    let dir = fresh_dir("corrupted");
+    let dir = scratch("report-corrupted");
     let bad = dir.join("bad.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 1 oops 0\nf 1 2 3\n").unwrap();
     let (o, _, html, out) = run_report("corrupted-out", &[bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    let stderr = text(&o.stderr);
-    assert!(stderr.contains("bad.obj:3"), "{stderr}");
+    let err = stderr(&o);
+    assert!(err.contains("bad.obj:3"), "{err}");
     assert!(html.is_empty() && !out.join("report.html").exists());
 
     // A face naming a missing vertex: also line-numbered.
@@ -187,7 +166,7 @@ fn a_corrupted_obj_is_an_error_with_file_and_line() {
         bad.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(text(&o.stderr).contains("bad.obj:4"), "{}", text(&o.stderr));
+    assert!(stderr(&o).contains("bad.obj:4"), "{}", stderr(&o));
 
     // A missing file.
     let missing = dir.join("missing.obj");
@@ -199,7 +178,7 @@ fn a_corrupted_obj_is_an_error_with_file_and_line() {
         missing.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(text(&o.stderr).contains("missing.obj"));
+    assert!(stderr(&o).contains("missing.obj"));
 
     // A bad level range is refused by the parser.
     let o = subdiv(&["report", "--levels", "3..1"]);

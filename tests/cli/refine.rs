@@ -1,63 +1,36 @@
-//! The `subdiv` binary, run as a user runs it.
+//! `subdiv refine` (and `version`, `demo`, built-in shapes): output files,
+//! summaries, precision, limit positions, holes, tags and their errors.
+//! Tests that refine with `--engine osd` need the `osd` feature; errors found
+//! before any refinement are the same without it.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use crate::support::{scratch, stderr, stdout, subdiv, write};
+use crate::{engines, quad_grid};
+// Used by the tests that refine with OpenSubdiv only.
+#[cfg(feature = "osd")]
+use {crate::quad_grid_mesh, crate::support::obj_text, std::path::Path, subdiv::FVarChannel};
 
-fn subdiv(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-        .args(args)
-        .output()
-        .expect("run subdiv")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let path = tmp(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-const QUAD_GRID: &str = "\
-v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0\n\
-f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n";
-
+#[cfg(feature = "osd")]
 #[test]
 fn native_engine_writes_the_same_file_as_opensubdiv() {
-    let native = tmp("native-out.obj");
-    let osd = tmp("native-osd-out.obj");
-    // The grid with a UV per vertex (`f a/a ...`): the native engine writes
-    // `-o` without --limit from the last level only.
-    let mut with_uvs: String = QUAD_GRID
-        .lines()
-        .filter(|l| l.starts_with("v "))
-        .map(|l| format!("{l}\nvt{}\n", &l[1..l.rfind(' ').unwrap()]))
-        .collect();
-    for l in QUAD_GRID.lines().filter(|l| l.starts_with("f ")) {
-        let corners: Vec<String> = l[2..].split(' ').map(|i| format!("{i}/{i}")).collect();
-        with_uvs += &format!("f {}\n", corners.join(" "));
-    }
-    let holed = format!("{QUAD_GRID}t hole 1/0/0 3\n");
-    for (name, text, extra, faces) in [
-        ("native.obj", QUAD_GRID, &[][..], 256),
-        ("native-uv.obj", &with_uvs, &["--precision", "f32"][..], 256),
-        ("native-hole.obj", &holed, &["--faces-first"][..], 192),
+    let dir = scratch("refine-native-vs-osd");
+    let native = dir.join("native-out.obj");
+    let osd = dir.join("native-osd-out.obj");
+    // The grid with a UV per vertex (`f a/a ...`, the UV being the vertex's
+    // x y): the native engine writes `-o` without --limit from the last level only.
+    let mut with_uvs = quad_grid_mesh();
+    with_uvs.fvar_channels.push(FVarChannel {
+        width: 2,
+        values: with_uvs.positions.iter().flat_map(|p| [p.x, p.y]).collect(),
+        indices: with_uvs.face_vertices.clone(),
+    });
+    let mut holed = quad_grid_mesh();
+    holed.holes.push(3);
+    for (name, mesh, extra, faces) in [
+        ("native.obj", quad_grid_mesh(), &[][..], 256),
+        ("native-uv.obj", with_uvs, &["--precision", "f32"][..], 256),
+        ("native-hole.obj", holed, &["--faces-first"][..], 192),
     ] {
-        let input = write(name, text);
+        let input = write(&dir, name, &obj_text(&mesh));
         for (engine, out) in [("native", &native), ("osd", &osd)] {
             let mut args = vec![
                 "refine",
@@ -83,7 +56,7 @@ fn native_engine_writes_the_same_file_as_opensubdiv() {
         }
         assert_eq!(a, b, "{name}: native and OpenSubdiv output differ");
     }
-    let input = write("native.obj", QUAD_GRID);
+    let input = dir.join("native.obj");
     // The same for limit positions.
     for (engine, out) in [("native", &native), ("osd", &osd)] {
         let o = subdiv(&[
@@ -107,39 +80,10 @@ fn native_engine_writes_the_same_file_as_opensubdiv() {
 }
 
 #[test]
-fn compare_reports_agreement_and_json() {
-    let input = write("compare.obj", QUAD_GRID);
-    let o = subdiv(&["compare", input.to_str().unwrap(), "--levels", "1..3"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = stdout(&o);
-    assert!(text.contains("the engines agree"), "{text}");
-    assert_eq!(
-        text.lines()
-            .filter(|l| l.trim_end().ends_with(" ok"))
-            .count(),
-        3,
-        "{text}"
-    );
-    let o = subdiv(&[
-        "compare",
-        input.to_str().unwrap(),
-        "--levels",
-        "2",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
-    assert_eq!(json["agrees"], true);
-    assert_eq!(json["levels"][0]["level"], 2);
-    assert_eq!(json["levels"][0]["native_counts"][0], 81);
-    let o = subdiv(&["compare", input.to_str().unwrap(), "--levels", "3..1"]);
-    assert_eq!(o.status.code(), Some(2), "clap refuses an empty range");
-}
-
-#[test]
 fn malformed_obj_names_file_and_line() {
-    let input = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 zero\nf 1 2 3\n");
-    let out = tmp("bad-out.obj");
+    let dir = scratch("refine-malformed-obj");
+    let input = write(&dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 zero\nf 1 2 3\n");
+    let out = dir.join("bad-out.obj");
     let o = subdiv(&[
         "refine",
         input.to_str().unwrap(),
@@ -156,21 +100,24 @@ fn malformed_obj_names_file_and_line() {
 
 #[test]
 fn bad_index_and_bad_tag_are_errors() {
-    let input = write("range.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 4\n");
+    let dir = scratch("refine-bad-index-and-tag");
+    let input = write(&dir, "range.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 4\n");
     let o = subdiv(&["refine", input.to_str().unwrap(), "--engine", "osd"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("range.obj:4:"), "{}", stderr(&o));
 
-    let text = format!("{QUAD_GRID}t interpolateboundary 1/0/0 7\n");
-    let input = write("tag.obj", &text);
+    let text = format!("{}t interpolateboundary 1/0/0 7\n", quad_grid());
+    let input = write(&dir, "tag.obj", &text);
     let o = subdiv(&["refine", input.to_str().unwrap(), "--engine", "osd"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("tag.obj:14:"), "{}", stderr(&o));
 }
 
+#[cfg(feature = "osd")]
 #[test]
 fn summary_without_output() {
-    let input = write("summary.obj", QUAD_GRID);
+    let dir = scratch("refine-summary");
+    let input = write(&dir, "summary.obj", &quad_grid());
     let o = subdiv(&[
         "refine",
         input.to_str().unwrap(),
@@ -186,14 +133,16 @@ fn summary_without_output() {
     assert_eq!(s.lines().count(), 1);
 }
 
+#[cfg(feature = "osd")]
 #[test]
 fn crease_without_edge_warns_or_fails_under_strict() {
-    let text = format!("{QUAD_GRID}t crease 2/1/0 0 8 3.0\n");
-    let input = write("diag.obj", &text);
+    let dir = scratch("refine-crease-without-edge");
+    let text = format!("{}t crease 2/1/0 0 8 3.0\n", quad_grid());
+    let input = write(&dir, "diag.obj", &text);
     let o = subdiv(&["refine", input.to_str().unwrap(), "--engine", "osd"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("share no edge"), "{}", stderr(&o));
-    let out = tmp("diag-out.obj");
+    let out = dir.join("diag-out.obj");
     let o = subdiv(&[
         "refine",
         input.to_str().unwrap(),
@@ -208,11 +157,13 @@ fn crease_without_edge_warns_or_fails_under_strict() {
     assert!(!out.exists());
 }
 
+#[cfg(feature = "osd")]
 #[test]
 fn output_obj_in_opensubdiv_order_with_holes_left_out() {
-    let text = format!("{QUAD_GRID}t hole 1/0/0 3\n");
-    let input = write("hole.obj", &text);
-    let out = tmp("hole-out.obj");
+    let dir = scratch("refine-holes-left-out");
+    let text = format!("{}t hole 1/0/0 3\n", quad_grid());
+    let input = write(&dir, "hole.obj", &text);
+    let out = dir.join("hole-out.obj");
     let o = subdiv(&[
         "refine",
         input.to_str().unwrap(),
@@ -235,12 +186,14 @@ fn output_obj_in_opensubdiv_order_with_holes_left_out() {
     assert_eq!(f[0], "f 1 14 10 17");
 }
 
+#[cfg(feature = "osd")]
 #[test]
 fn precision_and_limit_change_the_numbers() {
-    let input = write("prec.obj", QUAD_GRID);
-    let a = tmp("prec64.obj");
-    let b = tmp("prec32.obj");
-    let c = tmp("limit.obj");
+    let dir = scratch("refine-precision-and-limit");
+    let input = write(&dir, "prec.obj", &quad_grid());
+    let a = dir.join("prec64.obj");
+    let b = dir.join("prec32.obj");
+    let c = dir.join("limit.obj");
     for (out, extra) in [
         (&a, vec![]),
         (&b, vec!["--precision", "f32"]),
@@ -279,7 +232,9 @@ fn precision_and_limit_change_the_numbers() {
         "limit positions differ from refined ones"
     );
     // A bump of 0.3 gives inexact values: 17 significant digits in f64, 9 in f32.
-    let input = write("prec-inexact.obj", &QUAD_GRID.replace("1 1 0.5", "1 1 0.3"));
+    let mut inexact = quad_grid_mesh();
+    inexact.positions[4].z = 0.3;
+    let input = write(&dir, "prec-inexact.obj", &obj_text(&inexact));
     for (out, prec, digits) in [(&a, "f64", 17), (&b, "f32", 9)] {
         let args = [
             "refine",
@@ -300,6 +255,37 @@ fn precision_and_limit_change_the_numbers() {
         assert_eq!(significant, digits, "{prec}: {z}");
         let expected = 0.3 * 9.0 / 16.0;
         assert!((z.parse::<f64>().unwrap() - expected).abs() < 1e-7, "{z}");
+    }
+}
+
+/// `--peak-memory` (hidden; the whole-process benchmark reads it): one
+/// `peak_memory_bytes N` line on stderr, N the process's peak resident memory.
+#[test]
+fn peak_memory_is_printed_on_stderr() {
+    let dir = scratch("refine-peak-memory");
+    let input = write(&dir, "grid.obj", &quad_grid());
+    for engine in engines() {
+        let o = subdiv(&[
+            "refine",
+            input.to_str().unwrap(),
+            "--level",
+            "2",
+            "--engine",
+            engine,
+            "--peak-memory",
+        ]);
+        assert!(o.status.success(), "{engine}: {}", stderr(&o));
+        let err = stderr(&o);
+        let values: Vec<u64> = err
+            .lines()
+            .filter_map(|l| l.strip_prefix("peak_memory_bytes "))
+            .map(|n| n.parse().unwrap_or_else(|e| panic!("{engine}: {n:?}: {e}")))
+            .collect();
+        assert_eq!(values.len(), 1, "{engine}: {err}");
+        assert!(values[0] > 1 << 20, "{engine}: {} bytes", values[0]);
+        // The summary still goes to stdout, and nothing else to stderr.
+        assert!(stdout(&o).contains("vertices 9→25→81"), "{}", stdout(&o));
+        assert_eq!(err.lines().count(), 1, "{engine}: {err}");
     }
 }
 
