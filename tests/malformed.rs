@@ -132,9 +132,11 @@ fn readable_but_unusable_files() {
     let shape = read_obj(&malformed("tag_unknown.obj")).unwrap();
     assert_eq!(shape.warnings.len(), 1);
     assert_eq!(shape.warnings[0].line, 7);
+    assert_eq!(shape.warnings[0].message, "unknown tag 'foo'");
+    assert!(shape.warnings[0].ignored);
     assert_eq!(
-        shape.warnings[0].message,
-        "unknown tag 'foo'; the line is ignored"
+        shape.warnings[0].to_string(),
+        "line 7: unknown tag 'foo'; the line is ignored"
     );
     assert_eq!(
         shape.mesh.creases.len(),

@@ -318,9 +318,10 @@ fn unknown_statements_and_tags_are_warnings_with_lines() {
             .contains("unknown tag 'facevaryingpropagatecorners'")
     );
     assert!(shape.warnings[1].message.contains("'vp'"));
+    assert!(shape.warnings.iter().all(|w| w.ignored));
     assert_eq!(
         shape.warnings[0].to_string(),
-        format!("line 6: {}", shape.warnings[0].message)
+        "line 6: unknown tag 'facevaryingpropagatecorners'; the line is ignored"
     );
     // The geometry is unaffected.
     assert_eq!(shape.mesh.face_vertices, [0, 1, 2, 3]);

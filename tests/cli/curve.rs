@@ -187,7 +187,7 @@ fn tolerance_flattens_chaikin_and_bspline_only() {
             "--tolerance",
             "0.01",
         ]);
-        assert_eq!(o.status.code(), Some(1));
+        assert_eq!(o.status.code(), Some(2));
         assert!(
             stderr(&o).contains("no closed-form limit curve"),
             "{}",
@@ -203,8 +203,12 @@ fn tolerance_flattens_chaikin_and_bspline_only() {
             "--tolerance",
             eps,
         ]);
-        assert_eq!(o.status.code(), Some(1), "{eps}");
-        assert!(stderr(&o).contains("tolerance"), "{}", stderr(&o));
+        assert_eq!(o.status.code(), Some(2), "{eps}");
+        assert!(
+            stderr(&o).contains("the tolerance must be a finite distance greater than 0"),
+            "{}",
+            stderr(&o)
+        );
     }
     // --level and --tolerance exclude each other (a usage error).
     let o = subdiv(&[
@@ -307,18 +311,24 @@ fn bad_options_are_errors() {
         args.extend_from_slice(flags);
         subdiv(&args)
     };
+    // Misused options are usage errors (exit 2) ...
     let o = run(&["--scheme", "bspline", "--degree", "0"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("B-spline degree 0 is not supported"));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("'--degree <D>': a degree is 1 or more; 0 is not"));
     let o = run(&["--scheme", "bspline", "--degree", "16"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("usage error: B-spline degree 16 is not supported"));
     let o = run(&["--scheme", "chaikin", "--degree", "2"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--degree applies to --scheme bspline only"));
     let o = run(&["--scheme", "jarek", "--tension", "0.1"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     let o = run(&["--scheme", "four-point", "--tension", "nan"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("tension NaN is not a finite number"));
+    let o = run(&["--scheme", "jarek", "--tolerance", "0.01"]);
+    assert_eq!(o.status.code(), Some(2));
+    // ... and a result too large to make is an error (exit 1).
     let o = run(&["--scheme", "four-point", "--level", "60"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("more than"), "{}", stderr(&o));

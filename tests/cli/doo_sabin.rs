@@ -60,31 +60,33 @@ fn doo_sabin_refusals() {
         args.extend_from_slice(extra);
         subdiv(&args)
     };
+    // What no engine offers exits 4 (not available); misused flags exit 2.
     let o = run(&["--engine", "osd"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(4));
     assert!(
         stderr(&o).contains("OpenSubdiv has no Doo-Sabin scheme"),
         "{}",
         stderr(&o)
     );
     let o = run(&["--limit"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(4));
+    assert!(stderr(&o).contains("doo-sabin has no limit evaluation"));
     let o = run(&["--precision", "f32"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(4));
     let o = run(&["--boundary", "edge-only"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o).contains("--boundary does not apply"),
         "{}",
         stderr(&o)
     );
     let o = run(&["--level", "11"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     let o = run(&["--doo-sabin-weights", "heavy"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("expected one of: original, centroid"));
     let o = subdiv(&["compare", "--builtin", "cube", "--scheme", "doo-sabin"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(4));
     assert!(stderr(&o).contains("OpenSubdiv has no Doo-Sabin scheme"));
     // The Doo-Sabin options need the scheme.
     let o = subdiv(&[
@@ -94,7 +96,7 @@ fn doo_sabin_refusals() {
         "--doo-sabin-weights",
         "centroid",
     ]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     // The OpenSubdiv schemes are unchanged, and the error lists doo-sabin.
     let o = subdiv(&["refine", "--builtin", "cube"]);
     assert!(o.status.success());

@@ -302,8 +302,9 @@ fn builtin_shapes_and_version() {
         "{}",
         stdout(&o)
     );
+    // Usage errors exit 2.
     let o = subdiv(&["refine", "--builtin", "nope", "--engine", "osd"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("unknown built-in shape"));
     let o = subdiv(&[
         "refine",
@@ -314,6 +315,10 @@ fn builtin_shapes_and_version() {
         "--level",
         "11",
     ]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("level 11"), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("level 11 is deeper than the supported 10"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -303,8 +303,11 @@ pub fn obj_errors() -> Vec<(&'static str, usize, ObjErrorKind, &'static str)> {
         (
             "tag_f32_overflow_sharpness.obj",
             6,
-            bad_tag("corner", "sharpness 1 '1e39' is not a finite number"),
-            "bad 'corner' tag: sharpness 1 '1e39' is not a finite number",
+            bad_tag(
+                "corner",
+                "sharpness 1 '1e39' is beyond the range of f32 (about ±3.4e38)",
+            ),
+            "bad 'corner' tag: sharpness 1 '1e39' is beyond the range of f32 (about ±3.4e38)",
         ),
         (
             "tag_crease_with_string.obj",

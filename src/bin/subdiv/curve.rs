@@ -44,7 +44,7 @@ pub(crate) struct CurveArgs {
     pub(crate) scheme: Option<CurveSchemeArg>,
     /// B-spline degree: 1 to 15 with --scheme bspline [default: 3]; the
     /// degree of the curve with --knots (required there).
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", value_parser = parse_degree)]
     pub(crate) degree: Option<usize>,
     /// Four-point tension w (--scheme four-point only) [default: 1/16]; any finite
     /// value; 0 < w < 0.15 gives smooth curves.
@@ -59,7 +59,7 @@ pub(crate) struct CurveArgs {
     #[arg(long, value_name = "N", conflicts_with = "tolerance")]
     pub(crate) level: Option<u32>,
     /// Flatten the limit curve (chaikin, bspline) into a polyline within EPS of it.
-    #[arg(long, value_name = "EPS", allow_negative_numbers = true)]
+    #[arg(long, value_name = "EPS", allow_negative_numbers = true, value_parser = parse_eps)]
     pub(crate) tolerance: Option<f64>,
     /// The knots of a B-spline or NURBS curve of degree --degree: n + d + 2
     /// non-decreasing numbers for n + 1 points, comma-separated; negative
@@ -114,6 +114,26 @@ pub(crate) struct CurveArgs {
     pub(crate) output: Option<PathBuf>,
 }
 
+/// `--degree`: 1 or more (the schemes' own ceiling is checked with the scheme).
+fn parse_degree(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("a degree is 1 or more; 0 is not".into()),
+        Ok(d) => Ok(d),
+        Err(_) => Err(format!("'{s}' is not a degree (1 or more)")),
+    }
+}
+
+/// `--tolerance` of `subdiv curve`: a finite distance greater than 0.
+fn parse_eps(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        Ok(t) => Err(format!(
+            "the tolerance must be a finite distance greater than 0; {t} is not"
+        )),
+        Err(_) => Err(format!("'{s}' is not a number")),
+    }
+}
+
 /// `subdiv curve`: refine or flatten a curve given as one point per line.
 pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
     let message = |e: &dyn std::fmt::Display| Failure::Message(e.to_string());
@@ -141,9 +161,12 @@ pub(crate) fn curve(args: &CurveArgs) -> Result<(), Failure> {
             "--tension applies to --scheme four-point only".into(),
         ));
     }
-    scheme.check().map_err(|e| message(&e))?;
+    // A degree or tension out of range, or --tolerance with a scheme that
+    // has no closed-form limit, is a misused option (exit 2).
+    let usage = |e: subdiv::curve::CurveError| Failure::Usage(e.to_string());
+    scheme.check().map_err(usage)?;
     if args.tolerance.is_some() && scheme.limit_degree().is_none() {
-        return Err(message(&subdiv::curve::CurveError::NoClosedFormLimit {
+        return Err(usage(subdiv::curve::CurveError::NoClosedFormLimit {
             scheme: scheme.name(),
         }));
     }
