@@ -342,8 +342,10 @@ pub enum OsdErrorKind {
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// An error reading an OBJ file, with the file and the 1-based line.
+///
+/// Displayed as `FILE:LINE: what`, or `FILE: what` when no line is concerned
+/// (line 0: the file cannot be read, for instance).
 #[derive(Debug, Clone, PartialEq, Error)]
-#[error("{}:{line}: {kind}", file.display())]
 pub struct ObjError {
     /// The file name (`<memory>` for in-memory input).
     pub file: PathBuf,
@@ -351,6 +353,15 @@ pub struct ObjError {
     pub line: usize,
     /// What is wrong.
     pub kind: ObjErrorKind,
+}
+
+impl fmt::Display for ObjError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            0 => write!(f, "{}: {}", self.file.display(), self.kind),
+            line => write!(f, "{}:{line}: {}", self.file.display(), self.kind),
+        }
+    }
 }
 
 /// What is wrong in an OBJ file.

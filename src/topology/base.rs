@@ -5,6 +5,7 @@
 //! the vertices' ordered faces and edges, and
 //! `prepareComponentTagsAndSharpness` for tags and sharpness).
 
+use super::lookup::{Chains, EdgeFinder, FirstCorners};
 use super::{Level, Relation, Table};
 use crate::mesh::Mesh;
 use crate::options::{BoundaryInterpolation, Options, Scheme};
@@ -23,76 +24,6 @@ pub fn build_base_level(mesh: &Mesh, options: &Options) -> Level {
     level
 }
 
-/// Appends to per-element lists kept as singly linked chains in flat arrays,
-/// preserving insertion order (needed to find edges as OpenSubdiv does).
-struct Chains {
-    head: Vec<u32>,
-    tail: Vec<u32>,
-    count: Vec<u32>,
-    next: Vec<u32>,
-    value: Vec<u32>,
-}
-
-impl Chains {
-    fn new(elements: usize, capacity: usize) -> Self {
-        Chains {
-            head: crate::alloc::vec_or_unwind(NONE, elements),
-            tail: crate::alloc::vec_or_unwind(NONE, elements),
-            count: crate::alloc::vec_or_unwind(0, elements),
-            next: crate::alloc::with_capacity(capacity),
-            value: crate::alloc::with_capacity(capacity),
-        }
-    }
-
-    fn push_element(&mut self) {
-        self.head.push(NONE);
-        self.tail.push(NONE);
-        self.count.push(0);
-    }
-
-    fn append(&mut self, element: usize, value: u32) {
-        let node = self.value.len() as u32;
-        self.value.push(value);
-        self.next.push(NONE);
-        match self.tail[element] {
-            NONE => self.head[element] = node,
-            t => self.next[t as usize] = node,
-        }
-        self.tail[element] = node;
-        self.count[element] += 1;
-    }
-
-    fn iter(&self, element: usize) -> impl Iterator<Item = u32> + '_ {
-        let mut node = self.head[element];
-        std::iter::from_fn(move || {
-            if node == NONE {
-                return None;
-            }
-            let v = self.value[node as usize];
-            node = self.next[node as usize];
-            Some(v)
-        })
-    }
-
-    fn last(&self, element: usize) -> Option<u32> {
-        match self.tail[element] {
-            NONE => None,
-            t => Some(self.value[t as usize]),
-        }
-    }
-
-    fn into_relation(self) -> Relation {
-        let mut offsets = crate::alloc::with_capacity(self.head.len() + 1);
-        let mut members = crate::alloc::with_capacity(self.value.len());
-        offsets.push(0);
-        for e in 0..self.head.len() {
-            members.extend(self.iter(e));
-            offsets.push(members.len() as u32);
-        }
-        Relation::from_parts(offsets.into(), members.into()).compact()
-    }
-}
-
 /// Edges, edge-faces, vertex-faces and vertex-edges from the face-vertex lists,
 /// with non-manifold detection, orientation and local indices.
 fn topology_from_face_vertices(mesh: &Mesh) -> Level {
@@ -108,6 +39,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     let mut edge_faces = Chains::new(0, corners);
     let mut vertex_edges = Chains::new(nv, 2 * corners);
     let mut non_manifold_edges: Vec<u32> = Vec::new();
+    let mut finder = EdgeFinder::default();
 
     // Vertex-faces are known up front: every corner adds its face to its vertex.
     let mut vf_offsets = crate::alloc::vec_or_unwind(0u32, nv + 1);
@@ -128,10 +60,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
             let v0 = verts[i];
             let v1 = verts[(i + 1) % n];
             let mut edge = if v0 != v1 {
-                vertex_edges.iter(v0 as usize).find(|&e| {
-                    let ev = edge_vertices[e as usize];
-                    ev[0] == v1 || ev[1] == v1
-                })
+                finder.find(&vertex_edges, &edge_vertices, v0, v1)
             } else {
                 // A degenerate edge is always a new, non-manifold instance.
                 non_manifold_edges.push(edge_vertices.len() as u32);
@@ -159,6 +88,7 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
                     edge_faces.push_element();
                     vertex_edges.append(v0 as usize, e);
                     vertex_edges.append(v1 as usize, e);
+                    finder.added(&vertex_edges, &edge_vertices, e);
                     e
                 }
             };
@@ -203,8 +133,10 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
             level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
         }
     }
-    orient_incident_components(&mut level);
-    populate_local_indices(&mut level);
+    level.edge_face_local = edge_face_locals(&level).into();
+    let mut corners = FirstCorners::default();
+    orient_incident_components(&mut level, &mut corners);
+    populate_local_indices(&mut level, &mut corners);
     level.max_edge_faces = (0..ne)
         .map(|e| level.edge_faces.count(e))
         .max()
@@ -219,14 +151,14 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
 
 /// Orders the faces and edges of every manifold vertex counter-clockwise,
 /// tagging as non-manifold every vertex where that fails.
-fn orient_incident_components(level: &mut Level) {
+fn orient_incident_components(level: &mut Level, corners: &mut FirstCorners) {
     let mut faces = Vec::new();
     let mut edges = Vec::new();
     for v in 0..level.vertex_count {
         if level.vertex_tag(v).non_manifold() {
             continue;
         }
-        if order_vertex(level, v as u32, &mut faces, &mut edges) {
+        if order_vertex(level, corners, v as u32, &mut faces, &mut edges) {
             level.vertex_faces.get_mut(v).copy_from_slice(&faces);
             level.vertex_edges.get_mut(v).copy_from_slice(&edges);
         } else {
@@ -235,17 +167,43 @@ fn orient_incident_components(level: &mut Level) {
     }
 }
 
-fn position(slice: &[u32], value: u32) -> usize {
-    slice
+/// Where each edge sits in each of its faces, in the order the faces were
+/// appended to the edge (face by face, corner by corner): edges are distinct
+/// within a face (a repeated one gets a new instance), so each (edge, face)
+/// pair has one position.
+fn edge_face_locals(level: &Level) -> Vec<u16> {
+    let mut locals = crate::alloc::vec_or_unwind(0u16, level.edge_faces.members.len());
+    let mut next = crate::alloc::vec_or_unwind(0u32, level.edge_count());
+    for f in 0..level.face_count() {
+        for (j, &e) in level.face_edges_of(f).iter().enumerate() {
+            let slot = level.edge_faces.range(e as usize).start + next[e as usize] as usize;
+            next[e as usize] += 1;
+            locals[slot] = j as u16;
+        }
+    }
+    locals
+}
+
+/// Where edge `e` sits in face `f`, one of its faces.
+fn edge_in_face(level: &Level, e: u32, f: u32) -> usize {
+    let range = level.edge_faces.range(e as usize);
+    let k = level.edge_faces.members[range.clone()]
         .iter()
-        .position(|&x| x == value)
-        .unwrap_or(slice.len())
+        .position(|&x| x == f)
+        .map_or(range.start, |k| range.start + k);
+    level.edge_face_local[k] as usize
 }
 
 /// Walks around vertex `v` from face to face through shared edges. Interior
 /// vertices start at their first face; boundary vertices at the face of their
 /// leading boundary edge (the one leaving `v` in its face).
-fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32>) -> bool {
+fn order_vertex(
+    level: &Level,
+    corners: &mut FirstCorners,
+    v: u32,
+    faces: &mut Vec<u32>,
+    edges: &mut Vec<u32>,
+) -> bool {
     let v_faces = level.vertex_faces_of(v as usize);
     let v_edges = level.vertex_edges_of(v as usize);
     let (nf, ne) = (v_faces.len(), v_edges.len());
@@ -257,7 +215,7 @@ fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32
     let (mut face, mut corner, mut edge);
     if ne == nf {
         face = v_faces[0];
-        corner = position(level.face_verts(face as usize), v);
+        corner = corners.get(face, level.face_verts(face as usize), v);
         edge = level.face_edges_of(face as usize)[corner];
     } else {
         let mut start = None;
@@ -265,7 +223,7 @@ fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32
             let e_faces = level.edge_faces_of(e as usize);
             if e_faces.len() == 1 {
                 let f = e_faces[0];
-                let c = position(level.face_verts(f as usize), v);
+                let c = corners.get(f, level.face_verts(f as usize), v);
                 start = Some((f, c, e));
                 if level.face_edges_of(f as usize).get(c) == Some(&e) {
                     break;
@@ -302,7 +260,7 @@ fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32
             } else {
                 e_faces[0]
             };
-            corner = position(level.face_edges_of(face as usize), next_edge);
+            corner = edge_in_face(level, next_edge, face);
             faces.push(face);
         }
         edge = next_edge;
@@ -310,10 +268,11 @@ fn order_vertex(level: &Level, v: u32, faces: &mut Vec<u32>, edges: &mut Vec<u32
     true
 }
 
-/// Local indices: where a vertex sits in each face, which end of each edge it
-/// is, and where an edge sits in each face. Repeated members of a face (only
-/// possible when non-manifold) are assigned in order of occurrence.
-fn populate_local_indices(level: &mut Level) {
+/// Local indices: where a vertex sits in each face and which end of each edge
+/// it is (where an edge sits in each face is already known,
+/// [`edge_face_locals`]). Repeated members of a face (only possible when
+/// non-manifold) are assigned in order of occurrence.
+fn populate_local_indices(level: &mut Level, corners: &mut FirstCorners) {
     let mut vfl = crate::alloc::vec_or_unwind(0u16, level.vertex_faces.members.len());
     for v in 0..level.vertex_count {
         let range = level.vertex_faces.range(v);
@@ -321,15 +280,16 @@ fn populate_local_indices(level: &mut Level) {
         for i in range.clone() {
             let f = level.vertex_faces.members[i];
             let verts = level.face_verts(f as usize);
-            let start = if f == last {
-                vfl[i - 1] as usize + 1
+            let k = if f == last {
+                // The same face again: the next occurrence.
+                let start = vfl[i - 1] as usize + 1;
+                verts[start..]
+                    .iter()
+                    .position(|&x| x == v as u32)
+                    .map_or(verts.len(), |p| p + start)
             } else {
-                0
+                corners.get(f, verts, v as u32)
             };
-            let k = verts[start..]
-                .iter()
-                .position(|&x| x == v as u32)
-                .map_or(verts.len(), |p| p + start);
             vfl[i] = k as u16;
             last = f;
         }
@@ -347,29 +307,8 @@ fn populate_local_indices(level: &mut Level) {
             };
         }
     }
-    let mut efl = crate::alloc::vec_or_unwind(0u16, level.edge_faces.members.len());
-    for e in 0..level.edge_count() {
-        let range = level.edge_faces.range(e);
-        let mut last = NONE;
-        for i in range {
-            let f = level.edge_faces.members[i];
-            let f_edges = level.face_edges_of(f as usize);
-            let start = if f == last {
-                efl[i - 1] as usize + 1
-            } else {
-                0
-            };
-            let k = f_edges[start..]
-                .iter()
-                .position(|&x| x == e as u32)
-                .map_or(f_edges.len(), |p| p + start);
-            efl[i] = k as u16;
-            last = f;
-        }
-    }
     level.vertex_face_local = vfl.into();
     level.vertex_edge_local = vel.into();
-    level.edge_face_local = efl.into();
 }
 
 /// User sharpness and holes, then OpenSubdiv's boundary and non-manifold

@@ -14,7 +14,7 @@ pub(crate) struct CompareArgs {
     #[arg(long, default_value = "1..4", value_parser = parse_levels)]
     pub(crate) levels: (u32, u32),
     /// Largest accepted deviation, relative to the bounding-box diagonal.
-    #[arg(long, default_value = "1e-6", value_parser = parse_tolerance)]
+    #[arg(long, default_value = "1e-6", allow_negative_numbers = true, value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
     /// Print the report as JSON.
     #[arg(long)]

@@ -72,11 +72,12 @@ pub(crate) enum Command {
     Version,
 }
 
-/// Why the tool stopped.
-#[derive(Debug)]
+/// Why the tool stopped, and so its exit status.
+///
 /// Exit statuses (README, "Exit status"): 0 success, [`Failure::Error`] and
 /// [`Failure::Message`] 1, [`Failure::Usage`] 2 (as clap's own usage
 /// errors), [`Failure::Differ`] 3, [`Failure::Unavailable`] 4.
+#[derive(Debug)]
 pub(crate) enum Failure {
     /// A real error (bad input, I/O, memory, an engine failing): exit 1.
     Error(Error),

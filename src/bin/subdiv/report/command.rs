@@ -26,7 +26,7 @@ pub(crate) struct ReportArgs {
     #[arg(long)]
     pub(crate) quick: bool,
     /// Largest accepted deviation, relative to the bounding-box diagonal.
-    #[arg(long, default_value = "1e-6", value_parser = parse_tolerance)]
+    #[arg(long, default_value = "1e-6", allow_negative_numbers = true, value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
 }
 
@@ -43,6 +43,7 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
     use super::inputs::{embedded_inputs, read_input};
     use super::run::{run, steps};
     use super::settings::Settings;
+    use crate::args::print_warnings;
     let mut settings = Settings::new(args.quick);
     if let Some((a, b)) = args.levels {
         settings.first_level = a;
@@ -54,10 +55,15 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
     } else {
         let mut v = Vec::with_capacity(args.inputs.len());
         for path in &args.inputs {
-            let (input, warnings) = read_input(path)?;
-            for w in warnings {
-                eprintln!("subdiv: warning: {}: {w}", path.display());
-            }
+            let name = path.display().to_string();
+            let (input, warnings) =
+                read_input(path).map_err(|e| Failure::from(e).in_input(&name))?;
+            print_warnings(
+                &name,
+                warnings
+                    .iter()
+                    .map(|(line, key, text)| (*line, key.as_str(), text.clone())),
+            );
             v.push(input);
         }
         v

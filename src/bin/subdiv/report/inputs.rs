@@ -40,15 +40,26 @@ impl Input {
     }
 }
 
+/// A warning met reading an input: its line (0 for the mesh as a whole), what
+/// identifies repeats of it, and its text.
+pub type Warning = (usize, String, String);
+
 /// Reads an OBJ shape file as an input: its options are the file's tags over
 /// OpenSubdiv's shape-file defaults. Returns the input and the warnings of
 /// the reader and of the mesh validation. A malformed file is an
 /// [`Error::Obj`] naming the file and line; an invalid mesh an [`Error::Mesh`].
-pub fn read_input(path: &Path) -> Result<(Input, Vec<String>)> {
+pub fn read_input(path: &Path) -> Result<(Input, Vec<Warning>)> {
     let shape = subdiv::io::read_obj(path)?;
-    let mut warnings: Vec<String> = shape.warnings.iter().map(ToString::to_string).collect();
+    let mut warnings: Vec<Warning> = shape
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.message.clone(), w.to_string()))
+        .collect();
     let validation = shape.mesh.validate()?;
-    warnings.extend(validation.warnings.iter().map(ToString::to_string));
+    warnings.extend(validation.warnings.iter().map(|w| {
+        let text = w.to_string();
+        (0, text.clone(), text)
+    }));
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),

@@ -52,9 +52,13 @@ pub fn run(
             .mesh
             .validate()
             .map_err(|e| Failure::Message(format!("{}: invalid mesh: {e}", input.name)))?;
+        if input.mesh.face_count() == 0 {
+            return Err(Failure::from(Error::EmptyMesh).in_input(&input.name));
+        }
         let sets = option_sets(input, settings.quick);
         for o in &sets {
-            check_level(&input.mesh, o, settings.last_level)?;
+            check_level(&input.mesh, o, settings.last_level)
+                .map_err(|e| Failure::from(e).in_input(&input.name))?;
         }
         plans.push(sets);
     }
@@ -64,7 +68,10 @@ pub fn run(
         .map_err(|e| Failure::Message(format!("cannot start a thread pool: {e}")))?;
     let mut reports = Vec::with_capacity(inputs.len());
     for (input, sets) in inputs.iter().zip(plans) {
-        reports.push(run_input(input, sets, settings, &pool, &mut progress)?);
+        reports.push(
+            run_input(input, sets, settings, &pool, &mut progress)
+                .map_err(|e| Failure::from(e).in_input(&input.name))?,
+        );
     }
     Ok(Report {
         date: crate::date::today(),
