@@ -244,6 +244,44 @@ struct Buf {
     Elem<T> operator[](int i) const { return Elem<T>{base + (size_t)i * (size_t)w, w}; }
 };
 
+// Sdc's Catmull-Clark smooth vertex mask (sdc/catmarkScheme.h,
+// assignSmoothMaskForVertex) weighs each edge and face by 1 / (valence *
+// valence) with the product computed in int: from valence 46341 it overflows
+// (undefined behaviour; in practice a negative weight and a vertex point far
+// from its place). Scheme::ComputeVertexVertexMask uses that mask wherever the
+// vertex's rule or its child's is smooth or dart; PrimvarRefiner applies it to
+// vertex primvars, and to a face-varying channel where the channel is not
+// linear and its topology matches the vertex's at the child. Refuse
+// interpolating from `parent` (to parent + 1) where that would happen;
+// `channel` -1 for vertex primvars.
+const int SMOOTH_MASK_MAX_VALENCE = 46340;  // 46340² < 2³¹ <= 46341²
+
+void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel) {
+    if (tr.GetSchemeType() != Sdc::SCHEME_CATMARK) return;
+    if (channel >= 0 && tr.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
+    const Far::TopologyLevel &p = tr.GetLevel(parent);
+    const Far::TopologyLevel &c = tr.GetLevel(parent + 1);
+    for (int v = 0; v < p.GetNumVertices(); ++v) {
+        int valence = p.GetVertexFaces(v).size();
+        if (valence <= SMOOTH_MASK_MAX_VALENCE) continue;
+        Far::Index child = p.GetVertexChildVertex(v);
+        if (child < 0) continue;
+        auto smooth = [](Sdc::Crease::Rule r) {
+            return r == Sdc::Crease::RULE_SMOOTH || r == Sdc::Crease::RULE_DART;
+        };
+        if (!smooth(p.GetVertexRule(v)) && !smooth(c.GetVertexRule(child))) continue;
+        if (channel >= 0 && !c.DoesVertexFVarTopologyMatch(child, channel)) continue;
+        fail_unsafe("vertex " + str(v) + " of level " + str(parent) + " has " + str(valence) +
+                    " faces; OpenSubdiv 3.5's Catmull-Clark vertex rule computes valence * valence in a 32-bit int, "
+                    "which overflows beyond " + str(SMOOTH_MASK_MAX_VALENCE) + " faces (wrong weights)");
+    }
+}
+
+// The same for every level up to the last (stencil tables).
+void check_smooth_vertex_masks_all_levels(const Far::TopologyRefiner &tr) {
+    for (int l = 0; l < tr.GetMaxLevel(); ++l) check_smooth_vertex_masks(tr, l, -1);
+}
+
 template <class T>
 void interpolate(const sdv_refiner *r, int32_t kind, int32_t channel, int32_t level, int32_t width,
                  const T *src, size_t src_len, T *dst, size_t dst_len) {
@@ -266,6 +304,8 @@ void interpolate(const sdv_refiner *r, int32_t kind, int32_t channel, int32_t le
     }
     check_len(src_len, n_src * width, "source primvar buffer");
     check_len(dst_len, n_dst * width, "destination primvar buffer");
+    if (kind == SDV_VERTEX) check_smooth_vertex_masks(*rr.refiner, level - 1, -1);
+    if (kind == SDV_FACE_VARYING) check_smooth_vertex_masks(*rr.refiner, level - 1, channel);
     Far::PrimvarRefinerReal<T> pr(*rr.refiner);
     Buf<T> s{const_cast<T *>(src), width};
     Buf<T> d{dst, width};
@@ -507,6 +547,7 @@ sdv_stencils *limit_stencils(const sdv_refiner &rr) {
     need_limit_topology(rr);
     Far::TopologyRefiner const &tr = *rr.refiner;
     check_limit_masks(tr, true);
+    check_smooth_vertex_masks_all_levels(tr);
     Far::PrimvarRefinerReal<double> pr(tr);
     std::vector<SparseRow> cur(tr.GetLevel(0).GetNumVertices());
     for (size_t i = 0; i < cur.size(); ++i) cur[i].terms.emplace_back((int32_t)i, 1.0);
@@ -528,6 +569,7 @@ sdv_stencils *limit_stencils(const sdv_refiner &rr) {
 
 sdv_stencils *refined_stencils(const sdv_refiner &rr) {
     Far::TopologyRefiner const &tr = *rr.refiner;
+    check_smooth_vertex_masks_all_levels(tr);
     typedef Far::StencilTableFactoryReal<double> Factory;
     Factory::Options o;
     o.interpolationMode = Factory::INTERPOLATE_VERTEX;

@@ -27,7 +27,7 @@ enum {
     SDV_ERR_OSD = -2,      /* OpenSubdiv reported an error */
     SDV_ERR_CAPACITY = -3, /* an output buffer is too small */
     SDV_ERR_INTERNAL = -4, /* an exception, out of memory */
-    SDV_ERR_UNSAFE = -5    /* OpenSubdiv would read or write out of bounds on this input */
+    SDV_ERR_UNSAFE = -5    /* OpenSubdiv would read or write out of bounds, or overflow, on this input */
 };
 
 /* Opaque refiner: owns a Far::TopologyRefiner. */

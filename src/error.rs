@@ -328,10 +328,11 @@ pub enum OsdErrorKind {
     Refused,
     /// OpenSubdiv reported an error, or threw.
     Failed,
-    /// OpenSubdiv 3.5 would read or write out of bounds on this input (a
-    /// known fault of the library, e.g. `PrimvarRefiner::Limit`'s masks at
-    /// high-valence non-manifold vertices), so the bridge refused it. The
-    /// native engine handles such inputs.
+    /// OpenSubdiv 3.5 would read or write out of bounds, or overflow an
+    /// integer, on this input (a known fault of the library:
+    /// `PrimvarRefiner::Limit`'s masks at high-valence non-manifold vertices,
+    /// the Catmull-Clark vertex rule beyond 46,340 faces at a vertex), so the
+    /// bridge refused it. The native engine handles such inputs.
     Unsafe,
     /// The bridge and OpenSubdiv disagree on a size or returned no object
     /// (a defect, not an input problem).

@@ -394,6 +394,23 @@ pub fn fan(n: u32, angle: f64) -> Mesh {
     m
 }
 
+/// A closed fan ("wheel") of `n` triangles around a centre vertex at
+/// (0.5, 0.25, 0): an interior, smooth vertex of valence `n`, on a unit ring
+/// in the z = 0 plane (`n` at least 3).
+pub fn wheel(n: u32) -> Mesh {
+    let centre = DVec3::new(0.5, 0.25, 0.0);
+    let mut m = Mesh::default();
+    m.positions.push(centre);
+    for i in 0..n {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        m.positions.push(centre + DVec3::new(a.cos(), a.sin(), 0.0));
+    }
+    for i in 0..n {
+        m.add_face(&[0, i + 1, (i + 1) % n + 1]);
+    }
+    m
+}
+
 /// Four disjoint cubes of different sizes in one mesh (several connected
 /// components, like OpenSubdiv's "four boxes" regression shape).
 pub fn four_boxes() -> Mesh {

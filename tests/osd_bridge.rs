@@ -702,3 +702,64 @@ fn limit_is_refused_exactly_where_opensubdiv_overruns_its_masks() {
         "refused {refused}, evaluated {evaluated}"
     );
 }
+
+/// Sdc's Catmull-Clark vertex rule weighs each edge and face of a smooth
+/// vertex by `1 / (valence * valence)` computed in a 32-bit int: from 46,341
+/// faces the product overflows and OpenSubdiv 3.5 puts the vertex far from
+/// its place. The bridge refuses exactly those refinements
+/// (`OsdErrorKind::Unsafe`): a wheel of 46,341 triangles under Catmull-Clark,
+/// in vertex interpolation and stencils; not 46,340, not the same valence at
+/// a boundary (crease rule), not Loop. The native engine puts the centre of
+/// a regular planar wheel on itself (its edge and face points are symmetric
+/// about it).
+#[test]
+fn catmark_vertex_rule_is_refused_past_46340_faces() {
+    let catmark = Options::shape_file_defaults();
+    for (n, refused) in [(46_340, false), (46_341, true)] {
+        let wheel = shapes::wheel(n);
+        let native = subdiv::refiner::refine(&wheel, &catmark, UniformOptions::new(1)).unwrap();
+        // Children of vertices come first (OpenSubdiv's default order).
+        let centre = native.positions[1][0];
+        assert!(
+            (centre - DVec3::new(0.5, 0.25, 0.0)).length() < 1e-12,
+            "{n}: {centre:?}"
+        );
+        let osd_result = osd::refine(&wheel, &catmark, UniformOptions::new(1));
+        let mut o = TopologyRefiner::new(&wheel, &catmark).unwrap();
+        o.refine_uniform(UniformOptions::new(1)).unwrap();
+        let stencils = o.stencil_table();
+        if refused {
+            let Err(err) = osd_result else {
+                panic!("{n} faces: the bridge let OpenSubdiv refine");
+            };
+            assert!(
+                matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Unsafe, message })
+                    if message.starts_with("vertex 0 of level 0 has 46341 faces")),
+                "{err:?}"
+            );
+            assert!(matches!(
+                stencils,
+                Err(Error::Osd(OsdError {
+                    kind: OsdErrorKind::Unsafe,
+                    ..
+                }))
+            ));
+            // Varying interpolation is linear: no vertex rule, no refusal.
+            let base: Vec<f64> = wheel.flat_positions();
+            assert!(o.interpolate_varying(1, 3, &base).is_ok());
+        } else {
+            assert_eq!(osd_result.unwrap().positions, native.positions, "{n}");
+            assert!(stencils.is_ok());
+        }
+        // Loop weighs in floating point: compared, equal.
+        let loop_options = catmark.with_scheme(Scheme::Loop);
+        let a = subdiv::refiner::refine(&wheel, &loop_options, UniformOptions::new(1)).unwrap();
+        let b = osd::refine(&wheel, &loop_options, UniformOptions::new(1)).unwrap();
+        assert_eq!(a.positions, b.positions, "{n}, loop");
+    }
+    // At a boundary the same valence takes the crease rule: refined, equal.
+    let fan = shapes::fan(46_341, 3.0);
+    let a = subdiv::refiner::refine(&fan, &catmark, UniformOptions::new(1)).unwrap();
+    let b = osd::refine(&fan, &catmark, UniformOptions::new(1)).unwrap();
+    assert_eq!(a.positions, b.positions, "boundary fan");
+}

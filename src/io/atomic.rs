@@ -10,43 +10,95 @@
 //! replaced by a rename and is written directly.
 //!
 //! A process that is interrupted while writing (SIGINT, SIGTERM, SIGHUP)
-//! should call [`remove_pending`] from its signal handler: the temporary
-//! files being written are registered until they are renamed or removed.
+//! should call [`remove_pending`] from its signal-handling thread: the
+//! temporary files being written are registered until they are renamed or
+//! removed. A flag set by the signal handler itself ([`abandon_when`]) also
+//! stops a write that is about to be renamed, so that a signal that came
+//! first is never followed by a new output.
 
 use crate::error::Error;
 use std::fs::File;
 use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
-/// Temporary files being written right now.
-static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Set by [`abandon_when`]: once it is true, writes give up.
+static ABANDON: OnceLock<Arc<AtomicBool>> = OnceLock::new();
 
-/// Removes every temporary file being written (for a signal handler that is
-/// about to end the process) and returns how many it removed.
+/// Makes every write give up once `flag` is true — before it creates its
+/// temporary file or renames it into place, removing it — with an error of
+/// kind [`io::ErrorKind::Interrupted`]. Meant for a flag a signal handler
+/// sets (`signal_hook::flag::register`). The first call wins; later ones are
+/// ignored.
+pub fn abandon_when(flag: Arc<AtomicBool>) {
+    let _ = ABANDON.set(flag);
+}
+
+/// Whether the process is ending: [`abandon_when`]'s flag set.
+fn abandoned() -> bool {
+    ABANDON.get().is_some_and(|f| f.load(Ordering::SeqCst))
+}
+
+fn ending_error() -> io::Error {
+    io::Error::new(
+        io::ErrorKind::Interrupted,
+        "the process is ending (a signal)",
+    )
+}
+
+/// Temporary files being written right now, and whether the process is
+/// ending ([`remove_pending`] was called: no new temporary file is made).
+/// A temporary file is created and registered under the lock, so none
+/// escapes [`remove_pending`].
+static PENDING: Mutex<Pending> = Mutex::new(Pending {
+    files: Vec::new(),
+    ending: false,
+});
+
+struct Pending {
+    files: Vec<PathBuf>,
+    ending: bool,
+}
+
+/// Removes every temporary file being written and makes every later write
+/// fail before it creates one — for a signal handler that is about to end
+/// the process. Returns how many files it removed.
 pub fn remove_pending() -> usize {
     let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+    pending.ending = true;
     pending
+        .files
         .drain(..)
         .filter(|p| std::fs::remove_file(p).is_ok())
         .count()
 }
 
-/// Registers a temporary file for [`remove_pending`] while it lives.
+/// A temporary file registered for [`remove_pending`] while it lives.
 struct Registered(PathBuf);
 
 impl Registered {
-    fn new(path: &Path) -> Self {
+    /// Creates a temporary file with `builder` in `dir` and registers it, in
+    /// one step under the lock; refused once the process is ending.
+    fn create(
+        builder: &tempfile::Builder<'_, '_>,
+        dir: &Path,
+    ) -> io::Result<(tempfile::NamedTempFile, Registered)> {
         let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
-        pending.push(path.to_path_buf());
-        Registered(path.to_path_buf())
+        if pending.ending || abandoned() {
+            return Err(ending_error());
+        }
+        let temp = builder.tempfile_in(dir)?;
+        pending.files.push(temp.path().to_path_buf());
+        let registered = Registered(temp.path().to_path_buf());
+        Ok((temp, registered))
     }
 }
 
 impl Drop for Registered {
     fn drop(&mut self) {
         let mut pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
-        pending.retain(|p| *p != self.0);
+        pending.files.retain(|p| *p != self.0);
     }
 }
 
@@ -129,10 +181,17 @@ pub fn write_with(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let mut temp = builder.tempfile_in(dir).map_err(io_error)?;
-    let registered = Registered::new(temp.path());
+    let (mut temp, registered) = Registered::create(&builder, dir).map_err(io_error)?;
     write(temp.as_file_mut()).map_err(io_error)?;
-    temp.persist(&target).map_err(|e| io_error(e.error))?;
+    {
+        // Renamed under the lock, unless the process is ending: then the
+        // temporary file goes (dropped) and the destination stays as it was.
+        let pending = PENDING.lock().unwrap_or_else(|e| e.into_inner());
+        if pending.ending || abandoned() {
+            return Err(io_error(ending_error()));
+        }
+        temp.persist(&target).map_err(|e| io_error(e.error))?;
+    }
     drop(registered);
     Ok(())
 }
@@ -172,13 +231,13 @@ mod tests {
                 p.file_name()
                     .is_some_and(|n| n.to_string_lossy().starts_with(".second.txt."))
             };
-            let pending = PENDING.lock().unwrap().clone();
+            let pending = PENDING.lock().unwrap().files.clone();
             assert!(pending.iter().any(|p| ours(p) && p.exists()), "{pending:?}");
             Ok(())
         });
         seen.unwrap();
         let ours = |p: &PathBuf| p.parent() == Some(dir.path());
-        assert!(!PENDING.lock().unwrap().iter().any(ours));
+        assert!(!PENDING.lock().unwrap().files.iter().any(ours));
         // Directories and missing directories are named as such.
         let err = write_bytes(dir.path(), b"x").unwrap_err().to_string();
         assert!(err.ends_with("it is a directory"), "{err}");

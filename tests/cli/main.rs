@@ -1,8 +1,9 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
 //! (`refine`, `compare`, `curve`, `report`), B-spline and NURBS curves
 //! through `curve --knots`, Doo-Sabin through `refine`, every file of the
-//! malformed corpus through `refine` and `curve`, and exhausted memory under
-//! `ulimit -v`.
+//! malformed corpus through `refine` and `curve`, exhausted memory under
+//! `ulimit -v`, where outputs go (links, `-o -`, signals during a write:
+//! `outputs.rs`) and what a hostile user tries (`hostile.rs`).
 //!
 //! Each test writes into its own directory ([`support::scratch`]). The
 //! library's side of these features is tested in the crates beside this
@@ -17,10 +18,12 @@ mod compare;
 mod curve;
 mod curve_knots;
 mod doo_sabin;
+mod hostile;
 mod malformed;
 // `ulimit` in `sh`.
 #[cfg(unix)]
 mod memory_limits;
+mod outputs;
 mod refine;
 #[cfg(feature = "osd")]
 mod report;

@@ -2,6 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use subdiv::{Engine, Error, Options, Request};
 
@@ -120,11 +122,18 @@ impl From<Error> for Failure {
 
 /// On SIGINT, SIGTERM or SIGHUP, removes the temporary files of the outputs
 /// being written (their final names never appear half-written) and ends the
-/// process as the signal would have (a parent sees the signal).
-fn remove_temporary_files_on_signals() {
+/// process as the signal would have (a parent sees the signal). Returns the
+/// flag the signal handler sets at once: from then on no output is renamed
+/// into place ([`subdiv::io::atomic::abandon_when`]).
+fn remove_temporary_files_on_signals() -> Arc<AtomicBool> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let ending = Arc::new(AtomicBool::new(false));
+    for signal in [SIGINT, SIGTERM, SIGHUP] {
+        let _ = signal_hook::flag::register(signal, Arc::clone(&ending));
+    }
+    subdiv::io::atomic::abandon_when(Arc::clone(&ending));
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
-        return; // no handler: the default behaviour, temporary files included
+        return ending; // no handler: the default behaviour, temporary files included
     };
     std::thread::spawn(move || {
         if let Some(signal) = signals.forever().next() {
@@ -133,10 +142,11 @@ fn remove_temporary_files_on_signals() {
             std::process::exit(128 + signal);
         }
     });
+    ending
 }
 
 fn main() -> ExitCode {
-    remove_temporary_files_on_signals();
+    let ending = remove_temporary_files_on_signals();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Refine(args) => refine::refine(&args),
@@ -150,6 +160,13 @@ fn main() -> ExitCode {
             Ok(())
         }
     };
+    if ending.load(Ordering::SeqCst) {
+        // A signal came: its thread ends the process as the signal would
+        // (an output abandoned because of it is not an error to report).
+        loop {
+            std::thread::park();
+        }
+    }
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Error(e)) => {

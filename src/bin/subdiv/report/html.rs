@@ -227,6 +227,9 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
                         escape(&text)
                     );
                 }
+                None if set.refused.is_some() => {
+                    out.push_str("<td class=\"n\">not compared<sup>‡</sup></td>")
+                }
                 None => out.push_str("<td class=\"n\">-</td>"),
             }
         }
@@ -254,8 +257,8 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
                     format_deviation(l.deviation())
                 );
             }
-            None if set.limit_refused.is_some() => {
-                let why = set.limit_refused.as_deref().unwrap_or_default();
+            None if set.refusal().is_some() => {
+                let why = set.refusal().unwrap_or_default();
                 let _ = write!(
                     out,
                     "<td class=\"n\" title=\"{}\">not compared<sup>‡</sup></td>",
@@ -268,14 +271,19 @@ pub(crate) fn sets_html(i: &InputReport, s: &Settings) -> String {
             Some(e) => {
                 let _ = write!(out, "<td class=\"fail\">ERROR: {}</td>", escape(e));
             }
+            None if set.refused.is_some() => out.push_str("<td>not compared<sup>‡</sup></td>"),
             None if set.agreeing() == set.cases() => out.push_str("<td class=\"pass\">ok</td>"),
             None => out.push_str("<td class=\"fail\">DIFFERS</td>"),
         }
         out.push_str("</tr>\n");
     }
     out.push_str("</tbody></table>\n");
-    if i.limit_refusals() > 0 {
-        out.push_str("<p class=\"note\">‡ Not compared: OpenSubdiv 3.5's PrimvarRefiner::Limit would write past its masks at this input's high-valence non-manifold vertices, so the bridge does not call it (docs/CONFORMANCE.md, “Known differences”); the native engine evaluates the limit. Hover for the vertex.</p>\n");
+    if i.refusals() > 0 {
+        let _ = writeln!(
+            out,
+            "<p class=\"note\">‡ Not compared: {} Hover for the vertex.</p>",
+            escape(super::markdown::REFUSAL_NOTE)
+        );
     }
     out
 }

@@ -194,28 +194,33 @@ pub(crate) fn sets_markdown(i: &InputReport, s: &Settings) -> String {
             let cell = match set.levels.iter().find(|c| c.level == *l) {
                 Some(c) if !c.topology_equal => "topology differs".into(),
                 Some(c) => format_deviation(c.deviation()),
+                None if set.refused.is_some() => "not compared‡".into(),
                 None => "-".into(),
             };
             let _ = write!(out, " {cell} |");
         }
-        let limit = match (&set.limit, &set.limit_refused) {
+        let limit = match (&set.limit, set.refusal()) {
             (Some(l), _) => format_deviation(l.deviation()),
             (None, Some(_)) => "not compared‡".into(),
             (None, None) => "-".into(),
         };
         let result = match &set.error {
             Some(e) => format!("ERROR: {e}"),
+            None if set.refused.is_some() => "not compared‡".into(),
             None if set.agreeing() == set.cases() => "ok".into(),
             None => "DIFFERS".into(),
         };
         let _ = writeln!(out, " {limit} | {result} |");
     }
-    if let Some(why) = i.sets.iter().find_map(|s| s.limit_refused.as_deref()) {
+    if let Some(why) = i.sets.iter().find_map(|s| s.refusal()) {
         let _ = writeln!(
             out,
-            "\n‡ not compared: OpenSubdiv 3.5's PrimvarRefiner::Limit would write past its masks here, so the bridge does not call it (docs/CONFORMANCE.md, \"Known differences\"); the native engine evaluates the limit. {}: {why}.",
-            i.limit_refusals()
+            "\n‡ not compared: {REFUSAL_NOTE} {}: {why}.",
+            i.refusals()
         );
     }
     out
 }
+
+/// Why a cell says "not compared": the footnote of both report formats.
+pub(crate) const REFUSAL_NOTE: &str = "OpenSubdiv 3.5 would write past its buffers or compute wrong weights here (PrimvarRefiner::Limit's masks at high-valence non-manifold vertices; the Catmull-Clark vertex rule beyond 46,340 faces at a vertex), so the bridge does not call it (docs/CONFORMANCE.md, \"Known differences\"); the native engine refines and evaluates such inputs.";

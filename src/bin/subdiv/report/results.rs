@@ -70,9 +70,19 @@ pub struct SetResult {
     /// out of bounds on this input (a known fault of OpenSubdiv 3.5, refused
     /// by the bridge: docs/CONFORMANCE.md): why. Not a check, not a failure.
     pub limit_refused: Option<String>,
+    /// OpenSubdiv was not asked to refine at all, for the same reason (the
+    /// Catmull-Clark vertex rule overflowing past 46,340 faces at a vertex):
+    /// why. No level is compared; not a failure.
+    pub refused: Option<String>,
 }
 
 impl SetResult {
+    /// Why OpenSubdiv was not asked for this set's refinement or its limit,
+    /// if it was not.
+    pub fn refusal(&self) -> Option<&str> {
+        self.refused.as_deref().or(self.limit_refused.as_deref())
+    }
+
     /// Checks made: one per level, one for the limit, one for an error.
     pub fn cases(&self) -> usize {
         self.levels.len() + usize::from(self.limit.is_some()) + usize::from(self.error.is_some())
@@ -179,12 +189,10 @@ impl InputReport {
             .fold(0.0, f64::max)
     }
 
-    /// Option sets whose limit OpenSubdiv could not be asked for safely.
-    pub fn limit_refusals(&self) -> usize {
-        self.sets
-            .iter()
-            .filter(|s| s.limit_refused.is_some())
-            .count()
+    /// Option sets whose refinement or limit OpenSubdiv could not be asked
+    /// for safely.
+    pub fn refusals(&self) -> usize {
+        self.sets.iter().filter(|s| s.refusal().is_some()).count()
     }
 
     /// The timing at the last level.
@@ -246,14 +254,23 @@ impl Report {
     /// The conformance verdict, one sentence.
     pub fn verdict(&self) -> String {
         let (ok, total) = (self.agreeing(), self.cases());
-        let refused: usize = self.inputs.iter().map(InputReport::limit_refusals).sum();
-        let known = if refused > 0 {
-            format!(
-                " Not compared: the limit of {refused} option set(s), where OpenSubdiv 3.5's PrimvarRefiner::Limit would write past its masks (high-valence non-manifold vertices; docs/CONFORMANCE.md)."
-            )
-        } else {
-            String::new()
-        };
+        let sets = || self.inputs.iter().flat_map(|i| &i.sets);
+        let whole = sets().filter(|s| s.refused.is_some()).count();
+        let limit = sets().filter(|s| s.limit_refused.is_some()).count();
+        let mut known = String::new();
+        if whole > 0 {
+            known.push_str(&format!(
+                " Not compared: {whole} option set(s) OpenSubdiv 3.5 cannot refine correctly (a Catmull-Clark vertex of more than 46,340 faces; docs/CONFORMANCE.md)."
+            ));
+        }
+        if limit > 0 {
+            known.push_str(&format!(
+                " Not compared: the limit of {limit} option set(s), where OpenSubdiv 3.5's PrimvarRefiner::Limit would write past its masks (high-valence non-manifold vertices; docs/CONFORMANCE.md)."
+            ));
+        }
+        if total == 0 {
+            return format!("NOTHING COMPARED: no check could be made.{known}");
+        }
         if self.conforms() {
             format!(
                 "CONFORMS: all {total} checks agree within {:.0e} of the bounding-box diagonal; {} of them bit-identical.{known}",

@@ -127,8 +127,13 @@ pub(crate) fn run_input(
     let mut timings = Vec::new();
     for level in settings.timed_levels() {
         progress(&format!("{}: timing level {level}", input.name));
-        timings
-            .push(pool.install(|| time_level(&input.mesh, &input.options, level, settings.quick))?);
+        match pool.install(|| time_level(&input.mesh, &input.options, level, settings.quick)) {
+            Ok(t) => timings.push(t),
+            // OpenSubdiv cannot refine this input safely: nothing to time
+            // side by side (the option sets say why).
+            Err(Error::Osd(e)) if e.kind == OsdErrorKind::Unsafe => {}
+            Err(e) => return Err(e),
+        }
     }
     let picture = match &pictured {
         Some((native, osd)) => picture(input, native, osd, settings.tolerance),
@@ -164,6 +169,7 @@ pub(crate) fn compare_set(
         limit: None,
         error: None,
         limit_refused: None,
+        refused: None,
     };
     let both = |limit: bool| -> std::result::Result<(Refinement, Refinement), (Engine, Error)> {
         let request = Request::new(settings.last_level).limit(limit);
@@ -182,6 +188,10 @@ pub(crate) fn compare_set(
     };
     let pair = match both(false) {
         Ok(pair) => pair,
+        Err((Engine::Osd, Error::Osd(e))) if e.kind == OsdErrorKind::Unsafe => {
+            result.refused = Some(e.message);
+            return (result, None);
+        }
         Err(e) => {
             result.error = Some(failed(e, false));
             return (result, None);
