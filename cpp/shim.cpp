@@ -482,6 +482,42 @@ void check_base_fvar_values_for_limit(const Far::TopologyRefiner &refiner, int c
             }
         }
     }
+    // In range but numbered otherwise, a value reads another value's tags
+    // (whether its topology matches the vertex's, whether it is a corner):
+    // a wrong rule and a wrong limit (found by the limit_nonmanifold fuzz
+    // target). Vtr::FVarLevel numbers a vertex's distinct values (its
+    // "siblings") in the order they first appear around its faces, the
+    // vertices one after another (fvarLevel.cpp,
+    // completeTopologyFromFaceValues); every vertex counts at least one.
+    // LimitFaceVarying reads the tags of every vertex with edges, unless the
+    // channel is linear (values copied).
+    if (refiner.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
+    long long offset = 0;
+    std::vector<Far::Index> siblings;
+    for (int v = 0; v < l.GetNumVertices(); ++v) {
+        Far::ConstIndexArray faces = l.GetVertexFaces(v);
+        Far::ConstLocalIndexArray corners = l.GetVertexFaceLocalIndices(v);
+        siblings.clear();
+        for (int i = 0; i < faces.size(); ++i) {
+            Far::ConstIndexArray values = l.GetFaceFVarValues(faces[i], channel);
+            if (corners[i] >= values.size()) continue;
+            Far::Index value = values[corners[i]];
+            if (std::find(siblings.begin(), siblings.end(), value) == siblings.end()) siblings.push_back(value);
+        }
+        if (l.GetVertexEdges(v).size() > 0) {
+            for (size_t i = 0; i < siblings.size(); ++i) {
+                if (siblings[i] != offset + (long long)i) {
+                    fail_unsafe("face-varying channel " + str(channel) + ": value " + str(siblings[i]) +
+                                " (vertex " + str(v) + ") is OpenSubdiv's per-vertex value " +
+                                str(offset + (long long)i) +
+                                " of the unrefined level, whose tags OpenSubdiv 3.5's LimitFaceVarying would read "
+                                "for it (a wrong rule); refine at least one level, or number the values vertex by "
+                                "vertex");
+                }
+            }
+        }
+        offset += std::max<long long>(1, (long long)siblings.size());
+    }
 }
 
 template <class T>

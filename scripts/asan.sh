@@ -23,9 +23,13 @@
 #   child process whose exit status a test expects to be 1 - fails the run.
 #   Errors exit with status 86, not 1, so that tests expecting 1 fail too.
 #
-# Tests run: osd_bridge, osd_conformance and malformed (its `osd_bridge`
-# module and the CLI runs with --engine osd). Installs g++/libasan with
-# apt-get if missing (as root).
+# Tests run: osd_bridge (with the limit on books of 2 to 20 pages per edge,
+# where OpenSubdiv 3.5's PrimvarRefiner::Limit overran its masks, and the
+# 46,341-face wheel), osd_conformance and malformed (its `osd_bridge`
+# module), then the CLI crate's hostile-input tests (tests/cli/hostile.rs:
+# the 14-page spine through refine --limit --engine osd and report, the
+# wheel, the 65,535-corner face) with the `subdiv` binary under ASan.
+# Installs g++/libasan with apt-get if missing (as root).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 cd "$here"
@@ -67,7 +71,7 @@ export RUST_BACKTRACE=1
 
 tests=(--test osd_bridge --test osd_conformance --test malformed)
 echo "asan.sh: building (target $host, $CARGO_TARGET_DIR)" >&2
-cargo test --target "$host" --features osd "${tests[@]}" --no-run
+cargo test --target "$host" --features osd,cli "${tests[@]}" --test cli --no-run
 
 # Proof that the sanitizer is in: the shim is instrumented, the binaries load libasan first.
 shim=$(ls -t "$CARGO_TARGET_DIR/$host"/debug/build/subdiv-*/out/libsubdiv_shim.a 2>/dev/null | head -1)
@@ -86,8 +90,12 @@ echo "asan.sh: shim instrumented ($reports_in_shim __asan_report references); fi
 
 start=$(date +%s)
 set +e
-cargo test --target "$host" --features osd "${tests[@]}" "$@"
+cargo test --target "$host" --features osd,cli "${tests[@]}" "$@"
 status=$?
+if [[ $status -eq 0 ]]; then
+  cargo test --target "$host" --features osd,cli --test cli "$@" hostile::
+  status=$?
+fi
 set -e
 echo "asan.sh: tests exited with $status after $(($(date +%s) - start))s" >&2
 

@@ -20,12 +20,14 @@ pub fn check_level(mesh: &Mesh, options: &Options, level: u32) -> Result<()> {
 }
 
 /// Refuses a mesh whose positions or face-varying values `precision` cannot
-/// hold (in `f32`, anything beyond about ±3.4e38 would become infinite).
+/// hold (in `f32`, a finite value beyond about ±3.4e38 would become
+/// infinite). Values that are not finite to begin with are left to
+/// [`Mesh::validate`], which names them as such.
 pub fn check_precision(mesh: &Mesh, precision: Precision) -> Result<()> {
     if precision == Precision::F64 {
         return Ok(());
     }
-    let fits = |x: f64| (x as f32).is_finite();
+    let fits = |x: f64| !x.is_finite() || (x as f32).is_finite();
     let beyond = |what, index, value| Error::BeyondPrecision {
         what,
         index,
@@ -166,6 +168,51 @@ fn cgroup_headroom() -> Option<u64> {
 mod tests {
     use super::*;
     use crate::shapes;
+
+    #[test]
+    fn f32_refuses_finite_values_beyond_its_range_and_leaves_the_rest_to_validation() {
+        let mut mesh = shapes::cube_with_uvs();
+        assert!(check_precision(&mesh, Precision::F32).is_ok());
+        mesh.positions[5].y = -1e39;
+        let err = check_precision(&mesh, Precision::F32).unwrap_err();
+        assert!(
+            matches!(err, Error::BeyondPrecision { what: "vertex", index: 5, value, .. } if value == -1e39),
+            "{err:?}"
+        );
+        assert_eq!(
+            err.to_string(),
+            "vertex 5 has the value -1e39, beyond the range of f32; refine in f64"
+        );
+        assert!(check_precision(&mesh, Precision::F64).is_ok());
+        // 3.4e38 rounds to f32's largest finite value: it fits.
+        mesh.positions[5].y = 3.4e38;
+        assert!(check_precision(&mesh, Precision::F32).is_ok());
+        // A UV: the value's index (not the number's).
+        let width = mesh.fvar_channels[0].width;
+        mesh.fvar_channels[0].values[3 * width + 1] = 1e300;
+        let err = check_precision(&mesh, Precision::F32).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::BeyondPrecision {
+                    what: "face-varying value",
+                    index: 3,
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        // Infinity and NaN are the validation's to name.
+        mesh.fvar_channels[0].values[3 * width + 1] = 0.5;
+        mesh.positions[2].x = f64::INFINITY;
+        assert!(check_precision(&mesh, Precision::F32).is_ok());
+        let refused = crate::refiner::refine(
+            &mesh,
+            &crate::Options::shape_file_defaults(),
+            crate::Request::new(1).precision(Precision::F32),
+        );
+        assert!(matches!(refused, Err(Error::Mesh(_))), "{refused:?}");
+    }
 
     #[test]
     fn resource_limits_are_read_from_proc() {

@@ -550,6 +550,84 @@ fn base_level_fvar_limit_with_values_beyond_the_vertex_values_is_refused() {
     );
 }
 
+/// In range but numbered otherwise than OpenSubdiv numbers a vertex's values
+/// (vertex by vertex, each vertex's distinct values in the order they first
+/// appear around it), an unrefined channel's values make LimitFaceVarying
+/// read another value's tags (found by the limit_nonmanifold fuzz target:
+/// a seam value on a face-varying boundary given the corner rule, 0.52
+/// instead of the crease limit 0.515). The bridge refuses it as unsafe; the
+/// native engine gives the crease limit (1/6, 2/3, 1/6 in f32 weights, as
+/// OpenSubdiv's).
+#[test]
+fn base_level_fvar_limit_with_values_numbered_otherwise_is_refused() {
+    let mut mesh = Mesh {
+        positions: vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(0.5, 1.0, 0.0),
+            DVec3::new(0.5, -1.0, 0.0),
+        ],
+        ..Mesh::default()
+    };
+    mesh.add_face(&[0, 1, 2]);
+    mesh.add_face(&[0, 2, 3]);
+    mesh.add_face(&[0, 1, 3]);
+    // One value per face corner (a seam everywhere), numbered corner by corner.
+    let uv = [
+        (0.0, 0.0),
+        (1.01, 0.0),
+        (0.52, 1.0),
+        (0.03, 0.0),
+        (0.54, 1.0),
+        (0.55, -1.0),
+        (0.06, 0.0),
+        (1.07, 0.0),
+        (0.58, -1.0),
+    ];
+    mesh.fvar_channels = vec![subdiv::FVarChannel {
+        width: 2,
+        values: uv.iter().flat_map(|&(u, v)| [u, v]).collect(),
+        indices: (0..9).collect(),
+    }];
+    let options = Options::shape_file_defaults()
+        .with_scheme(Scheme::Loop)
+        .with_fvar(FVarLinearInterpolation::None);
+    let request = subdiv::Request::from(UniformOptions::new(0)).limit(true);
+    let Err(err) = osd::refine(&mesh, &options, request) else {
+        panic!("the bridge let OpenSubdiv evaluate");
+    };
+    assert!(
+        matches!(&err, Error::Osd(OsdError { kind: OsdErrorKind::Unsafe, message })
+            if message.starts_with("face-varying channel 0: value 3 (vertex 0) is OpenSubdiv's per-vertex value 1 ")),
+        "{err:?}"
+    );
+    let native = subdiv::refiner::refine(&mesh, &options, request).unwrap();
+    let limit = &native.limit.as_ref().unwrap().fvar_values[0];
+    // Value 2 (vertex 2, face 0) lies on the channel's boundary between
+    // value 1 (vertex 1) and value 0 (vertex 0).
+    let (sixth, two_thirds) = (f64::from(1.0f32 / 6.0), f64::from(2.0f32 / 3.0));
+    let crease = 1.01 * sixth + 0.0 * sixth + 0.52 * two_thirds;
+    assert!(
+        (limit[4] - crease).abs() < 1e-15,
+        "{} vs {crease}",
+        limit[4]
+    );
+    // Refined once, the values are OpenSubdiv's own numbering: evaluated, equal.
+    let request = subdiv::Request::from(UniformOptions::new(1)).limit(true);
+    let a = subdiv::refiner::refine(&mesh, &options, request).unwrap();
+    let b = osd::refine(&mesh, &options, request).unwrap();
+    let (a, b) = (
+        &a.limit.unwrap().fvar_values[0],
+        &b.limit.unwrap().fvar_values[0],
+    );
+    let d = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(d < 1e-15, "refined once: {d:e}");
+}
+
 /// The masks OpenSubdiv 3.5's `PrimvarRefiner::Limit` would write at each
 /// vertex of the last level, re-derived here from the native engine's
 /// topology and rules (the same as OpenSubdiv's, index by index) and from

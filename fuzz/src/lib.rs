@@ -9,6 +9,8 @@
 //! evaluation, a flattened curve lying on its curve). Sizes are bounded so
 //! that one run takes milliseconds.
 
+pub mod limit;
+
 use arbitrary::{Result as AResult, Unstructured};
 use glam::DVec3;
 use std::path::Path;
@@ -75,7 +77,7 @@ impl MeshCase {
     }
 }
 
-fn pick<T: Copy>(u: &mut Unstructured<'_>, items: &[T]) -> AResult<T> {
+pub(crate) fn pick<T: Copy>(u: &mut Unstructured<'_>, items: &[T]) -> AResult<T> {
     Ok(*u.choose(items)?)
 }
 
