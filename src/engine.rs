@@ -68,7 +68,12 @@ impl Engine {
     ) -> Result<Vec<LevelCounts>> {
         let request = request.into();
         let uniform = request.uniform;
-        crate::limits::check_precision(mesh, request.precision)?;
+        if request.precision == Precision::F32 {
+            // The mesh's own errors come first (a value that is not finite
+            // is one); then the values f32 cannot hold.
+            mesh.validate()?;
+            crate::limits::check_precision(mesh, request.precision)?;
+        }
         match self {
             Engine::Native => {
                 use crate::refiner::refine_last;

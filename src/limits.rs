@@ -212,6 +212,15 @@ mod tests {
             crate::Request::new(1).precision(Precision::F32),
         );
         assert!(matches!(refused, Err(Error::Mesh(_))), "{refused:?}");
+        // An invalid mesh is named as such before its values are judged.
+        mesh.positions[2].x = 1e300;
+        mesh.face_offsets.pop();
+        let request = crate::Request::new(1).precision(Precision::F32);
+        let options = crate::Options::shape_file_defaults();
+        let refused = crate::refiner::refine(&mesh, &options, request);
+        assert!(matches!(refused, Err(Error::Mesh(_))), "{refused:?}");
+        let refused = crate::Engine::Native.refine_counts(&mesh, &options, request);
+        assert!(matches!(refused, Err(Error::Mesh(_))), "{refused:?}");
     }
 
     #[test]

@@ -397,7 +397,8 @@ pub fn check_refinement(case: &MeshCase, r: &Refinement, engine: &str) {
 }
 
 /// Is this an error a valid mesh may legitimately get (Loop on non-triangles,
-/// a smooth vertex OpenSubdiv cannot refine, an empty mesh, a level too deep)?
+/// a smooth vertex OpenSubdiv cannot refine, an empty mesh, a level too deep,
+/// a value beyond f32 in an f32 refinement)?
 fn acceptable_for_valid_mesh(e: &Error) -> bool {
     matches!(
         e,
@@ -405,6 +406,10 @@ fn acceptable_for_valid_mesh(e: &Error) -> bool {
             | Error::UnpairedSmoothVertex { .. }
             | Error::EmptyMesh
             | Error::Level { .. }
+            | Error::BeyondPrecision {
+                precision: Precision::F32,
+                ..
+            }
     )
 }
 

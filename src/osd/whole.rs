@@ -52,8 +52,9 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
 fn refine_typed<T: Real>(mesh: &Mesh, options: &Options, request: &Request) -> Result<Refinement> {
     let (uniform, limit) = (request.effective_uniform(), request.limit);
     check_level(mesh, options, uniform.level)?;
-    check_precision(mesh, request.precision)?;
     let mut refiner = TopologyRefiner::new(mesh, options)?;
+    // After the validation in `TopologyRefiner::new`: the mesh's own errors first.
+    check_precision(mesh, request.precision)?;
     refiner.refine_uniform(uniform)?;
     let levels = (0..=uniform.level)
         .map(|l| refiner.level(l))

@@ -105,8 +105,9 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
         // Limit evaluation needs the last level's full topology, as in OpenSubdiv.
         let uniform = request.effective_uniform();
         check_level(mesh, options, uniform.level)?;
-        check_precision(mesh, precision)?;
         let mut refiner = Refiner::new(mesh, options)?;
+        // After the validation in `Refiner::new`: the mesh's own errors first.
+        check_precision(mesh, precision)?;
         refiner.refine_uniform(uniform)?;
         let levels = (0..=uniform.level)
             .map(|l| refiner.level(l))

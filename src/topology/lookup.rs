@@ -169,17 +169,25 @@ fn reserve_one<K: Eq + std::hash::Hash, V>(map: &mut HashMap<K, V>) {
 
 /// Where a vertex first occurs in a face (the face's size when it does not):
 /// a scan of faces of at most [`SCAN_LIMIT`] corners, a map (made on first
-/// use) for larger ones.
+/// use) for larger ones. At most [`FirstCorners::KEPT`] maps are kept (the
+/// callers walk the vertices in order, so a large face's vertices come
+/// together): memory stays bounded on meshes of many large faces.
 #[derive(Default)]
 pub(super) struct FirstCorners {
     maps: HashMap<u32, HashMap<u32, u32>>,
 }
 
 impl FirstCorners {
+    /// How many faces' maps are kept at most.
+    const KEPT: usize = 16;
+
     /// The first corner of `f` (with vertices `verts`) at vertex `v`.
     pub(super) fn get(&mut self, f: u32, verts: &[u32], v: u32) -> usize {
         if verts.len() <= SCAN_LIMIT as usize {
             return verts.iter().position(|&x| x == v).unwrap_or(verts.len());
+        }
+        if self.maps.len() >= Self::KEPT && !self.maps.contains_key(&f) {
+            self.maps.clear();
         }
         let map = match self.maps.entry(f) {
             Entry::Occupied(slot) => slot.into_mut(),
