@@ -128,13 +128,15 @@ impl From<Error> for Failure {
 fn remove_temporary_files_on_signals() -> Arc<AtomicBool> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let ending = Arc::new(AtomicBool::new(false));
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return ending; // no handler: the default behaviour, temporary files included
+    };
+    // Only with the thread below to end the process: a flag alone would
+    // replace the signals' default action.
     for signal in [SIGINT, SIGTERM, SIGHUP] {
         let _ = signal_hook::flag::register(signal, Arc::clone(&ending));
     }
     subdiv::io::atomic::abandon_when(Arc::clone(&ending));
-    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
-        return ending; // no handler: the default behaviour, temporary files included
-    };
     std::thread::spawn(move || {
         if let Some(signal) = signals.forever().next() {
             subdiv::io::atomic::remove_pending();
