@@ -31,6 +31,7 @@ pub(super) struct Chains {
 }
 
 impl Chains {
+    #[inline]
     pub(super) fn new(elements: usize, capacity: usize) -> Self {
         Chains {
             head: crate::alloc::vec_or_unwind(NONE, elements),
@@ -41,12 +42,14 @@ impl Chains {
         }
     }
 
+    #[inline]
     pub(super) fn push_element(&mut self) {
         self.head.push(NONE);
         self.tail.push(NONE);
         self.count.push(0);
     }
 
+    #[inline]
     pub(super) fn append(&mut self, element: usize, value: u32) {
         let node = self.value.len() as u32;
         self.value.push(value);
@@ -59,6 +62,7 @@ impl Chains {
         self.count[element] += 1;
     }
 
+    #[inline]
     pub(super) fn iter(&self, element: usize) -> impl Iterator<Item = u32> + '_ {
         let mut node = self.head[element];
         std::iter::from_fn(move || {
@@ -71,6 +75,7 @@ impl Chains {
         })
     }
 
+    #[inline]
     pub(super) fn last(&self, element: usize) -> Option<u32> {
         match self.tail[element] {
             NONE => None,
@@ -78,6 +83,7 @@ impl Chains {
         }
     }
 
+    /// The lists as a relation.
     pub(super) fn into_relation(self) -> super::Relation {
         let mut offsets = crate::alloc::with_capacity(self.head.len() + 1);
         let mut members = crate::alloc::with_capacity(self.value.len());
@@ -102,6 +108,7 @@ pub(super) struct EdgeFinder {
 
 impl EdgeFinder {
     /// The first edge made between `v0` and `v1` (`v0 != v1`), if any.
+    #[inline(always)]
     pub(super) fn find(
         &self,
         vertex_edges: &Chains,
@@ -109,24 +116,38 @@ impl EdgeFinder {
         v0: u32,
         v1: u32,
     ) -> Option<u32> {
-        match self.maps.get(&v0) {
-            Some(map) => map.get(&v1).copied(),
-            None => vertex_edges.iter(v0 as usize).find(|&e| {
-                let ev = edge_vertices[e as usize];
-                ev[0] == v1 || ev[1] == v1
-            }),
+        if vertex_edges.count[v0 as usize] > SCAN_LIMIT {
+            return self.find_mapped(v0, v1);
         }
+        vertex_edges.iter(v0 as usize).find(|&e| {
+            let ev = edge_vertices[e as usize];
+            ev[0] == v1 || ev[1] == v1
+        })
+    }
+
+    /// [`find`](Self::find) at a vertex past the limit (which has a map).
+    #[cold]
+    #[inline(never)]
+    fn find_mapped(&self, v0: u32, v1: u32) -> Option<u32> {
+        self.maps.get(&v0).and_then(|map| map.get(&v1).copied())
     }
 
     /// Records edge `e`, just appended to both its ends' lists.
+    #[inline(always)]
     pub(super) fn added(&mut self, vertex_edges: &Chains, edge_vertices: &[[u32; 2]], e: u32) {
         let [a, b] = edge_vertices[e as usize];
-        self.note(vertex_edges, edge_vertices, a, b, e);
-        if b != a {
+        if vertex_edges.count[a as usize] > SCAN_LIMIT {
+            self.note(vertex_edges, edge_vertices, a, b, e);
+        }
+        if b != a && vertex_edges.count[b as usize] > SCAN_LIMIT {
             self.note(vertex_edges, edge_vertices, b, a, e);
         }
     }
 
+    /// Records edge `e` from `v` to `other` at a vertex past the limit,
+    /// mapping the vertex's edges when it has just passed it.
+    #[cold]
+    #[inline(never)]
     fn note(
         &mut self,
         vertex_edges: &Chains,
@@ -138,9 +159,6 @@ impl EdgeFinder {
         if let Some(map) = self.maps.get_mut(&v) {
             reserve_one(map);
             map.entry(other).or_insert(e);
-            return;
-        }
-        if vertex_edges.count[v as usize] <= SCAN_LIMIT {
             return;
         }
         // The vertex passes the limit: map its edges so far, first ones kept.
@@ -182,10 +200,18 @@ impl FirstCorners {
     const KEPT: usize = 16;
 
     /// The first corner of `f` (with vertices `verts`) at vertex `v`.
+    #[inline(always)]
     pub(super) fn get(&mut self, f: u32, verts: &[u32], v: u32) -> usize {
         if verts.len() <= SCAN_LIMIT as usize {
             return verts.iter().position(|&x| x == v).unwrap_or(verts.len());
         }
+        self.get_mapped(f, verts, v)
+    }
+
+    /// [`get`](Self::get) in a face past the limit.
+    #[cold]
+    #[inline(never)]
+    fn get_mapped(&mut self, f: u32, verts: &[u32], v: u32) -> usize {
         if self.maps.len() >= Self::KEPT && !self.maps.contains_key(&f) {
             self.maps.clear();
         }
