@@ -53,7 +53,7 @@ fn header(text: &str, name: &str) -> Option<Vec<f64>> {
 }
 
 /// `1,2,3` from numbers at 17 significant digits (what a user would paste back).
-fn list(values: &[f64]) -> String {
+pub(crate) fn list(values: &[f64]) -> String {
     values
         .iter()
         .map(|x| format!("{x:?}"))

@@ -1,6 +1,7 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
 //! (`refine`, `compare`, `curve`, `report`), B-spline and NURBS curves
-//! through `curve --knots`, Doo-Sabin through `refine`, every file of the
+//! through `curve --knots` (and against an independent implementation from
+//! the definitions: `curve_reference.rs`), Doo-Sabin through `refine`, every file of the
 //! malformed corpus through `refine` and `curve`, exhausted memory under
 //! `ulimit -v`, where outputs go (links, `-o -`, signals during a write:
 //! `outputs.rs`) and what a hostile user tries (`hostile.rs`).
@@ -17,6 +18,7 @@ mod support;
 mod compare;
 mod curve;
 mod curve_knots;
+mod curve_reference;
 mod doo_sabin;
 mod hostile;
 mod malformed;
