@@ -14,6 +14,10 @@
 //! Random curves of degrees 1-5, clamped and unclamped, rational and not,
 //! 2-D and 3-D, with repeated interior knots, and 1-4 insertions (some at
 //! existing knots); the CLI's output must agree to 1e-9 relative.
+//!
+//! `scripts/check-nurbs.py` (run by `make test`) makes the same comparison
+//! against geomdl, a third-party library; this one needs no Python or
+//! package index, so `cargo test` alone runs it.
 
 use crate::curve_knots::list;
 use crate::support::{Rng, scratch, subdiv, write};
