@@ -188,10 +188,13 @@ fn limit_face_varying_matches_opensubdiv() {
         if mesh.fvar_channels.is_empty() {
             continue;
         }
-        for (mesh, scheme) in [
-            (mesh.clone(), Scheme::Catmark),
-            (shapes::triangulate_with_uvs(&mesh), Scheme::Loop),
-        ] {
+        // Loop where splitting the quads leaves only triangles.
+        let triangles = shapes::triangulate_with_uvs(&mesh);
+        let schemes = [(mesh.clone(), Scheme::Catmark), (triangles, Scheme::Loop)];
+        for (mesh, scheme) in schemes
+            .into_iter()
+            .filter(|(m, s)| *s == Scheme::Catmark || m.faces().all(|f| f.len() == 3))
+        {
             for &fvar in FVarLinearInterpolation::ALL {
                 for boundary in [
                     BoundaryInterpolation::EdgeOnly,

@@ -1,5 +1,9 @@
 //! Meshes generated in code: the built-in inputs of the CLI, the tests and the benches.
 
+mod production;
+
+pub use production::production;
+
 use crate::mesh::{FVarChannel, Mesh};
 use crate::options::Scheme;
 use glam::DVec3;
@@ -751,6 +755,9 @@ pub fn corpus() -> Vec<(String, Mesh)> {
         m.add_crease(0, 6, 3.0);
         m
     });
+    // The benchmark's production-like mesh, small: n-gons, triangle pairs,
+    // semi-sharp and infinite creases, corners, holes and UV seams at once.
+    push("production".into(), production(16, 9));
     out
 }
 
