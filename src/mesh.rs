@@ -2,7 +2,6 @@
 //! face-varying channels, with validation that names every problem precisely.
 
 use glam::DVec3;
-use std::collections::HashSet;
 use thiserror::Error;
 
 /// Sharpness at or above which OpenSubdiv treats an edge or vertex as
@@ -524,15 +523,47 @@ impl Mesh {
         if self.creases.is_empty() {
             return Vec::new();
         }
+        // One pass over the faces' edges that hashes nothing: only an edge
+        // whose two ends are both crease ends is looked up, by binary search
+        // among the (few) creases' sorted vertex pairs.
         let key = |a: u32, b: u32| if a < b { (a, b) } else { (b, a) };
-        let edges: HashSet<(u32, u32)> = self
-            .faces()
-            .flat_map(|f| (0..f.len()).map(move |j| key(f[j], f[(j + 1) % f.len()])))
+        let mut keys: Vec<(u32, u32)> = self
+            .creases
+            .iter()
+            .map(|c| key(c.vertices[0], c.vertices[1]))
             .collect();
+        keys.sort_unstable();
+        keys.dedup();
+        let mut end = vec![false; self.positions.len()];
+        for &(a, b) in &keys {
+            for v in [a, b] {
+                if let Some(e) = end.get_mut(v as usize) {
+                    *e = true;
+                }
+            }
+        }
+        let is_end = |v: u32| end.get(v as usize).copied().unwrap_or(false);
+        let mut found = vec![false; keys.len()];
+        for f in self.faces() {
+            let Some(&(mut prev)) = f.last() else {
+                continue;
+            };
+            for &v in f {
+                if is_end(v) && is_end(prev) {
+                    if let Ok(i) = keys.binary_search(&key(prev, v)) {
+                        found[i] = true;
+                    }
+                }
+                prev = v;
+            }
+        }
         self.creases
             .iter()
             .enumerate()
-            .filter(|(_, c)| !edges.contains(&key(c.vertices[0], c.vertices[1])))
+            .filter(|(_, c)| {
+                let k = key(c.vertices[0], c.vertices[1]);
+                keys.binary_search(&k).is_ok_and(|i| !found[i])
+            })
             .map(|(crease, c)| MeshWarning::CreaseWithoutEdge {
                 crease,
                 v0: c.vertices[0],
@@ -639,5 +670,37 @@ mod tests {
                 v1: 2
             })
         );
+    }
+    #[test]
+    fn only_creases_off_the_edges_warn_in_any_order_or_repetition() {
+        // A 2 × 2 grid of quads, vertices 0..9 row by row.
+        let mut m = Mesh::default();
+        for j in 0..3 {
+            for i in 0..3 {
+                m.positions.push(DVec3::new(i as f64, j as f64, 0.0));
+            }
+        }
+        for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let at = |i: u32, j: u32| j * 3 + i;
+            m.add_face(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+        m.add_crease(0, 1, 1.0); // an edge
+        m.add_crease(4, 1, 2.0); // an edge, reversed
+        m.add_crease(0, 4, 1.0); // a diagonal between two crease ends
+        m.add_crease(1, 0, 3.0); // the first edge again, reversed
+        m.add_crease(4, 0, 1.0); // the diagonal again
+        m.add_crease(7, 8, 1.0); // an edge on the far side
+        m.add_crease(2, 6, 1.0); // far apart
+        let warned: Vec<usize> = m
+            .validate()
+            .unwrap()
+            .warnings
+            .iter()
+            .map(|w| {
+                let MeshWarning::CreaseWithoutEdge { crease, .. } = w;
+                *crease
+            })
+            .collect();
+        assert_eq!(warned, [2, 4, 6]);
     }
 }
