@@ -639,6 +639,46 @@ fn seamed_open_and_non_manifold_shapes() {
     run(&shapes, QUAD_SCHEMES);
 }
 
+/// Channels of every width the native engine computes differently — one
+/// column, two (UVs), three and four (whole in registers), and wider ones in
+/// blocks of 16 columns (17 and 33 leave a short last block) — on the
+/// production-like shape and on a seamed cube: each component a different
+/// function of the UVs, so a column computed from the wrong one shows.
+#[test]
+fn channels_of_every_width() {
+    let widen = |mut m: Mesh, widths: &[usize]| {
+        let uv = m.fvar_channels[0].clone();
+        m.fvar_channels = widths
+            .iter()
+            .map(|&width| FVarChannel {
+                width,
+                values: (0..uv.value_count())
+                    .flat_map(|i| {
+                        let (u, v) = (uv.values[2 * i], uv.values[2 * i + 1]);
+                        (0..width).map(move |k| {
+                            let k = k as f64;
+                            u * (1.0 + 0.37 * k) - v * (0.5 - 0.11 * k) + k
+                        })
+                    })
+                    .collect(),
+                indices: uv.indices.clone(),
+            })
+            .collect();
+        m
+    };
+    let shapes = vec![
+        (
+            "production".to_string(),
+            widen(shapes::production(16, 9), &[1, 3, 4, 17]),
+        ),
+        (
+            "cube-uv".to_string(),
+            widen(shapes::cube_with_uvs(), &[5, 16, 33]),
+        ),
+    ];
+    run(&shapes, &[Scheme::Catmark]);
+}
+
 /// The corpus shapes without channels (creases, corners, n-gons, poles,
 /// non-manifold features), each given an island per face, a channel with a
 /// seam along two edges of its first face, and a channel following the

@@ -17,34 +17,98 @@
 //!   vertex values are copied.
 //!
 //! Every value is accumulated term by term in the same order as OpenSubdiv,
-//! from zero, so `f64` results agree to the last bit.
+//! from zero, so `f64` results agree to the last bit. Smooth edges and
+//! vertices where the channel follows the vertex topology (nearly all of a
+//! UV channel) take their masks from the vertex kernel's cache of regular
+//! masks instead of the rules; widths up to 4 are computed with the width
+//! known at compile time, wider values in blocks of 16 columns.
 
 use super::Refiner;
+use super::kernel::{Cache, MAX_WIDTH};
 use crate::error::{Buffer, Error, Result};
-use crate::options::Scheme;
+use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood, crease};
+use crate::topology::Level;
+use crate::topology::fvar::ChannelLevel;
 
-/// Row `i` of a buffer of `width`-wide elements.
-#[inline]
-fn row<T>(data: &[T], i: u32, width: usize) -> &[T] {
-    let i = i as usize * width;
-    &data[i..i + width]
+/// The columns one pass computes of values `stride` wide: `count` of them
+/// from `offset` (every column, for the usual widths).
+trait Cols: Copy {
+    fn stride(self) -> usize;
+    fn offset(self) -> usize;
+    fn count(self) -> usize;
 }
 
-/// `acc += w · x`, component by component.
-#[inline]
-fn add<T: Real>(acc: &mut [T], x: &[T], w: T) {
-    for (a, &s) in acc.iter_mut().zip(x) {
-        *a += s * w;
+/// All `W` columns, the width known at compile time.
+#[derive(Clone, Copy)]
+struct Whole<const W: usize>;
+
+impl<const W: usize> Cols for Whole<W> {
+    #[inline(always)]
+    fn stride(self) -> usize {
+        W
+    }
+    #[inline(always)]
+    fn offset(self) -> usize {
+        0
+    }
+    #[inline(always)]
+    fn count(self) -> usize {
+        W
+    }
+}
+
+/// Up to [`MAX_WIDTH`] columns of wider values.
+#[derive(Clone, Copy)]
+struct Block {
+    stride: usize,
+    offset: usize,
+    count: usize,
+}
+
+impl Cols for Block {
+    #[inline(always)]
+    fn stride(self) -> usize {
+        self.stride
+    }
+    #[inline(always)]
+    fn offset(self) -> usize {
+        self.offset
+    }
+    #[inline(always)]
+    fn count(self) -> usize {
+        self.count
+    }
+}
+
+/// `acc += w · data[i]`, column by column.
+#[inline(always)]
+fn add<T: Real, C: Cols>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, cols: C) {
+    let start = i as usize * cols.stride() + cols.offset();
+    let row = &data[start..start + cols.count()];
+    for k in 0..cols.count() {
+        acc[k] += row[k] * w;
     }
 }
 
 /// Writes `acc` into row `i` of `dst`.
+#[inline(always)]
+fn put<T: Real, C: Cols>(dst: &mut [T], i: u32, acc: &[T; MAX_WIDTH], cols: C) {
+    let start = i as usize * cols.stride() + cols.offset();
+    dst[start..start + cols.count()].copy_from_slice(&acc[..cols.count()]);
+}
+
+/// Loop: the value at the corner of face `f` opposite edge `e`.
 #[inline]
-fn put<T: Real>(dst: &mut [T], i: u32, acc: &[T]) {
-    let i = i as usize * acc.len();
-    dst[i..i + acc.len()].copy_from_slice(acc);
+fn opposite_value(pf: &ChannelLevel, parent: &Level, f: usize, e: usize) -> u32 {
+    let k = parent
+        .face_edges_of(f)
+        .iter()
+        .position(|&x| x as usize == e)
+        .unwrap_or(0);
+    let values = pf.face_values_of(parent, f);
+    values[(k + 2) % values.len()]
 }
 
 impl Refiner {
@@ -92,11 +156,43 @@ impl Refiner {
     }
 
     /// One level of one channel: face points, edge points, vertex points.
+    /// The usual widths are computed whole, wider values in blocks of
+    /// columns (each block a full pass: the masks are linear).
     fn interpolate_fvar_level<T: Real>(
         &self,
         channel: usize,
         level: usize,
         width: usize,
+        src: &[T],
+        dst: &mut [T],
+    ) {
+        match width {
+            1 => self.fvar_pass(channel, level, Whole::<1>, src, dst),
+            2 => self.fvar_pass(channel, level, Whole::<2>, src, dst),
+            3 => self.fvar_pass(channel, level, Whole::<3>, src, dst),
+            4 => self.fvar_pass(channel, level, Whole::<4>, src, dst),
+            _ => {
+                for offset in (0..width).step_by(MAX_WIDTH) {
+                    let cols = Block {
+                        stride: width,
+                        offset,
+                        count: (width - offset).min(MAX_WIDTH),
+                    };
+                    self.fvar_pass(channel, level, cols, src, dst);
+                }
+            }
+        }
+    }
+
+    /// Columns `cols` of one level of one channel. Where the channel follows
+    /// the vertex topology and the element is smooth, the masks come from
+    /// the kernel's cache of regular masks, as for vertex data; elsewhere
+    /// from the rules, element by element.
+    fn fvar_pass<T: Real, C: Cols>(
+        &self,
+        channel: usize,
+        level: usize,
+        cols: C,
         src: &[T],
         dst: &mut [T],
     ) {
@@ -107,7 +203,10 @@ impl Refiner {
         let cf = &self.fvar[channel][level];
         let scheme = self.rules.scheme();
         let linear = pf.is_linear() || scheme == Scheme::Bilinear;
-        let mut acc = vec![T::ZERO; width];
+        let tri_smooth =
+            scheme == Scheme::Catmark && self.options.triangles == TriangleSubdivision::Smooth;
+        let zero = [T::ZERO; MAX_WIDTH];
+        let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
         let half = T::from_f64(0.5);
 
@@ -115,14 +214,20 @@ impl Refiner {
         if r.has_face_points() {
             for f in 0..parent.face_count() {
                 let values = pf.face_values_of(parent, f);
-                self.rules.face_vertex_mask(values.len(), &mut mask);
-                acc.fill(T::ZERO);
-                for (&x, &w) in values.iter().zip(&mask.vertex) {
-                    add(&mut acc, row(src, x, width), w);
+                let w = cache.face_weight(self, values.len());
+                let mut acc = zero;
+                for &x in values {
+                    add(&mut acc, src, x, w, cols);
                 }
-                put(dst, cf.vertex_value_offset(r.face_child(f) as usize), &acc);
+                put(
+                    dst,
+                    cf.vertex_value_offset(r.face_child(f) as usize),
+                    &acc,
+                    cols,
+                );
             }
         }
+        let centre = |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize);
 
         // Edge points.
         let mut face_sizes = Vec::new();
@@ -133,52 +238,81 @@ impl Refiner {
                 // One midpoint per value, from the face the value comes from.
                 for i in 0..cf.vertex_value_count(c) {
                     let [a, b] = pf.edge_face_values(parent, e, i);
-                    acc.fill(T::ZERO);
-                    add(&mut acc, row(src, a, width), half);
-                    add(&mut acc, row(src, b, width), half);
-                    put(dst, first + i as u32, &acc);
+                    let mut acc = zero;
+                    add(&mut acc, src, a, half, cols);
+                    add(&mut acc, src, b, half, cols);
+                    put(dst, first + i as u32, &acc, cols);
                 }
                 continue;
             }
             let faces = parent.edge_faces_of(e);
-            if linear {
-                mask.reset(2, 0, 0);
-                mask.vertex[0] = half;
-                mask.vertex[1] = half;
-            } else {
-                face_sizes.clear();
-                face_sizes.extend(
-                    faces
-                        .iter()
-                        .map(|&f| parent.face_vertices.count(f as usize) as u32),
-                );
-                let s = parent.edge_sharpness_at(e);
-                let hood = EdgeNeighborhood {
-                    sharpness: s,
-                    face_sizes: &face_sizes,
-                };
-                let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
-                self.rules
-                    .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
-            }
             let [a, b] = pf.edge_face_values(parent, e, 0);
-            acc.fill(T::ZERO);
-            add(&mut acc, row(src, a, width), mask.vertex[0]);
-            add(&mut acc, row(src, b, width), mask.vertex[1]);
+            let mut acc = zero;
+            if linear {
+                add(&mut acc, src, a, half, cols);
+                add(&mut acc, src, b, half, cols);
+                put(dst, first, &acc, cols);
+                continue;
+            }
+            let s = parent.edge_sharpness_at(e);
+            let smooth = match faces {
+                &[f0, f1] if s <= 0.0 => cache.smooth_edge(
+                    self,
+                    [
+                        tri_smooth && parent.face_vertices.count(f0 as usize) == 3,
+                        tri_smooth && parent.face_vertices.count(f1 as usize) == 3,
+                    ],
+                ),
+                _ => None,
+            };
+            if let Some(w) = smooth {
+                // The kernel's smooth edge: the weights and terms the rules
+                // give below, in the same order.
+                add(&mut acc, src, a, w.ends[0], cols);
+                add(&mut acc, src, b, w.ends[1], cols);
+                if let Some(fw) = w.faces {
+                    for (&f, fw) in faces.iter().zip(fw) {
+                        if w.centers {
+                            add(&mut acc, dst, centre(f), fw, cols);
+                        } else {
+                            let x = opposite_value(pf, parent, f as usize, e);
+                            add(&mut acc, src, x, fw, cols);
+                        }
+                    }
+                }
+                put(dst, first, &acc, cols);
+                continue;
+            }
+            face_sizes.clear();
+            face_sizes.extend(
+                faces
+                    .iter()
+                    .map(|&f| parent.face_vertices.count(f as usize) as u32),
+            );
+            let hood = EdgeNeighborhood {
+                sharpness: s,
+                face_sizes: &face_sizes,
+            };
+            let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
+            self.rules
+                .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
+            add(&mut acc, src, a, mask.vertex[0], cols);
+            add(&mut acc, src, b, mask.vertex[1], cols);
             for (&f, &w) in faces.iter().zip(&mask.face) {
-                let f = f as usize;
                 if mask.face_weights_for_centers {
-                    let centre = cf.vertex_value_offset(r.face_child(f) as usize);
-                    add(&mut acc, row(dst, centre, width), w);
+                    add(&mut acc, dst, centre(f), w, cols);
                 } else {
                     // Loop: the value at the face's corner opposite the edge.
-                    let edges = parent.face_edges_of(f);
-                    let k = edges.iter().position(|&x| x as usize == e).unwrap_or(0);
-                    let values = pf.face_values_of(parent, f);
-                    add(&mut acc, row(src, values[(k + 2) % values.len()], width), w);
+                    add(
+                        &mut acc,
+                        src,
+                        opposite_value(pf, parent, f as usize, e),
+                        w,
+                        cols,
+                    );
                 }
             }
-            put(dst, first, &acc);
+            put(dst, first, &acc, cols);
         }
 
         // Vertex points.
@@ -193,46 +327,54 @@ impl Refiner {
             let c_tags = cf.vertex_value_tags(c);
             if !c_tags[0].is_mismatch() {
                 let own = pf.vertex_value(v, 0);
-                acc.fill(T::ZERO);
+                let mut acc = zero;
                 if linear {
-                    add(&mut acc, row(src, own, width), T::ONE);
-                    put(dst, first, &acc);
+                    add(&mut acc, src, own, T::ONE, cols);
+                    put(dst, first, &acc, cols);
                     continue;
                 }
-                // The vertex's own mask, applied to the channel's values.
                 let edges = parent.vertex_edges_of(v);
                 let faces = parent.vertex_faces_of(v);
-                edge_sharpness.clear();
-                edge_sharpness.extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
-                child_edge_sharpness.resize(edges.len(), 0.0);
-                crease::subdivide_edge_sharpnesses_around_vertex(
-                    self.options.creasing,
-                    &edge_sharpness,
-                    &mut child_edge_sharpness,
-                );
-                let hood = VertexNeighborhood {
-                    sharpness: parent.vertex_sharpness_at(v),
-                    edge_sharpness: &edge_sharpness,
-                    face_count: faces.len(),
-                    child_sharpness: child.vertex_sharpness_at(c),
-                    child_edge_sharpness: &child_edge_sharpness,
-                };
                 let p_rule = parent.vertex_tag(v).rule();
-                let c_rule = child.vertex_tag(c).rule();
-                self.rules
-                    .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
-                for (&f, &w) in faces.iter().zip(&mask.face) {
-                    let centre = cf.vertex_value_offset(r.face_child(f as usize) as usize);
-                    add(&mut acc, row(dst, centre, width), w);
+                let m = if matches!(p_rule, Rule::Smooth | Rule::Dart)
+                    && faces.len() == edges.len()
+                    && !edges.is_empty()
+                {
+                    // The kernel's smooth vertex (as the rules give it).
+                    cache.smooth_vertex(self, faces.len())
+                } else {
+                    edge_sharpness.clear();
+                    edge_sharpness
+                        .extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
+                    child_edge_sharpness.resize(edges.len(), 0.0);
+                    crease::subdivide_edge_sharpnesses_around_vertex(
+                        self.options.creasing,
+                        &edge_sharpness,
+                        &mut child_edge_sharpness,
+                    );
+                    let hood = VertexNeighborhood {
+                        sharpness: parent.vertex_sharpness_at(v),
+                        edge_sharpness: &edge_sharpness,
+                        face_count: faces.len(),
+                        child_sharpness: child.vertex_sharpness_at(c),
+                        child_edge_sharpness: &child_edge_sharpness,
+                    };
+                    let c_rule = child.vertex_tag(c).rule();
+                    self.rules
+                        .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
+                    &mask
+                };
+                for (&f, &w) in faces.iter().zip(&m.face) {
+                    add(&mut acc, dst, centre(f), w, cols);
                 }
-                if !mask.edge.is_empty() {
+                if !m.edge.is_empty() {
                     pf.vertex_edge_values(parent, v, &mut edge_values);
-                    for (&x, &w) in edge_values.iter().zip(&mask.edge) {
-                        add(&mut acc, row(src, x, width), w);
+                    for (&x, &w) in edge_values.iter().zip(&m.edge) {
+                        add(&mut acc, src, x, w, cols);
                     }
                 }
-                add(&mut acc, row(src, own, width), mask.vertex[0]);
-                put(dst, first, &acc);
+                add(&mut acc, src, own, m.vertex[0], cols);
+                put(dst, first, &acc, cols);
                 continue;
             }
             // Each value on its own: a corner, a crease, or a corner decaying
@@ -240,9 +382,9 @@ impl Refiner {
             let p_tags = pf.vertex_value_tags(v);
             for (s, &tag) in c_tags.iter().enumerate() {
                 let own = pf.vertex_value(v, s);
-                acc.fill(T::ZERO);
+                let mut acc = zero;
                 if linear || tag.is_corner() {
-                    add(&mut acc, row(src, own, width), T::ONE);
+                    add(&mut acc, src, own, T::ONE, cols);
                 } else {
                     let [e0, e1] = pf.crease_end_values(parent, v, s);
                     let (mut vw, mut ew) = (corner_weight, end_weight);
@@ -260,11 +402,11 @@ impl Refiner {
                         vw = crease * corner_weight + corner;
                         ew = crease * end_weight;
                     }
-                    add(&mut acc, row(src, e0, width), ew);
-                    add(&mut acc, row(src, e1, width), ew);
-                    add(&mut acc, row(src, own, width), vw);
+                    add(&mut acc, src, e0, ew, cols);
+                    add(&mut acc, src, e1, ew, cols);
+                    add(&mut acc, src, own, vw, cols);
                 }
-                put(dst, first + s as u32, &acc);
+                put(dst, first + s as u32, &acc, cols);
             }
         }
     }

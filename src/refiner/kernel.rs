@@ -85,7 +85,7 @@ impl<T: Real> Scratch<T> {
 }
 
 /// Widths handled on the stack; wider data takes the general path.
-const MAX_WIDTH: usize = 16;
+pub(super) const MAX_WIDTH: usize = 16;
 
 trait Width: Copy {
     fn get(self) -> usize;
@@ -157,14 +157,14 @@ fn general<T: Real>(r: &Refiner, kind: Kind, level: usize, width: usize, src: &[
 /// face points or, when not `centers`, to the faces' vertices opposite the
 /// edge (Loop).
 #[derive(Clone, Copy)]
-struct EdgeWeights<T> {
-    ends: [T; 2],
-    faces: Option<[T; 2]>,
-    centers: bool,
+pub(super) struct EdgeWeights<T> {
+    pub ends: [T; 2],
+    pub faces: Option<[T; 2]>,
+    pub centers: bool,
 }
 
 /// Masks of regular neighbourhoods, computed on first use.
-struct Cache<T> {
+pub(super) struct Cache<T> {
     face: Vec<Option<T>>,
     /// Indexed by which of the two faces are triangles; `None` until filled.
     edge: [Option<Option<EdgeWeights<T>>>; 4],
@@ -173,7 +173,7 @@ struct Cache<T> {
 }
 
 impl<T: Real> Cache<T> {
-    fn new() -> Self {
+    pub(super) fn new() -> Self {
         Cache {
             face: Vec::new(),
             edge: [None; 4],
@@ -182,7 +182,7 @@ impl<T: Real> Cache<T> {
     }
 
     #[inline(always)]
-    fn face_weight(&mut self, r: &Refiner, n: usize) -> T {
+    pub(super) fn face_weight(&mut self, r: &Refiner, n: usize) -> T {
         match self.face.get(n) {
             Some(&Some(w)) => w,
             _ => self.fill_face_weight(r, n),
@@ -206,7 +206,7 @@ impl<T: Real> Cache<T> {
     /// are triangles under the smooth-triangle rule. `None` for a mask of
     /// another shape (then the general path computes the edge).
     #[inline(always)]
-    fn smooth_edge(&mut self, r: &Refiner, tri: [bool; 2]) -> Option<EdgeWeights<T>> {
+    pub(super) fn smooth_edge(&mut self, r: &Refiner, tri: [bool; 2]) -> Option<EdgeWeights<T>> {
         let key = tri[0] as usize | (tri[1] as usize) << 1;
         match self.edge[key] {
             Some(w) => w,
@@ -246,7 +246,7 @@ impl<T: Real> Cache<T> {
 
     /// The smooth mask of an interior vertex with `n` faces and `n` edges.
     #[inline(always)]
-    fn smooth_vertex(&mut self, r: &Refiner, n: usize) -> &Mask<T> {
+    pub(super) fn smooth_vertex(&mut self, r: &Refiner, n: usize) -> &Mask<T> {
         // A filled mask has its vertex weight; the empty ones are unfilled.
         if self.vertex.get(n).is_none_or(|m| m.vertex.is_empty()) {
             self.fill_smooth_vertex(r, n);
