@@ -6,7 +6,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Duration;
 use subdiv::shapes::{BenchShape, bench_shapes};
-use subdiv::{Options, UniformOptions, osd, refiner};
+use subdiv::{UniformOptions, osd, refiner};
 
 fn flat32(input: &BenchShape) -> Vec<f32> {
     input
@@ -20,9 +20,9 @@ fn flat32(input: &BenchShape) -> Vec<f32> {
 fn engines(c: &mut Criterion) {
     let quick = std::env::var_os("SUBDIV_BENCH_FULL").is_none();
     for input in bench_shapes(quick) {
-        let options = Options::default().with_scheme(input.scheme);
+        let options = input.options;
         let base = flat32(&input);
-        let mut group = c.benchmark_group(format!("{} {}", input.name, input.scheme));
+        let mut group = c.benchmark_group(format!("{} {}", input.name, input.options.scheme));
         group
             .sample_size(10)
             .measurement_time(Duration::from_secs(2))

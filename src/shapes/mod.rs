@@ -5,7 +5,7 @@ mod production;
 pub use production::production;
 
 use crate::mesh::{FVarChannel, Mesh};
-use crate::options::Scheme;
+use crate::options::{BoundaryInterpolation, FVarLinearInterpolation, Options, Scheme};
 use glam::DVec3;
 use std::f64::consts::TAU;
 
@@ -191,32 +191,40 @@ pub fn by_name(name: &str) -> Option<Mesh> {
 pub const NAMES: &[&str] = &["cube", "cube-uv", "grid", "torus", "tetrahedron"];
 
 /// One input of the benchmarks (`subdiv bench`, `cargo bench`): a mesh, the
-/// scheme to refine it with and the deepest level.
+/// options to refine it with (its scheme among them) and the deepest level.
 #[derive(Debug, Clone)]
 pub struct BenchShape {
     /// Short name.
     pub name: String,
     /// The mesh.
     pub mesh: Mesh,
-    /// The subdivision scheme.
-    pub scheme: Scheme,
+    /// The options: the scheme, and for the production-like input the
+    /// boundary and face-varying interpolation USD assets default to.
+    pub options: Options,
     /// Deepest level to refine.
     pub max_level: u32,
 }
 
-/// The standard benchmark inputs: a 100×100 quad torus, an 80×80 torus of alternating
-/// quads and triangle pairs, a 100×50 triangle torus (Catmull-Clark and Loop)
-/// and a 1000×1000 quad grid refined one level. `quick` shrinks them.
+/// The standard benchmark inputs: a 100×100 quad torus, an 80×80 torus of
+/// alternating quads and triangle pairs, a 100×50 triangle torus
+/// (Catmull-Clark and Loop), a 1000×1000 quad grid refined one level, and
+/// the production-like mesh of [`production`] (560 × 480 cells, 291,200
+/// faces, one UV channel) refined two levels with USD's defaults (boundary
+/// edge-and-corner, face-varying corners-plus-1). `quick` shrinks them.
 pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
     let d = if quick { 4 } else { 1 };
     let input = |name: &str, mesh: Mesh, scheme: Scheme, max_level: u32| BenchShape {
         name: name.to_string(),
         mesh,
-        scheme,
+        options: Options::default().with_scheme(scheme),
         max_level,
     };
     let mut grid = grid(1000 / d, 1000 / d);
     grid.fvar_channels.clear();
+    let (pu, pv) = (560 / d, 480 / d);
+    let usd = Options::default()
+        .with_boundary(BoundaryInterpolation::EdgeAndCorner)
+        .with_fvar(FVarLinearInterpolation::CornersPlus1);
     vec![
         input(
             &format!("torus {0}x{0} quads", 100 / d),
@@ -248,6 +256,12 @@ pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
             Scheme::Catmark,
             1,
         ),
+        BenchShape {
+            name: format!("production {pu}x{pv} with UVs"),
+            mesh: production(pu, pv),
+            options: usd,
+            max_level: 2,
+        },
     ]
 }
 

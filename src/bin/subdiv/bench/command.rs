@@ -3,7 +3,7 @@
 use clap::Args;
 use std::path::PathBuf;
 #[cfg(feature = "osd")]
-use subdiv::{Error, Scheme};
+use subdiv::{Error, Options, Scheme};
 
 use crate::Failure;
 
@@ -41,14 +41,19 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
             v.push(subdiv::shapes::BenchShape {
                 name: path.display().to_string(),
                 mesh: shape.mesh,
-                scheme: Scheme::Catmark,
+                options: Options::default().with_scheme(Scheme::Catmark),
                 max_level: 3,
             });
         }
         v
     };
-    // Per input: one step per level and eight tasks; then the two parallel-use steps.
-    let steps: u64 = inputs.iter().map(|i| i.max_level as u64 + 8).sum::<u64>() + 2;
+    // Per input: one step per level and eight tasks (nine with UVs); then
+    // the two parallel-use steps.
+    let steps: u64 = inputs
+        .iter()
+        .map(|i| i.max_level as u64 + 8 + u64::from(!i.mesh.fvar_channels.is_empty()))
+        .sum::<u64>()
+        + 2;
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")

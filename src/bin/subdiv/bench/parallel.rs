@@ -58,7 +58,7 @@ pub fn many_meshes(count: usize, quick: bool) -> Vec<BenchShape> {
             BenchShape {
                 name: format!("torus {nu}x{nv} {kind}"),
                 mesh,
-                scheme,
+                options: Options::default().with_scheme(scheme),
                 max_level: PARALLEL_LEVEL,
             }
         })
@@ -125,7 +125,7 @@ pub fn frames_row(
     level: u32,
     reps: usize,
 ) -> Result<ParallelRow, Failure> {
-    let options = Options::default().with_scheme(input.scheme);
+    let options = input.options;
     let uniform = UniformOptions::new(level);
     let mut n = refiner::Refiner::new(&input.mesh, &options)?;
     n.refine_uniform(uniform)?;
@@ -149,7 +149,7 @@ pub fn frames_row(
         count: frames.len(),
         row: Row {
             input: format!("{}, {} frames", input.name, frames.len()),
-            scheme: input.scheme.to_string(),
+            scheme: input.options.scheme.to_string(),
             level,
             task: format!("frames ({}, level {level})", frames.len()),
             native,
@@ -174,13 +174,7 @@ pub fn meshes_row(
     let uniform = UniformOptions::new(level);
     let jobs: Vec<(&Mesh, Options, Vec<f32>)> = meshes
         .iter()
-        .map(|m| {
-            (
-                &m.mesh,
-                Options::default().with_scheme(m.scheme),
-                m.mesh.flat_positions::<f32>(),
-            )
-        })
+        .map(|m| (&m.mesh, m.options, m.mesh.flat_positions::<f32>()))
         .collect();
     let native_one =
         |(mesh, options, base): &(&Mesh, Options, Vec<f32>)| -> Result<subdiv::Values<f32>> {
@@ -210,7 +204,7 @@ pub fn meshes_row(
     );
     let mut schemes: Vec<String> = Vec::new();
     for m in meshes {
-        let s = m.scheme.to_string();
+        let s = m.options.scheme.to_string();
         if !schemes.contains(&s) {
             schemes.push(s);
         }

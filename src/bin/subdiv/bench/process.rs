@@ -5,7 +5,7 @@ use super::timing::median;
 use crate::refine::write_refinement;
 use std::time::Instant;
 use subdiv::shapes::BenchShape;
-use subdiv::{Options, Precision, UniformOptions};
+use subdiv::{Precision, UniformOptions};
 
 /// The median wall time of one program run by [`interleaved_processes`],
 /// and the peak memory it reported.
@@ -64,7 +64,7 @@ pub fn interleaved_processes(
 /// The OBJ writer's speed on the deepest level of `input` (what `subdiv
 /// refine -o` writes): the best of three writes of the refined level.
 pub(crate) fn obj_writer_rate(input: &BenchShape) -> Result<ObjWriterRate, String> {
-    let options = Options::default().with_scheme(input.scheme);
+    let options = input.options;
     let uniform = UniformOptions::new(input.max_level);
     let r = subdiv::refiner::refine(&input.mesh, &options, uniform).map_err(|e| e.to_string())?;
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;

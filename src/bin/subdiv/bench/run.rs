@@ -7,9 +7,9 @@ use super::results::{AloneRow, BenchReport, Row};
 use super::timing::{interleaved, machine_description, measure_bandwidth};
 use crate::Failure;
 use std::hint::black_box;
-use subdiv::options::{Options, UniformOptions};
+use subdiv::options::UniformOptions;
 use subdiv::shapes::BenchShape;
-use subdiv::{Result, osd, refiner};
+use subdiv::{Mesh, Result, osd, refiner};
 
 /// Runs every comparison on `inputs`; `progress` is called once per step
 /// with a description.
@@ -30,18 +30,28 @@ pub fn run(
     let mut stencil_bandwidth = None;
     let mut osd_alone = Vec::new();
     for input in inputs {
-        let options = Options::default().with_scheme(input.scheme);
+        let options = input.options;
         let base = input.mesh.flat_positions::<f32>();
-        let label =
-            |task: &str, level: u32| format!("{} {} L{level}: {task}", input.name, input.scheme);
+        // Meshes with face-varying channels (UVs) have them refined too, as
+        // a renderer's pipeline does.
+        let uvs = !input.mesh.fvar_channels.is_empty();
+        let combined = if uvs {
+            "topology + positions + UVs"
+        } else {
+            "topology + positions"
+        };
+        let label = |task: &str, level: u32| {
+            format!("{} {} L{level}: {task}", input.name, input.options.scheme)
+        };
         for level in 1..=input.max_level {
-            progress(&label("topology + positions", level));
+            progress(&label(combined, level));
             let uniform = UniformOptions::new(level);
             let mut vertices = 0;
             let opensubdiv = || {
                 let mut r = osd::TopologyRefiner::new(&input.mesh, &options).expect("osd refiner");
                 r.refine_uniform(uniform).expect("osd refinement");
                 black_box(r.interpolate_all(3, &base).expect("osd positions"));
+                black_box(osd_uvs(&r, &input.mesh, level));
             };
             let (native, osd) = pool.install(|| {
                 interleaved(
@@ -53,6 +63,7 @@ pub fn run(
                         let p = r.interpolate_all(3, &base).expect("native positions");
                         vertices = p.last().map_or(0, |l| l.len() / 3);
                         black_box(p);
+                        black_box(native_uvs(&r, &input.mesh, level));
                     },
                     opensubdiv,
                 )
@@ -64,7 +75,7 @@ pub fn run(
                 let alone = pool.install(|| interleaved(reps, opensubdiv, || {}).0);
                 osd_alone.push(AloneRow {
                     input: input.name.clone(),
-                    scheme: input.scheme.to_string(),
+                    scheme: input.options.scheme.to_string(),
                     level,
                     alone,
                     interleaved: osd,
@@ -72,9 +83,9 @@ pub fn run(
             }
             rows.push(Row {
                 input: input.name.clone(),
-                scheme: input.scheme.to_string(),
+                scheme: input.options.scheme.to_string(),
                 level,
-                task: "topology + positions".into(),
+                task: combined.into(),
                 native,
                 osd,
                 vertices,
@@ -91,7 +102,7 @@ pub fn run(
         let mut push = |task: &str, (native, osd): (f64, f64)| {
             rows.push(Row {
                 input: input.name.clone(),
-                scheme: input.scheme.to_string(),
+                scheme: input.options.scheme.to_string(),
                 level,
                 task: task.into(),
                 native,
@@ -148,6 +159,19 @@ pub fn run(
                 )
             }),
         );
+        if uvs {
+            progress(&label("UVs (f32)", level));
+            push(
+                "UVs (f32)",
+                pool.install(|| {
+                    interleaved(
+                        reps,
+                        || drop(black_box(native_uvs(&n, &input.mesh, level))),
+                        || drop(black_box(osd_uvs(&o, &input.mesh, level))),
+                    )
+                }),
+            );
+        }
         progress(&label("limit (f32)", level));
         let full = uniform.full_topology(true);
         let mut nf = refiner::Refiner::new(&input.mesh, &options)?;
@@ -250,5 +274,37 @@ pub fn run(
         whole_process: None,
         obj_writer: None,
         skipped: Vec::new(),
+    })
+}
+
+/// Every face-varying channel of `mesh` refined to `level` in f32, level by
+/// level, with `step` — either engine's `interpolate_face_varying`.
+fn uvs(
+    mesh: &Mesh,
+    level: u32,
+    step: impl Fn(usize, u32, usize, &[f32]) -> Result<Vec<f32>>,
+) -> Vec<Vec<f32>> {
+    let mut out = Vec::new();
+    for (c, ch) in mesh.fvar_channels.iter().enumerate() {
+        let mut values: Vec<f32> = ch.values.iter().map(|&x| x as f32).collect();
+        for l in 1..=level {
+            values = step(c, l, ch.width, &values).expect("UVs");
+        }
+        out.push(values);
+    }
+    out
+}
+
+/// [`uvs`] by the native engine.
+fn native_uvs(r: &refiner::Refiner, mesh: &Mesh, level: u32) -> Vec<Vec<f32>> {
+    uvs(mesh, level, |c, l, w, v| {
+        r.interpolate_face_varying(c, l, w, v)
+    })
+}
+
+/// [`uvs`] by OpenSubdiv.
+fn osd_uvs(r: &osd::TopologyRefiner, mesh: &Mesh, level: u32) -> Vec<Vec<f32>> {
+    uvs(mesh, level, |c, l, w, v| {
+        r.interpolate_face_varying(c, l, w, v)
     })
 }

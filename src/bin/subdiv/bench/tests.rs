@@ -8,7 +8,7 @@ use super::results::{
     AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row, WholeProcess,
 };
 use subdiv::shapes::BenchShape;
-use subdiv::{Scheme, shapes};
+use subdiv::{Options, Scheme, shapes};
 
 pub(crate) fn pool() -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
@@ -35,7 +35,7 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
     let input = BenchShape {
         name: "torus 6x4 quads".into(),
         mesh: shapes::torus(6, 4),
-        scheme: Scheme::Catmark,
+        options: Options::default().with_scheme(Scheme::Catmark),
         max_level: 2,
     };
     let frames = deformed_frames(&input.mesh, 3);
@@ -50,7 +50,7 @@ pub(crate) fn parallel_rows_on_tiny_inputs() {
 
     let meshes = many_meshes(4, true);
     assert_eq!(meshes.len(), 4);
-    let schemes: Vec<Scheme> = meshes.iter().map(|m| m.scheme).collect();
+    let schemes: Vec<Scheme> = meshes.iter().map(|m| m.options.scheme).collect();
     assert_eq!(
         schemes,
         [
@@ -301,5 +301,29 @@ fn the_targets_script_reads_the_bench_json() {
         text.contains("2 thread(s): 3.10x (target 5x) NOT MET"),
         "{text}"
     );
+    assert_eq!(code, Some(1));
+    // An input refined at most two levels (a production mesh): every row
+    // counts; the tori, refined deeper, keep their own targets only.
+    let shallow = |task: &str, level, native, osd| Row {
+        input: "production".into(),
+        level,
+        ..row(task, native, osd)
+    };
+    let production = BenchReport {
+        rows: vec![
+            row("base topology", 0.010, 0.012),
+            shallow("topology + positions + UVs", 1, 0.010, 0.040),
+            shallow("UVs (f32)", 2, 0.010, 0.020),
+        ],
+        ..empty_report(1)
+    };
+    let (code, text) = check(&production);
+    for expected in [
+        "topology + positions + UVs, production level 1, 1 thread(s): 4.00x (target 3x) met",
+        "UVs (f32), production level 2, 1 thread(s): 2.00x (target 3x) NOT MET",
+    ] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert!(!text.contains("base topology"), "{text}");
     assert_eq!(code, Some(1));
 }
