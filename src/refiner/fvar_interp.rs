@@ -395,8 +395,13 @@ impl Refiner {
                         } else {
                             s
                         };
-                        let w =
-                            pf.fractional_weight(parent, child, v, from, c, self.options.creasing);
+                        let w = pf.fractional_weight(
+                            (parent, child, r),
+                            v,
+                            from,
+                            c,
+                            self.options.creasing,
+                        );
                         let corner = T::from_f32(w);
                         let crease = T::ONE - corner;
                         vw = crease * corner_weight + corner;

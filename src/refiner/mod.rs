@@ -195,14 +195,18 @@ impl Refiner {
         for level in 1..=uniform.level {
             let parent = self.levels.last().expect("base level");
             // Like OpenSubdiv, the last level gets only what interpolation
-            // needs unless full topology is asked for (or face-varying
-            // channels need the rest).
-            let minimal = !uniform.full_topology_in_last_level && self.fvar.is_empty();
+            // needs unless full topology is asked for (and the vertex-faces
+            // that face-varying refinement reads).
             let (r, child) = refine_level(
                 parent,
                 &self.options,
                 uniform.order_vertices_from_faces_first,
-                Build::for_level(level as usize, uniform.level as usize, minimal),
+                Build::for_level(
+                    level as usize,
+                    uniform.level as usize,
+                    !uniform.full_topology_in_last_level,
+                    !self.fvar.is_empty(),
+                ),
             );
             for channel in &mut self.fvar {
                 let parent_fvar = channel.last().expect("base channel");

@@ -63,6 +63,7 @@ pub fn refine_last<T: Real>(
                     level,
                     uniform.level as usize,
                     !uniform.full_topology_in_last_level,
+                    false,
                 ),
             );
             r.refinements.push(refinement);

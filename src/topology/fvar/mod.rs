@@ -51,7 +51,7 @@ mod refine;
 pub use base::build_base;
 pub use refine::refine;
 
-use super::Level;
+use super::{Level, Split};
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
 use crate::rules::crease;
 
@@ -346,12 +346,12 @@ impl ChannelLevel {
     /// The weight of the corner mask when sibling `s` of parent vertex `v`
     /// turns from a semi-sharp corner into a crease: the fractional weight of
     /// the vertex's sharpness and of the edges inside the value's span, as
-    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child).
-    /// Only channels with smooth boundaries keep crease spans.
+    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child;
+    /// `r` the split between them). Only channels with smooth boundaries keep
+    /// crease spans.
     pub fn fractional_weight(
         &self,
-        parent: &Level,
-        child: &Level,
+        (parent, child, r): (&Level, &Level, &Split),
         v: usize,
         s: usize,
         c: usize,
@@ -360,7 +360,7 @@ impl ChannelLevel {
         let [start, end] = self.crease_ends[self.value_offsets[v] as usize + s];
         let (start, end) = (start as usize, end as usize);
         let p_edges = parent.vertex_edges_of(v);
-        let c_edges = child.vertex_edges_of(c);
+        let c_edges = child_vertex_edges(parent, child, r, v, c);
         let mut p_sharpness = Vec::with_capacity(p_edges.len());
         let mut c_sharpness = Vec::with_capacity(p_edges.len());
         // The edges strictly inside the span: between its consecutive faces.
@@ -385,4 +385,27 @@ impl ChannelLevel {
             child_edges,
         )
     }
+}
+
+/// The edges of child vertex `c`, the child of parent vertex `v`, in the
+/// order of `v`'s edges: the child level's own list, or — in a last level
+/// built for face-varying refinement, which keeps no vertex-edges — the
+/// halves of `v`'s edges at `v`, as OpenSubdiv finds them then.
+pub(super) fn child_vertex_edges<'a>(
+    parent: &Level,
+    child: &'a Level,
+    r: &Split,
+    v: usize,
+    c: usize,
+) -> std::borrow::Cow<'a, [u32]> {
+    if child.vertex_edges.len() == child.vertex_count {
+        return child.vertex_edges_of(c).into();
+    }
+    parent
+        .vertex_edges_of(v)
+        .iter()
+        .zip(parent.vertex_edge_locals(v))
+        .map(|(&e, &end)| r.edge_child_edge(e as usize, end as usize))
+        .collect::<Vec<u32>>()
+        .into()
 }

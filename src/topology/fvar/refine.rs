@@ -260,7 +260,7 @@ fn reclassify_semi_sharp(
             }
             continue;
         }
-        let c_edges = child.vertex_edges_of(c);
+        let c_edges = super::child_vertex_edges(parent, child, r, v, c);
         let semi = |k: usize| child.edge_tag(c_edges[k] as usize).semi_sharp();
         for i in range.clone() {
             let t = fvar.value_tags[i];

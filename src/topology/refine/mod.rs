@@ -160,18 +160,36 @@ pub enum Build {
     /// level needs for interpolation, as OpenSubdiv builds it unless asked
     /// for full topology.
     Minimal,
+    /// A minimal last level with its vertex-faces (and their local indices)
+    /// and its edges' sharpness and tags: what refining face-varying
+    /// channels into it reads, as OpenSubdiv adds the vertex-faces to a
+    /// minimal level when the mesh has face-varying channels.
+    FaceVarying,
 }
 
 impl Build {
     /// What level `level` of a refinement to `last` builds, when the last
-    /// level is `minimal` or not.
-    pub fn for_level(level: usize, last: usize, minimal: bool) -> Build {
-        if level == last && minimal {
-            Build::Minimal
-        } else if level + 1 == last && minimal {
-            Build::Relations
-        } else {
-            Build::Full
+    /// level is `minimal` or not, for a mesh with face-varying channels
+    /// (`fvar`: the last level keeps its vertex-faces, the one before all of
+    /// its relations) or without.
+    pub fn for_level(level: usize, last: usize, minimal: bool, fvar: bool) -> Build {
+        match (minimal, fvar) {
+            (true, false) if level == last => Build::Minimal,
+            (true, false) if level + 1 == last => Build::Relations,
+            (true, true) if level == last => Build::FaceVarying,
+            _ => Build::Full,
+        }
+    }
+
+    /// Whether a level built so is minimal (face-vertices only, apart from
+    /// [`Build::FaceVarying`]'s vertex-faces), keeps local indices, and
+    /// keeps vertex-faces only.
+    fn parts(self) -> (bool, bool, bool) {
+        match self {
+            Build::Full => (false, true, false),
+            Build::Relations => (false, false, false),
+            Build::Minimal => (true, false, false),
+            Build::FaceVarying => (true, false, true),
         }
     }
 }
@@ -185,12 +203,10 @@ pub fn refine_level(
     faces_first: bool,
     build: Build,
 ) -> (Split, Level) {
-    let minimal = build == Build::Minimal;
-    let locals = build == Build::Full;
     if options.scheme == Scheme::Loop {
-        return tri::refine_triangles(parent, options, faces_first, minimal, locals);
+        return tri::refine_triangles(parent, options, faces_first, build);
     }
-    quad::refine_quads(parent, options, faces_first, minimal, locals)
+    quad::refine_quads(parent, options, faces_first, build)
 }
 
 /// Parent faces per parallel task.
@@ -230,6 +246,23 @@ struct ChildRelations {
     vertex_face_local: Table<u16>,
     vertex_edges: Relation,
     vertex_edge_local: Table<u16>,
+}
+
+/// The relations of a [`Build::FaceVarying`] level: its vertex-faces with
+/// their local indices (`members` in all, for `child_vertices` vertices),
+/// filled by `fill`, and nothing else.
+fn vertex_faces_only_relations(
+    child_vertices: usize,
+    members: usize,
+    fill: impl FnOnce(relations::TableWriter) -> ((Relation, Table<u16>), relations::Discard),
+) -> ChildRelations {
+    let vf = relations::TableWriter::new(child_vertices, members, None, true);
+    let ((vertex_faces, vertex_face_local), relations::Discard) = fill(vf);
+    ChildRelations {
+        vertex_faces,
+        vertex_face_local,
+        ..Default::default()
+    }
 }
 
 /// The tables of a child level built by a split, before tags and sharpness.

@@ -5,10 +5,11 @@
 
 use super::derive::vertex_relations_derivable;
 use super::relations::{
-    Sink, TableWriter, fill_vertex_relations, vertex_child_relations, vertex_relation_writers,
+    Discard, Sink, TableWriter, fill_vertex_relations, vertex_child_relations,
+    vertex_relation_writers,
 };
 use super::tags::{ChildTags, child_holes};
-use super::{ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev};
+use super::{Build, ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev};
 use crate::options::Options;
 use crate::topology::{Level, Relation, Table};
 use rayon::prelude::*;
@@ -17,16 +18,14 @@ use rayon::prelude::*;
 /// `n` vertices are its `n` corner quads (child `j` at corner `j`, numbered
 /// as that face corner); child edges are the `n` inside each face, then two
 /// per parent edge. What [`refine_level`](super::refine_level) does for
-/// these schemes; `minimal` and `locals` say whether `build` is
-/// [`Build::Minimal`](super::Build::Minimal) or
-/// [`Build::Full`](super::Build::Full).
+/// these schemes, building what `build` says.
 pub(super) fn refine_quads(
     parent: &Level,
     options: &Options,
     faces_first: bool,
-    minimal: bool,
-    locals: bool,
+    build: Build,
 ) -> (Split, Level) {
+    let (minimal, locals, vertex_faces_only) = build.parts();
     let r = Split::new(parent, faces_first, true);
     let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -69,6 +68,21 @@ pub(super) fn refine_quads(
     // Everything but the face-vertices is skipped for a minimal last level.
     // Edge relations and vertex relations are built side by side.
     let relations_part = || -> ChildRelations {
+        if vertex_faces_only {
+            let vf = TableWriter::new(
+                child_vertices,
+                parent.vertex_faces.members.len() + corners + 2 * parent.edge_faces.members.len(),
+                None,
+                true,
+            );
+            let ((vertex_faces, vertex_face_local), Discard) =
+                quad_vertex_relations(parent, &r, vf, Discard);
+            return ChildRelations {
+                vertex_faces,
+                vertex_face_local,
+                ..Default::default()
+            };
+        }
         if minimal {
             return Default::default();
         }
@@ -156,9 +170,6 @@ pub(super) fn refine_quads(
             if derive {
                 return Default::default();
             }
-            // Vertex-faces and vertex-edges, per child vertex, by origin: a
-            // face point has one face and one edge per corner, an edge point
-            // two faces per parent face and two edges more.
             let ef_members = parent.edge_faces.members.len();
             let (vf, ve) = vertex_relation_writers(
                 parent,
@@ -167,29 +178,8 @@ pub(super) fn refine_quads(
                 parent.vertex_edges.members.len() + corners + 2 * ne + ef_members,
                 locals,
             );
-            let face_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                for f in 0..nf {
-                    quad_face_child(parent, f, vf, ve);
-                    vf.end_element();
-                    ve.end_element();
-                }
-            };
-            let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                let mut edge_list = Vec::with_capacity(8);
-                for e in 0..ne {
-                    quad_edge_child(parent, &r, e, vf, ve, &mut edge_list);
-                    vf.end_element();
-                    ve.end_element();
-                }
-            };
-            let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                for v in 0..parent.vertex_count {
-                    quad_vertex_child(parent, &r, v, vf, ve);
-                    vf.end_element();
-                    ve.end_element();
-                }
-            };
-            fill_vertex_relations(&r, vf, ve, face_children, edge_children, vertex_children)
+            let (faces, ve) = quad_vertex_relations(parent, &r, vf, ve);
+            (faces, ve.finish())
         };
         let (
             (edge_vertices, edge_faces, ef_local),
@@ -205,7 +195,9 @@ pub(super) fn refine_quads(
             vertex_edge_local,
         }
     };
-    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
+    // Edge sharpness and tags are stored unless the child is minimal.
+    let bare = build == Build::Minimal;
+    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, bare);
     let ((face_vertices, face_edges), (relations, tags)) =
         rayon::join(faces_part, || rayon::join(relations_part, tags_part));
 
@@ -224,6 +216,42 @@ pub(super) fn refine_quads(
         },
     );
     (r, child)
+}
+
+/// The vertex-faces (into `vf`) and vertex-edges (into `ve`) of every child
+/// vertex of the quad split, in the order of the child vertices: a face
+/// point has one face and one edge per corner, an edge point two faces per
+/// parent face and two edges more, a vertex's child its corners' faces and
+/// its edges' halves.
+fn quad_vertex_relations<E: Sink>(
+    parent: &Level,
+    r: &Split,
+    vf: TableWriter,
+    ve: E,
+) -> ((Relation, Table<u16>), E) {
+    let face_children = |vf: &mut TableWriter, ve: &mut E| {
+        for f in 0..parent.face_count() {
+            quad_face_child(parent, f, vf, ve);
+            vf.end_element();
+            ve.end_element();
+        }
+    };
+    let edge_children = |vf: &mut TableWriter, ve: &mut E| {
+        let mut edge_list = Vec::with_capacity(8);
+        for e in 0..parent.edge_count() {
+            quad_edge_child(parent, r, e, vf, ve, &mut edge_list);
+            vf.end_element();
+            ve.end_element();
+        }
+    };
+    let vertex_children = |vf: &mut TableWriter, ve: &mut E| {
+        for v in 0..parent.vertex_count {
+            quad_vertex_child(parent, r, v, vf, ve);
+            vf.end_element();
+            ve.end_element();
+        }
+    };
+    fill_vertex_relations(r, vf, ve, face_children, edge_children, vertex_children)
 }
 
 /// The child quads of parent faces `faces` (a contiguous range), written

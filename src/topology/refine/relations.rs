@@ -106,6 +106,9 @@ impl TableWriter {
 /// ([`derive_vertex_relations`](super::derive_vertex_relations)).
 pub(super) trait Sink {
     fn push(&mut self, member: u32, local: u16);
+    /// Closes the current element (a buffer holds one element: nothing to do).
+    #[inline(always)]
+    fn end_element(&mut self) {}
 }
 
 impl Sink for TableWriter {
@@ -113,6 +116,20 @@ impl Sink for TableWriter {
     fn push(&mut self, member: u32, local: u16) {
         TableWriter::push(self, member, local);
     }
+    #[inline(always)]
+    fn end_element(&mut self) {
+        TableWriter::end_element(self);
+    }
+}
+
+/// A sink that keeps nothing: the vertex-edges of a level built as
+/// [`Build::FaceVarying`](super::Build::FaceVarying), which keeps only
+/// vertex-faces.
+pub(super) struct Discard;
+
+impl Sink for Discard {
+    #[inline(always)]
+    fn push(&mut self, _: u32, _: u16) {}
 }
 
 impl Sink for Vec<u32> {
@@ -148,15 +165,17 @@ pub(super) fn vertex_relation_writers(
 /// A child level's vertex-faces and vertex-edges, with their local indices:
 /// the children of parent faces, edges and vertices — each filler closing
 /// one element of both writers per child, in the order of its parents — are
-/// written in the order of the child vertices' indices.
-pub(super) fn fill_vertex_relations(
+/// written in the order of the child vertices' indices. The vertex-faces are
+/// returned finished, the vertex-edges' sink as it was filled (a
+/// [`TableWriter`] to finish, or [`Discard`]).
+pub(super) fn fill_vertex_relations<E: Sink>(
     r: &Split,
     mut vf: TableWriter,
-    mut ve: TableWriter,
-    mut face_children: impl FnMut(&mut TableWriter, &mut TableWriter),
-    mut edge_children: impl FnMut(&mut TableWriter, &mut TableWriter),
-    mut vertex_children: impl FnMut(&mut TableWriter, &mut TableWriter),
-) -> ((Relation, Table<u16>), (Relation, Table<u16>)) {
+    mut ve: E,
+    mut face_children: impl FnMut(&mut TableWriter, &mut E),
+    mut edge_children: impl FnMut(&mut TableWriter, &mut E),
+    mut vertex_children: impl FnMut(&mut TableWriter, &mut E),
+) -> ((Relation, Table<u16>), E) {
     let mut origins = [
         (r.first_vertex_from_faces, 0),
         (r.first_vertex_from_edges, 1),
@@ -171,7 +190,7 @@ pub(super) fn fill_vertex_relations(
             _ => vertex_children(&mut vf, &mut ve),
         }
     }
-    (vf.finish(), ve.finish())
+    (vf.finish(), ve)
 }
 
 /// The vertex-faces and vertex-edges of the child of parent vertex `v`: the

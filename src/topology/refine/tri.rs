@@ -4,10 +4,13 @@
 
 use super::derive::vertex_relations_derivable;
 use super::relations::{
-    Sink, TableWriter, fill_vertex_relations, vertex_child_relations, vertex_relation_writers,
+    Discard, Sink, TableWriter, fill_vertex_relations, vertex_child_relations,
+    vertex_relation_writers,
 };
 use super::tags::{ChildTags, child_holes};
-use super::{ChildRelations, FACE_CHUNK, Parts, Split, assemble_child};
+use super::{
+    Build, ChildRelations, FACE_CHUNK, Parts, Split, assemble_child, vertex_faces_only_relations,
+};
 use crate::options::Options;
 use crate::topology::{Level, Relation, Table};
 use rayon::prelude::*;
@@ -19,9 +22,9 @@ pub(super) fn refine_triangles(
     parent: &Level,
     options: &Options,
     faces_first: bool,
-    minimal: bool,
-    locals: bool,
+    build: Build,
 ) -> (Split, Level) {
+    let (minimal, locals, vertex_faces_only) = build.parts();
     let r = Split::new(parent, faces_first, false);
     let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -118,6 +121,12 @@ pub(super) fn refine_triangles(
 
     // Everything but the face-vertices is skipped for a minimal last level.
     let relations_part = || -> ChildRelations {
+        if vertex_faces_only {
+            let members = parent.vertex_faces.members.len() + 3 * parent.edge_faces.members.len();
+            return vertex_faces_only_relations(child_vertices, members, |vf| {
+                triangle_vertex_relations(parent, &r, vf, Discard)
+            });
+        }
         if minimal {
             return Default::default();
         }
@@ -162,8 +171,6 @@ pub(super) fn refine_triangles(
             if derive {
                 return Default::default();
             }
-            // Vertex-faces and vertex-edges: an edge point has three child
-            // triangles and two inner edges per parent face, and two halves.
             let ef_members = parent.edge_faces.members.len();
             let (vf, ve) = vertex_relation_writers(
                 parent,
@@ -172,21 +179,8 @@ pub(super) fn refine_triangles(
                 parent.vertex_edges.members.len() + 2 * ne + 2 * ef_members,
                 locals,
             );
-            let edge_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                for e in 0..ne {
-                    triangle_edge_child(parent, &r, e, vf, ve);
-                    vf.end_element();
-                    ve.end_element();
-                }
-            };
-            let vertex_children = |vf: &mut TableWriter, ve: &mut TableWriter| {
-                for v in 0..parent.vertex_count {
-                    triangle_vertex_child(parent, &r, v, vf, ve);
-                    vf.end_element();
-                    ve.end_element();
-                }
-            };
-            fill_vertex_relations(&r, vf, ve, |_, _| {}, edge_children, vertex_children)
+            let (faces, ve) = triangle_vertex_relations(parent, &r, vf, ve);
+            (faces, ve.finish())
         };
         let (
             (edge_faces, ef_local),
@@ -202,7 +196,9 @@ pub(super) fn refine_triangles(
             vertex_edge_local,
         }
     };
-    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, minimal);
+    // Edge sharpness and tags are stored unless the child is minimal.
+    let bare = build == Build::Minimal;
+    let tags_part = || ChildTags::new(parent, &r, options, child_vertices, child_edges, bare);
     let ((face_vertices, face_edges, edge_vertices), (mut relations, tags)) =
         rayon::join(faces_part, || rayon::join(relations_part, tags_part));
     // The triangle split writes edge-vertices with the faces.
@@ -226,6 +222,34 @@ pub(super) fn refine_triangles(
 }
 
 /// Triangle split: the edge point of parent edge `e` has three child
+/// The vertex-faces (into `vf`) and vertex-edges (into `ve`) of every child
+/// vertex of the triangle split, in the order of the child vertices: an
+/// edge point has three child triangles and two inner edges per parent
+/// face, and two halves; a vertex's child its corners' triangles and its
+/// edges' halves.
+fn triangle_vertex_relations<E: Sink>(
+    parent: &Level,
+    r: &Split,
+    vf: TableWriter,
+    ve: E,
+) -> ((Relation, Table<u16>), E) {
+    let edge_children = |vf: &mut TableWriter, ve: &mut E| {
+        for e in 0..parent.edge_count() {
+            triangle_edge_child(parent, r, e, vf, ve);
+            vf.end_element();
+            ve.end_element();
+        }
+    };
+    let vertex_children = |vf: &mut TableWriter, ve: &mut E| {
+        for v in 0..parent.vertex_count {
+            triangle_vertex_child(parent, r, v, vf, ve);
+            vf.end_element();
+            ve.end_element();
+        }
+    };
+    fill_vertex_relations(r, vf, ve, |_, _| {}, edge_children, vertex_children)
+}
+
 /// triangles and two inner edges per parent face, and the two halves.
 #[inline(always)]
 pub(super) fn triangle_edge_child(
