@@ -69,6 +69,22 @@ fn report_on_an_obj_file() {
     std::fs::write(&shape, SHAPE).unwrap();
     let (o, md, html, out) = run_report("obj", &[shape.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(&o));
+    // Standard error is not a terminal here: one progress line per step,
+    // numbered, the last one the total.
+    let err = stderr(&o);
+    let steps: Vec<&str> = err
+        .lines()
+        .filter(|l| l.starts_with("subdiv report: ["))
+        .collect();
+    let total = steps.len();
+    assert!(total > 3, "{err}");
+    for (k, line) in steps.iter().enumerate() {
+        let prefix = format!("subdiv report: [{}/{total}] ", k + 1);
+        assert!(line.starts_with(&prefix), "{line:?} in\n{err}");
+    }
+    assert!(steps[total - 1].contains("timing level 2"), "{err}");
+    // The small shape gets the quick run's sets, and the report says so.
+    assert!(md.contains("one option varied at a time"), "{md}");
     let summary = stdout(&o);
     assert!(summary.contains("seam-crease.obj"), "{summary}");
     assert!(summary.contains("CONFORMS"), "{summary}");

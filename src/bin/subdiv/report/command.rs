@@ -2,7 +2,7 @@
 
 use clap::Args;
 #[cfg(feature = "osd")]
-use std::io::Write as _;
+use std::io::{IsTerminal as _, Write as _};
 use std::path::PathBuf;
 
 use crate::Failure;
@@ -28,6 +28,11 @@ pub(crate) struct ReportArgs {
     /// Largest accepted deviation, relative to the bounding-box diagonal.
     #[arg(long, default_value = "1e-6", allow_negative_numbers = true, value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
+    /// Every combination of the options that apply, for every input: without
+    /// it, inputs too large to run them all in about a minute (a production
+    /// asset) get one option varied at a time, or only their own options.
+    #[arg(long)]
+    pub(crate) all_options: bool,
 }
 
 #[cfg(not(feature = "osd"))]
@@ -50,6 +55,7 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
         settings.last_level = b;
     }
     settings.tolerance = args.tolerance;
+    settings.all_options = args.all_options;
     let inputs = if args.inputs.is_empty() {
         embedded_inputs()
     } else {
@@ -68,13 +74,22 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
         }
         v
     };
-    let bar = indicatif::ProgressBar::new(steps(&inputs, &settings));
+    let total = steps(&inputs, &settings);
+    let bar = indicatif::ProgressBar::new(total);
+    // The bar draws only on a terminal; elsewhere (a pipeline's log) one
+    // line per step says how far the report is.
+    let lines = !std::io::stderr().is_terminal();
+    let mut step = 0;
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {wide_msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
     let result = run(&inputs, &settings, |msg| {
+        step += 1;
+        if lines {
+            eprintln!("subdiv report: [{step}/{total}] {msg}");
+        }
         bar.set_message(msg.to_string());
         bar.inc(1);
     });

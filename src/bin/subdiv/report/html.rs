@@ -105,11 +105,7 @@ impl Report {
                 i.vertices,
                 i.faces,
                 escape(&options_label(&i.options)),
-                if i.varied.is_empty() {
-                    "nothing (no option can change this mesh's result)".into()
-                } else {
-                    escape(&i.varied.join(", "))
-                }
+                escape(&i.varied_label("nothing (no option can change this mesh's result)"))
             );
             h.push_str("<div class=\"figs\">\n");
             let _ = writeln!(

@@ -63,16 +63,42 @@ impl Report {
                     "{}, {} option sets ({}), tolerance {:.0e} of the bounding-box diagonal, f64; {:.1} s",
                     self.levels_label(),
                     self.inputs.iter().map(|i| i.sets.len()).sum::<usize>(),
-                    if s.quick {
-                        "quick: one option varied at a time"
-                    } else {
-                        "every combination of the options that apply"
-                    },
+                    self.coverage_label(),
                     s.tolerance,
                     self.seconds
                 ),
             ),
         ]
+    }
+
+    /// Which option sets were run, input by input where the inputs' sizes
+    /// made them differ.
+    fn coverage_label(&self) -> String {
+        use super::coverage::Coverage;
+        let mut parts: Vec<String> = Vec::new();
+        for c in [Coverage::Every, Coverage::OneAtATime, Coverage::Own] {
+            let names: Vec<&str> = self
+                .inputs
+                .iter()
+                .filter(|i| i.coverage == c)
+                .map(|i| i.name.as_str())
+                .collect();
+            if names.is_empty() {
+                continue;
+            }
+            parts.push(if names.len() == self.inputs.len() {
+                c.describe().to_string()
+            } else {
+                format!("{} for {}", c.describe(), names.join(", "))
+            });
+        }
+        let mut label = parts.join("; ");
+        if self.inputs.iter().any(|i| i.coverage != Coverage::Every) && !self.settings.quick {
+            label.push_str(
+                "; fewer sets for the larger inputs, to finish in minutes: `--all-options` runs every combination",
+            );
+        }
+        label
     }
 
     /// The report as Markdown; figures are linked as `figures/*.svg`
@@ -120,11 +146,7 @@ impl Report {
                 i.vertices,
                 i.faces,
                 options_label(&i.options),
-                if i.varied.is_empty() {
-                    "nothing".into()
-                } else {
-                    i.varied.join(", ")
-                }
+                i.varied_label("nothing")
             );
             let _ = writeln!(
                 s,

@@ -6,7 +6,9 @@
 //! For each [`Input`], [`run`]:
 //!
 //! - refines the mesh with both engines ([`subdiv::Engine::refine`]) for
-//!   every option set of [`option_sets`] and
+//!   the option sets [`coverage::choose`] picks by the input's size (every
+//!   combination of [`option_sets`] for the usual test meshes, down to the
+//!   mesh's own options for a production asset; all with `--all-options`) and
 //!   compares them level by level ([`crate::compare::compare`]): topology,
 //!   positions relative to the bounding-box diagonal, face-varying values;
 //!   then evaluates the limit at the last level with both and compares limit
@@ -28,6 +30,8 @@
 //! ```
 
 mod command;
+#[cfg(feature = "osd")]
+mod coverage;
 #[cfg(feature = "osd")]
 mod files;
 #[cfg(feature = "osd")]

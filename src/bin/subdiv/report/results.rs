@@ -157,6 +157,8 @@ pub struct InputReport {
     pub options: Options,
     /// What the option sets vary.
     pub varied: Vec<&'static str>,
+    /// How many of them were run (chosen by the input's size).
+    pub coverage: super::coverage::Coverage,
     /// Every option set's comparisons.
     pub sets: Vec<SetResult>,
     /// Benchmarks per level.
@@ -166,6 +168,23 @@ pub struct InputReport {
 }
 
 impl InputReport {
+    /// What the option sets varied, as the report says it (`nothing` when
+    /// no option applies).
+    pub fn varied_label(&self, nothing: &str) -> String {
+        use super::coverage::Coverage;
+        if self.varied.is_empty() {
+            return nothing.to_string();
+        }
+        let applies = self.varied.join(", ");
+        match self.coverage {
+            Coverage::Every => applies,
+            Coverage::OneAtATime => format!("{applies}, one at a time"),
+            Coverage::Own => format!(
+                "nothing, for the mesh's size (options that apply: {applies}; `--all-options` runs every combination)"
+            ),
+        }
+    }
+
     /// Checks made.
     pub fn cases(&self) -> usize {
         self.sets.iter().map(SetResult::cases).sum()

@@ -1,7 +1,8 @@
 //! Running the report: comparisons, limits and timings.
 
+use super::coverage::{Coverage, choose};
 use super::format::options_label;
-use super::inputs::{Input, option_sets, traits};
+use super::inputs::{Input, traits};
 use super::picture::picture;
 use super::results::{InputReport, LevelResult, LimitResult, Picture, Report, SetResult, Timing};
 use super::settings::Settings;
@@ -17,9 +18,7 @@ use subdiv::{Engine, Error, OsdErrorKind, Refinement, Request, Result, check_lev
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs
         .iter()
-        .map(|i| {
-            option_sets(i, settings.quick).len() as u64 + settings.timed_levels().count() as u64
-        })
+        .map(|i| choose(i, settings).1.len() as u64 + settings.timed_levels().count() as u64)
         .sum()
 }
 
@@ -55,21 +54,21 @@ pub fn run(
         if input.mesh.face_count() == 0 {
             return Err(Failure::from(Error::EmptyMesh).in_input(&input.name));
         }
-        let sets = option_sets(input, settings.quick);
+        let (coverage, sets) = choose(input, settings);
         for o in &sets {
             check_level(&input.mesh, o, settings.last_level)
                 .map_err(|e| Failure::from(e).in_input(&input.name))?;
         }
-        plans.push(sets);
+        plans.push((coverage, sets));
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .map_err(|e| Failure::Message(format!("cannot start a thread pool: {e}")))?;
     let mut reports = Vec::with_capacity(inputs.len());
-    for (input, sets) in inputs.iter().zip(plans) {
+    for (input, (coverage, sets)) in inputs.iter().zip(plans) {
         reports.push(
-            run_input(input, sets, settings, &pool, &mut progress)
+            run_input(input, coverage, sets, settings, &pool, &mut progress)
                 .map_err(|e| Failure::from(e).in_input(&input.name))?,
         );
     }
@@ -86,6 +85,7 @@ pub fn run(
 
 pub(crate) fn run_input(
     input: &Input,
+    coverage: Coverage,
     sets: Vec<Options>,
     settings: &Settings,
     pool: &rayon::ThreadPool,
@@ -151,6 +151,7 @@ pub(crate) fn run_input(
         faces: input.mesh.face_count(),
         options: input.options,
         varied,
+        coverage,
         sets: results,
         timings,
         picture,
@@ -303,7 +304,12 @@ pub(crate) fn time_level(
     native()?;
     opensubdiv()?;
     let once = t0.elapsed().as_secs_f64().max(1e-7);
-    let (budget, min_reps) = if quick { (0.02, 3) } else { (0.25, 7) };
+    // Fewer repetitions when one already takes seconds (a production mesh).
+    let (budget, min_reps) = if quick || once > 1.0 {
+        (0.02, 3)
+    } else {
+        (0.25, 7)
+    };
     let reps = ((budget / once) as usize).clamp(min_reps, 2001) | 1;
     // Warm up (caches, allocator, clock) for a tenth of the budget.
     for _ in 0..reps / 10 {

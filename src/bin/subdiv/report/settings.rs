@@ -16,6 +16,9 @@ pub struct Settings {
     pub quick: bool,
     /// The largest accepted deviation, relative to the bounding-box diagonal.
     pub tolerance: f64,
+    /// Every combination of options for every input, whatever its size
+    /// (see [`super::coverage::choose`]).
+    pub all_options: bool,
 }
 
 impl Settings {
@@ -26,6 +29,7 @@ impl Settings {
             last_level: if quick { 2 } else { 4 },
             quick,
             tolerance: DEFAULT_TOLERANCE,
+            all_options: false,
         }
     }
 

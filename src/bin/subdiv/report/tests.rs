@@ -98,3 +98,58 @@ fn colours_and_formats() {
     );
     assert_eq!(slug(2, "My Shape.obj"), "03-my-shape-obj");
 }
+
+/// The option sets follow the input's size: every combination for the
+/// embedded meshes, one option varied at a time, then the mesh's own options
+/// only as the production-like mesh grows; `--all-options` runs them all.
+#[test]
+fn coverage_follows_the_size() {
+    use super::coverage::{Coverage, WORK_BUDGET, choose, faces_at};
+    use super::inputs::Input;
+    let mut settings = Settings::new(false);
+    settings.last_level = 2;
+    for i in embedded_inputs() {
+        let (coverage, sets) = choose(&i, &settings);
+        assert_eq!(coverage, Coverage::Every, "{}", i.name);
+        assert_eq!(sets, option_sets(&i, false), "{}", i.name);
+    }
+    let usd = subdiv::Options::default()
+        .with_boundary(subdiv::BoundaryInterpolation::EdgeAndCorner)
+        .with_fvar(subdiv::FVarLinearInterpolation::CornersPlus1);
+    let production = |nu, nv| Input::new("p", "", subdiv::shapes::production(nu, nv), usd);
+    // Level 2 of the quad split: four faces per corner.
+    let small = production(16, 9);
+    assert_eq!(
+        faces_at(&small, Scheme::Catmark, 2),
+        4.0 * small.mesh.face_vertices.len() as f64
+    );
+    let expect = [
+        ((80, 60), Coverage::Every),
+        ((300, 240), Coverage::OneAtATime),
+        ((560, 480), Coverage::Own),
+    ];
+    for ((nu, nv), want) in expect {
+        let input = production(nu, nv);
+        let (coverage, sets) = choose(&input, &settings);
+        assert_eq!(coverage, want, "{nu}x{nv}");
+        assert_eq!(sets[0], usd, "the mesh's own options first");
+        let work = sets.len() as f64 * faces_at(&input, Scheme::Catmark, 2);
+        assert!(
+            work <= WORK_BUDGET || coverage == Coverage::Own,
+            "{nu}x{nv}"
+        );
+        if coverage == Coverage::Own {
+            assert_eq!(sets, [usd]);
+        }
+    }
+    let big = production(560, 480);
+    settings.all_options = true;
+    let (coverage, sets) = choose(&big, &settings);
+    assert_eq!(
+        (coverage, sets.len()),
+        (Coverage::Every, option_sets(&big, false).len())
+    );
+    // --quick stops at one option at a time.
+    let quick = Settings::new(true);
+    assert_eq!(choose(&production(80, 60), &quick).0, Coverage::OneAtATime);
+}
