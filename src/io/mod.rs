@@ -12,6 +12,6 @@ pub mod svg;
 
 pub use number::format_g;
 pub use obj::{
-    ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, mesh_to_obj_string, parse_obj, read_obj,
-    write_mesh_obj, write_mesh_obj_to, write_obj, write_obj_to,
+    ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, mesh_to_obj_string, parse_obj,
+    parse_obj_general, read_obj, write_mesh_obj, write_mesh_obj_to, write_obj, write_obj_to,
 };

@@ -1,6 +1,6 @@
 //! The OBJ reader: statements, `t` tags, file:line errors.
 
-use super::{ObjWarning, ShapeFile, ShapeTags};
+use super::{ObjWarning, ShapeFile, ShapeTags, fast};
 use crate::error::{ObjError, ObjErrorKind};
 use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
 use crate::options::{
@@ -22,7 +22,11 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
         line: 0,
         kind: ObjErrorKind::Io(e.to_string()),
     })?;
-    let text: Cow<'_, str> = String::from_utf8_lossy(&bytes);
+    // The usual case, valid UTF-8, checked by the faster validator.
+    let text: Cow<'_, str> = match std::str::from_utf8(&bytes) {
+        Ok(text) => Cow::Borrowed(text),
+        Err(_) => String::from_utf8_lossy(&bytes),
+    };
     parse_obj(&text, path)
 }
 
@@ -39,6 +43,17 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
 /// # Ok::<(), subdiv::ObjError>(())
 /// ```
 pub fn parse_obj(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
+    parse(text, file, true)
+}
+
+/// [`parse_obj`] with every line read by the general parser, none by the
+/// fast path: the reference the fast path is tested and fuzzed against.
+#[doc(hidden)]
+pub fn parse_obj_general(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
+    parse(text, file, false)
+}
+
+fn parse(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let error = |line: usize, kind: ObjErrorKind| ObjError {
         file: file.to_path_buf(),
@@ -46,7 +61,11 @@ pub fn parse_obj(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
         kind,
     };
     let mut parser = Parser::default();
+    let mut corners = (Vec::new(), Vec::new());
     for (i, line) in text.lines().enumerate() {
+        if fast_path && parser.fast_statement(i + 1, line.as_bytes(), &mut corners) {
+            continue;
+        }
         parser
             .statement(i + 1, line)
             .map_err(|kind| error(i + 1, kind))?;
@@ -202,6 +221,51 @@ impl Parser {
             message,
             ignored,
         });
+    }
+
+    /// Reads one line by the fast path ([`fast`]) if it can: true when it
+    /// did, with the same effect as [`Parser::statement`]; false (nothing
+    /// changed) for a line the general parser must read. `corners` is
+    /// scratch space for a face's indices.
+    fn fast_statement(
+        &mut self,
+        line: usize,
+        text: &[u8],
+        (vertices, uvs): &mut (Vec<u32>, Vec<u32>),
+    ) -> bool {
+        match text {
+            [b'v', s, rest @ ..] if fast::is_space(*s) => {
+                let Some(p) = fast::numbers::<3>(rest) else {
+                    return false;
+                };
+                self.mesh.positions.push(DVec3::from_array(p));
+            }
+            [b'v', b't', s, rest @ ..] if fast::is_space(*s) => {
+                let Some(uv) = fast::numbers::<2>(rest) else {
+                    return false;
+                };
+                self.uv_values.extend_from_slice(&uv);
+            }
+            [b'f', s, rest @ ..] if fast::is_space(*s) => {
+                let vertex_count = self.mesh.positions.len();
+                let uv_count = self.uv_values.len() / 2;
+                let Some(with_uv) =
+                    fast::face(rest, vertex_count, uv_count, MAX_VALENCE, vertices, uvs)
+                else {
+                    return false;
+                };
+                let end = u32::try_from(self.mesh.face_vertices.len() + vertices.len());
+                let (Ok(end), true) = (end, self.uv_mode.is_none_or(|(m, _)| m == with_uv)) else {
+                    return false;
+                };
+                self.uv_mode.get_or_insert((with_uv, line));
+                self.mesh.face_vertices.extend_from_slice(vertices);
+                self.uv_indices.extend_from_slice(uvs);
+                self.mesh.face_offsets.push(end);
+            }
+            _ => return false,
+        }
+        true
     }
 
     /// Reads one line.
