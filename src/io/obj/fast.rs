@@ -111,8 +111,27 @@ fn index(s: &[u8]) -> Option<u32> {
     (n > 0).then_some(n)
 }
 
+/// Whether a normal index is an integer the general parser accepts without
+/// a second look: an optional minus and at most 18 digits.
+#[inline]
+fn normal_index(s: &[u8]) -> bool {
+    let digits = s.strip_prefix(b"-").unwrap_or(s);
+    !digits.is_empty() && digits.len() <= 18 && digits.iter().all(u8::is_ascii_digit)
+}
+
+/// Whether `line` is a statement the reader ignores whatever follows its
+/// keyword (normals, objects, groups, smoothing groups, materials).
+#[inline]
+pub(super) fn ignored(line: &[u8]) -> bool {
+    [&b"vn"[..], b"o", b"g", b"s", b"usemtl", b"mtllib"]
+        .iter()
+        .any(|k| line.starts_with(k) && line.get(k.len()).is_none_or(|&b| is_space(b)))
+}
+
 /// The corners of a face line (`line` starts after the `f`) whose every
-/// corner is `v` or `v/vt` with plain positive indices: their 0-based vertex
+/// corner is `v`, `v/vt`, `v//vn` or `v/vt/vn` with plain positive vertex
+/// and texture-coordinate indices (and integer normal indices, which are
+/// not checked against anything): their 0-based vertex
 /// and texture-coordinate indices into `vertices` and `uvs` (cleared first),
 /// and whether the corners have texture coordinates. `None` for anything
 /// else — other forms, indices out of range (`vertex_count`, `uv_count`),
@@ -131,10 +150,18 @@ pub(super) fn face(
     let mut at = 0;
     let mut with_uv = None;
     while let Some(corner) = field(line, &mut at) {
-        let (v, t) = match corner.iter().position(|&b| b == b'/') {
-            Some(slash) => (&corner[..slash], Some(&corner[slash + 1..])),
-            None => (corner, None),
-        };
+        let mut parts = corner.split(|&b| b == b'/');
+        let v = parts.next().unwrap_or_default();
+        let (t, n) = (parts.next(), parts.next());
+        if parts.next().is_some() {
+            return None;
+        }
+        // `v//vn`: no texture coordinate. A normal index is read but not
+        // checked against the normals, as the general parser does.
+        let t = t.filter(|t| !(t.is_empty() && n.is_some()));
+        if n.is_some_and(|n| !normal_index(n)) {
+            return None;
+        }
         let v = index(v)? as usize;
         if v > vertex_count || *with_uv.get_or_insert(t.is_some()) != t.is_some() {
             return None;
@@ -204,14 +231,20 @@ mod tests {
         let mut f = |line: &str, nv, nt| face(line.as_bytes(), nv, nt, 8, &mut v, &mut t);
         assert_eq!(f(" 1 2 3", 3, 0), Some(false));
         assert_eq!(f(" 1/1 2/2 3/3 4/1", 4, 3), Some(true));
+        // Normals: read as integers, not checked.
+        assert_eq!(f(" 1//7 2//-1 3//0", 3, 0), Some(false));
+        assert_eq!(f(" 1/1/9 2/2/9 3/1/9", 3, 2), Some(true));
         // Out of range, zero, negative, signs, normals, mixed, too few or many.
         for line in [
             " 1 2 4",
             " 0 1 2",
             " -1 1 2",
             " +1 2 3",
-            " 1//1 2//1 3//1",
-            " 1/1/1 2/2/2 3/3/3",
+            " 1//x 2//1 3//1",
+            " 1/1/ 2/2/2 3/3/3",
+            " 1/1/1/1 2/2 3/3",
+            " 1// 2// 3//",
+            " 1/1 2//1 3/1",
             " 1/1 2 3",
             " 1 2",
             " 1 2 3 1 2 3 1 2 3",
@@ -278,7 +311,7 @@ mod tests {
                     4 => format!("v  {}\t{} {} {}", num(), num(), num(), num()),
                     5..=7 => {
                         let corners = next(5) + 2;
-                        let form = if next(10) == 0 { next(6) } else { next(2) * 2 };
+                        let form = if next(5) == 0 { next(6) } else { next(2) * 2 };
                         let mut l = String::from("f");
                         for _ in 0..corners {
                             // Now and then out of range, zero or negative.
@@ -310,7 +343,13 @@ mod tests {
                         "x y",
                         "f",
                         "v",
-                    ][next(7) as usize]
+                        "g",
+                        "s off",
+                        "usemtl m#x",
+                        "o#",
+                        "vn",
+                        "mtllibx a",
+                    ][next(13) as usize]
                         .to_string(),
                 };
                 text.push_str(&line);

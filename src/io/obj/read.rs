@@ -263,6 +263,7 @@ impl Parser {
                 self.uv_indices.extend_from_slice(uvs);
                 self.mesh.face_offsets.push(end);
             }
+            _ if fast::ignored(text) => {}
             _ => return false,
         }
         true
