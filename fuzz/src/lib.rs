@@ -16,7 +16,7 @@ use glam::DVec3;
 use std::path::Path;
 use subdiv::curve::{self, BSplineCurve, CurveError, CurveScheme, Point};
 use subdiv::io::points::{self as points_io, Points, PointsErrorKind};
-use subdiv::io::{mesh_to_obj_string, parse_obj, parse_obj_general};
+use subdiv::io::{mesh_to_obj_string, parse_obj, parse_obj_chunked, parse_obj_general};
 use subdiv::refiner::{self, Refiner};
 use subdiv::{
     BoundaryInterpolation, CreasingMethod, Error, FVarChannel, FVarLinearInterpolation, Mesh,
@@ -658,16 +658,22 @@ pub fn check_differential(case: &MeshCase) {
 // ---------------------------------------------------------------------------
 
 /// `parse_obj` on any bytes: the same result or error as the general parser
-/// alone (the fast path changes nothing); an error names a real line; a
-/// success writes back to text that reads as the same mesh; small valid
-/// meshes refine.
+/// alone (the fast path and the chunked reader change nothing); an error
+/// names a real line; a success writes back to text that reads as the same
+/// mesh; small valid meshes refine.
 pub fn check_obj(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let file = Path::new("fuzz.obj");
+    let general = parse_obj_general(&text, file);
     assert_eq!(
         parse_obj(&text, file),
-        parse_obj_general(&text, file),
+        general,
         "the fast path and the general parser differ"
+    );
+    assert_eq!(
+        parse_obj_chunked(&text, file, 3),
+        general,
+        "the chunked reader and the general parser differ"
     );
     let lines = text
         .strip_prefix('\u{feff}')

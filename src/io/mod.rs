@@ -13,5 +13,6 @@ pub mod svg;
 pub use number::format_g;
 pub use obj::{
     ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, mesh_to_obj_string, parse_obj,
-    parse_obj_general, read_obj, write_mesh_obj, write_mesh_obj_to, write_obj, write_obj_to,
+    parse_obj_chunked, parse_obj_general, read_obj, write_mesh_obj, write_mesh_obj_to, write_obj,
+    write_obj_to,
 };

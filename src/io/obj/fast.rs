@@ -262,7 +262,7 @@ mod tests {
     /// its line, is the general parser's.
     #[test]
     fn the_fast_path_changes_nothing() {
-        use crate::io::{parse_obj, parse_obj_general};
+        use crate::io::{parse_obj, parse_obj_chunked, parse_obj_general};
         use std::path::Path;
         let state = std::cell::Cell::new(0x9e37_79b9_7f4a_7c15u64);
         let next = |n: u64| {
@@ -358,6 +358,11 @@ mod tests {
             let fast = parse_obj(&text, Path::new("t.obj"));
             let general = parse_obj_general(&text, Path::new("t.obj"));
             assert_eq!(fast, general, "{text}");
+            // Read in chunks on several threads (`chunks.rs`): the same.
+            for pieces in [2, 3, 7] {
+                let chunked = parse_obj_chunked(&text, Path::new("t.obj"), pieces);
+                assert_eq!(chunked, general, "{pieces} chunks: {text}");
+            }
             ok += usize::from(fast.is_ok_and(|s| s.mesh.face_count() > 0));
         }
         // Enough files that parse, with faces, for the fast path to matter.

@@ -1,6 +1,6 @@
 //! The OBJ reader: statements, `t` tags, file:line errors.
 
-use super::{ObjWarning, ShapeFile, ShapeTags, fast};
+use super::{ObjWarning, ShapeFile, ShapeTags, chunks, fast};
 use crate::error::{ObjError, ObjErrorKind};
 use crate::mesh::{Corner, Crease, FVarChannel, MAX_VALENCE, Mesh};
 use crate::options::{
@@ -53,13 +53,82 @@ pub fn parse_obj_general(text: &str, file: &Path) -> Result<ShapeFile, ObjError>
     parse(text, file, false)
 }
 
+/// [`parse_obj`] reading the text in `chunks` pieces in parallel (when every
+/// piece can be read so; else line by line), whatever its size: the
+/// parallel reader is tested and fuzzed with it.
+#[doc(hidden)]
+pub fn parse_obj_chunked(text: &str, file: &Path, chunks: usize) -> Result<ShapeFile, ObjError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    parse_chunked(text, file, chunks.max(1)).unwrap_or_else(|| parse_lines(text, file, true))
+}
+
+/// Files from this size are read on every thread of the pool.
+const PARALLEL_BYTES: usize = 1 << 22;
+
 fn parse(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let error = |line: usize, kind: ObjErrorKind| ObjError {
+    let threads = rayon::current_num_threads();
+    if fast_path && threads > 1 && text.len() >= PARALLEL_BYTES {
+        if let Some(result) = parse_chunked(text, file, threads) {
+            return result;
+        }
+    }
+    parse_lines(text, file, fast_path)
+}
+
+fn error_at(file: &Path, line: usize, kind: ObjErrorKind) -> ObjError {
+    ObjError {
         file: file.to_path_buf(),
         line,
         kind,
-    };
+    }
+}
+
+/// The text read in `count` chunks in parallel ([`chunks`]) and joined;
+/// `None` when it must be read line by line instead.
+fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFile, ObjError>> {
+    let read = chunks::read_chunks(text, count)?;
+    let mut p = Parser::default();
+    let mut first_line = 0;
+    let mut deferred = Vec::new();
+    for c in read {
+        if c.needs.0 > p.mesh.positions.len() || c.needs.1 > p.uv_values.len() / 2 {
+            return None;
+        }
+        if let Some((with_uv, line)) = c.first_face {
+            match p.uv_mode {
+                Some((mode, _)) if mode != with_uv => return None,
+                Some(_) => {}
+                None => p.uv_mode = Some((with_uv, first_line + line)),
+            }
+        }
+        let base = p.mesh.face_vertices.len();
+        for &end in &c.face_ends {
+            let end = u32::try_from(base + end as usize).ok()?;
+            p.mesh.face_offsets.push(end);
+        }
+        p.mesh.positions.extend_from_slice(&c.positions);
+        p.mesh.face_vertices.extend_from_slice(&c.face_vertices);
+        p.uv_values.extend_from_slice(&c.uv_values);
+        p.uv_indices.extend_from_slice(&c.uv_indices);
+        deferred.extend(c.deferred.iter().map(|&(line, s)| (first_line + line, s)));
+        first_line += c.lines;
+    }
+    for (line, statement) in deferred {
+        if let Err(kind) = p.statement(line, statement) {
+            return Some(Err(error_at(file, line, kind)));
+        }
+    }
+    Some(
+        p.finish()
+            .map_err(|(line, kind)| error_at(file, line, kind)),
+    )
+}
+
+/// The text read line by line (by the fast path where it can, when
+/// `fast_path`).
+fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
+    let error = |line: usize, kind: ObjErrorKind| error_at(file, line, kind);
     let mut parser = Parser::default();
     let mut corners = (Vec::new(), Vec::new());
     for (i, line) in text.lines().enumerate() {
