@@ -9,7 +9,10 @@ use super::relations::{
     vertex_relation_writers,
 };
 use super::tags::{ChildTags, child_holes};
-use super::{Build, ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev};
+use super::{
+    Build, ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev,
+    vertex_faces_only_relations,
+};
 use crate::options::Options;
 use crate::topology::{Level, Relation, Table};
 use rayon::prelude::*;
@@ -69,19 +72,11 @@ pub(super) fn refine_quads(
     // Edge relations and vertex relations are built side by side.
     let relations_part = || -> ChildRelations {
         if vertex_faces_only {
-            let vf = TableWriter::new(
-                child_vertices,
-                parent.vertex_faces.members.len() + corners + 2 * parent.edge_faces.members.len(),
-                None,
-                true,
-            );
-            let ((vertex_faces, vertex_face_local), Discard) =
-                quad_vertex_relations(parent, &r, vf, Discard);
-            return ChildRelations {
-                vertex_faces,
-                vertex_face_local,
-                ..Default::default()
-            };
+            let members =
+                parent.vertex_faces.members.len() + corners + 2 * parent.edge_faces.members.len();
+            return vertex_faces_only_relations(child_vertices, members, |vf| {
+                quad_vertex_relations(parent, &r, vf, Discard)
+            });
         }
         if minimal {
             return Default::default();
