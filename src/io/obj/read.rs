@@ -31,7 +31,10 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
 }
 
 /// Parses the text of an OBJ shape file; `file` only names it in errors
-/// (use `Path::new("<memory>")` for in-memory text).
+/// (use `Path::new("<memory>")` for in-memory text). Text of 4 MiB or more
+/// is read on every thread of the current rayon pool, in chunks of whole
+/// lines; the result and the first error are those of reading it line by
+/// line.
 ///
 /// ```
 /// use std::path::Path;
