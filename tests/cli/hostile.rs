@@ -5,7 +5,7 @@
 //! messages that say what is wrong with what was typed, floods of warnings,
 //! all-hole meshes and the largest faces.
 
-use crate::support::{scratch, stderr, stdout, subdiv, write};
+use crate::support::{refine_to, scratch, stderr, stdout, subdiv, write};
 
 #[cfg(feature = "osd")]
 /// The reproduction: an edge (vertices 1 and 2) shared by `n`
@@ -30,17 +30,7 @@ fn limit_on_a_spine_of_14_faces_is_refused_by_osd_and_reported() {
     let dir = scratch("hostile-spine");
     let input = write(&dir, "f14.obj", &spine(14));
     let out = dir.join("x.obj");
-    let run = |engine: &str| {
-        subdiv(&[
-            "refine",
-            input.to_str().unwrap(),
-            "--limit",
-            "--engine",
-            engine,
-            "-o",
-            out.to_str().unwrap(),
-        ])
-    };
+    let run = |engine: &str| refine_to(&input, engine, &out, &["--limit"]);
     let o = run("osd");
     assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
     let err = stderr(&o);
@@ -126,16 +116,7 @@ fn values_beyond_f32_are_refused_in_f32() {
     let out = dir.join("out.obj");
     for (input, what) in [(&big_v, "vertex 4"), (&big_vt, "face-varying value 1")] {
         for engine in crate::engines() {
-            let o = subdiv(&[
-                "refine",
-                input.to_str().unwrap(),
-                "--precision",
-                "f32",
-                "--engine",
-                engine,
-                "-o",
-                out.to_str().unwrap(),
-            ]);
+            let o = refine_to(input, engine, &out, &["--precision", "f32"]);
             assert_eq!(o.status.code(), Some(1), "{engine}: {}", stderr(&o));
             assert_eq!(
                 stderr(&o),

@@ -7,7 +7,7 @@
 
 use crate::engines;
 use crate::support::malformed::{curve_errors, curve_too_few, file, obj_errors};
-use crate::support::{obj_text, scratch, stderr, subdiv, write};
+use crate::support::{obj_text, refine_to, scratch, stderr, subdiv, write};
 use std::path::Path;
 use std::process::Output;
 use subdiv::shapes;
@@ -29,14 +29,7 @@ fn refine_names_file_and_line_and_writes_nothing() {
         for engine in engines() {
             let dir = scratch(&format!("malformed-refine-{name}-{engine}"));
             let out = dir.join("out.obj");
-            let o = subdiv(&[
-                "refine",
-                path.to_str().unwrap(),
-                "--engine",
-                engine,
-                "-o",
-                out.to_str().unwrap(),
-            ]);
+            let o = refine_to(&path, engine, &out, &[]);
             assert_failed_cleanly(&o, &dir, &format!("{name} ({engine})"));
             assert_eq!(
                 stderr(&o),
@@ -63,14 +56,7 @@ fn refuses_unusable_files_and_writes_nothing() {
         for engine in engines() {
             let dir = scratch(&format!("malformed-unusable-{name}-{engine}"));
             let out = dir.join("out.obj");
-            let o = subdiv(&[
-                "refine",
-                path.to_str().unwrap(),
-                "--engine",
-                engine,
-                "-o",
-                out.to_str().unwrap(),
-            ]);
+            let o = refine_to(&path, engine, &out, &[]);
             assert_failed_cleanly(&o, &dir, &format!("{name} ({engine})"));
         }
     }
@@ -296,16 +282,7 @@ fn repeated_vertex_does_not_abort_subdiv_refine() {
     // In a child process: an abort must not take the test binary down.
     let dir = scratch("malformed-repeated-vertex");
     let out = dir.join("out.obj");
-    let o = subdiv(&[
-        "refine",
-        path.to_str().unwrap(),
-        "--engine",
-        "osd",
-        "--level",
-        "1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = refine_to(&path, "osd", &out, &["--level", "1"]);
     assert!(
         matches!(o.status.code(), Some(1)),
         "subdiv refine --engine osd died: {:?}\n{}",

@@ -3,7 +3,7 @@
 //! Tests that refine with `--engine osd` need the `osd` feature; errors found
 //! before any refinement are the same without it.
 
-use crate::support::{scratch, stderr, stdout, subdiv, write};
+use crate::support::{refine_to, scratch, stderr, stdout, subdiv, write};
 use crate::{engines, quad_grid};
 // Used by the tests that refine with OpenSubdiv only.
 #[cfg(feature = "osd")]
@@ -32,18 +32,9 @@ fn native_engine_writes_the_same_file_as_opensubdiv() {
     ] {
         let input = write(&dir, name, &obj_text(&mesh));
         for (engine, out) in [("native", &native), ("osd", &osd)] {
-            let mut args = vec![
-                "refine",
-                input.to_str().unwrap(),
-                "--level",
-                "3",
-                "--engine",
-                engine,
-                "-o",
-                out.to_str().unwrap(),
-            ];
+            let mut args = vec!["--level", "3"];
             args.extend(extra);
-            let o = subdiv(&args);
+            let o = refine_to(&input, engine, out, &args);
             assert!(o.status.success(), "{name} {engine}: {}", stderr(&o));
         }
         let (a, b) = (
@@ -59,17 +50,7 @@ fn native_engine_writes_the_same_file_as_opensubdiv() {
     let input = dir.join("native.obj");
     // The same for limit positions.
     for (engine, out) in [("native", &native), ("osd", &osd)] {
-        let o = subdiv(&[
-            "refine",
-            input.to_str().unwrap(),
-            "--level",
-            "2",
-            "--limit",
-            "--engine",
-            engine,
-            "-o",
-            out.to_str().unwrap(),
-        ]);
+        let o = refine_to(&input, engine, out, &["--level", "2", "--limit"]);
         assert!(o.status.success(), "{engine} --limit: {}", stderr(&o));
     }
     let (a, b) = (
@@ -84,14 +65,7 @@ fn malformed_obj_names_file_and_line() {
     let dir = scratch("refine-malformed-obj");
     let input = write(&dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 zero\nf 1 2 3\n");
     let out = dir.join("bad-out.obj");
-    let o = subdiv(&[
-        "refine",
-        input.to_str().unwrap(),
-        "--engine",
-        "osd",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = refine_to(&input, "osd", &out, &[]);
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);
     assert!(err.contains("bad.obj:3:"), "{err}");
@@ -143,15 +117,7 @@ fn crease_without_edge_warns_or_fails_under_strict() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("share no edge"), "{}", stderr(&o));
     let out = dir.join("diag-out.obj");
-    let o = subdiv(&[
-        "refine",
-        input.to_str().unwrap(),
-        "--engine",
-        "osd",
-        "--strict",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = refine_to(&input, "osd", &out, &["--strict"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("share no edge"), "{}", stderr(&o));
     assert!(!out.exists());
@@ -164,16 +130,7 @@ fn output_obj_in_opensubdiv_order_with_holes_left_out() {
     let text = format!("{}t hole 1/0/0 3\n", quad_grid());
     let input = write(&dir, "hole.obj", &text);
     let out = dir.join("hole-out.obj");
-    let o = subdiv(&[
-        "refine",
-        input.to_str().unwrap(),
-        "--engine",
-        "osd",
-        "--level",
-        "1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let o = refine_to(&input, "osd", &out, &["--level", "1"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
     let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
@@ -199,18 +156,9 @@ fn precision_and_limit_change_the_numbers() {
         (&b, vec!["--precision", "f32"]),
         (&c, vec!["--limit"]),
     ] {
-        let mut args = vec![
-            "refine",
-            input.to_str().unwrap(),
-            "--engine",
-            "osd",
-            "--level",
-            "1",
-            "-o",
-            out.to_str().unwrap(),
-        ];
+        let mut args = vec!["--level", "1"];
         args.extend(extra);
-        let o = subdiv(&args);
+        let o = refine_to(&input, "osd", out, &args);
         assert!(o.status.success(), "{}", stderr(&o));
     }
     let line = |p: &Path, n: usize| {
@@ -236,19 +184,7 @@ fn precision_and_limit_change_the_numbers() {
     inexact.positions[4].z = 0.3;
     let input = write(&dir, "prec-inexact.obj", &obj_text(&inexact));
     for (out, prec, digits) in [(&a, "f64", 17), (&b, "f32", 9)] {
-        let args = [
-            "refine",
-            input.to_str().unwrap(),
-            "--engine",
-            "osd",
-            "--level",
-            "1",
-            "--precision",
-            prec,
-            "-o",
-            out.to_str().unwrap(),
-        ];
-        let o = subdiv(&args);
+        let o = refine_to(&input, "osd", out, &["--level", "1", "--precision", prec]);
         assert!(o.status.success(), "{}", stderr(&o));
         let z = line(out, 4).rsplit(' ').next().unwrap().to_string();
         let significant = z.replace('.', "").trim_start_matches('0').len();

@@ -33,6 +33,16 @@ pub fn subdiv(args: &[&str]) -> Output {
         .expect("run subdiv")
 }
 
+/// Runs `subdiv refine INPUT --engine ENGINE ARGS... -o OUT`, the way most
+/// CLI tests refine a file into a file.
+#[cfg(feature = "cli")]
+pub fn refine_to(input: &Path, engine: &str, out: &Path, args: &[&str]) -> Output {
+    let mut all = vec!["refine", input.to_str().unwrap(), "--engine", engine];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", out.to_str().unwrap()]);
+    subdiv(&all)
+}
+
 /// A command's standard output as text (invalid UTF-8 replaced).
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
