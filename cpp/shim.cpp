@@ -457,20 +457,52 @@ void limit(const sdv_refiner *r, int32_t width, const T *src, size_t src_len, T 
 // vertex) is read past the end of OpenSubdiv's tag array. Refuse those.
 void check_base_fvar_values_for_limit(const Far::TopologyRefiner &refiner, int channel) {
     const Far::TopologyLevel &l = refiner.GetLevel(0);
+    // One pass over the vertices: each vertex's distinct values (its
+    // "siblings") in the order they first appear around its faces, as
+    // Vtr::FVarLevel numbers them (fvarLevel.cpp,
+    // completeTopologyFromFaceValues; every vertex counts at least one), found
+    // by sorting (value, position) pairs so that a vertex of any valence costs
+    // n log n. Their total is the number of per-vertex values; the first
+    // vertex whose siblings are not numbered so is kept for the check below.
     long long vertex_values = 0;
-    std::vector<Far::Index> distinct;
+    std::string misnumbered;
+    std::vector<std::pair<Far::Index, int>> seen;
     for (int v = 0; v < l.GetNumVertices(); ++v) {
         Far::ConstIndexArray faces = l.GetVertexFaces(v);
         Far::ConstLocalIndexArray corners = l.GetVertexFaceLocalIndices(v);
-        distinct.clear();
+        seen.clear();
         for (int i = 0; i < faces.size(); ++i) {
             Far::ConstIndexArray values = l.GetFaceFVarValues(faces[i], channel);
-            if (corners[i] < values.size()) distinct.push_back(values[corners[i]]);
+            if (corners[i] < values.size()) seen.emplace_back(values[corners[i]], i);
         }
-        std::sort(distinct.begin(), distinct.end());
-        long long n = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
-        vertex_values += std::max(1LL, n);
+        // Distinct values, each with its first position, then in that order.
+        std::sort(seen.begin(), seen.end());
+        seen.erase(std::unique(seen.begin(), seen.end(),
+                               [](const std::pair<Far::Index, int> &a, const std::pair<Far::Index, int> &b) {
+                                   return a.first == b.first;
+                               }),
+                   seen.end());
+        std::sort(seen.begin(), seen.end(),
+                  [](const std::pair<Far::Index, int> &a, const std::pair<Far::Index, int> &b) {
+                      return a.second < b.second;
+                  });
+        if (misnumbered.empty() && l.GetVertexEdges(v).size() > 0) {
+            for (size_t i = 0; i < seen.size(); ++i) {
+                if (seen[i].first != vertex_values + (long long)i) {
+                    misnumbered = "face-varying channel " + str(channel) + ": value " + str(seen[i].first) +
+                                  " (vertex " + str(v) + ") is OpenSubdiv's per-vertex value " +
+                                  str(vertex_values + (long long)i) +
+                                  " of the unrefined level, whose tags OpenSubdiv 3.5's LimitFaceVarying would "
+                                  "read for it (a wrong rule); refine at least one level, or number the values "
+                                  "vertex by vertex";
+                    break;
+                }
+            }
+        }
+        vertex_values += std::max<long long>(1, (long long)seen.size());
     }
+    // A value at or beyond the number of per-vertex values is read past the
+    // end of OpenSubdiv's tag array.
     for (int f = 0; f < l.GetNumFaces(); ++f) {
         Far::ConstIndexArray values = l.GetFaceFVarValues(f, channel);
         for (int k = 0; k < values.size(); ++k) {
@@ -485,39 +517,10 @@ void check_base_fvar_values_for_limit(const Far::TopologyRefiner &refiner, int c
     // In range but numbered otherwise, a value reads another value's tags
     // (whether its topology matches the vertex's, whether it is a corner):
     // a wrong rule and a wrong limit (found by the limit_nonmanifold fuzz
-    // target). Vtr::FVarLevel numbers a vertex's distinct values (its
-    // "siblings") in the order they first appear around its faces, the
-    // vertices one after another (fvarLevel.cpp,
-    // completeTopologyFromFaceValues); every vertex counts at least one.
-    // LimitFaceVarying reads the tags of every vertex with edges, unless the
-    // channel is linear (values copied).
+    // target). LimitFaceVarying reads the tags of every vertex with edges,
+    // unless the channel is linear (values copied).
     if (refiner.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
-    long long offset = 0;
-    std::vector<Far::Index> siblings;
-    for (int v = 0; v < l.GetNumVertices(); ++v) {
-        Far::ConstIndexArray faces = l.GetVertexFaces(v);
-        Far::ConstLocalIndexArray corners = l.GetVertexFaceLocalIndices(v);
-        siblings.clear();
-        for (int i = 0; i < faces.size(); ++i) {
-            Far::ConstIndexArray values = l.GetFaceFVarValues(faces[i], channel);
-            if (corners[i] >= values.size()) continue;
-            Far::Index value = values[corners[i]];
-            if (std::find(siblings.begin(), siblings.end(), value) == siblings.end()) siblings.push_back(value);
-        }
-        if (l.GetVertexEdges(v).size() > 0) {
-            for (size_t i = 0; i < siblings.size(); ++i) {
-                if (siblings[i] != offset + (long long)i) {
-                    fail_unsafe("face-varying channel " + str(channel) + ": value " + str(siblings[i]) +
-                                " (vertex " + str(v) + ") is OpenSubdiv's per-vertex value " +
-                                str(offset + (long long)i) +
-                                " of the unrefined level, whose tags OpenSubdiv 3.5's LimitFaceVarying would read "
-                                "for it (a wrong rule); refine at least one level, or number the values vertex by "
-                                "vertex");
-                }
-            }
-        }
-        offset += std::max<long long>(1, (long long)siblings.size());
-    }
+    if (!misnumbered.empty()) fail_unsafe(misnumbered);
 }
 
 template <class T>

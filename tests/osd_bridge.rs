@@ -626,6 +626,28 @@ fn base_level_fvar_limit_with_values_numbered_otherwise_is_refused() {
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max);
     assert!(d < 1e-15, "refined once: {d:e}");
+    // Vertex 0's three values numbered 0, 1, 2 in each of the six orders
+    // over its faces: only the order in which OpenSubdiv meets them around
+    // the vertex (not their order as numbers) passes vertex 0's check.
+    let request = subdiv::Request::from(UniformOptions::new(0)).limit(true);
+    let mut passed = 0;
+    for p in [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ] {
+        let ch = &mut mesh.fvar_channels[0];
+        ch.indices = vec![p[0], 3, 4, p[1], 5, 6, p[2], 7, 8];
+        let refused_at_0 = match osd::refine(&mesh, &options, request) {
+            Err(Error::Osd(OsdError { message, .. })) => message.contains("(vertex 0)"),
+            _ => false,
+        };
+        passed += usize::from(!refused_at_0);
+    }
+    assert_eq!(passed, 1, "one order of vertex 0's values is OpenSubdiv's");
 }
 
 /// The masks OpenSubdiv 3.5's `PrimvarRefiner::Limit` would write at each
