@@ -251,6 +251,31 @@ impl Default for StencilTableF32 {
 }
 
 impl StencilTableF32 {
+    /// A table from arrays built consistent by the crate (`offsets` from 0
+    /// to `indices.len()`, non-decreasing; `base_count` one more than the
+    /// largest index): as [`StencilTableF32::from_parts`] without the checks.
+    pub(crate) fn from_checked_parts(
+        offsets: Vec<u32>,
+        indices: Vec<u32>,
+        weights: Vec<f32>,
+        base_count: usize,
+    ) -> Self {
+        debug_assert_eq!(indices.len(), weights.len());
+        debug_assert_eq!(offsets.first(), Some(&0));
+        debug_assert_eq!(offsets.last().map(|&o| o as usize), Some(indices.len()));
+        debug_assert!(offsets.windows(2).all(|w| w[0] <= w[1]));
+        debug_assert_eq!(
+            base_count,
+            indices.iter().max().map_or(0, |&m| m as usize + 1)
+        );
+        StencilTableF32 {
+            offsets,
+            indices,
+            weights,
+            base_count,
+        }
+    }
+
     pub(crate) fn with_capacity(rows: usize, terms: usize) -> Self {
         let mut offsets = Vec::with_capacity(rows + 1);
         offsets.push(0);

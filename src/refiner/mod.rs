@@ -79,6 +79,17 @@ pub(crate) enum Source {
     Child(u32),
 }
 
+/// The three kinds of parent element a child vertex comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Block {
+    /// Face points.
+    Faces,
+    /// Edge points.
+    Edges,
+    /// Vertex points.
+    Vertices,
+}
+
 /// Kinds of primvar interpolation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Kind {
@@ -446,23 +457,52 @@ impl Refiner {
     ) {
         let parent = &self.levels[level - 1];
         let r = &self.refinements[level - 1];
-        let mut scratch = Scratch::<T>::new();
         let face_points = if r.has_face_points() {
             parent.face_count()
         } else {
             0
         };
-        for f in 0..face_points {
-            self.face_terms(level, f, &mut scratch);
-            emit(r.face_child(f), &scratch.terms);
+        let mut scratch = Scratch::<T>::new();
+        for (block, count) in [
+            (Block::Faces, face_points),
+            (Block::Edges, parent.edge_count()),
+            (Block::Vertices, parent.vertex_count),
+        ] {
+            self.walk_block(kind, level, block, 0..count, &mut scratch, &mut emit);
         }
-        for e in 0..parent.edge_count() {
-            self.edge_terms(kind, level, e, &mut scratch);
-            emit(r.edge_child(e), &scratch.terms);
-        }
-        for v in 0..parent.vertex_count {
-            self.vertex_terms(kind, level, v, &mut scratch);
-            emit(r.vertex_child(v), &scratch.terms);
+    }
+
+    /// As [`Refiner::walk_masks`] for the child vertices of the parent
+    /// elements `range` of one kind (`block`), in order.
+    pub(crate) fn walk_block<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        block: Block,
+        range: std::ops::Range<usize>,
+        scratch: &mut Scratch<T>,
+        mut emit: impl FnMut(u32, &[(Source, T)]),
+    ) {
+        let r = &self.refinements[level - 1];
+        match block {
+            Block::Faces => {
+                for f in range {
+                    self.face_terms(level, f, scratch);
+                    emit(r.face_child(f), &scratch.terms);
+                }
+            }
+            Block::Edges => {
+                for e in range {
+                    self.edge_terms(kind, level, e, scratch);
+                    emit(r.edge_child(e), &scratch.terms);
+                }
+            }
+            Block::Vertices => {
+                for v in range {
+                    self.vertex_terms(kind, level, v, scratch);
+                    emit(r.vertex_child(v), &scratch.terms);
+                }
+            }
         }
     }
 

@@ -1,168 +1,261 @@
 //! Stencil tables: every refined (or limit) vertex as a weighted sum of base
 //! vertices, built by running the refinement masks on sparse rows.
 
+use super::kernel::Scratch;
 use super::limit::LimitMasks;
-use super::{Kind, Refiner, Source};
+use super::{Block, Kind, Refiner, Source};
 use crate::error::{Buffer, Error, Result};
 use crate::real::Real;
 use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
-/// Sparse rows under construction, merged through a dense scratch array.
-struct RowBuilder<T> {
-    dense: Vec<T>,
-    touched: Vec<u32>,
-    seen: Vec<bool>,
-}
+/// Marks a base vertex without a term in the row being built.
+const ABSENT: u32 = u32::MAX;
 
-impl<T: Real> RowBuilder<T> {
-    fn new(base: usize) -> Self {
-        RowBuilder {
-            dense: vec![T::ZERO; base],
-            touched: Vec::new(),
-            seen: vec![false; base],
-        }
-    }
-
-    /// Adds `w` times a row: each weight becomes `dense += x * w`, as
-    /// OpenSubdiv's stencil builder accumulates (in the row's precision).
-    fn add_row(&mut self, indices: &[u32], weights: &[T], w: T) {
-        for (&i, &x) in indices.iter().zip(weights) {
-            let iu = i as usize;
-            if !self.seen[iu] {
-                self.seen[iu] = true;
-                self.touched.push(i);
-            }
-            self.dense[iu] += x * w;
-        }
-    }
-
-    /// Moves the accumulated row to the end of `indices` and `weights`, in
-    /// order of first contribution.
-    fn finish(&mut self, indices: &mut Vec<u32>, weights: &mut Vec<T>) {
-        for &i in &self.touched {
-            let iu = i as usize;
-            indices.push(i);
-            weights.push(self.dense[iu]);
-            self.dense[iu] = T::ZERO;
-            self.seen[iu] = false;
-        }
-        self.touched.clear();
-    }
-}
-
-impl RowBuilder<f64> {
-    /// Moves the accumulated row into `table`.
-    fn finish_into(&mut self, table: &mut StencilTable) {
-        table.offsets.push(table.indices.len() as u32);
-        table.sizes.push(self.touched.len() as u32);
-        self.finish(&mut table.indices, &mut table.weights);
-    }
-}
-
-/// Rows stored in the order they are produced (`offsets` has one entry more
-/// than there are rows), with a map from vertex to row.
+/// Stencil rows in vertex order: row `v` is `offsets[v]..offsets[v + 1]` of
+/// `indices` (base vertices) and `weights`.
 struct Rows<T> {
     offsets: Vec<u32>,
     indices: Vec<u32>,
     weights: Vec<T>,
-    row_of: Vec<u32>,
+    /// One more than the largest index (0 without terms).
+    base_count: usize,
 }
 
 impl<T: Real> Rows<T> {
+    fn with_rows(rows: usize) -> Self {
+        let mut offsets = Vec::new();
+        if offsets.try_reserve_exact(rows + 1).is_err() {
+            crate::alloc::fail((rows + 1) * size_of::<u32>());
+        }
+        offsets.push(0);
+        Rows {
+            offsets,
+            indices: Vec::new(),
+            weights: Vec::new(),
+            base_count: 0,
+        }
+    }
+
     fn get(&self, v: u32) -> (&[u32], &[T]) {
-        let r = self.row_of[v as usize] as usize;
-        let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+        let (a, b) = (
+            self.offsets[v as usize] as usize,
+            self.offsets[v as usize + 1] as usize,
+        );
         (&self.indices[a..b], &self.weights[a..b])
     }
 
-    /// Number of vertices.
+    /// Number of rows.
     fn len(&self) -> usize {
-        self.row_of.len()
+        self.offsets.len() - 1
     }
 
-    /// Number of terms over all rows.
-    fn terms(&self) -> usize {
-        self.indices.len()
+    /// Room for `terms` more terms, or unwinds to [`crate::alloc::guard`]
+    /// (also when the table would outgrow its `u32` offsets).
+    fn reserve(&mut self, terms: usize) {
+        let total = self.indices.len() + terms;
+        if u32::try_from(total).is_err()
+            || self.indices.try_reserve(terms).is_err()
+            || self.weights.try_reserve(terms).is_err()
+        {
+            crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+    }
+
+    /// Appends the rows of `other`.
+    fn append(&mut self, other: &Rows<T>) {
+        self.reserve(other.indices.len());
+        if self.offsets.try_reserve(other.len()).is_err() {
+            crate::alloc::fail(other.len() * size_of::<u32>());
+        }
+        let shift = self.indices.len() as u32;
+        self.offsets
+            .extend(other.offsets[1..].iter().map(|&o| o + shift));
+        self.indices.extend_from_slice(&other.indices);
+        self.weights.extend_from_slice(&other.weights);
+        self.base_count = self.base_count.max(other.base_count);
     }
 }
 
 impl Rows<f64> {
-    /// The same rows in vertex order.
-    fn into_table(self) -> StencilTable {
-        let mut out = StencilTable {
-            sizes: Vec::with_capacity(self.len()),
-            offsets: Vec::with_capacity(self.len()),
-            indices: Vec::with_capacity(self.terms()),
-            weights: Vec::with_capacity(self.terms()),
-        };
-        for v in 0..self.len() as u32 {
-            let (i, w) = self.get(v);
-            out.offsets.push(out.indices.len() as u32);
-            out.sizes.push(i.len() as u32);
-            out.indices.extend_from_slice(i);
-            out.weights.extend_from_slice(w);
+    /// The rows as a table with sizes and offsets (no copy of the terms).
+    fn into_table(mut self) -> StencilTable {
+        let sizes = self.offsets.windows(2).map(|w| w[1] - w[0]).collect();
+        self.offsets.pop();
+        StencilTable {
+            sizes,
+            offsets: self.offsets,
+            indices: self.indices,
+            weights: self.weights,
         }
-        out
+    }
+}
+
+/// Builds rows at the end of a [`Rows`], merging the terms of each row by
+/// base vertex in order of first contribution, as OpenSubdiv's stencil
+/// builder does: each weight is `0 + x * w` for its first term and `+= x * w`
+/// for the next ones, in the row's precision.
+struct RowBuilder {
+    /// Position in the current row of each base vertex, or [`ABSENT`].
+    slot: Vec<u32>,
+}
+
+impl RowBuilder {
+    fn new(base: usize) -> Self {
+        RowBuilder {
+            slot: vec![ABSENT; base],
+        }
+    }
+
+    /// Adds `x` to the weight of base vertex `i` in the row that starts at
+    /// `start` (room reserved).
+    #[inline(always)]
+    fn add<T: Real>(&mut self, out: &mut Rows<T>, start: usize, i: u32, x: T) {
+        let slot = &mut self.slot[i as usize];
+        if *slot == ABSENT {
+            *slot = (out.indices.len() - start) as u32;
+            out.indices.push(i);
+            out.weights.push(T::ZERO + x);
+        } else {
+            out.weights[start + *slot as usize] += x;
+        }
+    }
+
+    /// Adds `w` times a row.
+    #[inline(always)]
+    fn add_row<T: Real>(&mut self, out: &mut Rows<T>, start: usize, row: (&[u32], &[T]), w: T) {
+        for (&i, &x) in row.0.iter().zip(row.1) {
+            self.add(out, start, i, x * w);
+        }
+    }
+
+    /// Closes the row that starts at `start`.
+    fn end_row<T: Real>(&mut self, out: &mut Rows<T>, start: usize) {
+        for &i in &out.indices[start..] {
+            self.slot[i as usize] = ABSENT;
+            out.base_count = out.base_count.max(i as usize + 1);
+        }
+        out.offsets.push(out.indices.len() as u32);
+    }
+
+    /// Appends the row of a child vertex whose refinement terms are `terms`:
+    /// each term a row of `prev` (the parent level; `None` for the base
+    /// level, whose rows are the identity) or of `faces` (the face points of
+    /// the child level, the first of them child vertex `f0`).
+    fn child_row<T: Real>(
+        &mut self,
+        out: &mut Rows<T>,
+        terms: &[(Source, T)],
+        prev: Option<&Rows<T>>,
+        faces: &Rows<T>,
+        f0: u32,
+    ) {
+        let row_of = |s: Source| match (s, prev) {
+            (Source::Parent(p), Some(prev)) => prev.get(p),
+            (Source::Parent(_), None) => (&[][..], &[][..]),
+            (Source::Child(c), _) => faces.get(c - f0),
+        };
+        let bound = terms.iter().map(|&(s, _)| row_of(s).0.len().max(1)).sum();
+        out.reserve(bound);
+        let start = out.indices.len();
+        for &(source, w) in terms {
+            // As OpenSubdiv's stencil builder, skip terms of zero weight
+            // (crease and boundary masks have them): they add nothing, but
+            // would put their vertices earlier in the row and so change the
+            // order in which the row is applied.
+            if w == T::ZERO {
+                continue;
+            }
+            match (source, prev) {
+                // The base level's row of `p` is `p` with weight one.
+                (Source::Parent(p), None) => self.add(out, start, p, T::ONE * w),
+                _ => self.add_row(out, start, row_of(source), w),
+            }
+        }
+        self.end_row(out, start);
     }
 }
 
 impl Refiner {
+    /// The stencil rows of the vertices of `level` (at least 1) over the
+    /// base vertices, in vertex order.
     fn rows_of_level<T: Real>(&self, level: usize) -> Rows<T> {
-        let base = self.levels[0].vertex_count;
-        if level == 0 {
-            return Rows {
-                offsets: (0..=base as u32).collect(),
-                indices: (0..base as u32).collect(),
-                weights: vec![T::ONE; base],
-                row_of: (0..base as u32).collect(),
-            };
-        }
-        let prev = self.rows_of_level::<T>(level - 1);
-        let n = self.levels[level].vertex_count;
-        let mut rows = Rows {
-            offsets: Vec::with_capacity(n + 1),
-            indices: Vec::new(),
-            weights: Vec::new(),
-            row_of: vec![0; n],
+        let prev = (level > 1).then(|| self.rows_of_level::<T>(level - 1));
+        let prev = prev.as_ref();
+        let parent = &self.levels[level - 1];
+        let r = &self.refinements[level - 1];
+        let nf = if r.has_face_points() {
+            parent.face_count()
+        } else {
+            0
         };
-        rows.offsets.push(0);
-        let mut builder = RowBuilder::<T>::new(base);
-        self.walk_masks::<T>(Kind::Vertex, level, |child, terms| {
-            for &(source, w) in terms {
-                // As OpenSubdiv's stencil builder, skip terms of zero weight
-                // (crease and boundary masks have them): they add nothing,
-                // but would put their vertices earlier in the row and so
-                // change the order in which the row is applied.
-                if w == T::ZERO {
-                    continue;
-                }
-                match source {
-                    Source::Parent(p) => {
-                        let (i, x) = prev.get(p);
-                        builder.add_row(i, x, w);
-                    }
-                    Source::Child(c) => {
-                        let (i, x) = rows.get(c);
-                        builder.add_row(i, x, w);
-                    }
-                }
+        let f0 = r.first_vertex_from_faces;
+        let mut builder = RowBuilder::new(self.levels[0].vertex_count);
+        let mut scratch = Scratch::<T>::new();
+        // The face points first: the edge and vertex points read them.
+        let mut faces = Rows::with_rows(nf);
+        let none = Rows::with_rows(0);
+        self.walk_block(
+            Kind::Vertex,
+            level,
+            Block::Faces,
+            0..nf,
+            &mut scratch,
+            |_, terms| builder.child_row(&mut faces, terms, prev, &none, f0),
+        );
+        // Then the three blocks in the order of their child vertices.
+        let mut blocks = [
+            (r.first_vertex_from_faces, Block::Faces, nf),
+            (r.first_vertex_from_edges, Block::Edges, parent.edge_count()),
+            (
+                r.first_vertex_from_vertices,
+                Block::Vertices,
+                parent.vertex_count,
+            ),
+        ];
+        blocks.sort_unstable_by_key(|b| b.0);
+        let mut out = Rows::with_rows(self.levels[level].vertex_count);
+        for (first, block, count) in blocks {
+            debug_assert_eq!(out.len(), first as usize);
+            if block == Block::Faces {
+                out.append(&faces);
+            } else {
+                self.walk_block(
+                    Kind::Vertex,
+                    level,
+                    block,
+                    0..count,
+                    &mut scratch,
+                    |_, terms| builder.child_row(&mut out, terms, prev, &faces, f0),
+                );
             }
-            rows.row_of[child as usize] = (rows.offsets.len() - 1) as u32;
-            builder.finish(&mut rows.indices, &mut rows.weights);
-            rows.offsets.push(rows.indices.len() as u32);
-        });
-        rows
+        }
+        out
+    }
+
+    /// The identity rows of the base level.
+    fn base_rows<T: Real>(&self) -> Rows<T> {
+        let base = self.levels[0].vertex_count;
+        Rows {
+            offsets: (0..=base as u32).collect(),
+            indices: (0..base as u32).collect(),
+            weights: vec![T::ONE; base],
+            base_count: base,
+        }
+    }
+
+    /// The rows of the last level.
+    fn last_rows<T: Real>(&self) -> Rows<T> {
+        match self.levels.len() - 1 {
+            0 => self.base_rows(),
+            last => self.rows_of_level(last),
+        }
     }
 
     /// The stencil table mapping base vertices to the vertices of the last
     /// level (as `Far::StencilTableFactory` with vertex interpolation and no
     /// intermediate levels). Weights are computed in `f64`.
     pub fn stencil_table(&self) -> Result<StencilTable> {
-        crate::alloc::guard(None, || {
-            Ok(self
-                .rows_of_level::<f64>(self.levels.len() - 1)
-                .into_table())
-        })
+        crate::alloc::guard(None, || Ok(self.last_rows::<f64>().into_table()))
     }
 
     /// The same stencils with weights computed in `f32` all along, as
@@ -186,13 +279,15 @@ impl Refiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn stencil_table_f32(&self) -> Result<StencilTableF32> {
-        let rows = self.rows_of_level::<f32>(self.levels.len() - 1);
-        let mut out = StencilTableF32::with_capacity(rows.len(), rows.terms());
-        for v in 0..rows.len() as u32 {
-            let (i, w) = rows.get(v);
-            out.push_row(i, w.iter().copied());
-        }
-        Ok(out)
+        crate::alloc::guard(None, || {
+            let rows = self.last_rows::<f32>();
+            Ok(StencilTableF32::from_checked_parts(
+                rows.offsets,
+                rows.indices,
+                rows.weights,
+                rows.base_count,
+            ))
+        })
     }
 
     /// Stencils of the limit positions and both tangents at the vertices of
@@ -203,40 +298,38 @@ impl Refiner {
             if !self.levels[last].has_full_topology() {
                 return Err(crate::Error::NeedsFullTopology);
             }
-            let rows = self.rows_of_level::<f64>(last);
+            let rows = self.last_rows::<f64>();
             let level = &self.levels[last];
-            let base = self.levels[0].vertex_count;
-            let mut builders = [
-                RowBuilder::<f64>::new(base),
-                RowBuilder::new(base),
-                RowBuilder::new(base),
-            ];
-            let mut out = LimitStencilTable::default();
+            let mut builder = RowBuilder::new(self.levels[0].vertex_count);
+            let mut tables = [0, 1, 2].map(|_| Rows::<f64>::with_rows(level.vertex_count));
             let mut masks = LimitMasks::<f64>::new();
             for v in 0..level.vertex_count {
                 let has_masks = masks.compute(self, level, v, true);
-                let tables = [&mut out.positions, &mut out.du, &mut out.dv];
-                for (k, (builder, table)) in builders.iter_mut().zip(tables).enumerate() {
+                for (k, out) in tables.iter_mut().enumerate() {
+                    let start = out.indices.len();
                     if has_masks {
                         let mask = masks.masks()[k];
-                        for (&p, &w) in masks.face_points.iter().zip(&mask.face) {
-                            let (i, x) = rows.get(p);
-                            builder.add_row(i, x, w);
+                        let me = v as u32;
+                        let terms = masks
+                            .face_points
+                            .iter()
+                            .zip(&mask.face)
+                            .chain(masks.edge_points.iter().zip(&mask.edge))
+                            .chain([(&me, &mask.vertex[0])]);
+                        let bound = terms.clone().map(|(&p, _)| rows.get(p).0.len()).sum();
+                        out.reserve(bound);
+                        for (&p, &w) in terms {
+                            builder.add_row(out, start, rows.get(p), w);
                         }
-                        for (&p, &w) in masks.edge_points.iter().zip(&mask.edge) {
-                            let (i, x) = rows.get(p);
-                            builder.add_row(i, x, w);
-                        }
-                        let (i, x) = rows.get(v as u32);
-                        builder.add_row(i, x, mask.vertex[0]);
                     } else if k == 0 {
-                        let (i, x) = rows.get(v as u32);
-                        builder.add_row(i, x, 1.0);
+                        out.reserve(rows.get(v as u32).0.len());
+                        builder.add_row(out, start, rows.get(v as u32), 1.0);
                     }
-                    builder.finish_into(table);
+                    builder.end_row(out, start);
                 }
             }
-            Ok(out)
+            let [positions, du, dv] = tables.map(Rows::into_table);
+            Ok(LimitStencilTable { positions, du, dv })
         })
     }
 }

@@ -189,13 +189,15 @@ pub fn run(
                 )
             }),
         );
-        progress(&label("stencil table", level));
+        // Both tables in f32: OpenSubdiv's evaluator builds its float
+        // StencilTableFactory's table, the one it applies.
+        progress(&label("stencil table (f32)", level));
         push(
-            "stencil table",
+            "stencil table (f32)",
             pool.install(|| {
                 interleaved(
                     reps.min(3),
-                    || drop(black_box(n.stencil_table().expect("native"))),
+                    || drop(black_box(n.stencil_table_f32().expect("native"))),
                     || drop(black_box(osd::StencilEvaluator::new(&o).expect("osd"))),
                 )
             }),
