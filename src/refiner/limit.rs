@@ -176,6 +176,65 @@ fn accumulate<T: Real>(mask: &Mask<T>, masks: &LimitMasks<T>, v: usize, src: &[T
     add(v as u32, mask.vertex[0]);
 }
 
+/// The three masks applied in one pass over their common sources when they
+/// have the same terms (each output still sums its terms in the same order,
+/// so the results are those of three separate passes); false otherwise.
+fn apply_three<T: Real>(
+    masks: &LimitMasks<T>,
+    v: usize,
+    width: usize,
+    src: &[T],
+    out: [&mut [T]; 3],
+) -> bool {
+    let [mp, m1, m2] = masks.masks();
+    let same =
+        |a: &Mask<T>, b: &Mask<T>| a.face.len() == b.face.len() && a.edge.len() == b.edge.len();
+    if !same(mp, m1) || !same(mp, m2) || mp.face.len() != masks.face_points.len() {
+        return false;
+    }
+    match width {
+        1 => apply_three_fixed::<T, 1>([mp, m1, m2], masks, v, src, out),
+        2 => apply_three_fixed::<T, 2>([mp, m1, m2], masks, v, src, out),
+        3 => apply_three_fixed::<T, 3>([mp, m1, m2], masks, v, src, out),
+        4 => apply_three_fixed::<T, 4>([mp, m1, m2], masks, v, src, out),
+        _ => return false,
+    }
+    true
+}
+
+/// [`apply_three`] for `W` values per vertex.
+#[inline(always)]
+fn apply_three_fixed<T: Real, const W: usize>(
+    [mp, m1, m2]: [&Mask<T>; 3],
+    masks: &LimitMasks<T>,
+    v: usize,
+    src: &[T],
+    [op, o1, o2]: [&mut [T]; 3],
+) {
+    let (mut p, mut d1, mut d2) = ([T::ZERO; W], [T::ZERO; W], [T::ZERO; W]);
+    let mut add = |i: u32, (wp, w1, w2): (T, T, T)| {
+        let row: &[T; W] = src[i as usize * W..(i as usize + 1) * W]
+            .try_into()
+            .expect("a row of W values");
+        for k in 0..W {
+            p[k] += row[k] * wp;
+            d1[k] += row[k] * w1;
+            d2[k] += row[k] * w2;
+        }
+    };
+    let weights = |a: &[T], b: &[T], c: &[T], j: usize| (a[j], b[j], c[j]);
+    for (j, &i) in masks.face_points.iter().enumerate() {
+        add(i, weights(&mp.face, &m1.face, &m2.face, j));
+    }
+    for (j, &i) in masks.edge_points.iter().enumerate() {
+        add(i, weights(&mp.edge, &m1.edge, &m2.edge, j));
+    }
+    add(v as u32, weights(&mp.vertex, &m1.vertex, &m2.vertex, 0));
+    op[..W].copy_from_slice(&p);
+    o1[..W].copy_from_slice(&d1);
+    o2[..W].copy_from_slice(&d2);
+}
+
 /// Vertices per parallel task of limit evaluation.
 const BLOCK: usize = 2048;
 
@@ -231,6 +290,9 @@ impl Refiner {
                             p.copy_from_slice(&src[v * width..(v + 1) * width]);
                             continue;
                         }
+                        if apply_three(&masks, v, width, src, [&mut *p, &mut *d1, &mut *d2]) {
+                            continue;
+                        }
                         let [mp, m1, m2] = masks.masks();
                         apply(mp, &masks, v, width, src, p);
                         apply(m1, &masks, v, width, src, d1);
@@ -263,5 +325,53 @@ impl Refiner {
                 });
             Ok(out)
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Options, UniformOptions, shapes};
+
+    /// The one-pass application of the three masks gives the bits of three
+    /// separate passes, at every width it handles, on every corpus mesh.
+    #[test]
+    fn three_masks_in_one_pass_are_three_passes() {
+        let mut fused = 0;
+        for (name, mesh) in shapes::corpus() {
+            let mut r = Refiner::new(&mesh, &Options::default()).unwrap();
+            if r.refine_uniform(UniformOptions::new(1).full_topology(true))
+                .is_err()
+            {
+                continue;
+            }
+            let level = r.levels.last().unwrap();
+            for width in 1..=4 {
+                let src: Vec<f64> = (0..level.vertex_count * width)
+                    .map(|i| ((i * 7919) % 1000) as f64 / 97.0 - 3.0)
+                    .collect();
+                let mut masks = LimitMasks::<f64>::new();
+                for v in 0..level.vertex_count {
+                    if !masks.compute(&r, level, v, true) {
+                        continue;
+                    }
+                    let mut one = vec![vec![f64::NAN; width]; 3];
+                    let [a, b, c] = &mut one[..] else {
+                        unreachable!()
+                    };
+                    if !apply_three(&masks, v, width, &src, [a, b, c]) {
+                        continue;
+                    }
+                    fused += 1;
+                    for (k, mask) in masks.masks().into_iter().enumerate() {
+                        let mut three = vec![f64::NAN; width];
+                        apply(mask, &masks, v, width, &src, &mut three);
+                        let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&one[k]), bits(&three), "{name} vertex {v} mask {k}");
+                    }
+                }
+            }
+        }
+        assert!(fused > 1000, "{fused} vertices through the one-pass path");
     }
 }
