@@ -5,7 +5,7 @@
 //! the vertices' ordered faces and edges, and
 //! `prepareComponentTagsAndSharpness` for tags and sharpness).
 
-use super::lookup::{Chains, EdgeFinder, FirstCorners};
+use super::lookup::{EdgeFinder, FirstCorners, Slots};
 use super::{Level, Relation, Table};
 use crate::mesh::Mesh;
 use crate::options::{BoundaryInterpolation, Options, Scheme};
@@ -36,8 +36,9 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     let corners = face_vertices.members.len();
     let mut face_edges = crate::alloc::vec_or_unwind(0u32, corners);
     let mut edge_vertices: Vec<[u32; 2]> = crate::alloc::with_capacity(2 * nv);
-    let mut edge_faces = Chains::new(0, corners);
-    let mut vertex_edges = Chains::new(nv, 2 * corners);
+    // Per edge: how many faces it has so far, and the last of them.
+    let mut edge_face_count: Vec<u32> = crate::alloc::with_capacity(2 * nv);
+    let mut edge_last_face: Vec<u32> = crate::alloc::with_capacity(2 * nv);
     let mut non_manifold_edges: Vec<u32> = Vec::new();
     let mut finder = EdgeFinder::default();
 
@@ -51,6 +52,9 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     }
     let mut vf_fill = vf_offsets.clone();
     let mut vf_members = crate::alloc::vec_or_unwind(0u32, corners);
+    // A vertex has at most two edges per corner (the one leaving it and the
+    // one arriving at it).
+    let mut vertex_edges = Slots::new(nv, |v| 2 * (vf_offsets[v + 1] - vf_offsets[v]));
 
     for f in 0..face_vertices.len() {
         let range = face_vertices.range(f);
@@ -68,12 +72,12 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
             };
             if let Some(e) = edge {
                 let e_usize = e as usize;
-                if edge_faces.last(e_usize) == Some(f as u32) {
+                if edge_last_face[e_usize] == f as u32 {
                     // The edge occurs twice in this face: make a new instance.
                     non_manifold_edges.push(e);
                     non_manifold_edges.push(edge_vertices.len() as u32);
                     edge = None;
-                } else if edge_faces.count[e_usize] > 1 {
+                } else if edge_face_count[e_usize] > 1 {
                     non_manifold_edges.push(e);
                 } else if v0 == edge_vertices[e_usize][0] {
                     // Same direction as in the first face: opposite windings.
@@ -85,19 +89,26 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
                 None => {
                     let e = edge_vertices.len() as u32;
                     edge_vertices.push([v0, v1]);
-                    edge_faces.push_element();
+                    edge_face_count.push(0);
+                    edge_last_face.push(NONE);
                     vertex_edges.append(v0 as usize, e);
                     vertex_edges.append(v1 as usize, e);
                     finder.added(&vertex_edges, &edge_vertices, e);
                     e
                 }
             };
-            edge_faces.append(e as usize, f as u32);
+            edge_face_count[e as usize] += 1;
+            edge_last_face[e as usize] = f as u32;
             vf_members[vf_fill[v0 as usize] as usize] = f as u32;
             vf_fill[v0 as usize] += 1;
             face_edges[range.start + i] = e;
         }
     }
+    drop(edge_last_face);
+    // Edge-faces in the order the faces met the edge (face by face), with
+    // where the edge sits in each face.
+    let (edge_faces, edge_face_local) =
+        edge_faces_and_locals(&face_vertices, &face_edges, &edge_face_count);
 
     let ne = edge_vertices.len();
     let mut level = Level {
@@ -106,8 +117,8 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
         face_vertices,
         face_edges: face_edges.into(),
         edge_vertices: edge_vertices.into(),
-        edge_faces: edge_faces.into_relation(),
-        edge_face_local: Table::new(),
+        edge_faces,
+        edge_face_local: edge_face_local.into(),
         vertex_faces: Relation::from_parts(vf_offsets.into(), vf_members.into()),
         vertex_face_local: Table::new(),
         vertex_edges: vertex_edges.into_relation(),
@@ -133,7 +144,6 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
             level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
         }
     }
-    level.edge_face_local = edge_face_locals(&level).into();
     let mut corners = FirstCorners::default();
     orient_incident_components(&mut level, &mut corners);
     populate_local_indices(&mut level, &mut corners);
@@ -167,21 +177,38 @@ fn orient_incident_components(level: &mut Level, corners: &mut FirstCorners) {
     }
 }
 
-/// Where each edge sits in each of its faces, in the order the faces were
-/// appended to the edge (face by face, corner by corner): edges are distinct
-/// within a face (a repeated one gets a new instance), so each (edge, face)
-/// pair has one position.
-fn edge_face_locals(level: &Level) -> Vec<u16> {
-    let mut locals = crate::alloc::vec_or_unwind(0u16, level.edge_faces.members.len());
-    let mut next = crate::alloc::vec_or_unwind(0u32, level.edge_count());
-    for f in 0..level.face_count() {
-        for (j, &e) in level.face_edges_of(f).iter().enumerate() {
-            let slot = level.edge_faces.range(e as usize).start + next[e as usize] as usize;
-            next[e as usize] += 1;
-            locals[slot] = j as u16;
+/// The faces of every edge in the order they were appended to it (face by
+/// face, corner by corner), and where the edge sits in each: edges are
+/// distinct within a face (a repeated one gets a new instance), so each
+/// (edge, face) pair has one position. `counts` holds each edge's number of
+/// faces.
+fn edge_faces_and_locals(
+    face_vertices: &Relation,
+    face_edges: &[u32],
+    counts: &[u32],
+) -> (Relation, Vec<u16>) {
+    let ne = counts.len();
+    let mut offsets = crate::alloc::vec_or_unwind(0u32, ne + 1);
+    for e in 0..ne {
+        offsets[e + 1] = offsets[e] + counts[e];
+    }
+    let mut fill = offsets.clone();
+    let mut members = crate::alloc::vec_or_unwind(0u32, face_edges.len());
+    let mut locals = crate::alloc::vec_or_unwind(0u16, face_edges.len());
+    for f in 0..face_vertices.len() {
+        let range = face_vertices.range(f);
+        for (j, &e) in face_edges[range].iter().enumerate() {
+            let slot = &mut fill[e as usize];
+            members[*slot as usize] = f as u32;
+            locals[*slot as usize] = j as u16;
+            *slot += 1;
         }
     }
-    locals
+    drop(fill);
+    (
+        Relation::from_parts(offsets.into(), members.into()).compact(),
+        locals,
+    )
 }
 
 /// Where edge `e` sits in face `f`, one of its faces.

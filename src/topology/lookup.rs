@@ -1,5 +1,5 @@
 //! The base level's lookups, kept O(1) at high valences and in large faces:
-//! per-vertex edge lists in insertion order ([`Chains`]); the edge joining two
+//! per-vertex edge lists in insertion order ([`Slots`]); the edge joining two
 //! vertices ([`EdgeFinder`]) — the first one made, as OpenSubdiv's
 //! `Vtr::Level::findEdge` returns it by scanning the vertex's edges; and a
 //! vertex's first corner in a face ([`FirstCorners`]).
@@ -19,85 +19,67 @@ pub(super) const NONE: u32 = u32::MAX;
 /// instead of scanned.
 pub(super) const SCAN_LIMIT: u32 = 32;
 
-/// Appends to per-element lists kept as singly linked chains in flat arrays,
-/// preserving insertion order (needed to find edges as OpenSubdiv does).
-pub(super) struct Chains {
-    head: Vec<u32>,
-    tail: Vec<u32>,
+/// Per-element lists in insertion order, each in its own slice of one flat
+/// array whose room per element is known up front (the edges of a vertex
+/// are at most twice its corners): appending and scanning touch one
+/// contiguous run.
+pub(super) struct Slots {
+    /// Start of each element's room (`elements + 1` values).
+    start: Vec<u32>,
     /// How many values each element has.
     pub(super) count: Vec<u32>,
-    next: Vec<u32>,
-    value: Vec<u32>,
+    values: Vec<u32>,
 }
 
-impl Chains {
-    #[inline]
-    pub(super) fn new(elements: usize, capacity: usize) -> Self {
-        Chains {
-            head: crate::alloc::vec_or_unwind(NONE, elements),
-            tail: crate::alloc::vec_or_unwind(NONE, elements),
+impl Slots {
+    /// Lists with room `room(i)` for element `i`.
+    pub(super) fn new(elements: usize, room: impl Fn(usize) -> u32) -> Self {
+        let mut start = crate::alloc::vec_or_unwind(0u32, elements + 1);
+        for i in 0..elements {
+            start[i + 1] = start[i] + room(i);
+        }
+        Slots {
+            values: crate::alloc::vec_or_unwind(NONE, start[elements] as usize),
+            start,
             count: crate::alloc::vec_or_unwind(0, elements),
-            next: crate::alloc::with_capacity(capacity),
-            value: crate::alloc::with_capacity(capacity),
         }
     }
 
-    #[inline]
-    pub(super) fn push_element(&mut self) {
-        self.head.push(NONE);
-        self.tail.push(NONE);
-        self.count.push(0);
-    }
-
-    #[inline]
+    /// Appends `value` to the list of `element` (which has room for it).
+    #[inline(always)]
     pub(super) fn append(&mut self, element: usize, value: u32) {
-        let node = self.value.len() as u32;
-        self.value.push(value);
-        self.next.push(NONE);
-        match self.tail[element] {
-            NONE => self.head[element] = node,
-            t => self.next[t as usize] = node,
-        }
-        self.tail[element] = node;
-        self.count[element] += 1;
+        let c = &mut self.count[element];
+        self.values[(self.start[element] + *c) as usize] = value;
+        *c += 1;
     }
 
-    #[inline]
-    pub(super) fn iter(&self, element: usize) -> impl Iterator<Item = u32> + '_ {
-        let mut node = self.head[element];
-        std::iter::from_fn(move || {
-            if node == NONE {
-                return None;
-            }
-            let v = self.value[node as usize];
-            node = self.next[node as usize];
-            Some(v)
-        })
-    }
-
-    #[inline]
-    pub(super) fn last(&self, element: usize) -> Option<u32> {
-        match self.tail[element] {
-            NONE => None,
-            t => Some(self.value[t as usize]),
-        }
+    /// The list of `element`.
+    #[inline(always)]
+    pub(super) fn get(&self, element: usize) -> &[u32] {
+        let s = self.start[element] as usize;
+        &self.values[s..s + self.count[element] as usize]
     }
 
     /// The lists as a relation.
     pub(super) fn into_relation(self) -> super::Relation {
-        let mut offsets = crate::alloc::with_capacity(self.head.len() + 1);
-        let mut members = crate::alloc::with_capacity(self.value.len());
-        offsets.push(0);
-        for e in 0..self.head.len() {
-            members.extend(self.iter(e));
-            offsets.push(members.len() as u32);
+        let n = self.count.len();
+        let mut offsets = crate::alloc::with_capacity(n + 1);
+        offsets.push(0u32);
+        let mut at = 0;
+        for &c in &self.count {
+            at += c;
+            offsets.push(at);
+        }
+        let mut members = crate::alloc::with_capacity(at as usize);
+        for e in 0..n {
+            members.extend_from_slice(self.get(e));
         }
         super::Relation::from_parts(offsets.into(), members.into()).compact()
     }
 }
 
 /// The edge joining two vertices, among the edges made so far: the first one
-/// made (the first match in the vertex's [`Chains`] list), found by a scan
+/// made (the first match in the vertex's [`Slots`] list), found by a scan
 /// for vertices with at most [`SCAN_LIMIT`] edges and by a map beyond.
 #[derive(Default)]
 pub(super) struct EdgeFinder {
@@ -111,7 +93,7 @@ impl EdgeFinder {
     #[inline(always)]
     pub(super) fn find(
         &self,
-        vertex_edges: &Chains,
+        vertex_edges: &Slots,
         edge_vertices: &[[u32; 2]],
         v0: u32,
         v1: u32,
@@ -119,7 +101,7 @@ impl EdgeFinder {
         if vertex_edges.count[v0 as usize] > SCAN_LIMIT {
             return self.find_mapped(v0, v1);
         }
-        vertex_edges.iter(v0 as usize).find(|&e| {
+        vertex_edges.get(v0 as usize).iter().copied().find(|&e| {
             let ev = edge_vertices[e as usize];
             ev[0] == v1 || ev[1] == v1
         })
@@ -134,7 +116,7 @@ impl EdgeFinder {
 
     /// Records edge `e`, just appended to both its ends' lists.
     #[inline(always)]
-    pub(super) fn added(&mut self, vertex_edges: &Chains, edge_vertices: &[[u32; 2]], e: u32) {
+    pub(super) fn added(&mut self, vertex_edges: &Slots, edge_vertices: &[[u32; 2]], e: u32) {
         let [a, b] = edge_vertices[e as usize];
         if vertex_edges.count[a as usize] > SCAN_LIMIT {
             self.note(vertex_edges, edge_vertices, a, b, e);
@@ -150,7 +132,7 @@ impl EdgeFinder {
     #[inline(never)]
     fn note(
         &mut self,
-        vertex_edges: &Chains,
+        vertex_edges: &Slots,
         edge_vertices: &[[u32; 2]],
         v: u32,
         other: u32,
@@ -166,7 +148,7 @@ impl EdgeFinder {
         if map.try_reserve(2 * SCAN_LIMIT as usize).is_err() {
             crate::alloc::fail(2 * SCAN_LIMIT as usize * 12);
         }
-        for f in vertex_edges.iter(v as usize) {
+        for &f in vertex_edges.get(v as usize) {
             let [x, y] = edge_vertices[f as usize];
             reserve_one(&mut map);
             if let Entry::Vacant(slot) = map.entry(if x == v { y } else { x }) {
