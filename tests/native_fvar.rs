@@ -925,3 +925,33 @@ fn bad_arguments() {
     assert!(r.interpolate_face_varying(0, 1, 2, &values[1..]).is_err());
     assert!(r.interpolate_face_varying(0, 1, 2, values).is_ok());
 }
+
+/// Channels of a mesh large enough that each kind of child vertex is
+/// computed in several parallel chunks (more than 4,096 parent elements per
+/// kind from level 1 on), on two threads: still OpenSubdiv's values bit for
+/// bit, under USD's face-varying default and the two extremes.
+#[test]
+fn large_channels_in_parallel_chunks() {
+    let mesh = shapes::production(64, 48);
+    assert!(mesh.face_count() > 3000);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let mut failures = Vec::new();
+    for fvar in [
+        FVarLinearInterpolation::CornersPlus1,
+        FVarLinearInterpolation::None,
+        FVarLinearInterpolation::All,
+    ] {
+        let options = Options::default()
+            .with_boundary(BoundaryInterpolation::EdgeAndCorner)
+            .with_fvar(fvar);
+        if let Err(e) =
+            pool.install(|| check("production 64x48", &mesh, &options, UniformOptions::new(2)))
+        {
+            failures.push(e);
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -34,7 +34,7 @@ use crate::topology::fvar::ChannelLevel;
 
 /// The columns one pass computes of values `stride` wide: `count` of them
 /// from `offset` (every column, for the usual widths).
-trait Cols: Copy {
+trait Cols: Copy + Send + Sync {
     fn stride(self) -> usize;
     fn offset(self) -> usize;
     fn count(self) -> usize;
@@ -184,10 +184,9 @@ impl Refiner {
         }
     }
 
-    /// Columns `cols` of one level of one channel. Where the channel follows
-    /// the vertex topology and the element is smooth, the masks come from
-    /// the kernel's cache of regular masks, as for vertex data; elsewhere
-    /// from the rules, element by element.
+    /// Columns `cols` of one level of one channel: the face points, then the
+    /// edge points and the vertex points (which read the face points), each
+    /// kind in parallel over chunks of parent elements (see [`Pass`]).
     fn fvar_pass<T: Real, C: Cols>(
         &self,
         channel: usize,
@@ -196,42 +195,226 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
-        let parent = &self.levels[level - 1];
-        let child = &self.levels[level];
         let r = &self.refinements[level - 1];
-        let pf = &self.fvar[channel][level - 1];
+        let parent = &self.levels[level - 1];
         let cf = &self.fvar[channel][level];
-        let scheme = self.rules.scheme();
-        let linear = pf.is_linear() || scheme == Scheme::Bilinear;
-        let tri_smooth =
-            scheme == Scheme::Catmark && self.options.triangles == TriangleSubdivision::Smooth;
-        let zero = [T::ZERO; MAX_WIDTH];
+        let pass = Pass::new(self, channel, level, cols, src);
+        let nf = if r.has_face_points() {
+            parent.face_count()
+        } else {
+            0
+        };
+        // The values of each kind of child vertex are one run of `dst`.
+        let run = |first: u32, count: usize| {
+            let (a, b) = (first as usize, first as usize + count);
+            (cf.vertex_value_offset(a), cf.vertex_value_offset(b))
+        };
+        let mut runs = [
+            (run(r.first_vertex_from_faces, nf), 0),
+            (run(r.first_vertex_from_edges, parent.edge_count()), 1),
+            (run(r.first_vertex_from_vertices, parent.vertex_count), 2),
+        ];
+        runs.sort_unstable();
+        let stride = cols.stride();
+        let mut parts: [Out<T>; 3] = [Out::empty(), Out::empty(), Out::empty()];
+        let mut rest = dst;
+        let mut at = 0;
+        for ((start, end), kind) in runs {
+            let (_, tail) = rest.split_at_mut((start - at) as usize * stride);
+            let (part, tail) = tail.split_at_mut((end - start) as usize * stride);
+            parts[kind] = Out {
+                data: part,
+                base: start,
+            };
+            rest = tail;
+            at = end;
+        }
+        let [mut faces, edges, vertices] = parts;
+        let first = [
+            r.first_vertex_from_faces,
+            r.first_vertex_from_edges,
+            r.first_vertex_from_vertices,
+        ];
+        in_chunks(cf, first[0], nf, faces.reborrow(), stride, |range, out| {
+            pass.face_points(range, out)
+        });
+        let faces = faces.view();
+        in_chunks(
+            cf,
+            first[1],
+            parent.edge_count(),
+            edges,
+            stride,
+            |range, out| pass.edge_points(range, out, faces),
+        );
+        in_chunks(
+            cf,
+            first[2],
+            parent.vertex_count,
+            vertices,
+            stride,
+            |range, out| pass.vertex_points(range, out, faces),
+        );
+    }
+}
+
+/// Values of a run of child vertices being written: `data` holds values
+/// `base..` of the level.
+struct Out<'a, T> {
+    data: &'a mut [T],
+    base: u32,
+}
+
+impl<'a, T> Out<'a, T> {
+    fn empty() -> Self {
+        Out {
+            data: &mut [],
+            base: 0,
+        }
+    }
+
+    fn reborrow(&mut self) -> Out<'_, T> {
+        Out {
+            data: self.data,
+            base: self.base,
+        }
+    }
+
+    fn view(self) -> View<'a, T> {
+        View {
+            data: self.data,
+            base: self.base,
+        }
+    }
+}
+
+/// Values of a run of child vertices already computed: values `base..`.
+#[derive(Clone, Copy)]
+struct View<'a, T> {
+    data: &'a [T],
+    base: u32,
+}
+
+/// Calls `body(elements, out)` on chunks of the parent elements `0..count`
+/// whose child vertices start at `first` (their values in `out`), in
+/// parallel when the current rayon pool has more than one thread.
+fn in_chunks<T: Real>(
+    cf: &ChannelLevel,
+    first: u32,
+    count: usize,
+    out: Out<'_, T>,
+    stride: usize,
+    body: impl Fn(std::ops::Range<usize>, Out<'_, T>) + Sync,
+) {
+    use rayon::prelude::*;
+    const CHUNK: usize = 4096;
+    if count <= CHUNK || rayon::current_num_threads() == 1 {
+        body(0..count, out);
+        return;
+    }
+    let mut chunks = Vec::with_capacity(count.div_ceil(CHUNK));
+    let mut rest = out;
+    for start in (0..count).step_by(CHUNK) {
+        let end = (start + CHUNK).min(count);
+        let values = cf.vertex_value_offset(first as usize + end) - rest.base;
+        let (data, tail) = rest.data.split_at_mut(values as usize * stride);
+        chunks.push((
+            start..end,
+            Out {
+                data,
+                base: rest.base,
+            },
+        ));
+        rest = Out {
+            data: tail,
+            base: rest.base + values,
+        };
+    }
+    chunks
+        .into_par_iter()
+        .for_each(|(range, out)| body(range, out));
+}
+
+/// One pass of one level of one channel over columns `cols`. Where the
+/// channel follows the vertex topology and the element is smooth, the masks
+/// come from the kernel's cache of regular masks, as for vertex data;
+/// elsewhere from the rules, element by element.
+struct Pass<'a, T, C> {
+    refiner: &'a Refiner,
+    parent: &'a Level,
+    child: &'a Level,
+    r: &'a crate::topology::Split,
+    pf: &'a ChannelLevel,
+    cf: &'a ChannelLevel,
+    linear: bool,
+    tri_smooth: bool,
+    cols: C,
+    src: &'a [T],
+}
+
+impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
+    fn new(refiner: &'a Refiner, channel: usize, level: usize, cols: C, src: &'a [T]) -> Self {
+        let pf = &refiner.fvar[channel][level - 1];
+        let scheme = refiner.rules.scheme();
+        Pass {
+            refiner,
+            parent: &refiner.levels[level - 1],
+            child: &refiner.levels[level],
+            r: &refiner.refinements[level - 1],
+            pf,
+            cf: &refiner.fvar[channel][level],
+            linear: pf.is_linear() || scheme == Scheme::Bilinear,
+            tri_smooth: scheme == Scheme::Catmark
+                && refiner.options.triangles == TriangleSubdivision::Smooth,
+            cols,
+            src,
+        }
+    }
+
+    /// Writes `acc` as value `i` of the level into `out`.
+    #[inline(always)]
+    fn put(&self, out: &mut Out<'_, T>, i: u32, acc: &[T; MAX_WIDTH]) {
+        put(out.data, i - out.base, acc, self.cols);
+    }
+
+    /// Face points (none with Loop's split): the average of the face's values.
+    fn face_points(&self, faces: std::ops::Range<usize>, mut out: Out<'_, T>) {
+        let (parent, r, pf, cf, cols) = (self.parent, self.r, self.pf, self.cf, self.cols);
+        let mut cache = Cache::<T>::new();
+        for f in faces {
+            let values = pf.face_values_of(parent, f);
+            let w = cache.face_weight(self.refiner, values.len());
+            let mut acc = [T::ZERO; MAX_WIDTH];
+            for &x in values {
+                add(&mut acc, self.src, x, w, cols);
+            }
+            self.put(
+                &mut out,
+                cf.vertex_value_offset(r.face_child(f) as usize),
+                &acc,
+            );
+        }
+    }
+
+    /// Edge points; `faces` holds the face points.
+    fn edge_points(&self, edges: std::ops::Range<usize>, mut out: Out<'_, T>, faces: View<'_, T>) {
+        let (parent, child, r, pf, cf, cols, src) = (
+            self.parent,
+            self.child,
+            self.r,
+            self.pf,
+            self.cf,
+            self.cols,
+            self.src,
+        );
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
         let half = T::from_f64(0.5);
-
-        // Face points (none with Loop's split): the average of the face's values.
-        if r.has_face_points() {
-            for f in 0..parent.face_count() {
-                let values = pf.face_values_of(parent, f);
-                let w = cache.face_weight(self, values.len());
-                let mut acc = zero;
-                for &x in values {
-                    add(&mut acc, src, x, w, cols);
-                }
-                put(
-                    dst,
-                    cf.vertex_value_offset(r.face_child(f) as usize),
-                    &acc,
-                    cols,
-                );
-            }
-        }
-        let centre = |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize);
-
-        // Edge points.
+        let zero = [T::ZERO; MAX_WIDTH];
+        let centre =
+            |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize) - faces.base;
         let mut face_sizes = Vec::new();
-        for e in 0..parent.edge_count() {
+        for e in edges {
             let c = r.edge_child(e) as usize;
             let first = cf.vertex_value_offset(c);
             if cf.vertex_value_tags(c)[0].is_mismatch() {
@@ -241,26 +424,26 @@ impl Refiner {
                     let mut acc = zero;
                     add(&mut acc, src, a, half, cols);
                     add(&mut acc, src, b, half, cols);
-                    put(dst, first + i as u32, &acc, cols);
+                    self.put(&mut out, first + i as u32, &acc);
                 }
                 continue;
             }
-            let faces = parent.edge_faces_of(e);
+            let e_faces = parent.edge_faces_of(e);
             let [a, b] = pf.edge_face_values(parent, e, 0);
             let mut acc = zero;
-            if linear {
+            if self.linear {
                 add(&mut acc, src, a, half, cols);
                 add(&mut acc, src, b, half, cols);
-                put(dst, first, &acc, cols);
+                self.put(&mut out, first, &acc);
                 continue;
             }
             let s = parent.edge_sharpness_at(e);
-            let smooth = match faces {
+            let smooth = match e_faces {
                 &[f0, f1] if s <= 0.0 => cache.smooth_edge(
-                    self,
+                    self.refiner,
                     [
-                        tri_smooth && parent.face_vertices.count(f0 as usize) == 3,
-                        tri_smooth && parent.face_vertices.count(f1 as usize) == 3,
+                        self.tri_smooth && parent.face_vertices.count(f0 as usize) == 3,
+                        self.tri_smooth && parent.face_vertices.count(f1 as usize) == 3,
                     ],
                 ),
                 _ => None,
@@ -271,21 +454,21 @@ impl Refiner {
                 add(&mut acc, src, a, w.ends[0], cols);
                 add(&mut acc, src, b, w.ends[1], cols);
                 if let Some(fw) = w.faces {
-                    for (&f, fw) in faces.iter().zip(fw) {
+                    for (&f, fw) in e_faces.iter().zip(fw) {
                         if w.centers {
-                            add(&mut acc, dst, centre(f), fw, cols);
+                            add(&mut acc, faces.data, centre(f), fw, cols);
                         } else {
                             let x = opposite_value(pf, parent, f as usize, e);
                             add(&mut acc, src, x, fw, cols);
                         }
                     }
                 }
-                put(dst, first, &acc, cols);
+                self.put(&mut out, first, &acc);
                 continue;
             }
             face_sizes.clear();
             face_sizes.extend(
-                faces
+                e_faces
                     .iter()
                     .map(|&f| parent.face_vertices.count(f as usize) as u32),
             );
@@ -294,13 +477,17 @@ impl Refiner {
                 face_sizes: &face_sizes,
             };
             let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
-            self.rules
-                .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
+            self.refiner.rules.edge_vertex_mask(
+                &hood,
+                p_rule,
+                child.vertex_tag(c).rule(),
+                &mut mask,
+            );
             add(&mut acc, src, a, mask.vertex[0], cols);
             add(&mut acc, src, b, mask.vertex[1], cols);
-            for (&f, &w) in faces.iter().zip(&mask.face) {
+            for (&f, &w) in e_faces.iter().zip(&mask.face) {
                 if mask.face_weights_for_centers {
-                    add(&mut acc, dst, centre(f), w, cols);
+                    add(&mut acc, faces.data, centre(f), w, cols);
                 } else {
                     // Loop: the value at the face's corner opposite the edge.
                     add(
@@ -312,60 +499,83 @@ impl Refiner {
                     );
                 }
             }
-            put(dst, first, &acc, cols);
+            self.put(&mut out, first, &acc);
         }
+    }
 
-        // Vertex points.
+    /// Vertex points; `faces` holds the face points.
+    fn vertex_points(
+        &self,
+        vertices: std::ops::Range<usize>,
+        mut out: Out<'_, T>,
+        faces: View<'_, T>,
+    ) {
+        let (parent, child, r, pf, cf, cols, src) = (
+            self.parent,
+            self.child,
+            self.r,
+            self.pf,
+            self.cf,
+            self.cols,
+            self.src,
+        );
+        let options = &self.refiner.options;
+        let mut cache = Cache::<T>::new();
+        let mut mask = Mask::<T>::new();
+        let zero = [T::ZERO; MAX_WIDTH];
+        let centre =
+            |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize) - faces.base;
         let mut edge_sharpness = Vec::new();
         let mut child_edge_sharpness = Vec::new();
         let mut edge_values = Vec::new();
         let corner_weight = T::from_f64(0.75);
         let end_weight = T::from_f64(0.125);
-        for v in 0..parent.vertex_count {
+        for v in vertices {
             let c = r.vertex_child(v) as usize;
             let first = cf.vertex_value_offset(c);
             let c_tags = cf.vertex_value_tags(c);
             if !c_tags[0].is_mismatch() {
                 let own = pf.vertex_value(v, 0);
                 let mut acc = zero;
-                if linear {
+                if self.linear {
                     add(&mut acc, src, own, T::ONE, cols);
-                    put(dst, first, &acc, cols);
+                    self.put(&mut out, first, &acc);
                     continue;
                 }
                 let edges = parent.vertex_edges_of(v);
-                let faces = parent.vertex_faces_of(v);
+                let v_faces = parent.vertex_faces_of(v);
                 let p_rule = parent.vertex_tag(v).rule();
                 let m = if matches!(p_rule, Rule::Smooth | Rule::Dart)
-                    && faces.len() == edges.len()
+                    && v_faces.len() == edges.len()
                     && !edges.is_empty()
                 {
                     // The kernel's smooth vertex (as the rules give it).
-                    cache.smooth_vertex(self, faces.len())
+                    cache.smooth_vertex(self.refiner, v_faces.len())
                 } else {
                     edge_sharpness.clear();
                     edge_sharpness
                         .extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
                     child_edge_sharpness.resize(edges.len(), 0.0);
                     crease::subdivide_edge_sharpnesses_around_vertex(
-                        self.options.creasing,
+                        options.creasing,
                         &edge_sharpness,
                         &mut child_edge_sharpness,
                     );
                     let hood = VertexNeighborhood {
                         sharpness: parent.vertex_sharpness_at(v),
                         edge_sharpness: &edge_sharpness,
-                        face_count: faces.len(),
+                        face_count: v_faces.len(),
                         child_sharpness: child.vertex_sharpness_at(c),
                         child_edge_sharpness: &child_edge_sharpness,
                     };
                     let c_rule = child.vertex_tag(c).rule();
-                    self.rules
+                    self.refiner
+                        .rules
                         .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
                     &mask
                 };
-                for (&f, &w) in faces.iter().zip(&m.face) {
-                    add(&mut acc, dst, centre(f), w, cols);
+                for (&f, &w) in v_faces.iter().zip(&m.face) {
+                    add(&mut acc, faces.data, centre(f), w, cols);
                 }
                 if !m.edge.is_empty() {
                     pf.vertex_edge_values(parent, v, &mut edge_values);
@@ -374,7 +584,7 @@ impl Refiner {
                     }
                 }
                 add(&mut acc, src, own, m.vertex[0], cols);
-                put(dst, first, &acc, cols);
+                self.put(&mut out, first, &acc);
                 continue;
             }
             // Each value on its own: a corner, a crease, or a corner decaying
@@ -383,7 +593,7 @@ impl Refiner {
             for (s, &tag) in c_tags.iter().enumerate() {
                 let own = pf.vertex_value(v, s);
                 let mut acc = zero;
-                if linear || tag.is_corner() {
+                if self.linear || tag.is_corner() {
                     add(&mut acc, src, own, T::ONE, cols);
                 } else {
                     let [e0, e1] = pf.crease_end_values(parent, v, s);
@@ -395,13 +605,8 @@ impl Refiner {
                         } else {
                             s
                         };
-                        let w = pf.fractional_weight(
-                            (parent, child, r),
-                            v,
-                            from,
-                            c,
-                            self.options.creasing,
-                        );
+                        let w =
+                            pf.fractional_weight((parent, child, r), v, from, c, options.creasing);
                         let corner = T::from_f32(w);
                         let crease = T::ONE - corner;
                         vw = crease * corner_weight + corner;
@@ -411,7 +616,7 @@ impl Refiner {
                     add(&mut acc, src, e1, ew, cols);
                     add(&mut acc, src, own, vw, cols);
                 }
-                put(dst, first + s as u32, &acc, cols);
+                self.put(&mut out, first + s as u32, &acc);
             }
         }
     }
