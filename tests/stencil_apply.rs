@@ -283,6 +283,31 @@ mod opensubdiv {
         check("grid", &grid, Scheme::Bilinear, 2);
     }
 
+    /// A table large enough to be built in parallel chunks (over 131,072
+    /// rows), on two threads: the one built on one thread, and OpenSubdiv's
+    /// results bit for bit.
+    #[test]
+    fn built_in_parallel_equal_to_opensubdiv() {
+        let mesh = shapes::production(100, 80);
+        let r = refiner(&mesh, Scheme::Catmark, 2);
+        assert!(r.level_counts(2).unwrap().vertices > 2 * (1 << 16));
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let one = pool(1).install(|| r.stencil_table_f32().unwrap());
+        let two = pool(2).install(|| r.stencil_table_f32().unwrap());
+        assert!(one == two, "tables built on one and two threads differ");
+        let (one, two) = (
+            pool(1).install(|| r.stencil_table().unwrap()),
+            pool(2).install(|| r.stencil_table().unwrap()),
+        );
+        assert!(one == two, "f64 tables built on one and two threads differ");
+        pool(2).install(|| check("production 100x80", &mesh, Scheme::Catmark, 2));
+    }
+
     #[test]
     fn equal_to_opensubdiv_on_the_corpus() {
         for (name, mut mesh) in shapes::corpus() {

@@ -76,6 +76,53 @@ impl<T: Real> Rows<T> {
     }
 }
 
+impl<T: Real> Rows<T> {
+    /// The rows of `parts` one after the other, copied in parallel.
+    fn concat<R: std::borrow::Borrow<Rows<T>> + Sync>(parts: &[R]) -> Rows<T> {
+        use rayon::prelude::*;
+        let rows: usize = parts.iter().map(|p| p.borrow().len()).sum();
+        let terms: usize = parts.iter().map(|p| p.borrow().indices.len()).sum();
+        if u32::try_from(terms).is_err() {
+            crate::alloc::fail(terms.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+        let mut out = Rows {
+            offsets: crate::alloc::vec_or_unwind(0u32, rows + 1),
+            indices: crate::alloc::vec_or_unwind(0u32, terms),
+            weights: crate::alloc::vec_or_unwind(T::ZERO, terms),
+            base_count: parts
+                .iter()
+                .map(|p| p.borrow().base_count)
+                .max()
+                .unwrap_or(0),
+        };
+        // Each part's slices of the three arrays.
+        let mut slices = Vec::with_capacity(parts.len());
+        let (mut o, mut i, mut w) = (
+            &mut out.offsets[1..],
+            &mut out.indices[..],
+            &mut out.weights[..],
+        );
+        let mut shift = 0u32;
+        for p in parts {
+            let p = p.borrow();
+            let (oh, ot) = std::mem::take(&mut o).split_at_mut(p.len());
+            let (ih, it) = std::mem::take(&mut i).split_at_mut(p.indices.len());
+            let (wh, wt) = std::mem::take(&mut w).split_at_mut(p.indices.len());
+            slices.push((p, shift, oh, ih, wh));
+            (o, i, w) = (ot, it, wt);
+            shift += p.indices.len() as u32;
+        }
+        slices.into_par_iter().for_each(|(p, shift, o, i, w)| {
+            for (d, &s) in o.iter_mut().zip(&p.offsets[1..]) {
+                *d = s + shift;
+            }
+            i.copy_from_slice(&p.indices);
+            w.copy_from_slice(&p.weights);
+        });
+        out
+    }
+}
+
 impl Rows<f64> {
     /// The rows as a table with sizes and offsets (no copy of the terms).
     fn into_table(mut self) -> StencilTable {
@@ -175,6 +222,89 @@ impl RowBuilder {
     }
 }
 
+/// Rows per parallel task of stencil construction (at least).
+const PAR_ROWS: usize = 1 << 16;
+
+/// The rows of the child vertices of one level, from the rows of the level
+/// above (`prev`; `None` for the base level's identity).
+struct Children<'a, T> {
+    refiner: &'a Refiner,
+    level: usize,
+    prev: Option<&'a Rows<T>>,
+    /// The first face point.
+    f0: u32,
+}
+
+impl<T: Real> Children<'_, T> {
+    /// Appends to `out` the rows of the child vertices of the parent
+    /// elements `range` of kind `block`, reading the face points' rows in
+    /// `faces`.
+    fn block(
+        &self,
+        block: Block,
+        range: std::ops::Range<usize>,
+        faces: &Rows<T>,
+        builder: &mut RowBuilder,
+        scratch: &mut Scratch<T>,
+        out: &mut Rows<T>,
+    ) {
+        self.refiner.walk_block(
+            Kind::Vertex,
+            self.level,
+            block,
+            range,
+            scratch,
+            |_, terms| builder.child_row(out, terms, self.prev, faces, self.f0),
+        );
+    }
+
+    /// The rows of a whole block in parallel chunks, each with its own
+    /// builder.
+    fn block_chunks(&self, block: Block, count: usize, faces: &Rows<T>) -> Vec<Rows<T>> {
+        use rayon::prelude::*;
+        let chunk = PAR_ROWS.max(count.div_ceil(4 * rayon::current_num_threads()));
+        let base = self.refiner.levels[0].vertex_count;
+        (0..count.div_ceil(chunk))
+            .into_par_iter()
+            .map_init(
+                || (RowBuilder::new(base), Scratch::<T>::new()),
+                |(builder, scratch), k| {
+                    let range = k * chunk..((k + 1) * chunk).min(count);
+                    let mut out = Rows::with_rows(range.len());
+                    self.block(block, range, faces, builder, scratch, &mut out);
+                    out
+                },
+            )
+            .collect()
+    }
+
+    /// All the rows, each block in parallel chunks, then gathered in vertex
+    /// order.
+    fn in_parallel(&self, nf: usize, blocks: [(u32, Block, usize); 3]) -> Rows<T> {
+        let none = Rows::with_rows(0);
+        let faces = Rows::concat(&self.block_chunks(Block::Faces, nf, &none));
+        let mut parts: Vec<Rows<T>> = Vec::new();
+        let mut order = Vec::new();
+        for (_, block, count) in blocks {
+            if block == Block::Faces {
+                order.push(None);
+            } else {
+                let chunks = self.block_chunks(block, count, &faces);
+                order.push(Some(parts.len()..parts.len() + chunks.len()));
+                parts.extend(chunks);
+            }
+        }
+        let mut all: Vec<&Rows<T>> = Vec::new();
+        for o in order {
+            match o {
+                None => all.push(&faces),
+                Some(range) => all.extend(&parts[range]),
+            }
+        }
+        Rows::concat(&all)
+    }
+}
+
 impl Refiner {
     /// The stencil rows of the vertices of `level` (at least 1) over the
     /// base vertices, in vertex order.
@@ -188,21 +318,6 @@ impl Refiner {
         } else {
             0
         };
-        let f0 = r.first_vertex_from_faces;
-        let mut builder = RowBuilder::new(self.levels[0].vertex_count);
-        let mut scratch = Scratch::<T>::new();
-        // The face points first: the edge and vertex points read them.
-        let mut faces = Rows::with_rows(nf);
-        let none = Rows::with_rows(0);
-        self.walk_block(
-            Kind::Vertex,
-            level,
-            Block::Faces,
-            0..nf,
-            &mut scratch,
-            |_, terms| builder.child_row(&mut faces, terms, prev, &none, f0),
-        );
-        // Then the three blocks in the order of their child vertices.
         let mut blocks = [
             (r.first_vertex_from_faces, Block::Faces, nf),
             (r.first_vertex_from_edges, Block::Edges, parent.edge_count()),
@@ -213,19 +328,42 @@ impl Refiner {
             ),
         ];
         blocks.sort_unstable_by_key(|b| b.0);
+        let rows = Children {
+            refiner: self,
+            level,
+            prev,
+            f0: r.first_vertex_from_faces,
+        };
+        if rayon::current_num_threads() > 1 && self.levels[level].vertex_count > 2 * PAR_ROWS {
+            return rows.in_parallel(nf, blocks);
+        }
+        let mut builder = RowBuilder::new(self.levels[0].vertex_count);
+        let mut scratch = Scratch::<T>::new();
+        // The face points first: the edge and vertex points read them.
+        let none = Rows::with_rows(0);
+        let mut faces = Rows::with_rows(nf);
+        rows.block(
+            Block::Faces,
+            0..nf,
+            &none,
+            &mut builder,
+            &mut scratch,
+            &mut faces,
+        );
+        // Then the three blocks in the order of their child vertices.
         let mut out = Rows::with_rows(self.levels[level].vertex_count);
         for (first, block, count) in blocks {
             debug_assert_eq!(out.len(), first as usize);
             if block == Block::Faces {
                 out.append(&faces);
             } else {
-                self.walk_block(
-                    Kind::Vertex,
-                    level,
+                rows.block(
                     block,
                     0..count,
+                    &faces,
+                    &mut builder,
                     &mut scratch,
-                    |_, terms| builder.child_row(&mut out, terms, prev, &faces, f0),
+                    &mut out,
                 );
             }
         }
