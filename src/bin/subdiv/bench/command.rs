@@ -65,9 +65,20 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     })?;
     bar.finish_and_clear();
     if args.inputs.is_empty() {
-        match super::process::whole_process(&inputs[0], args.quick, args.threads) {
-            Ok(w) => report.whole_process = Some(w),
-            Err(e) => report.skipped.push(format!("whole process: {e}")),
+        // The first input (the quad torus) at level 4; the inputs refined
+        // at most two levels in process (the grid, the production-like
+        // mesh) at levels 1 and 2, as production assets are refined.
+        let mut runs = vec![(&inputs[0], 4)];
+        for input in inputs.iter().filter(|i| i.max_level <= 2) {
+            runs.extend([(input, 1), (input, 2)]);
+        }
+        for (input, level) in runs {
+            match super::process::whole_process(input, level, args.quick, args.threads) {
+                Ok(w) => report.whole_process.push(w),
+                Err(e) => report
+                    .skipped
+                    .push(format!("whole process, {} level {level}: {e}", input.name)),
+            }
         }
         match super::process::obj_writer_rate(&inputs[0]) {
             Ok(o) => report.obj_writer = Some(o),

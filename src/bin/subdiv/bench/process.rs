@@ -83,19 +83,21 @@ pub(crate) fn obj_writer_rate(input: &BenchShape) -> Result<ObjWriterRate, Strin
     })
 }
 
-/// Whole-process time and peak memory at level 4 of `input`, no output
-/// file: `subdiv refine` natively (on `threads` threads, and as typed on
-/// every core when that differs), with `--engine osd`, and, when g++ and
-/// libosd-dev are there, an equivalent C++ program against OpenSubdiv (the
-/// driver in cpp/osd_driver.cpp, embedded in this binary). Medians of
-/// interleaved runs.
+/// Whole-process time and peak memory at `level` of `input` (written as an
+/// OBJ file with its tags and UVs, refined with its options, UVs included),
+/// no output file: `subdiv refine` natively (on `threads` threads, and as
+/// typed on every core when that differs), with `--engine osd`, and, when
+/// g++ and libosd-dev are there, an equivalent C++ program against
+/// OpenSubdiv (the driver in cpp/osd_driver.cpp, embedded in this binary).
+/// Medians of interleaved runs.
 pub(crate) fn whole_process(
     input: &BenchShape,
+    level: u32,
     quick: bool,
     threads: usize,
 ) -> Result<WholeProcess, String> {
     use std::process::Command;
-    const LEVEL: u32 = 4;
+    use subdiv::Named;
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;
     let obj = dir.path().join("input.obj");
     subdiv::io::write_mesh_obj(&obj, &input.mesh, Precision::F64).map_err(|e| e.to_string())?;
@@ -115,18 +117,40 @@ pub(crate) fn whole_process(
     // now and then finds its fresh memory handed back to the host and takes
     // 2-4x its usual time, and once three of five such runs made the median
     // (160 ms where the runs before and after gave 54-66 ms).
-    let reps = if quick { 3 } else { 9 };
+    // Five on the big inputs, whose runs take seconds and vary less.
+    let reps = if quick {
+        3
+    } else if input.mesh.face_count() > 100_000 {
+        5
+    } else {
+        9
+    };
+    let o = &input.options;
+    let level_arg = level.to_string();
+    // The input's options, spelled the same for `subdiv refine` and the
+    // driver.
+    let options = [
+        "--level",
+        &level_arg,
+        "--scheme",
+        o.scheme.name(),
+        "--boundary",
+        o.boundary.name(),
+        "--fvar",
+        o.fvar.name(),
+        "--creasing",
+        o.creasing.name(),
+        "--triangles",
+        o.triangles.name(),
+    ];
     // Every core, as `subdiv refine` runs when typed.
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let refine = |engine: &str, threads: Option<usize>| {
         let mut c = Command::new(&exe);
-        c.arg("refine").arg(&obj).args([
-            "--level",
-            &LEVEL.to_string(),
-            "--engine",
-            engine,
-            "--peak-memory",
-        ]);
+        c.arg("refine")
+            .arg(&obj)
+            .args(options)
+            .args(["--engine", engine, "--peak-memory"]);
         match threads {
             Some(n) => c.env("RAYON_NUM_THREADS", n.max(1).to_string()),
             None => c.env_remove("RAYON_NUM_THREADS"),
@@ -153,7 +177,7 @@ pub(crate) fn whole_process(
     ));
     if have_driver {
         let mut c = Command::new(&driver);
-        c.arg(&obj).arg("-").args(["--level", &LEVEL.to_string()]);
+        c.arg(&obj).arg("-").args(options);
         programs.push((ProgramKind::Cpp, "C++ program against OpenSubdiv".into(), c));
     }
     let mut named: Vec<(String, Command)> = programs
@@ -163,7 +187,7 @@ pub(crate) fn whole_process(
     let runs = interleaved_processes(&mut named, reps)?;
     Ok(WholeProcess {
         input: input.name.clone(),
-        level: LEVEL,
+        level,
         threads,
         cores,
         programs: programs

@@ -84,7 +84,7 @@ impl BenchReport {
                 );
             }
         }
-        if let Some(w) = &self.whole_process {
+        for w in &self.whole_process {
             s.push_str(&w.markdown());
         }
         if let Some(o) = &self.obj_writer {

@@ -70,8 +70,10 @@ pub struct BenchReport {
     pub parallel: Vec<ParallelRow>,
     /// OpenSubdiv alone against OpenSubdiv interleaved, per input.
     pub osd_alone: Vec<AloneRow>,
-    /// Whole programs on the first input (standard inputs only).
-    pub whole_process: Option<WholeProcess>,
+    /// Whole programs: the first input at level 4, and each input refined
+    /// at most two levels (the big ones) at levels 1 and 2 (standard inputs
+    /// only).
+    pub whole_process: Vec<WholeProcess>,
     /// The OBJ writer's rate on the first input (standard inputs only).
     pub obj_writer: Option<ObjWriterRate>,
     /// Sections that could not run, with the reason.

@@ -273,7 +273,7 @@ pub fn run(
         stencil_bandwidth,
         parallel,
         osd_alone,
-        whole_process: None,
+        whole_process: Vec::new(),
         obj_writer: None,
         skipped: Vec::new(),
     })

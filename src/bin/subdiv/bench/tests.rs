@@ -157,7 +157,7 @@ fn empty_report(threads: usize) -> BenchReport {
         stencil_bandwidth: None,
         parallel: Vec::new(),
         osd_alone: Vec::new(),
-        whole_process: None,
+        whole_process: Vec::new(),
         obj_writer: None,
         skipped: Vec::new(),
     }
@@ -187,7 +187,7 @@ fn whole_process_and_writer_are_measurements_only() {
     };
     let report = BenchReport {
         rows: vec![row("topology + positions", 0.010, 0.040)],
-        whole_process: Some(WholeProcess {
+        whole_process: vec![WholeProcess {
             input: "torus 100x100 quads".into(),
             level: 4,
             threads: 1,
@@ -203,7 +203,7 @@ fn whole_process_and_writer_are_measurements_only() {
                 program(ProgramKind::Osd, "osd", 0.300, 400 << 20),
                 program(ProgramKind::Cpp, "C++", 0.330, 440 << 20),
             ],
-        }),
+        }],
         obj_writer: Some(ObjWriterRate {
             input: "torus 100x100 quads".into(),
             level: 4,
@@ -325,5 +325,50 @@ fn the_targets_script_reads_the_bench_json() {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
     assert!(!text.contains("base topology"), "{text}");
+    assert_eq!(code, Some(1));
+    // Whole processes: the torus at level 4 as typed (3x, 0.6 of the
+    // memory); a big input at levels 1-2 on the run's threads (0.2 of the
+    // time, 0.5 of the memory).
+    let program = |kind, seconds, peak_bytes| ProgramResult {
+        kind,
+        name: format!("{kind:?}"),
+        seconds,
+        peak_bytes,
+    };
+    let whole =
+        |input: &str, level, native: f64, typed: f64, cpp: f64, peaks: [u64; 2]| WholeProcess {
+            input: input.into(),
+            level,
+            threads: 1,
+            cores: 2,
+            programs: vec![
+                program(ProgramKind::Native, native, peaks[0]),
+                program(ProgramKind::NativeAsTyped, typed, peaks[0]),
+                program(ProgramKind::Cpp, cpp, peaks[1]),
+            ],
+        };
+    let processes = BenchReport {
+        whole_process: vec![
+            whole("torus", 4, 0.2, 0.1, 0.4, [50, 100]),
+            whole("grid", 1, 0.3, 0.2, 1.0, [40, 100]),
+            whole("grid", 2, 0.1, 0.1, 1.0, [60, 100]),
+        ],
+        ..empty_report(1)
+    };
+    let (code, text) = check(&processes);
+    for expected in [
+        "as typed (2 threads), torus: 4.00x (target 3x) met",
+        "peak memory native / C++ program, torus level 4: 0.50 (target 0.6) met",
+        "whole process / C++ program, grid level 1, 1 thread(s): 0.30 (target 0.2) NOT MET",
+        "peak memory native / C++ program, grid level 1: 0.40 (target 0.5) met",
+        "whole process / C++ program, grid level 2, 1 thread(s): 0.10 (target 0.2) met",
+        "peak memory native / C++ program, grid level 2: 0.60 (target 0.5) NOT MET",
+    ] {
+        assert!(
+            text.contains(expected),
+            "{expected:?} in
+{text}"
+        );
+    }
     assert_eq!(code, Some(1));
 }
