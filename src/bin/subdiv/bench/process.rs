@@ -97,7 +97,6 @@ pub(crate) fn whole_process(
     threads: usize,
 ) -> Result<WholeProcess, String> {
     use std::process::Command;
-    use subdiv::Named;
     let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;
     let obj = dir.path().join("input.obj");
     subdiv::io::write_mesh_obj(&obj, &input.mesh, Precision::F64).map_err(|e| e.to_string())?;
