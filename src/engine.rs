@@ -18,9 +18,10 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::options::UniformOptions;
 use crate::options::{Engine, Options, Request};
 use crate::output::{LevelCounts, Refinement};
-use crate::real::Precision;
+use crate::real::{Precision, Real};
 
 impl Engine {
     /// Whether this build has the engine (`Osd` needs the feature `osd`).
@@ -54,12 +55,13 @@ impl Engine {
         }
     }
 
-    /// The cheapest complete refinement: the topology of every level and the
-    /// positions interpolated to the last level (in `request`'s precision),
-    /// returning every level's counts. Nothing else is kept (the native
-    /// engine releases each level once the next exists); face-varying
-    /// channels and limits are not computed. This is what `subdiv refine`
-    /// does without an output file.
+    /// The cheapest complete refinement: the topology of every level, the
+    /// positions and every face-varying channel interpolated to the last
+    /// level (in `request`'s precision), returning every level's counts.
+    /// Nothing else is kept (without face-varying channels, the native
+    /// engine also releases each level once the next exists); limits are
+    /// not computed. This is what `subdiv refine` does without an output
+    /// file.
     pub fn refine_counts(
         self,
         mesh: &Mesh,
@@ -74,33 +76,50 @@ impl Engine {
             mesh.validate()?;
             crate::limits::check_precision(mesh, request.precision)?;
         }
-        match self {
-            Engine::Native => {
-                use crate::refiner::refine_last;
-                Ok(match request.precision {
-                    Precision::F64 => {
-                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f64>())?.0
-                    }
-                    Precision::F32 => {
-                        refine_last(mesh, options, uniform, 3, &mesh.flat_positions::<f32>())?.0
-                    }
-                })
-            }
+        match (self, request.precision) {
+            (Engine::Native, Precision::F64) => native_counts::<f64>(mesh, options, uniform),
+            (Engine::Native, Precision::F32) => native_counts::<f32>(mesh, options, uniform),
             #[cfg(feature = "osd")]
-            Engine::Osd => {
-                let mut r = crate::osd::TopologyRefiner::new(mesh, options)?;
-                r.refine_uniform(uniform)?;
-                match request.precision {
-                    Precision::F64 => drop(r.interpolate_last(3, &mesh.flat_positions::<f64>())?),
-                    Precision::F32 => drop(r.interpolate_last(3, &mesh.flat_positions::<f32>())?),
-                }
-                (0..=uniform.level).map(|l| r.level_counts(l)).collect()
-            }
+            (Engine::Osd, Precision::F64) => osd_counts::<f64>(mesh, options, uniform),
+            #[cfg(feature = "osd")]
+            (Engine::Osd, Precision::F32) => osd_counts::<f32>(mesh, options, uniform),
             #[cfg(not(feature = "osd"))]
-            Engine::Osd => {
+            (Engine::Osd, _) => {
                 let _ = (mesh, options, uniform);
                 Err(crate::Error::OsdUnavailable)
             }
         }
     }
+}
+
+/// [`Engine::refine_counts`] natively: levels released as they go.
+fn native_counts<T: Real>(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+) -> Result<Vec<LevelCounts>> {
+    let base = mesh.flat_positions::<T>();
+    let channels = !mesh.fvar_channels.is_empty();
+    let (counts, ..) =
+        crate::refiner::refine_last_with(mesh, options, uniform, 3, &base, channels)?;
+    Ok(counts)
+}
+
+/// [`Engine::refine_counts`] by OpenSubdiv.
+#[cfg(feature = "osd")]
+fn osd_counts<T: Real>(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+) -> Result<Vec<LevelCounts>> {
+    let mut r = crate::osd::TopologyRefiner::new(mesh, options)?;
+    r.refine_uniform(uniform)?;
+    drop(r.interpolate_last(3, &mesh.flat_positions::<T>())?);
+    for (c, channel) in mesh.fvar_channels.iter().enumerate() {
+        let mut values = channel.values_as::<T>();
+        for level in 1..=uniform.level {
+            values = r.interpolate_face_varying(c, level, channel.width, &values)?;
+        }
+    }
+    (0..=uniform.level).map(|l| r.level_counts(l)).collect()
 }

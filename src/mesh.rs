@@ -47,6 +47,15 @@ impl FVarChannel {
     pub fn value_count(&self) -> usize {
         self.values.len().checked_div(self.width).unwrap_or(0)
     }
+
+    /// The values in `T` (rounded to nearest in `f32`), the base data of
+    /// [`Refiner::interpolate_face_varying`](crate::refiner::Refiner::interpolate_face_varying).
+    pub fn values_as<T: crate::Real>(&self) -> Vec<T> {
+        crate::alloc::collect_n(
+            self.values.len(),
+            self.values.iter().map(|&v| T::from_f64(v)),
+        )
+    }
 }
 
 /// A polygon mesh with OpenSubdiv's tags.

@@ -34,6 +34,7 @@ mod stencil_factory;
 pub(crate) use kernel::{HoodBuf, Scratch};
 pub use queries::Faces;
 pub use stencil_factory::FactorizedStencils;
+pub(crate) use whole::refine_last_with;
 pub use whole::{refine, refine_last};
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).

@@ -11,7 +11,7 @@ use crate::options::{Options, UniformOptions};
 use crate::output::{LevelCounts, Limit, Refinement, Values};
 use crate::real::Precision;
 use crate::real::Real;
-use crate::topology::{Build, Level, Table, refine_level};
+use crate::topology::{Build, Level, Table, fvar, refine_level};
 use glam::{DVec3, Vec3};
 
 /// Refines `mesh` to `uniform.level` and interpolates `base` (vertex data of
@@ -38,10 +38,32 @@ pub fn refine_last<T: Real>(
     width: usize,
     base: &[T],
 ) -> Result<(Vec<LevelCounts>, Values<T>)> {
+    let (counts, values, _) = refine_last_with(mesh, options, uniform, width, base, false)?;
+    Ok((counts, values))
+}
+
+/// Every level's counts, the last level's vertex values and each channel's
+/// last-level values.
+pub(crate) type LastLevel<T> = (Vec<LevelCounts>, Values<T>, Vec<Vec<T>>);
+
+/// [`refine_last`], and with `channels` also every face-varying channel of
+/// `mesh` refined and interpolated level by level (in `T`, each level's
+/// channel topology released with the level): the channels' last-level
+/// values, in channel order.
+pub(crate) fn refine_last_with<T: Real>(
+    mesh: &Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+    width: usize,
+    base: &[T],
+    channels: bool,
+) -> Result<LastLevel<T>> {
     crate::alloc::guard(Some(uniform.level), || {
         check_level(mesh, options, uniform.level)?;
         let mut r = Refiner::new(mesh, options)?;
-        r.fvar.clear();
+        if !channels {
+            r.fvar.clear();
+        }
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
@@ -54,6 +76,11 @@ pub fn refine_last<T: Real>(
         }
         let mut counts = vec![r.level_counts(0)?];
         let mut data = Table::from_slice(base);
+        let mut fvar_values: Vec<Vec<T>> = if channels {
+            mesh.fvar_channels.iter().map(|c| c.values_as()).collect()
+        } else {
+            Vec::new()
+        };
         for level in 1..=uniform.level as usize {
             let (refinement, child) = refine_level(
                 &r.levels[level - 1],
@@ -63,9 +90,20 @@ pub fn refine_last<T: Real>(
                     level,
                     uniform.level as usize,
                     !uniform.full_topology_in_last_level,
-                    false,
+                    !r.fvar.is_empty(),
                 ),
             );
+            for channel in &mut r.fvar {
+                let parent = channel.last().expect("the parent level's channel");
+                let next = fvar::refine(
+                    &r.levels[level - 1],
+                    &child,
+                    &refinement,
+                    parent,
+                    &r.options,
+                );
+                channel.push(next);
+            }
             r.refinements.push(refinement);
             r.levels.push(child);
             r.check_unpaired_smooth_step(level - 1)?;
@@ -73,14 +111,21 @@ pub fn refine_last<T: Real>(
             let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
             r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
             data = next;
+            for (c, values) in fvar_values.iter_mut().enumerate() {
+                let w = mesh.fvar_channels[c].width;
+                *values = r.interpolate_face_varying(c, level as u32, w, values)?;
+            }
             // Nothing reads the grandparent any more (the parent's vertex
             // relations, when derived, are read from it while interpolating this
             // level): only this local refiner held it.
             if level >= 2 {
                 r.levels[level - 2] = Level::default();
+                for channel in &mut r.fvar {
+                    channel[level - 2] = Default::default();
+                }
             }
         }
-        Ok((counts, Values(data)))
+        Ok((counts, Values(data), fvar_values))
     })
 }
 
@@ -204,11 +249,7 @@ fn limit_fvar(
 
 /// Face-varying values of every level and channel (`[level][channel]`), in `T`.
 fn refine_fvar<T: Real>(refiner: &Refiner, mesh: &Mesh) -> Result<Vec<Vec<Vec<f64>>>> {
-    let mut current: Vec<Vec<T>> = mesh
-        .fvar_channels
-        .iter()
-        .map(|c| c.values.iter().map(|&v| T::from_f64(v)).collect())
-        .collect();
+    let mut current: Vec<Vec<T>> = mesh.fvar_channels.iter().map(|c| c.values_as()).collect();
     let widen = |data: &[Vec<T>]| {
         data.iter()
             .map(|c| collect_n(c.len(), c.iter().map(|v| v.to_f64())))
@@ -225,4 +266,53 @@ fn refine_fvar<T: Real>(refiner: &Refiner, mesh: &Mesh) -> Result<Vec<Vec<Vec<f6
         out.push(widen(&current));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    /// With its channels, `refine_last_with` (levels and channel levels
+    /// released as it goes) gives the counts, positions and face-varying
+    /// values of a refiner that keeps every level, bit for bit.
+    #[test]
+    fn last_level_channels_equal_a_full_refinement() {
+        let mut checked = 0;
+        for (name, mesh) in shapes::corpus() {
+            if mesh.fvar_channels.is_empty() {
+                continue;
+            }
+            for fvar in [
+                crate::FVarLinearInterpolation::None,
+                crate::FVarLinearInterpolation::CornersPlus1,
+                crate::FVarLinearInterpolation::All,
+            ] {
+                let options = Options::default().with_fvar(fvar);
+                let uniform = UniformOptions::new(3);
+                let base = mesh.flat_positions::<f64>();
+                let (counts, last, channels) =
+                    refine_last_with(&mesh, &options, uniform, 3, &base, true).unwrap();
+                let mut r = Refiner::new(&mesh, &options).unwrap();
+                r.refine_uniform(uniform).unwrap();
+                for (l, c) in counts.iter().enumerate() {
+                    assert_eq!(*c, r.level_counts(l as u32).unwrap(), "{name} level {l}");
+                }
+                assert_eq!(last.0, r.interpolate_last(3, &base).unwrap().0, "{name}");
+                assert_eq!(channels.len(), mesh.fvar_channels.len());
+                for (c, (values, channel)) in channels.iter().zip(&mesh.fvar_channels).enumerate() {
+                    let mut expected = channel.values.clone();
+                    for level in 1..=3 {
+                        expected = r
+                            .interpolate_face_varying(c, level, channel.width, &expected)
+                            .unwrap();
+                    }
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(values), bits(&expected), "{name} {fvar:?} channel {c}");
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked >= 9, "{checked}");
+    }
 }

@@ -147,7 +147,7 @@ fn refine_loaded(
     subdiv::check_precision(mesh, args.mesh.precision)?;
     let start = Instant::now();
     let precision = args.mesh.precision;
-    if args.output.is_none() && !args.limit && mesh.fvar_channels.is_empty() {
+    if args.output.is_none() && !args.limit {
         let counts: Vec<(usize, usize)> = args
             .engine
             .refine_counts(mesh, &options, request)?
@@ -223,7 +223,7 @@ pub(crate) fn write_native_last(
         // Only the first face-varying channel is written.
         let uv = match mesh.fvar_channels.first() {
             Some(channel) => {
-                let mut values: Vec<T> = channel.values.iter().map(|&v| T::from_f64(v)).collect();
+                let mut values: Vec<T> = channel.values_as();
                 for level in 1..=r.max_level() {
                     values = r.interpolate_face_varying(0, level, channel.width, &values)?;
                 }
