@@ -27,6 +27,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<refiner::Refiner>()?;
     m.add_function(wrap_pyfunction!(refine::refine, m)?)?;
     m.add_function(wrap_pyfunction!(refine::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(refine::time_rust_refine, m)?)?;
     m.add_function(wrap_pyfunction!(obj::read_obj, m)?)?;
     m.add_function(wrap_pyfunction!(obj::parse_obj, m)?)?;
     m.add_function(wrap_pyfunction!(obj::write_mesh_obj, m)?)?;

@@ -195,3 +195,33 @@ pub fn compare<'py>(
     }
     Ok((out, native_seconds, osd_seconds))
 }
+
+/// Times the Rust call alone, for `python/bench_overhead.py`: `repeats`
+/// runs of `Engine::refine` (the same request as `refine`'s) and the drop
+/// of its result (a Python caller frees the arrays too), each timed inside
+/// Rust with no conversion to Python, in seconds. The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (mesh, level=2, options=None, engine="native", repeats=1))]
+pub fn time_rust_refine(
+    py: Python<'_>,
+    mesh: &Bound<'_, Mesh>,
+    level: i64,
+    options: Option<&Options>,
+    engine: &str,
+    repeats: usize,
+) -> PyResult<Vec<f64>> {
+    let engine: Engine = parse(engine)?;
+    let mesh = &mesh.get().inner;
+    let options = or_default(options);
+    let request = request(mesh, &options, level, "f64", false, false)?;
+    py.detach(|| {
+        (0..repeats)
+            .map(|_| {
+                let start = Instant::now();
+                drop(engine.refine(mesh, &options, request)?);
+                Ok(start.elapsed().as_secs_f64())
+            })
+            .collect::<subdiv::Result<Vec<f64>>>()
+    })
+    .map_err(to_py)
+}
