@@ -124,3 +124,16 @@ def test_csr_to_scipy_when_available():
     assert m.shape == (98, 8)
     assert np.allclose(m @ subdiv.shapes.builtin("cube").points, r.interpolate_last(subdiv.shapes.builtin("cube").points))
     assert scipy is not None
+
+
+def test_readme_example_runs():
+    """The README's Python example, run as it is written."""
+    import pathlib
+    import re
+
+    readme = pathlib.Path(__file__).resolve().parents[2] / "README.md"
+    block = re.search(r"```python\n(.*?)```", readme.read_text(), re.S)
+    assert block is not None
+    scope: dict = {}
+    exec(compile(block.group(1), "README.md", "exec"), scope)
+    assert scope["native"].last.points.shape == (258, 3)
