@@ -75,7 +75,7 @@ check-python: deps $(VENV)/bin/pip
 $(VENV)/bin/pip:
 	python3 -m venv $(VENV) || { rm -rf $(VENV); echo "python3 -m venv failed"; exit 1; }
 
-lint: deps
+lint: deps $(VENV)/bin/pip
 	$(CARGO) fmt --check
 	$(CARGO) clippy --all-targets --all-features -- -D warnings
 	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
@@ -84,6 +84,9 @@ lint: deps
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --no-default-features
 	cd python && $(CARGO) fmt --check
 	cd python && $(CARGO) clippy --all-targets -- -D warnings
+	@$(VENV)/bin/python -c 'import mypy, numpy' 2>/dev/null || \
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check mypy numpy
+	cd python && ../$(VENV)/bin/mypy --strict subdiv
 
 fmt:
 	$(CARGO) fmt

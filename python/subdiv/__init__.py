@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
-from typing import List, NamedTuple, Optional, Tuple, Union
+from typing import Any, List, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 
@@ -189,9 +189,9 @@ class CsrMatrix:
     indptr: np.ndarray
     shape: Tuple[int, int]
 
-    def to_scipy(self):  # type: ignore[no-untyped-def]
+    def to_scipy(self) -> Any:
         """The matrix as ``scipy.sparse.csr_matrix`` (needs scipy)."""
-        import scipy.sparse  # only here: scipy is optional
+        import scipy.sparse  # type: ignore[import-untyped]  # only here: scipy is optional
 
         return scipy.sparse.csr_matrix((self.data, self.indices, self.indptr), shape=self.shape)
 
@@ -219,10 +219,6 @@ class ObjFile(NamedTuple):
     warnings: List[str]
 
 
-def _level(t: tuple) -> Level:
-    return Level(*t)
-
-
 def refine(
     mesh: Mesh,
     level: int = 2,
@@ -245,7 +241,7 @@ def refine(
     return Refinement(
         engine=engine,
         options=options if options is not None else Options(),
-        levels=[_level(t) for t in levels],
+        levels=[Level(*t) for t in levels],
         limit=Limit(*lim) if lim is not None else None,
     )
 
