@@ -50,6 +50,11 @@ pub fn to_py(error: subdiv::Error) -> PyErr {
             LevelError::new_err(message)
         }
         E::Osd(_) | E::OsdUnavailable => OsdError::new_err(message),
+        // Arrays the OBJ writer refuses before writing anything are the
+        // caller's values, not the file system's fault.
+        E::Io { source, .. } if source.kind() == std::io::ErrorKind::InvalidInput => {
+            SubdivError::new_err(message)
+        }
         E::Io { .. } => PyOSError::new_err(message),
         _ => SubdivError::new_err(message),
     }

@@ -25,7 +25,7 @@ def test_unit_quad_values():
     assert ff.face_indices.tolist() == [5, 1, 0, 4, 1, 6, 2, 0, 0, 2, 7, 3, 4, 0, 3, 8]
     assert last.face_counts.tolist() == [4, 4, 4, 4] and last.face_counts.dtype == np.int32
     assert last.face_indices.dtype == np.int32 and last.face_indices.shape == (16,)
-    assert not last.holes.any()
+    assert last.holes.shape == (4,) and last.holes.dtype == np.bool_ and not last.holes.any()
     assert r.levels[0].vertex_count == 4 and r.last.face_count == 4
 
 
@@ -83,6 +83,18 @@ def test_obj_round_trip(tmp_path):
     assert parsed.options == subdiv.Options(boundary="edge-and-corner")
     assert parsed.mesh.creases[1].tolist() == [3.0]
     assert mesh != parsed.mesh
+
+
+def test_write_level_refuses_inconsistent_arrays(tmp_path):
+    last = subdiv.refine(subdiv.Mesh(QUAD, [4], [0, 1, 2, 3]), 1).last
+    path = tmp_path / "level.obj"
+    with pytest.raises(subdiv.SubdivError, match="add up to"):
+        subdiv.write_obj(path, subdiv.Level(last.points, last.face_counts[:2], last.face_indices, last.holes))
+    with pytest.raises(subdiv.SubdivError):
+        subdiv.write_obj(path, subdiv.Level(last.points, last.face_counts, last.face_indices, last.holes[:2]))
+    assert not path.exists()
+    subdiv.write_obj(path, last)
+    assert path.read_text().count("\nf ") + path.read_text().startswith("f ") == 4
 
 
 def test_options():
