@@ -64,6 +64,11 @@ fn as_array<'py>(obj: &Bound<'py, PyAny>, dtype: &str) -> PyResult<Bound<'py, Py
     Ok(converted.cast_into::<PyUntypedArray>()?)
 }
 
+/// An array another Rust extension holds mutably borrowed.
+fn borrow_error(e: numpy::BorrowError) -> PyErr {
+    SubdivError::new_err(format!("the array cannot be read: {e}"))
+}
+
 fn dtype_name(a: &Bound<'_, PyUntypedArray>) -> String {
     a.dtype().to_string()
 }
@@ -72,10 +77,10 @@ fn dtype_name(a: &Bound<'_, PyUntypedArray>) -> String {
 pub fn floats<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Floats<'py>> {
     let a = as_array(obj, "float64")?;
     if let Ok(a) = a.cast::<PyArrayDyn<f64>>() {
-        return Ok(Floats::F64(a.readonly()));
+        return Ok(Floats::F64(a.try_readonly().map_err(borrow_error)?));
     }
     if let Ok(a) = a.cast::<PyArrayDyn<f32>>() {
-        return Ok(Floats::F32(a.readonly()));
+        return Ok(Floats::F32(a.try_readonly().map_err(borrow_error)?));
     }
     Err(type_error(format!(
         "{what} must be a float32 or float64 array, not {}",
@@ -147,7 +152,7 @@ macro_rules! read_ints {
     ($a:expr, $what:expr, $($t:ty),+) => {{
         $(
             if let Ok(a) = $a.cast::<PyArrayDyn<$t>>() {
-                let a = a.readonly();
+                let a = a.try_readonly().map_err(borrow_error)?;
                 let shape = a.shape().to_vec();
                 let mut out = Vec::with_capacity(a.len());
                 for (i, &v) in a.as_array().iter().enumerate() {
@@ -221,13 +226,19 @@ pub fn values<T: Element>(
 /// `int32` indices, taking over `indices` (no copy; the library keeps every
 /// index below 2^31, as OpenSubdiv does).
 pub fn indices(py: Python<'_>, indices: Vec<u32>) -> Bound<'_, PyArray1<i32>> {
-    let signed: Vec<i32> = bytemuck::allocation::cast_vec(indices);
+    let signed: Vec<i32> = match bytemuck::allocation::try_cast_vec(indices) {
+        Ok(signed) => signed,
+        Err((_, indices)) => indices.iter().map(|&i| i as i32).collect(),
+    };
     PyArray1::from_vec(py, signed)
 }
 
 /// Face sizes (`int32`) from face offsets.
 pub fn face_counts<'py>(py: Python<'py>, offsets: &[u32]) -> Bound<'py, PyArray1<i32>> {
-    let counts: Vec<i32> = offsets.windows(2).map(|w| (w[1] - w[0]) as i32).collect();
+    let counts: Vec<i32> = offsets
+        .windows(2)
+        .map(|w| w[1].saturating_sub(w[0]) as i32)
+        .collect();
     PyArray1::from_vec(py, counts)
 }
 

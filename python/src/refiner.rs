@@ -85,7 +85,7 @@ fn csr(py: Python<'_>, t: StencilTable, columns: usize) -> Csr<'_> {
     for (&offset, &size) in t.offsets.iter().zip(&t.sizes) {
         let start = *indptr.last().unwrap_or(&0);
         contiguous &= offset == start;
-        indptr.push(start + size);
+        indptr.push(start.saturating_add(size));
     }
     let (indices, weights) =
         if contiguous && t.indices.len() == *indptr.last().unwrap_or(&0) as usize {
