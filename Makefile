@@ -2,7 +2,8 @@
 #   make run    install what is missing, build in release mode, run the main job:
 #               `subdiv report` on the embedded set, into ./report/
 #   make test   install what is missing, run the whole test suite, then cross-check
-#               `subdiv curve --knots` against geomdl (NURBS-Python) in .venv
+#               `subdiv curve --knots` against geomdl (NURBS-Python) in .venv, and
+#               build the Python module (python/) and run its pytest suite there
 # Both install the system packages they need with apt-get (as root) when missing.
 
 SHELL := /bin/bash
@@ -11,8 +12,12 @@ APT_PACKAGES := libosd-dev libclang-dev clang g++ pkg-config
 # The Python environment of scripts/check-nurbs.py (geomdl is pure Python).
 VENV := .venv
 GEOMDL := geomdl==5.4.0
+# The Python module (issue #27): built with maturin into a wheel, installed
+# into .venv, tested with pytest; the wheel is also checked in a fresh venv.
+PY_TOOLS := maturin numpy pytest
+WHEELS := python/target/wheels
 
-.PHONY: run test deps lint fmt check-no-osd check-nurbs clean
+.PHONY: run test deps lint fmt check-no-osd check-nurbs check-python clean
 
 deps:
 	@missing=""; \
@@ -37,6 +42,7 @@ run: deps
 test: deps
 	$(CARGO) test --all-features
 	$(MAKE) --no-print-directory check-nurbs
+	$(MAKE) --no-print-directory check-python
 	$(CARGO) build --no-default-features
 	$(CARGO) build --no-default-features --features cli
 	$(CARGO) test --no-default-features --lib
@@ -50,19 +56,42 @@ check-nurbs: deps $(VENV)/bin/pip
 	$(CARGO) build --all-features
 	$(VENV)/bin/python scripts/check-nurbs.py target/debug/subdiv
 
+# The Python module: one release build of python/ (maturin, its own cargo
+# workspace and target directory) into a wheel; the wheel installed into
+# .venv and its pytest suite run against the `subdiv` CLI (bit for bit); then
+# the same wheel in a fresh temporary venv with numpy only, running a
+# ten-line script (python/scripts/wheel_smoke.py). maturin, numpy and pytest
+# are installed into .venv when missing.
+check-python: deps $(VENV)/bin/pip
+	@$(VENV)/bin/python -c 'import maturin, numpy, pytest' 2>/dev/null || \
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check $(PY_TOOLS)
+	$(CARGO) build --all-features
+	rm -rf $(WHEELS)
+	cd python && ../$(VENV)/bin/maturin build --release --quiet --auditwheel skip --interpreter ../$(VENV)/bin/python
+	$(VENV)/bin/pip install --quiet --disable-pip-version-check --force-reinstall --no-deps $(WHEELS)/subdiv-*.whl
+	cd python/tests && SUBDIV_CLI=$(CURDIR)/target/debug/subdiv ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider .
+	python/scripts/check-wheel.sh $(WHEELS)/subdiv-*.whl
+
 $(VENV)/bin/pip:
 	python3 -m venv $(VENV) || { rm -rf $(VENV); echo "python3 -m venv failed"; exit 1; }
 
-lint: deps
+lint: deps $(VENV)/bin/pip
 	$(CARGO) fmt --check
 	$(CARGO) clippy --all-targets --all-features -- -D warnings
 	$(CARGO) clippy --all-targets --no-default-features -- -D warnings
 	$(CARGO) clippy --all-targets --no-default-features --features cli -- -D warnings
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --all-features
 	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --no-deps --no-default-features
+	cd python && $(CARGO) fmt --check
+	cd python && $(CARGO) clippy --all-targets -- -D warnings
+	@$(VENV)/bin/python -c 'import mypy, numpy' 2>/dev/null || \
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check mypy numpy
+	cd python && ../$(VENV)/bin/mypy --strict subdiv
 
 fmt:
 	$(CARGO) fmt
+	cd python && $(CARGO) fmt
 
 clean:
 	$(CARGO) clean
+	cd python && $(CARGO) clean
