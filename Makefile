@@ -14,7 +14,7 @@ VENV := .venv
 GEOMDL := geomdl==5.4.0
 # The Python module (issue #27): built with maturin into a wheel, installed
 # into .venv, tested with pytest; the wheel is also checked in a fresh venv.
-PY_TOOLS := maturin numpy pytest
+PY_TOOLS := maturin==1.16.0 numpy==2.4.6 pytest==9.2.0
 WHEELS := python/target/wheels
 
 .PHONY: run test deps lint fmt check-no-osd check-nurbs check-python clean
@@ -85,7 +85,7 @@ lint: deps $(VENV)/bin/pip
 	cd python && $(CARGO) fmt --check
 	cd python && $(CARGO) clippy --all-targets -- -D warnings
 	@$(VENV)/bin/python -c 'import mypy, numpy' 2>/dev/null || \
-	  $(VENV)/bin/pip install --quiet --disable-pip-version-check mypy numpy
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check mypy==2.4.1 numpy==2.4.6
 	cd python && ../$(VENV)/bin/mypy --strict subdiv
 
 fmt:

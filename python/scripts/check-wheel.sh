@@ -9,5 +9,5 @@ script=$(realpath "$(dirname "$0")/wheel_smoke.py")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 python3 -m venv "$tmp/venv"
-"$tmp/venv/bin/pip" install --quiet --disable-pip-version-check "$wheel" numpy
+"$tmp/venv/bin/pip" install --quiet --disable-pip-version-check "$wheel" numpy==2.4.6
 cd "$tmp" && "$tmp/venv/bin/python" "$script"
