@@ -83,22 +83,35 @@ pub(crate) fn summary(
 /// and four per triangle in a Loop split, then four per face at each level.
 /// Zero without holes; computed only when the mesh can have some.
 pub(crate) fn hole_faces(mesh: &Mesh, options: &Options, level: u32) -> Result<usize, Failure> {
-    if mesh.holes.is_empty() && options.boundary != subdiv::BoundaryInterpolation::None {
+    use subdiv::{BoundaryInterpolation, Scheme};
+    if mesh.holes.is_empty() && options.boundary != BoundaryInterpolation::None {
         return Ok(0);
     }
-    let base = subdiv::refiner::Refiner::new(mesh, options)?.level(0)?;
-    let holes = base
-        .faces()
-        .zip(&base.face_holes)
-        .filter(|(_, hole)| **hole);
+    // The base level's holes: the tagged faces, and with no boundary
+    // interpolation (but for bilinear) the faces at the boundary, which only
+    // the base level's topology tells.
+    let mut is_hole = vec![false; mesh.face_count()];
+    if options.boundary == BoundaryInterpolation::None && options.scheme != Scheme::Bilinear {
+        let base = subdiv::refiner::Refiner::new(mesh, options)?.level(0)?;
+        is_hole.copy_from_slice(&base.face_holes);
+    } else {
+        for &f in &mesh.holes {
+            if let Some(h) = is_hole.get_mut(f as usize) {
+                *h = true;
+            }
+        }
+    }
+    let holes = (0..mesh.face_count())
+        .filter(|&f| is_hole[f])
+        .map(|f| mesh.face(f));
     Ok(match level {
         0 => holes.count(),
         _ => {
             let split = |face: &[u32]| match options.scheme {
-                subdiv::Scheme::Loop => 4,
+                Scheme::Loop => 4,
                 _ => face.len(),
             };
-            let first: usize = holes.map(|(face, _)| split(face)).sum();
+            let first: usize = holes.map(split).sum();
             first << (2 * (level - 1))
         }
     })
@@ -402,4 +415,42 @@ pub(crate) fn refine_doo_sabin(args: &RefineArgs) -> Result<(), Failure> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv::{BoundaryInterpolation, Scheme, shapes};
+
+    /// The summary's hole count, computed without refining, is the number
+    /// of hole faces a refinement's last level has, on every corpus mesh
+    /// with holes or a boundary, under every boundary option and scheme.
+    #[test]
+    fn hole_faces_count_the_last_levels_holes() {
+        let mut with_holes = 0;
+        for (name, mesh) in shapes::corpus() {
+            for &scheme in mesh.applicable_schemes() {
+                for boundary in [
+                    BoundaryInterpolation::None,
+                    BoundaryInterpolation::EdgeOnly,
+                    BoundaryInterpolation::EdgeAndCorner,
+                ] {
+                    let options = Options::default()
+                        .with_scheme(scheme)
+                        .with_boundary(boundary);
+                    for level in 0..=2 {
+                        let Ok(r) = Engine::Native.refine(&mesh, &options, Request::new(level))
+                        else {
+                            continue;
+                        };
+                        let expected = r.last_level().face_holes.iter().filter(|&&h| h).count();
+                        let got = hole_faces(&mesh, &options, level).unwrap();
+                        assert_eq!(got, expected, "{name} {scheme} {boundary} level {level}");
+                        with_holes += (expected > 0 && scheme != Scheme::Bilinear) as usize;
+                    }
+                }
+            }
+        }
+        assert!(with_holes > 20, "{with_holes}");
+    }
 }
