@@ -371,6 +371,14 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         }
     }
 
+    /// Where the value of the face point of parent face `f` is in `faces`.
+    #[inline(always)]
+    fn centre(&self, f: u32, faces: View<'_, T>) -> u32 {
+        self.cf
+            .vertex_value_offset(self.r.face_child(f as usize) as usize)
+            - faces.base
+    }
+
     /// Writes `acc` as value `i` of the level into `out`.
     #[inline(always)]
     fn put(&self, out: &mut Out<'_, T>, i: u32, acc: &[T; MAX_WIDTH]) {
@@ -411,8 +419,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let mut mask = Mask::<T>::new();
         let half = T::from_f64(0.5);
         let zero = [T::ZERO; MAX_WIDTH];
-        let centre =
-            |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize) - faces.base;
+        let centre = |f: u32| self.centre(f, faces);
         let mut face_sizes = Vec::new();
         for e in edges {
             let c = r.edge_child(e) as usize;
@@ -523,8 +530,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
         let zero = [T::ZERO; MAX_WIDTH];
-        let centre =
-            |f: u32| cf.vertex_value_offset(r.face_child(f as usize) as usize) - faces.base;
+        let centre = |f: u32| self.centre(f, faces);
         let mut edge_sharpness = Vec::new();
         let mut child_edge_sharpness = Vec::new();
         let mut edge_values = Vec::new();
