@@ -58,10 +58,9 @@ impl Engine {
     /// The cheapest complete refinement: the topology of every level, the
     /// positions and every face-varying channel interpolated to the last
     /// level (in `request`'s precision), returning every level's counts.
-    /// Nothing else is kept (without face-varying channels, the native
-    /// engine also releases each level once the next exists); limits are
-    /// not computed. This is what `subdiv refine` does without an output
-    /// file.
+    /// Nothing else is kept (the native engine releases each level, and its
+    /// channels' levels, once the next exists); limits are not computed.
+    /// This is what `subdiv refine` does without an output file.
     pub fn refine_counts(
         self,
         mesh: &Mesh,
