@@ -17,7 +17,7 @@ use std::str::SplitAsciiWhitespace;
 /// that are not UTF-8 are replaced (they can only matter inside a number, where
 /// they are a syntax error), and a leading byte-order mark is skipped.
 pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
-    let bytes = std::fs::read(path).map_err(|e| ObjError {
+    let bytes = read_bytes(path).map_err(|e| ObjError {
         file: path.to_path_buf(),
         line: 0,
         kind: ObjErrorKind::Io(e.to_string()),
@@ -28,6 +28,26 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
         Err(_) => String::from_utf8_lossy(&bytes),
     };
     parse_obj(&text, path)
+}
+
+/// The whole file, read into a table (a huge-page map from 2 MiB: a large
+/// file costs a few hundred page faults instead of one per 4 KiB); the
+/// standard library's `fs::read` when the file changes size while read.
+fn read_bytes(path: &Path) -> std::io::Result<crate::topology::Table<u8>> {
+    use std::io::Read;
+    let mut file = std::fs::File::open(path)?;
+    let len = usize::try_from(file.metadata()?.len()).unwrap_or(usize::MAX);
+    // Memory refused: `fs::read` reports it as an I/O error.
+    let table = crate::alloc::guard(None, || {
+        Ok(crate::topology::Table::<u8>::for_overwrite(len))
+    });
+    if let Ok(mut table) = table {
+        let mut more = [0u8; 1];
+        if file.read_exact(&mut table).is_ok() && file.read(&mut more)? == 0 {
+            return Ok(table);
+        }
+    }
+    Ok(crate::topology::Table::from(std::fs::read(path)?))
 }
 
 /// Parses the text of an OBJ shape file; `file` only names it in errors
@@ -872,5 +892,32 @@ mod tests {
             shape.warnings[0].to_string(),
             "line 1: unknown statement '\\u{1b}]0;title\\u{7}'; the line is ignored"
         );
+    }
+}
+
+#[cfg(test)]
+mod read_tests {
+    use super::*;
+
+    /// A file of several huge pages reads into a map with the bytes
+    /// `fs::read` gives; a file whose size the metadata does not tell
+    /// (`/proc`) is read whole all the same.
+    #[test]
+    fn files_read_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("big.obj");
+        let bytes: Vec<u8> = (0..(5 << 20) + 123).map(|i| (i * 7 % 251) as u8).collect();
+        std::fs::write(&path, &bytes).unwrap();
+        let read = read_bytes(&path).unwrap();
+        // (Unless maps are turned off for the run.)
+        assert!(read.is_mapped() || std::env::var("SUBDIV_HUGE_PAGES").as_deref() == Ok("0"));
+        assert!(read.as_slice() == bytes.as_slice());
+        let status = read_bytes(Path::new("/proc/self/status")).unwrap();
+        assert!(
+            status.starts_with(b"Name:"),
+            "{:?}",
+            &status[..status.len().min(20)]
+        );
+        assert!(read_bytes(&dir.path().join("missing.obj")).is_err());
     }
 }
