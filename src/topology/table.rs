@@ -196,6 +196,14 @@ impl<T: Pod> Table<T> {
     pub fn is_mapped(&self) -> bool {
         matches!(self.repr, Repr::Map { .. })
     }
+
+    /// Drops the table and hands its memory back to the system at once (a
+    /// map is unmapped, not kept by the pool): for a buffer no table of the
+    /// same run is likely to reuse, such as the text of an input file.
+    pub(crate) fn free(mut self) {
+        // The map is dropped here (unmapped); `Drop` then finds a vector.
+        drop(std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())));
+    }
 }
 
 impl<T: Pod> Drop for Table<T> {

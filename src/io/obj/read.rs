@@ -22,12 +22,18 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
         line: 0,
         kind: ObjErrorKind::Io(e.to_string()),
     })?;
-    // The usual case, valid UTF-8, checked by the faster validator.
-    let text: Cow<'_, str> = match std::str::from_utf8(&bytes) {
-        Ok(text) => Cow::Borrowed(text),
-        Err(_) => String::from_utf8_lossy(&bytes),
+    let result = {
+        // The usual case, valid UTF-8, checked by the faster validator.
+        let text: Cow<'_, str> = match std::str::from_utf8(&bytes) {
+            Ok(text) => Cow::Borrowed(text),
+            Err(_) => String::from_utf8_lossy(&bytes),
+        };
+        parse_obj(&text, path)
     };
-    parse_obj(&text, path)
+    // The text back to the system, not to the pool of tables: the peak
+    // memory of reading and refining stays what it was with a vector.
+    bytes.free();
+    result
 }
 
 /// The whole file, read into a table (a huge-page map from 2 MiB: a large
