@@ -2,8 +2,11 @@
 against the same `Engine::refine` call timed inside Rust, on the 10k-quad
 torus (`subdiv::shapes::torus(100, 100)`), in one process, runs interleaved.
 
-Run with a release build installed (`make check-python` installs one):
-    .venv/bin/python python/bench_overhead.py [--runs N]
+Run with a release build installed (`make check-python` installs a debug
+one; build and install a release wheel first):
+    cd python && ../.venv/bin/maturin build --release --auditwheel skip
+    ../.venv/bin/pip install --force-reinstall --no-deps target/wheels/subdiv-*.whl
+    cd .. && .venv/bin/python python/bench_overhead.py [--runs N]
 The Python time includes everything a caller pays: argument parsing, the
 refinement (GIL released), handing every level's arrays to numpy and the
 dataclasses. Prints medians and the overhead in percent.
