@@ -100,12 +100,12 @@ pub use limits::{check_level, check_precision};
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
 pub use names::{Named, ParseNameError};
 pub use options::{
-    BoundaryInterpolation, CreasingMethod, Engine, FVarLinearInterpolation, MAX_LEVEL, Options,
-    Request, Scheme, TriangleSubdivision, UniformOptions,
+    AdaptiveOptions, BoundaryInterpolation, CreasingMethod, Engine, FVarLinearInterpolation,
+    MAX_LEVEL, Options, Request, Scheme, TriangleSubdivision, UniformOptions,
 };
 pub use output::{
-    FVarTopology, LevelCounts, LevelTopology, Limit, LimitData, Refinement, Values,
-    release_buffer_pool,
+    ChildMaps, FVarTopology, INVALID_INDEX, LevelCounts, LevelTopology, Limit, LimitData,
+    Refinement, Values, release_buffer_pool,
 };
 pub use real::{Precision, Real};
 pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};

@@ -220,6 +220,78 @@ impl UniformOptions {
     }
 }
 
+/// Options of feature-adaptive refinement
+/// (`Far::TopologyRefiner::AdaptiveOptions` of OpenSubdiv 3.5): only the
+/// faces around features that a regular patch cannot represent
+/// (extraordinary vertices, irregular faces, sharp features, and with
+/// [`Self::consider_fvar_channels`] face-varying boundaries) are refined, down
+/// to [`Self::isolation_level`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct AdaptiveOptions {
+    /// How deep features are isolated, `0..=MAX_LEVEL` (OpenSubdiv stores it
+    /// in 4 bits; validate it with [`crate::check_level`]).
+    pub isolation_level: u32,
+    /// The level below which fewer features (semi-sharp and infinitely sharp
+    /// features that patches represent) are isolated; 15 by default, i.e.
+    /// never.
+    pub secondary_level: u32,
+    /// Leave faces with a single semi-sharp crease unrefined (a single-crease
+    /// patch represents them).
+    pub use_single_crease_patch: bool,
+    /// Leave infinitely sharp features that patches represent unrefined.
+    pub use_inf_sharp_patch: bool,
+    /// Also isolate the features of non-linear face-varying channels.
+    pub consider_fvar_channels: bool,
+    /// Order child vertices from faces first (faces, edges, vertices).
+    pub order_vertices_from_faces_first: bool,
+}
+
+impl AdaptiveOptions {
+    /// OpenSubdiv's defaults for isolation `level`: secondary level 15, every
+    /// flag off.
+    pub fn new(level: u32) -> Self {
+        AdaptiveOptions {
+            isolation_level: level,
+            secondary_level: 15,
+            use_single_crease_patch: false,
+            use_inf_sharp_patch: false,
+            consider_fvar_channels: false,
+            order_vertices_from_faces_first: false,
+        }
+    }
+
+    /// Returns these options with another secondary level.
+    pub fn secondary(mut self, level: u32) -> Self {
+        self.secondary_level = level;
+        self
+    }
+
+    /// Returns these options with `useSingleCreasePatch` set.
+    pub fn single_crease_patch(mut self, yes: bool) -> Self {
+        self.use_single_crease_patch = yes;
+        self
+    }
+
+    /// Returns these options with `useInfSharpPatch` set.
+    pub fn inf_sharp_patch(mut self, yes: bool) -> Self {
+        self.use_inf_sharp_patch = yes;
+        self
+    }
+
+    /// Returns these options with `considerFVarChannels` set.
+    pub fn consider_fvar(mut self, yes: bool) -> Self {
+        self.consider_fvar_channels = yes;
+        self
+    }
+
+    /// Returns these options with `orderVerticesFromFacesFirst` set.
+    pub fn faces_first(mut self, yes: bool) -> Self {
+        self.order_vertices_from_faces_first = yes;
+        self
+    }
+}
+
 /// What to compute in one uniform refinement: the uniform options (level,
 /// vertex order, full topology), the precision of the interpolation, and
 /// whether limit values are evaluated at the last level.

@@ -10,6 +10,42 @@ use glam::DVec3;
 use std::fmt;
 use std::ops::{Deref, DerefMut};
 
+/// The index OpenSubdiv gives a child that sparse refinement did not create
+/// (`Vtr::INDEX_INVALID`, -1 as an unsigned index).
+pub const INVALID_INDEX: u32 = u32::MAX;
+
+/// How the components of one level map to those of the next (OpenSubdiv's
+/// `Far::TopologyLevel` child queries and `GetFaceParentFace`). After uniform
+/// refinement every child exists; after adaptive (sparse) refinement a child
+/// that was not created is [`INVALID_INDEX`].
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct ChildMaps {
+    /// The child faces of every parent face, one per corner, parallel to the
+    /// parent's face-vertices (`GetFaceChildFaces`; Loop: four per triangle,
+    /// the middle one last, in `face_child_face_offsets`' ranges).
+    pub face_child_faces: Vec<u32>,
+    /// Start of each parent face's children in `face_child_faces`, plus one
+    /// final entry.
+    pub face_child_face_offsets: Vec<u32>,
+    /// The child edges inside every parent face (`GetFaceChildEdges`), one per
+    /// corner (Loop: three), in `face_child_edge_offsets`' ranges.
+    pub face_child_edges: Vec<u32>,
+    /// Start of each parent face's interior child edges, plus one final entry.
+    pub face_child_edge_offsets: Vec<u32>,
+    /// The two child edges of every parent edge, the one at its end 0 first
+    /// (`GetEdgeChildEdges`).
+    pub edge_child_edges: Vec<[u32; 2]>,
+    /// The child vertex of every parent face (`GetFaceChildVertex`; Loop:
+    /// always invalid).
+    pub face_child_vertex: Vec<u32>,
+    /// The child vertex of every parent edge (`GetEdgeChildVertex`).
+    pub edge_child_vertex: Vec<u32>,
+    /// The child vertex of every parent vertex (`GetVertexChildVertex`).
+    pub vertex_child_vertex: Vec<u32>,
+    /// The parent face of every child face (`GetFaceParentFace`).
+    pub child_face_parent_face: Vec<u32>,
+}
+
 /// Face-varying topology of one channel at one level.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FVarTopology {
