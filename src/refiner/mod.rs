@@ -22,6 +22,7 @@ use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crea
 use crate::topology::fvar::ChannelLevel;
 use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
+pub mod adaptive;
 mod fvar_interp;
 mod queries;
 mod whole;
@@ -31,6 +32,7 @@ mod kernel;
 mod limit;
 mod stencil_factory;
 
+pub use adaptive::AdaptiveRefiner;
 pub(crate) use kernel::{HoodBuf, Scratch};
 pub use queries::Faces;
 pub use stencil_factory::FactorizedStencils;

@@ -13,14 +13,7 @@ use crate::topology::Level;
 impl Refiner {
     /// Element counts of `level` (`TopologyLevel::GetNumVertices` and friends).
     pub fn level_counts(&self, level: u32) -> Result<LevelCounts> {
-        let l = self.internal_level(level)?;
-        Ok(LevelCounts {
-            vertices: l.vertex_count,
-            edges: l.edge_count(),
-            faces: l.face_count(),
-            face_vertices: l.face_vertices.members.len(),
-            full_topology: l.has_full_topology(),
-        })
+        Ok(counts_of(self.internal_level(level)?))
     }
 
     /// The faces around vertex `v` of `level` and its edges, in OpenSubdiv's
@@ -178,45 +171,24 @@ impl Refiner {
             let full = level == 0
                 || level < self.max_level()
                 || self.uniform.is_none_or(|u| u.full_topology_in_last_level);
-            Ok(LevelTopology {
-                vertex_count: l.vertex_count,
-                edge_count: l.edge_count(),
-                face_offsets: copied(&l.face_vertices.offsets_slice()),
-                face_vertices: copied(&l.face_vertices.members),
-                edge_vertices: if full {
-                    copied(&l.edge_vertices)
-                } else {
-                    Vec::new()
-                },
-                // Tables of default values are stored empty: expand them.
-                edge_sharpness: if !l.edge_sharpness.is_empty() {
-                    copied(&l.edge_sharpness)
-                } else if l.has_full_topology() {
-                    vec_or_unwind(0.0, l.edge_count())
-                } else {
-                    // A minimal last level keeps no edge sharpness: recompute it.
-                    let parent = &self.levels[level as usize - 1];
-                    crate::topology::refine::child_edge_sharpness(
-                        parent,
-                        &self.refinements[level as usize - 1],
-                        self.options.creasing,
-                        l.edge_count(),
-                    )
-                },
-                vertex_sharpness: collect_n(
-                    l.vertex_count,
-                    (0..l.vertex_count).map(|v| l.vertex_sharpness_at(v)),
-                ),
-                face_holes: collect_n(l.face_count(), (0..l.face_count()).map(|f| l.is_hole(f))),
-                fvar: self
-                    .fvar
-                    .iter()
-                    .map(|channel| FVarTopology {
-                        value_count: channel[level as usize].value_count(),
-                        face_values: copied(channel[level as usize].face_values()),
-                    })
-                    .collect(),
-            })
+            let fvar = self
+                .fvar
+                .iter()
+                .map(|channel| FVarTopology {
+                    value_count: channel[level as usize].value_count(),
+                    face_values: copied(channel[level as usize].face_values()),
+                })
+                .collect();
+            Ok(topology_of(l, full, fvar, || {
+                // A minimal last level keeps no edge sharpness: recompute it.
+                let parent = &self.levels[level as usize - 1];
+                crate::topology::refine::child_edge_sharpness(
+                    parent,
+                    &self.refinements[level as usize - 1],
+                    self.options.creasing,
+                    l.edge_count(),
+                )
+            }))
         })
     }
 
@@ -263,4 +235,51 @@ pub struct Faces<'a> {
     /// Per face-varying channel, the value index of every face corner
     /// (parallel to `vertices`).
     pub fvar_face_values: Vec<&'a [u32]>,
+}
+
+/// Element counts of a level.
+pub(crate) fn counts_of(l: &Level) -> LevelCounts {
+    LevelCounts {
+        vertices: l.vertex_count,
+        edges: l.edge_count(),
+        faces: l.face_count(),
+        face_vertices: l.face_vertices.members.len(),
+        full_topology: l.has_full_topology(),
+    }
+}
+
+/// A level as OpenSubdiv reports it: edge-vertices when `full`, default
+/// sharpness, tags and holes expanded; `minimal_edge_sharpness` gives the
+/// edge sharpness of a minimal level, which stores none.
+pub(crate) fn topology_of(
+    l: &Level,
+    full: bool,
+    fvar: Vec<FVarTopology>,
+    minimal_edge_sharpness: impl FnOnce() -> Vec<f32>,
+) -> LevelTopology {
+    LevelTopology {
+        vertex_count: l.vertex_count,
+        edge_count: l.edge_count(),
+        face_offsets: copied(&l.face_vertices.offsets_slice()),
+        face_vertices: copied(&l.face_vertices.members),
+        edge_vertices: if full {
+            copied(&l.edge_vertices)
+        } else {
+            Vec::new()
+        },
+        // Tables of default values are stored empty: expand them.
+        edge_sharpness: if !l.edge_sharpness.is_empty() {
+            copied(&l.edge_sharpness)
+        } else if l.has_full_topology() {
+            vec_or_unwind(0.0, l.edge_count())
+        } else {
+            minimal_edge_sharpness()
+        },
+        vertex_sharpness: collect_n(
+            l.vertex_count,
+            (0..l.vertex_count).map(|v| l.vertex_sharpness_at(v)),
+        ),
+        face_holes: collect_n(l.face_count(), (0..l.face_count()).map(|f| l.is_hole(f))),
+        fvar,
+    }
 }

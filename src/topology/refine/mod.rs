@@ -37,13 +37,15 @@
 //!   the same per-vertex rules — what the refiner's interpolation kernel
 //!   reads there (OpenSubdiv always stores them).
 //!
-//! Every split here is uniform: all of the parent is refined. OpenSubdiv's
-//! sparse refinement (`Vtr::SparseSelector` and the `markSparse*` methods
-//! of `vtr/refinement.cpp`) has no counterpart yet.
+//! * `sparse.rs`: sparse refinement, part of a level split with explicit
+//!   parent-to-child maps (`Vtr::SparseSelector` and the sparse paths of
+//!   `vtr/refinement.cpp` and `vtr/quadRefinement.cpp`), what adaptive
+//!   refinement builds on.
 
 mod derive;
 mod quad;
 mod relations;
+pub mod sparse;
 mod tags;
 mod tri;
 

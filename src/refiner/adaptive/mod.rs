@@ -1,0 +1,315 @@
+//! Feature-adaptive refinement — the native counterpart of OpenSubdiv's
+//! `Far::TopologyRefiner::RefineAdaptive` (`far/topologyRefiner.cpp`): each
+//! level refines only the faces around features a regular patch cannot
+//! represent, down to the isolation level, with the neighbourhood those
+//! faces need ([`crate::topology::refine::sparse`]); every level keeps full
+//! topology and explicit parent-to-child maps.
+//!
+//! ```
+//! use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options, INVALID_INDEX};
+//! // A cube: every corner is extraordinary (three faces), and every face of
+//! // levels 0 and 1 touches one, so levels 1 and 2 are whole; level 3 refines
+//! // the 3 faces at each of the 8 corners (96 children) and, of the 9 faces
+//! // around each such patch, the corners next to it (15 children per patch).
+//! let cube = shapes::cube();
+//! let refiner = Refiner::new(&cube, &Options::default())?;
+//! let adaptive = refiner.refine_adaptive(AdaptiveOptions::new(3), &[])?;
+//! assert_eq!(adaptive.max_level(), 3);
+//! assert_eq!(adaptive.level_counts(2)?.faces, 96);
+//! assert_eq!(adaptive.level_counts(3)?.faces, 8 * (3 * 4 + 6 * 2 + 3));
+//! let maps = adaptive.child_maps(2)?;
+//! assert!(!maps.face_child_vertex.contains(&INVALID_INDEX)); // every face has a neighbour selected
+//! assert!(maps.face_child_faces.contains(&INVALID_INDEX));
+//! # Ok::<(), subdiv::Error>(())
+//! ```
+//!
+//! # Files
+//! * this file: the driver and the queries;
+//! * `features.rs`: the vertex tags the selection reads beyond those
+//!   refinement keeps (extraordinary, incomplete, ...), on the base level
+//!   and passed from level to level;
+//! * `select.rs`: which faces a level selects.
+//!
+//! Interpolation of primvars on sparse levels, face-varying channels and
+//! Loop's sparse triangle split are not there yet.
+
+mod features;
+mod select;
+
+use super::Refiner;
+use crate::error::{Element, Error, LevelRefusal, Result};
+use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
+use crate::output::{ChildMaps, LevelCounts, LevelTopology};
+use crate::topology::Level;
+use crate::topology::refine::sparse::{Selection, SparseSplit, refine_quads_sparse};
+use features::{Features, base_features, child_features, regular_face_size};
+use select::{FeatureMask, face_has_features};
+
+/// The deepest secondary level OpenSubdiv's 4-bit field holds (15: none).
+const MAX_SECONDARY_LEVEL: u32 = 15;
+
+/// A topology refined feature-adaptively: sparse levels with their
+/// parent-to-child maps ([`Refiner::refine_adaptive`]).
+#[derive(Debug, Clone)]
+pub struct AdaptiveRefiner {
+    options: Options,
+    adaptive: AdaptiveOptions,
+    levels: Vec<Level>,
+    steps: Vec<SparseSplit>,
+    features: Vec<Vec<Features>>,
+}
+
+impl Refiner {
+    /// Refines feature-adaptively (`TopologyRefiner::RefineAdaptive`): level
+    /// by level, only the faces around extraordinary vertices, irregular
+    /// faces and the sharp features a regular patch cannot represent, down
+    /// to `adaptive.isolation_level` (fewer features past
+    /// `adaptive.secondary_level`). `selected_faces` restricts the first
+    /// level to those base faces (all when empty); holes are never refined.
+    /// Refining stops early when a level selects nothing. Bilinear meshes
+    /// refine only their non-quads, one level.
+    ///
+    /// Refused as OpenSubdiv refuses: a refiner already refined
+    /// ([`Error::AlreadyRefined`]); and, before anything is refined, an
+    /// isolation level beyond [`MAX_LEVEL`] or a secondary level beyond 15
+    /// ([`Error::Level`]) and a selected face out of range
+    /// ([`Error::NoSuchElement`]). Not yet supported natively
+    /// ([`Error::NotYetSupported`]): Loop, and face-varying channels that
+    /// `consider_fvar_channels` would read.
+    pub fn refine_adaptive(
+        self,
+        adaptive: AdaptiveOptions,
+        selected_faces: &[u32],
+    ) -> Result<AdaptiveRefiner> {
+        if self.max_level() > 0 {
+            return Err(Error::AlreadyRefined);
+        }
+        for (level, max) in [
+            (adaptive.isolation_level, MAX_LEVEL),
+            (adaptive.secondary_level, MAX_SECONDARY_LEVEL),
+        ] {
+            if level > max {
+                return Err(Error::Level {
+                    level,
+                    reason: LevelRefusal::TooDeep { max },
+                });
+            }
+        }
+        let base = &self.levels[0];
+        if let Some(&f) = selected_faces
+            .iter()
+            .find(|&&f| f as usize >= base.face_count())
+        {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: f as usize,
+                level: 0,
+                count: base.face_count(),
+            });
+        }
+        let scheme = self.options.scheme;
+        if scheme == Scheme::Loop {
+            return Err(Error::NotYetSupported(
+                "adaptive refinement of Loop meshes (the sparse triangle split)",
+            ));
+        }
+        let nonlinear = scheme != Scheme::Bilinear;
+        if adaptive.consider_fvar_channels
+            && nonlinear
+            && !self.fvar.is_empty()
+            && self.options.fvar != crate::options::FVarLinearInterpolation::All
+        {
+            return Err(Error::NotYetSupported(
+                "adaptive refinement considering face-varying channels",
+            ));
+        }
+        crate::alloc::guard(Some(adaptive.isolation_level), || {
+            Ok(self.refine_sparse_levels(adaptive, selected_faces))
+        })
+    }
+
+    /// [`Refiner::refine_adaptive`]'s levels, once its arguments are checked.
+    fn refine_sparse_levels(self, adaptive: AdaptiveOptions, selected: &[u32]) -> AdaptiveRefiner {
+        let Refiner {
+            options,
+            mut levels,
+            ..
+        } = self;
+        levels.truncate(1);
+        let scheme = options.scheme;
+        let reg = regular_face_size(scheme);
+        let base = &levels[0];
+        let nonlinear = scheme != Scheme::Bilinear;
+        let shallow = adaptive.secondary_level.min(adaptive.isolation_level);
+        let irregular_faces = (0..base.face_count()).any(|f| base.face_vertices.count(f) != reg);
+        let deepest = if nonlinear {
+            adaptive.isolation_level
+        } else {
+            irregular_faces as u32
+        };
+        let more = FeatureMask::new(&adaptive, reg);
+        let less = if shallow < deepest {
+            more.reduced(&adaptive)
+        } else {
+            more
+        };
+        let mut features = vec![base_features(base, scheme)];
+        let mut steps = Vec::new();
+        for i in 1..=deepest {
+            let parent = levels.last().expect("base level");
+            let mask = if i <= shallow { &more } else { &less };
+            let mut selection = Selection::new(parent);
+            let mut consider = |f: usize| {
+                if parent.is_hole(f) {
+                    return;
+                }
+                let select = if nonlinear {
+                    face_has_features(parent, &features[i as usize - 1], f, mask, reg)
+                } else {
+                    parent.face_vertices.count(f) != reg
+                };
+                if select {
+                    selection.select_face(parent, f);
+                }
+            };
+            if i == 1 && !selected.is_empty() {
+                selected.iter().for_each(|&f| consider(f as usize));
+            } else {
+                (0..parent.face_count()).for_each(consider);
+            }
+            if selection.is_empty() {
+                break;
+            }
+            let (split, child) = refine_quads_sparse(
+                parent,
+                &options,
+                selection,
+                adaptive.order_vertices_from_faces_first,
+            );
+            features.push(child_features(
+                parent,
+                &features[i as usize - 1],
+                &split,
+                scheme,
+            ));
+            steps.push(split);
+            levels.push(child);
+        }
+        AdaptiveRefiner {
+            options,
+            adaptive,
+            levels,
+            steps,
+            features,
+        }
+    }
+}
+
+impl AdaptiveRefiner {
+    /// The options the topology was built with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// The adaptive options it was refined with.
+    pub fn adaptive_options(&self) -> &AdaptiveOptions {
+        &self.adaptive
+    }
+
+    /// The deepest level refined: at most the isolation level, less when a
+    /// level selected nothing.
+    pub fn max_level(&self) -> u32 {
+        (self.levels.len() - 1) as u32
+    }
+
+    fn internal_level(&self, level: u32) -> Result<&Level> {
+        self.levels
+            .get(level as usize)
+            .ok_or_else(|| Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level(),
+            })
+    }
+
+    /// Element counts of `level`.
+    pub fn level_counts(&self, level: u32) -> Result<LevelCounts> {
+        Ok(super::queries::counts_of(self.internal_level(level)?))
+    }
+
+    /// The topology of `level` as OpenSubdiv reports it (every level of an
+    /// adaptive refinement has full topology).
+    pub fn level(&self, level: u32) -> Result<LevelTopology> {
+        let l = self.internal_level(level)?;
+        crate::alloc::guard(Some(level), || {
+            Ok(super::queries::topology_of(l, true, Vec::new(), Vec::new))
+        })
+    }
+
+    /// How the components of `level` map to those of `level + 1`, with
+    /// [`crate::INVALID_INDEX`] for the children not created
+    /// (`TopologyLevel::GetFaceChildFaces` and friends).
+    pub fn child_maps(&self, level: u32) -> Result<ChildMaps> {
+        let s = self.steps.get(level as usize).ok_or(Error::NoSuchLevel {
+            level,
+            first: 0,
+            last: self.max_level().saturating_sub(1),
+        })?;
+        let parent = &self.levels[level as usize];
+        let offsets = parent.face_vertices.offsets_slice().into_owned();
+        Ok(ChildMaps {
+            face_child_faces: s.face_child_faces.clone(),
+            face_child_face_offsets: offsets.clone(),
+            face_child_edges: s.face_child_edges.clone(),
+            face_child_edge_offsets: offsets,
+            edge_child_edges: s.edge_child_edges.clone(),
+            face_child_vertex: s.face_child_vertex.clone(),
+            edge_child_vertex: s.edge_child_vertex.clone(),
+            vertex_child_vertex: s.vertex_child_vertex.clone(),
+            child_face_parent_face: s.child_face_parent.clone(),
+        })
+    }
+
+    /// Whether base face or level face `f` of `level` was selected for
+    /// refinement into the next level (its children are complete).
+    pub fn is_face_selected(&self, level: u32, f: usize) -> Result<bool> {
+        let s = self.steps.get(level as usize).ok_or(Error::NoSuchLevel {
+            level,
+            first: 0,
+            last: self.max_level().saturating_sub(1),
+        })?;
+        let count = self.levels[level as usize].face_count();
+        if f >= count {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: f,
+                level,
+                count,
+            });
+        }
+        Ok(s.selection.face(f))
+    }
+
+    /// Whether vertex `v` of `level` is extraordinary (OpenSubdiv's
+    /// `_xordinary` tag: `!TopologyLevel::IsVertexValenceRegular` except at
+    /// corners).
+    pub fn is_vertex_extraordinary(&self, level: u32, v: usize) -> Result<bool> {
+        let features = self
+            .features
+            .get(level as usize)
+            .ok_or(Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level(),
+            })?;
+        features
+            .get(v)
+            .map(|f| f.xordinary)
+            .ok_or(Error::NoSuchElement {
+                element: Element::Vertex,
+                index: v,
+                level,
+                count: features.len(),
+            })
+    }
+}

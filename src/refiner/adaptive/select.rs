@@ -1,0 +1,269 @@
+//! Which faces of a level feature-adaptive refinement selects — what
+//! OpenSubdiv's `Far::TopologyRefiner::selectFeatureAdaptiveComponents`
+//! decides (`far/topologyRefiner.cpp`): the faces around features a regular
+//! patch cannot represent, from the tags of their corners combined.
+
+use super::features::Features;
+use crate::options::AdaptiveOptions;
+use crate::rules::Rule;
+use crate::topology::Level;
+
+/// The features to isolate at one level (`Far::internal::FeatureMask`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct FeatureMask {
+    pub xordinary_interior: bool,
+    pub xordinary_boundary: bool,
+    pub semi_sharp_single: bool,
+    pub semi_sharp_non_single: bool,
+    pub inf_sharp_regular_crease: bool,
+    pub inf_sharp_regular_corner: bool,
+    pub inf_sharp_irregular_dart: bool,
+    pub inf_sharp_irregular_crease: bool,
+    pub inf_sharp_irregular_corner: bool,
+    pub unisolated_interior_edge: bool,
+    pub non_manifold: bool,
+}
+
+impl FeatureMask {
+    /// Every feature the options ask to isolate. Single-crease patches exist
+    /// for quads only.
+    pub fn new(options: &AdaptiveOptions, regular_face_size: usize) -> Self {
+        let single = options.use_single_crease_patch && regular_face_size == 4;
+        let inf_patch = options.use_inf_sharp_patch;
+        FeatureMask {
+            xordinary_interior: true,
+            xordinary_boundary: true,
+            semi_sharp_single: !single,
+            semi_sharp_non_single: true,
+            inf_sharp_regular_crease: !(inf_patch || single),
+            inf_sharp_regular_corner: !inf_patch,
+            inf_sharp_irregular_dart: true,
+            inf_sharp_irregular_crease: true,
+            inf_sharp_irregular_corner: true,
+            unisolated_interior_edge: single && !inf_patch,
+            non_manifold: true,
+        }
+    }
+
+    /// The smaller set isolated past the secondary level: no extraordinary
+    /// vertices, and with infinitely sharp patches only irregular corners.
+    pub fn reduced(mut self, options: &AdaptiveOptions) -> Self {
+        self.xordinary_interior = false;
+        self.xordinary_boundary = false;
+        if options.use_inf_sharp_patch {
+            self.inf_sharp_regular_crease = false;
+            self.inf_sharp_regular_corner = false;
+            self.inf_sharp_irregular_dart = false;
+            self.inf_sharp_irregular_crease = false;
+        }
+        self
+    }
+}
+
+/// OpenSubdiv's rule bits, which combine by `|` over a face's corners.
+const SMOOTH: u8 = 1;
+const DART: u8 = 2;
+const CREASE: u8 = 4;
+const CORNER: u8 = 8;
+
+fn rule_bits(rule: Rule) -> u8 {
+    match rule {
+        Rule::Smooth => SMOOTH,
+        Rule::Dart => DART,
+        Rule::Crease => CREASE,
+        Rule::Corner => CORNER,
+    }
+}
+
+/// The tags of a vertex as the selection reads them, or of several combined
+/// (`Vtr::Level::VTag` and `VTag::BitwiseOr`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Tag {
+    non_manifold: bool,
+    boundary: bool,
+    corner: bool,
+    inf_sharp: bool,
+    semi_sharp: bool,
+    semi_sharp_edges: bool,
+    inf_sharp_edges: bool,
+    rule: u8,
+    features: Features,
+}
+
+impl Tag {
+    fn of(level: &Level, features: &[Features], v: usize) -> Tag {
+        let t = level.vertex_tag(v);
+        Tag {
+            non_manifold: t.non_manifold(),
+            boundary: t.boundary(),
+            corner: t.corner(),
+            inf_sharp: t.inf_sharp(),
+            semi_sharp: t.semi_sharp(),
+            semi_sharp_edges: t.semi_sharp_edges(),
+            inf_sharp_edges: t.inf_sharp_edges(),
+            rule: rule_bits(t.rule()),
+            features: features[v],
+        }
+    }
+
+    fn or(self, o: Tag) -> Tag {
+        let (a, b) = (self.features, o.features);
+        Tag {
+            non_manifold: self.non_manifold | o.non_manifold,
+            boundary: self.boundary | o.boundary,
+            corner: self.corner | o.corner,
+            inf_sharp: self.inf_sharp | o.inf_sharp,
+            semi_sharp: self.semi_sharp | o.semi_sharp,
+            semi_sharp_edges: self.semi_sharp_edges | o.semi_sharp_edges,
+            inf_sharp_edges: self.inf_sharp_edges | o.inf_sharp_edges,
+            rule: self.rule | o.rule,
+            features: Features {
+                xordinary: a.xordinary | b.xordinary,
+                incomplete: a.incomplete | b.incomplete,
+                incid_irreg_face: a.incid_irreg_face | b.incid_irreg_face,
+                inf_sharp_crease: a.inf_sharp_crease | b.inf_sharp_crease,
+                inf_irregular: a.inf_irregular | b.inf_irregular,
+            },
+        }
+    }
+}
+
+/// Whether the infinitely sharp features of a tag (one corner's, or a
+/// face's combined: the tests are bitwise, so both read the same) are ones
+/// the mask isolates.
+fn inf_sharp_tag_has_features(t: Tag, mask: &FeatureMask) -> bool {
+    if t.features.inf_irregular {
+        if t.rule & CORNER != 0 {
+            mask.inf_sharp_irregular_corner
+        } else if t.rule & CREASE != 0 {
+            if t.boundary {
+                mask.xordinary_boundary
+            } else {
+                mask.inf_sharp_irregular_crease
+            }
+        } else if t.rule & DART != 0 {
+            mask.inf_sharp_irregular_dart
+        } else {
+            false
+        }
+    } else if t.boundary {
+        // Regular boundaries are never isolated, except a boundary crease
+        // made a corner by an interior sharp edge.
+        t.rule & CORNER != 0 && !t.corner && mask.inf_sharp_regular_corner
+    } else if t.rule & CORNER != 0 {
+        mask.inf_sharp_regular_corner
+    } else {
+        mask.inf_sharp_regular_crease
+    }
+}
+
+/// Whether a face with infinitely sharp features needs isolating.
+fn inf_sharp_face_has_features(composite: Tag, corners: &[Tag], mask: &FeatureMask) -> bool {
+    let one_smooth_corner = composite.rule & SMOOTH != 0;
+    if corners.len() == 4 {
+        if one_smooth_corner {
+            return inf_sharp_tag_has_features(composite, mask);
+        }
+        if mask.unisolated_interior_edge && corners.iter().any(|t| t.inf_sharp_edges && !t.boundary)
+        {
+            return true;
+        }
+    } else if one_smooth_corner && !composite.boundary {
+        return inf_sharp_tag_has_features(composite, mask);
+    }
+    corners
+        .iter()
+        .any(|&t| t.rule & SMOOTH == 0 && inf_sharp_tag_has_features(t, mask))
+}
+
+/// Whether face `f` of a quad level is a regular interior face with a
+/// single semi-sharp crease along one edge (`Vtr::Level::isSingleCreasePatch`):
+/// two adjacent crease corners, the other two smooth, and the crease
+/// regular at both crease corners (opposite edges equally sharp).
+fn is_single_crease_patch(level: &Level, composite: Tag, corners: &[Tag], verts: &[u32]) -> bool {
+    if composite.rule & CREASE == 0
+        || composite.rule & (CORNER | DART) != 0
+        || composite.boundary
+        || composite.features.xordinary
+        || composite.non_manifold
+    {
+        return false;
+    }
+    let mask = corners
+        .iter()
+        .enumerate()
+        .map(|(i, t)| ((t.rule == CREASE) as usize) << i)
+        .sum::<usize>();
+    let edge = match mask {
+        3 => 0,
+        6 => 1,
+        12 => 2,
+        9 => 3,
+        _ => return false,
+    };
+    let regular = |v: u32| {
+        let edges = level.vertex_edges_of(v as usize);
+        let s = |k: usize| level.edge_sharpness_at(edges[k] as usize);
+        s(0) == s(2) && s(1) == s(3)
+    };
+    regular(verts[edge]) && regular(verts[(edge + 1) % 4])
+}
+
+/// Whether face `f` has features to isolate (`doesFaceHaveFeatures`).
+pub(crate) fn face_has_features(
+    level: &Level,
+    features: &[Features],
+    f: usize,
+    mask: &FeatureMask,
+    regular_face_size: usize,
+) -> bool {
+    let verts = level.face_verts(f);
+    // Irregular faces are always isolated.
+    if verts.len() != regular_face_size {
+        return true;
+    }
+    let mut corners = [Tag::default(); 4];
+    for (slot, &v) in corners.iter_mut().zip(verts) {
+        *slot = Tag::of(level, features, v as usize);
+    }
+    let corners = &corners[..verts.len()];
+    let composite = corners.iter().fold(Tag::default(), |a, &b| a.or(b));
+
+    if composite.features.incid_irreg_face {
+        return true;
+    }
+    if composite.features.incomplete {
+        return false;
+    }
+    if composite.non_manifold && mask.non_manifold {
+        return true;
+    }
+    if composite.features.xordinary && mask.xordinary_interior {
+        if composite.rule == SMOOTH {
+            return true;
+        }
+        if level.depth < 2
+            && corners
+                .iter()
+                .any(|t| t.features.xordinary && t.rule == SMOOTH)
+        {
+            return true;
+        }
+    }
+    if composite.rule == SMOOTH {
+        return false;
+    }
+    if composite.semi_sharp || composite.semi_sharp_edges {
+        return if mask.semi_sharp_single && mask.semi_sharp_non_single {
+            true
+        } else if is_single_crease_patch(level, composite, corners, verts) {
+            mask.semi_sharp_single
+        } else {
+            mask.semi_sharp_non_single
+        };
+    }
+    if composite.inf_sharp || composite.inf_sharp_edges {
+        return inf_sharp_face_has_features(composite, corners, mask);
+    }
+    false
+}
