@@ -511,15 +511,7 @@ impl Refiner {
 
     /// The terms of the face point of parent face `f` (level `level - 1`).
     pub(crate) fn face_terms<T: Real>(&self, level: usize, f: usize, s: &mut Scratch<T>) {
-        let verts = self.levels[level - 1].face_verts(f);
-        self.rules.face_vertex_mask(verts.len(), &mut s.mask);
-        s.terms.clear();
-        s.terms.extend(
-            verts
-                .iter()
-                .zip(&s.mask.vertex)
-                .map(|(&v, &w)| (Source::Parent(v), w)),
-        );
+        face_terms(&self.rules, &self.levels[level - 1], f, s);
     }
 
     /// The terms of the edge point of parent edge `e`.
@@ -530,9 +522,109 @@ impl Refiner {
         e: usize,
         s: &mut Scratch<T>,
     ) {
-        let parent = &self.levels[level - 1];
-        let child = &self.levels[level];
-        let r = &self.refinements[level - 1];
+        let faces = self.edge_faces_of(level - 1, e);
+        let step = Step {
+            rules: &self.rules,
+            creasing: self.options.creasing,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            children: &self.refinements[level - 1],
+        };
+        step.edge_terms(kind, e, faces.as_slice(), s);
+    }
+
+    /// The terms of the child of parent vertex `v`: face weights, then edge
+    /// weights, then the vertex.
+    pub(crate) fn vertex_terms<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        v: usize,
+        s: &mut Scratch<T>,
+    ) {
+        let step = Step {
+            rules: &self.rules,
+            creasing: self.options.creasing,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            children: &self.refinements[level - 1],
+        };
+        if kind == Kind::Varying {
+            return step.vertex_terms(kind, v, &[], &[], s);
+        }
+        let mut buf = std::mem::take(&mut s.hood);
+        let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
+        step.vertex_terms(kind, v, faces, edges, s);
+        s.hood = buf;
+    }
+}
+
+/// How one refinement step numbers the children of its parent's elements:
+/// uniformly by arithmetic ([`Split`]) or through explicit maps (a sparse
+/// step of adaptive refinement).
+pub(crate) trait Children {
+    /// The face point of parent face `f`.
+    fn face_child(&self, f: usize) -> u32;
+    /// The edge point of parent edge `e`.
+    fn edge_child(&self, e: usize) -> u32;
+    /// The vertex point of parent vertex `v`.
+    fn vertex_child(&self, v: usize) -> u32;
+}
+
+impl Children for Split {
+    #[inline]
+    fn face_child(&self, f: usize) -> u32 {
+        Split::face_child(self, f)
+    }
+    #[inline]
+    fn edge_child(&self, e: usize) -> u32 {
+        Split::edge_child(self, e)
+    }
+    #[inline]
+    fn vertex_child(&self, v: usize) -> u32 {
+        Split::vertex_child(self, v)
+    }
+}
+
+/// The terms of the face point of face `f` of `parent`.
+pub(crate) fn face_terms<T: Real>(
+    rules: &SchemeRules,
+    parent: &Level,
+    f: usize,
+    s: &mut Scratch<T>,
+) {
+    let verts = parent.face_verts(f);
+    rules.face_vertex_mask(verts.len(), &mut s.mask);
+    s.terms.clear();
+    s.terms.extend(
+        verts
+            .iter()
+            .zip(&s.mask.vertex)
+            .map(|(&v, &w)| (Source::Parent(v), w)),
+    );
+}
+
+/// One refinement step as the masks read it: the rules, the two levels and
+/// the numbering of the children.
+pub(crate) struct Step<'a, C> {
+    pub rules: &'a SchemeRules,
+    pub creasing: crate::options::CreasingMethod,
+    pub parent: &'a Level,
+    pub child: &'a Level,
+    pub children: &'a C,
+}
+
+impl<C: Children> Step<'_, C> {
+    /// The terms of the edge point of parent edge `e`, whose faces are
+    /// `faces`.
+    pub(crate) fn edge_terms<T: Real>(
+        &self,
+        kind: Kind,
+        e: usize,
+        faces: &[u32],
+        s: &mut Scratch<T>,
+    ) {
+        let (parent, r) = (self.parent, self.children);
         let ev = parent.edge_vertices[e];
         s.terms.clear();
         if kind == Kind::Varying {
@@ -541,8 +633,6 @@ impl Refiner {
                 .extend([(Source::Parent(ev[0]), half), (Source::Parent(ev[1]), half)]);
             return;
         }
-        let faces = self.edge_faces_of(level - 1, e);
-        let faces = faces.as_slice();
         s.face_sizes.clear();
         s.face_sizes.extend(
             faces
@@ -559,7 +649,7 @@ impl Refiner {
         } else {
             Rule::Smooth
         };
-        let c_rule = child.vertex_tag(r.edge_child(e) as usize).rule();
+        let c_rule = self.child.vertex_tag(r.edge_child(e) as usize).rule();
         self.rules
             .edge_vertex_mask(&hood, p_rule, c_rule, &mut s.mask);
         s.terms.push((Source::Parent(ev[0]), s.mask.vertex[0]));
@@ -577,32 +667,30 @@ impl Refiner {
         }
     }
 
-    /// The terms of the child of parent vertex `v`: face weights, then edge
-    /// weights, then the vertex.
+    /// The terms of the child of parent vertex `v`, whose faces and edges
+    /// are `faces` and `edges` (unread for varying data): face weights, then
+    /// edge weights, then the vertex.
     pub(crate) fn vertex_terms<T: Real>(
         &self,
         kind: Kind,
-        level: usize,
         v: usize,
+        faces: &[u32],
+        edges: &[u32],
         s: &mut Scratch<T>,
     ) {
-        let parent = &self.levels[level - 1];
-        let child = &self.levels[level];
-        let r = &self.refinements[level - 1];
+        let (parent, child, r) = (self.parent, self.child, self.children);
         let c = r.vertex_child(v) as usize;
         s.terms.clear();
         if kind == Kind::Varying {
             s.terms.push((Source::Parent(v as u32), T::ONE));
             return;
         }
-        let mut buf = std::mem::take(&mut s.hood);
-        let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
         s.edge_sharpness.clear();
         s.edge_sharpness
             .extend(edges.iter().map(|&e| parent.edge_sharpness_at(e as usize)));
         s.child_edge_sharpness.resize(edges.len(), 0.0);
         crease::subdivide_edge_sharpnesses_around_vertex(
-            self.options.creasing,
+            self.creasing,
             &s.edge_sharpness,
             &mut s.child_edge_sharpness,
         );
@@ -625,6 +713,5 @@ impl Refiner {
                 .push((Source::Parent(parent.other_vertex(e as usize, v as u32)), w));
         }
         s.terms.push((Source::Parent(v as u32), s.mask.vertex[0]));
-        s.hood = buf;
     }
 }

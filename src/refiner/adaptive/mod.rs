@@ -28,18 +28,21 @@
 //! * `features.rs`: the vertex tags the selection reads beyond those
 //!   refinement keeps (extraordinary, incomplete, ...), on the base level
 //!   and passed from level to level;
-//! * `select.rs`: which faces a level selects.
+//! * `select.rs`: which faces a level selects;
+//! * `interpolate.rs`: vertex and varying primvars level by level.
 //!
-//! Interpolation of primvars on sparse levels, face-varying channels and
-//! Loop's sparse triangle split are not there yet.
+//! Face-varying channels on sparse levels and Loop's sparse triangle split
+//! are not there yet.
 
 mod features;
+mod interpolate;
 mod select;
 
 use super::Refiner;
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
 use crate::output::{ChildMaps, LevelCounts, LevelTopology};
+use crate::rules::SchemeRules;
 use crate::topology::Level;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_quads_sparse};
 use features::{Features, base_features, child_features, regular_face_size};
@@ -54,6 +57,7 @@ const MAX_SECONDARY_LEVEL: u32 = 15;
 pub struct AdaptiveRefiner {
     options: Options,
     adaptive: AdaptiveOptions,
+    rules: SchemeRules,
     levels: Vec<Level>,
     steps: Vec<SparseSplit>,
     features: Vec<Vec<Features>>,
@@ -196,6 +200,7 @@ impl Refiner {
             levels.push(child);
         }
         AdaptiveRefiner {
+            rules: SchemeRules::new(&options),
             options,
             adaptive,
             levels,

@@ -1,0 +1,141 @@
+//! Primvars on sparse levels — `Far::PrimvarRefiner::Interpolate` and
+//! `InterpolateVarying` after `RefineAdaptive`: every child vertex that
+//! exists gets the same mask as in uniform refinement (the parent level is
+//! whole around it), accumulated in the same order, so results are
+//! bit-identical to OpenSubdiv's.
+
+use super::AdaptiveRefiner;
+use crate::error::{Buffer, Error, Result};
+use crate::real::Real;
+use crate::refiner::{Children, Kind, Scratch, Source, Step, face_terms};
+use crate::topology::refine::sparse::SparseSplit;
+use glam::DVec3;
+
+impl Children for SparseSplit {
+    #[inline]
+    fn face_child(&self, f: usize) -> u32 {
+        self.face_child_vertex[f]
+    }
+    #[inline]
+    fn edge_child(&self, e: usize) -> u32 {
+        self.edge_child_vertex[e]
+    }
+    #[inline]
+    fn vertex_child(&self, v: usize) -> u32 {
+        self.vertex_child_vertex[v]
+    }
+}
+
+impl AdaptiveRefiner {
+    /// Interpolates vertex data of `width` components from level `level - 1`
+    /// to `level` (`PrimvarRefiner::Interpolate`).
+    pub fn interpolate<T: Real>(&self, level: u32, width: usize, src: &[T]) -> Result<Vec<T>> {
+        self.interpolate_kind(Kind::Vertex, level, width, src)
+    }
+
+    /// Interpolates varying data (linearly) from level `level - 1` to
+    /// `level` (`PrimvarRefiner::InterpolateVarying`).
+    pub fn interpolate_varying<T: Real>(
+        &self,
+        level: u32,
+        width: usize,
+        src: &[T],
+    ) -> Result<Vec<T>> {
+        self.interpolate_kind(Kind::Varying, level, width, src)
+    }
+
+    /// Positions of every level, from the base positions, interpolated level
+    /// by level in `f64`.
+    pub fn refine_positions(&self, base: &[DVec3]) -> Result<Vec<Vec<DVec3>>> {
+        let mut levels = vec![base.to_vec()];
+        for level in 1..=self.max_level() {
+            let flat: &[f64] = bytemuck::cast_slice(&levels[level as usize - 1]);
+            let next = self.interpolate(level, 3, flat)?;
+            levels.push(
+                next.chunks_exact(3)
+                    .map(|c| DVec3::new(c[0], c[1], c[2]))
+                    .collect(),
+            );
+        }
+        Ok(levels)
+    }
+
+    fn interpolate_kind<T: Real>(
+        &self,
+        kind: Kind,
+        level: u32,
+        width: usize,
+        src: &[T],
+    ) -> Result<Vec<T>> {
+        if level == 0 || level > self.max_level() {
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 1,
+                last: self.max_level(),
+            });
+        }
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let (parent, child) = (
+            &self.levels[level as usize - 1],
+            &self.levels[level as usize],
+        );
+        if src.len() != parent.vertex_count * width {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Source,
+                expected: parent.vertex_count * width,
+                got: src.len(),
+            });
+        }
+        crate::alloc::guard(Some(level), || {
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.vertex_count * width);
+            let split = &self.steps[level as usize - 1];
+            let step = Step {
+                rules: &self.rules,
+                creasing: self.options.creasing,
+                parent,
+                child,
+                children: split,
+            };
+            let mut s = Scratch::<T>::new();
+            let mut acc = vec![T::ZERO; width];
+            let mut emit = |c: u32, terms: &[(Source, T)], dst: &mut [T]| {
+                acc.fill(T::ZERO);
+                for &(source, w) in terms {
+                    let (data, i): (&[T], u32) = match source {
+                        Source::Parent(i) => (src, i),
+                        Source::Child(i) => (&*dst, i),
+                    };
+                    let row = &data[i as usize * width..(i as usize + 1) * width];
+                    for (a, &x) in acc.iter_mut().zip(row) {
+                        *a += x * w;
+                    }
+                }
+                let c = c as usize * width;
+                dst[c..c + width].copy_from_slice(&acc);
+            };
+            // Face points, edge points, then vertex points, as OpenSubdiv.
+            for (f, &c) in split.face_child_vertex.iter().enumerate() {
+                if c != crate::INVALID_INDEX {
+                    face_terms(&self.rules, parent, f, &mut s);
+                    emit(c, &s.terms, &mut dst);
+                }
+            }
+            for (e, &c) in split.edge_child_vertex.iter().enumerate() {
+                if c != crate::INVALID_INDEX {
+                    step.edge_terms(kind, e, parent.edge_faces_of(e), &mut s);
+                    emit(c, &s.terms, &mut dst);
+                }
+            }
+            for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
+                if c != crate::INVALID_INDEX {
+                    let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
+                    step.vertex_terms(kind, v, faces, edges, &mut s);
+                    emit(c, &s.terms, &mut dst);
+                }
+            }
+            Ok(dst)
+        })
+    }
+}
