@@ -15,8 +15,8 @@ use subdiv::ptex::PtexIndices;
 use subdiv::refiner::Refiner;
 use subdiv::rules::Rule;
 use subdiv::{
-    AdaptiveOptions, BoundaryInterpolation, ChildMaps, Element, Error, INVALID_INDEX, LevelRefusal,
-    Mesh, Options, Scheme, UniformOptions, shapes,
+    AdaptiveOptions, BoundaryInterpolation, ChildMaps, Element, Error, FVarLinearInterpolation,
+    INVALID_INDEX, LevelRefusal, Mesh, Options, Scheme, UniformOptions, shapes,
 };
 
 fn options(scheme: Scheme) -> Options {
@@ -770,4 +770,83 @@ fn ptex_native_equals_opensubdiv() {
         }
     }
     assert!(checked > 300, "{checked}");
+}
+
+/// Every per-level query of the refiner works on sparse levels: whole
+/// levels, vertex, varying and face-varying interpolation, limits (their
+/// incomplete vertices keep their refined values), and stencil tables with
+/// one stencil per last-level vertex.
+#[test]
+fn per_level_queries_work_on_sparse_levels() {
+    let mesh = shapes::cube_with_uvs();
+    let o = Options {
+        fvar: FVarLinearInterpolation::None,
+        ..Options::default()
+    };
+    let mut r = TopologyRefiner::new(&mesh, &o).unwrap();
+    r.refine_adaptive(AdaptiveOptions::new(3), &[0]).unwrap();
+    assert_eq!(r.max_level(), 3);
+    let base: Vec<f64> = mesh.flat_positions();
+    let all = r.interpolate_all(3, &base).unwrap();
+    for level in 0..=3 {
+        let top = r.level(level).unwrap();
+        assert_eq!(all[level as usize].len(), 3 * top.vertex_count);
+        assert_eq!(top.edge_vertices.len(), top.edge_count);
+        assert_eq!(
+            r.interpolate_varying(level.max(1), 3, &all[level.max(1) as usize - 1])
+                .unwrap()
+                .len(),
+            all[level.max(1) as usize].len()
+        );
+    }
+    let channel = &mesh.fvar_channels[0];
+    let mut uv = channel.values.clone();
+    for level in 1..=3 {
+        uv = r.interpolate_face_varying(0, level, 2, &uv).unwrap();
+        assert_eq!(uv.len(), 2 * r.level(level).unwrap().fvar[0].value_count);
+    }
+    let last = &all[3];
+    let limit = r.limit(3, last).unwrap();
+    assert_eq!(limit.positions.len(), last.len());
+    assert_eq!(r.limit_face_varying(0, 2, &uv).unwrap().len(), uv.len());
+    let vertices = r.level_counts(3).unwrap().vertices;
+    assert_eq!(r.stencil_table().unwrap().len(), vertices);
+    assert_eq!(r.limit_stencil_table().unwrap().positions.len(), vertices);
+    // The refined stencils reproduce the interpolated last level.
+    let table = r.stencil_table().unwrap();
+    for (s, chunk) in last.chunks_exact(3).enumerate() {
+        let range = table.offsets[s] as usize..(table.offsets[s] + table.sizes[s]) as usize;
+        let mut p = DVec3::ZERO;
+        for (&i, &w) in table.indices[range.clone()]
+            .iter()
+            .zip(&table.weights[range])
+        {
+            p += mesh.positions[i as usize] * w;
+        }
+        assert!(
+            (p - DVec3::from_slice(chunk)).length() < 1e-12,
+            "vertex {s}"
+        );
+    }
+}
+
+/// `useSingleCreasePatch`: a ring of edges of sharpness 2 around a regular
+/// torus gives every face beside it exactly one semi-sharp edge, between
+/// regular crease vertices: a single-crease patch, left unrefined with the
+/// option. Without it those faces are selected while the crease is
+/// semi-sharp: sharpness 2 at level 0 and 1 at level 1, 0 from level 2 on,
+/// so refinement stops at level 2 under isolation 3.
+#[test]
+fn single_crease_patch_option_is_passed_on() {
+    let mut torus = shapes::torus(8, 6);
+    for i in 0..8 {
+        torus.add_crease(i, (i + 1) % 8, 2.0);
+    }
+    let run = |o: AdaptiveOptions| {
+        let mut r = TopologyRefiner::new(&torus, &Options::default()).unwrap();
+        r.refine_adaptive(o, &[]).unwrap();
+        r.max_level()
+    };
+    assert_eq!(run(AdaptiveOptions::new(3)), 2);
+    assert_eq!(run(AdaptiveOptions::new(3).single_crease_patch(true)), 0);
 }
