@@ -6,6 +6,7 @@
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -19,6 +20,8 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <stdexcept>
@@ -98,6 +101,10 @@ struct sdv_refiner {
     Far::TopologyRefiner *refiner = nullptr;
     std::string warnings;
     bool full_topology_last_level = true;  // level 0 always has full topology
+    // Far::PtexIndices of the base level (which never changes), built on
+    // first use; call_once makes that safe from several threads.
+    mutable std::once_flag ptex_once;
+    mutable std::unique_ptr<Far::PtexIndices> ptex;
     ~sdv_refiner() { delete refiner; }
 };
 
@@ -647,6 +654,66 @@ sdv_stencils *refined_stencils(const sdv_refiner &rr) {
     return out;
 }
 
+
+// Catmull-Clark's smooth masks assert that a vertex has as many edges as
+// faces. A vertex named twice by a face can break that and still be smooth
+// once semi-sharp features decay: refuse (and undo the refinement) before
+// anything interpolates. Vertices without a child (sparse refinement) are
+// never interpolated from.
+void check_unpaired_smooth_vertices(sdv_refiner &r) {
+    if (r.refiner->GetSchemeType() != Sdc::SCHEME_CATMARK) return;
+    Far::TopologyRefiner const &tr = *r.refiner;
+    for (int l = 0; l < tr.GetMaxLevel(); ++l) {
+        Far::TopologyLevel const &p = tr.GetLevel(l), &c = tr.GetLevel(l + 1);
+        for (int v = 0; v < p.GetNumVertices(); ++v) {
+            if (p.GetVertexFaces(v).size() == p.GetVertexEdges(v).size()) continue;
+            Far::Index child = p.GetVertexChildVertex(v);
+            if (child < 0) continue;
+            Sdc::Crease::Rule pr = p.GetVertexRule(v), cr = c.GetVertexRule(child);
+            bool smooth = pr == Sdc::Crease::RULE_SMOOTH || pr == Sdc::Crease::RULE_DART ||
+                          cr == Sdc::Crease::RULE_SMOOTH || cr == Sdc::Crease::RULE_DART;
+            if (smooth) {
+                r.refiner->Unrefine();
+                fail("vertex " + str(v) + " of level " + str(l) +
+                     " becomes smooth although its faces and edges do not pair up (a face names it "
+                     "twice): OpenSubdiv cannot refine it");
+            }
+        }
+    }
+}
+
+// An output buffer of at least `n` elements (non-null when n > 0).
+template <class B>
+void need_buf(const B &b, long long n, const char *what) {
+    check_cap(b.cap, n, what);
+    if (n > 0 && !b.data) fail(std::string("null output: ") + what);
+}
+
+// The level `level` of a refiner, with a next level (child maps).
+Far::TopologyLevel const &parent_level_of(const sdv_refiner *r, int32_t level) {
+    const sdv_refiner &rr = need(r);
+    int max = rr.refiner->GetMaxLevel();
+    if (level < 0 || level >= max)
+        fail("level " + str(level) + " has no child level (refined levels are 0.." + str(max) + ")");
+    return rr.refiner->GetLevel(level);
+}
+
+int32_t rule_code(Sdc::Crease::Rule rule) {
+    switch (rule) {
+        case Sdc::Crease::RULE_SMOOTH: return SDV_RULE_SMOOTH;
+        case Sdc::Crease::RULE_DART: return SDV_RULE_DART;
+        case Sdc::Crease::RULE_CREASE: return SDV_RULE_CREASE;
+        case Sdc::Crease::RULE_CORNER: return SDV_RULE_CORNER;
+        default: return SDV_RULE_UNKNOWN;
+    }
+}
+
+Far::PtexIndices const &ptex_of(const sdv_refiner &rr) {
+    std::call_once(rr.ptex_once, [&] { rr.ptex.reset(new Far::PtexIndices(*rr.refiner)); });
+    if (!rr.ptex) throw ShimError(SDV_ERR_INTERNAL, "no ptex indices");
+    return *rr.ptex;
+}
+
 }  // namespace
 
 extern "C" {
@@ -762,28 +829,47 @@ int sdv_refiner_refine_uniform(sdv_refiner *r, int32_t level, int32_t faces_firs
         uo.fullTopologyInLastLevel = full_topology != 0;
         r->refiner->RefineUniform(uo);
         if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, t_osd_errors);
-        // Catmull-Clark's smooth masks assert that a vertex has as many edges
-        // as faces. A vertex named twice by a face can break that and still be
-        // smooth once semi-sharp features decay: refuse before interpolating.
-        if (r->refiner->GetSchemeType() == Sdc::SCHEME_CATMARK) {
-            Far::TopologyRefiner const &tr = *r->refiner;
-            for (int l = 0; l < tr.GetMaxLevel(); ++l) {
-                Far::TopologyLevel const &p = tr.GetLevel(l), &c = tr.GetLevel(l + 1);
-                for (int v = 0; v < p.GetNumVertices(); ++v) {
-                    if (p.GetVertexFaces(v).size() == p.GetVertexEdges(v).size()) continue;
-                    Sdc::Crease::Rule pr = p.GetVertexRule(v), cr = c.GetVertexRule(p.GetVertexChildVertex(v));
-                    bool smooth = pr == Sdc::Crease::RULE_SMOOTH || pr == Sdc::Crease::RULE_DART ||
-                                  cr == Sdc::Crease::RULE_SMOOTH || cr == Sdc::Crease::RULE_DART;
-                    if (smooth) {
-                        r->refiner->Unrefine();
-                        fail("vertex " + str(v) + " of level " + str(l) +
-                             " becomes smooth although its faces and edges do not pair up (a face names it "
-                             "twice): OpenSubdiv cannot refine it");
-                    }
-                }
-            }
-        }
+        check_unpaired_smooth_vertices(*r);
         r->full_topology_last_level = full_topology != 0;
+    });
+}
+
+int sdv_refiner_refine_adaptive(sdv_refiner *r, const sdv_adaptive_options *opts, const int32_t *faces,
+                                size_t num_faces, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!r || !r->refiner) fail("null refiner");
+        if (!opts) fail("null adaptive options");
+        // OpenSubdiv reports this through its error callback and returns.
+        if (r->refiner->GetMaxLevel() > 0)
+            fail("the refiner is already refined (to level " + str(r->refiner->GetMaxLevel()) +
+                 "): OpenSubdiv refines a refiner once");
+        // Both levels are 4-bit fields in OpenSubdiv: never let them wrap.
+        if (opts->isolation_level < 0 || opts->isolation_level > 10)
+            fail("isolation level " + str(opts->isolation_level) + " is not in 0..10");
+        if (opts->secondary_level < 0 || opts->secondary_level > 15)
+            fail("secondary level " + str(opts->secondary_level) + " is not in 0..15");
+        if (num_faces > 0 && !faces) fail("null face list");
+        const int n = r->refiner->GetLevel(0).GetNumFaces();
+        if (num_faces > (size_t)std::numeric_limits<int>::max()) fail("more than 2^31-1 selected faces");
+        for (size_t i = 0; i < num_faces; ++i) {
+            if (faces[i] < 0 || faces[i] >= n)
+                fail("selected face " + str(faces[i]) + " (entry " + str((long long)i) + ") is out of range (" +
+                     str(n) + " faces)");
+        }
+        Far::TopologyRefiner::AdaptiveOptions ao(opts->isolation_level);
+        ao.SetSecondaryLevel(opts->secondary_level);
+        ao.useSingleCreasePatch = opts->single_crease_patch != 0;
+        ao.useInfSharpPatch = opts->inf_sharp_patch != 0;
+        ao.considerFVarChannels = opts->consider_fvar_channels != 0;
+        ao.orderVerticesFromFacesFirst = opts->faces_first != 0;
+        t_osd_errors.clear();
+        r->full_topology_last_level = true;
+        r->refiner->RefineAdaptive(ao, Far::ConstIndexArray(faces, (int)num_faces));
+        if (!t_osd_errors.empty()) {
+            r->refiner->Unrefine();
+            throw ShimError(SDV_ERR_OSD, t_osd_errors);
+        }
+        check_unpaired_smooth_vertices(*r);
     });
 }
 
@@ -1008,6 +1094,188 @@ int sdv_evaluator_eval_f32(const sdv_evaluator *e, int32_t width, const float *s
                                                   &e->table->GetOffsets()[0], &e->table->GetControlIndices()[0],
                                                   &e->table->GetWeights()[0], 0, n);
         if (!ok) throw ShimError(SDV_ERR_OSD, "Osd::CpuEvaluator::EvalStencils failed");
+    });
+}
+
+int sdv_level_child_sizes(const sdv_refiner *r, int32_t level, int32_t *face_child_faces,
+                          int32_t *face_child_edges, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!face_child_faces || !face_child_edges) fail("null output");
+        Far::TopologyLevel const &l = parent_level_of(r, level);
+        long long faces = 0, edges = 0;
+        for (int f = 0; f < l.GetNumFaces(); ++f) {
+            faces += l.GetFaceChildFaces(f).size();
+            edges += l.GetFaceChildEdges(f).size();
+        }
+        if (faces > std::numeric_limits<int32_t>::max() || edges > std::numeric_limits<int32_t>::max())
+            fail("more than 2^31-1 child faces or edges");
+        *face_child_faces = (int32_t)faces;
+        *face_child_edges = (int32_t)edges;
+    });
+}
+
+int sdv_level_child_maps(const sdv_refiner *r, int32_t level, const sdv_child_maps *out, char *err,
+                         size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        Far::TopologyLevel const &l = parent_level_of(r, level);
+        Far::TopologyLevel const &c = r->refiner->GetLevel(level + 1);
+        const int nf = l.GetNumFaces(), ne = l.GetNumEdges(), nv = l.GetNumVertices();
+        need_buf(out->face_child_face_counts, nf, "face child face counts");
+        need_buf(out->face_child_edge_counts, nf, "face child edge counts");
+        need_buf(out->edge_child_edges, 2LL * ne, "edge child edges");
+        need_buf(out->face_child_vertex, nf, "face child vertices");
+        need_buf(out->edge_child_vertex, ne, "edge child vertices");
+        need_buf(out->vertex_child_vertex, nv, "vertex child vertices");
+        need_buf(out->child_face_parent_face, c.GetNumFaces(), "child face parent faces");
+        // Loop's split has no face child vertex: OpenSubdiv keeps no table for
+        // them, and GetFaceChildVertex would read past an empty vector.
+        const bool face_vertices = r->refiner->GetSchemeType() != Sdc::SCHEME_LOOP;
+        size_t kf = 0, ke = 0;
+        for (int f = 0; f < nf; ++f) {
+            Far::ConstIndexArray cf = l.GetFaceChildFaces(f), ce = l.GetFaceChildEdges(f);
+            check_cap(out->face_child_faces.cap, (long long)(kf + cf.size()), "face child faces");
+            check_cap(out->face_child_edges.cap, (long long)(ke + ce.size()), "face child edges");
+            out->face_child_face_counts.data[f] = cf.size();
+            out->face_child_edge_counts.data[f] = ce.size();
+            for (int i = 0; i < cf.size(); ++i) out->face_child_faces.data[kf++] = cf[i];
+            for (int i = 0; i < ce.size(); ++i) out->face_child_edges.data[ke++] = ce[i];
+            out->face_child_vertex.data[f] = face_vertices ? l.GetFaceChildVertex(f) : -1;
+        }
+        for (int e = 0; e < ne; ++e) {
+            Far::ConstIndexArray ce = l.GetEdgeChildEdges(e);
+            out->edge_child_edges.data[2 * e] = ce[0];
+            out->edge_child_edges.data[2 * e + 1] = ce[1];
+            out->edge_child_vertex.data[e] = l.GetEdgeChildVertex(e);
+        }
+        for (int v = 0; v < nv; ++v) out->vertex_child_vertex.data[v] = l.GetVertexChildVertex(v);
+        for (int f = 0; f < c.GetNumFaces(); ++f) out->child_face_parent_face.data[f] = c.GetFaceParentFace(f);
+    });
+}
+
+int sdv_level_relation_sizes(const sdv_refiner *r, int32_t level, int32_t *edge_faces, int32_t *vertex_faces,
+                             int32_t *vertex_edges, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!edge_faces || !vertex_faces || !vertex_edges) fail("null output");
+        Far::TopologyLevel const &l = level_of(r, level);
+        need_full_topology(r, level, "relations");
+        long long ef = 0, vf = 0, ve = 0;
+        for (int e = 0; e < l.GetNumEdges(); ++e) ef += l.GetEdgeFaces(e).size();
+        for (int v = 0; v < l.GetNumVertices(); ++v) {
+            vf += l.GetVertexFaces(v).size();
+            ve += l.GetVertexEdges(v).size();
+        }
+        const long long big = std::numeric_limits<int32_t>::max();
+        if (ef > big || vf > big || ve > big) fail("more than 2^31-1 relation entries");
+        *edge_faces = (int32_t)ef;
+        *vertex_faces = (int32_t)vf;
+        *vertex_edges = (int32_t)ve;
+    });
+}
+
+int sdv_level_relations(const sdv_refiner *r, int32_t level, const sdv_relations *out, char *err,
+                        size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        Far::TopologyLevel const &l = level_of(r, level);
+        need_full_topology(r, level, "relations");
+        const int nf = l.GetNumFaces(), ne = l.GetNumEdges(), nv = l.GetNumVertices();
+        need_buf(out->face_edges, l.GetNumFaceVertices(), "face edges");
+        need_buf(out->edge_face_counts, ne, "edge face counts");
+        need_buf(out->vertex_face_counts, nv, "vertex face counts");
+        need_buf(out->vertex_edge_counts, nv, "vertex edge counts");
+        need_buf(out->vertex_rule, nv, "vertex rules");
+        need_buf(out->vertex_flags, nv, "vertex flags");
+        need_buf(out->edge_flags, ne, "edge flags");
+        size_t k = 0;
+        for (int f = 0; f < nf; ++f) {
+            Far::ConstIndexArray fe = l.GetFaceEdges(f);
+            check_cap(out->face_edges.cap, (long long)(k + fe.size()), "face edges");
+            for (int i = 0; i < fe.size(); ++i) out->face_edges.data[k++] = fe[i];
+        }
+        k = 0;
+        for (int e = 0; e < ne; ++e) {
+            Far::ConstIndexArray ef = l.GetEdgeFaces(e);
+            Far::ConstLocalIndexArray loc = l.GetEdgeFaceLocalIndices(e);
+            need_buf(out->edge_faces, (long long)(k + ef.size()), "edge faces");
+            need_buf(out->edge_face_local, (long long)(k + ef.size()), "edge face local indices");
+            out->edge_face_counts.data[e] = ef.size();
+            for (int i = 0; i < ef.size(); ++i, ++k) {
+                out->edge_faces.data[k] = ef[i];
+                out->edge_face_local.data[k] = loc[i];
+            }
+            out->edge_flags.data[e] = (uint8_t)((l.IsEdgeNonManifold(e) ? SDV_EDGE_NON_MANIFOLD : 0) |
+                                                (l.IsEdgeBoundary(e) ? SDV_EDGE_BOUNDARY : 0) |
+                                                (l.IsEdgeInfSharp(e) ? SDV_EDGE_INF_SHARP : 0) |
+                                                (l.IsEdgeSemiSharp(e) ? SDV_EDGE_SEMI_SHARP : 0));
+        }
+        size_t kf = 0, ke = 0;
+        for (int v = 0; v < nv; ++v) {
+            Far::ConstIndexArray vf = l.GetVertexFaces(v), ve = l.GetVertexEdges(v);
+            Far::ConstLocalIndexArray vfl = l.GetVertexFaceLocalIndices(v), vel = l.GetVertexEdgeLocalIndices(v);
+            need_buf(out->vertex_faces, (long long)(kf + vf.size()), "vertex faces");
+            need_buf(out->vertex_face_local, (long long)(kf + vf.size()), "vertex face local indices");
+            need_buf(out->vertex_edges, (long long)(ke + ve.size()), "vertex edges");
+            need_buf(out->vertex_edge_local, (long long)(ke + ve.size()), "vertex edge local indices");
+            out->vertex_face_counts.data[v] = vf.size();
+            out->vertex_edge_counts.data[v] = ve.size();
+            for (int i = 0; i < vf.size(); ++i, ++kf) {
+                out->vertex_faces.data[kf] = vf[i];
+                out->vertex_face_local.data[kf] = vfl[i];
+            }
+            for (int i = 0; i < ve.size(); ++i, ++ke) {
+                out->vertex_edges.data[ke] = ve[i];
+                out->vertex_edge_local.data[ke] = vel[i];
+            }
+            out->vertex_rule.data[v] = rule_code(l.GetVertexRule(v));
+            out->vertex_flags.data[v] = (uint8_t)((l.IsVertexBoundary(v) ? SDV_VTX_BOUNDARY : 0) |
+                                                  (l.IsVertexCorner(v) ? SDV_VTX_CORNER : 0) |
+                                                  (l.IsVertexValenceRegular(v) ? SDV_VTX_VALENCE_REGULAR : 0) |
+                                                  (l.IsVertexNonManifold(v) ? SDV_VTX_NON_MANIFOLD : 0) |
+                                                  (l.IsVertexInfSharp(v) ? SDV_VTX_INF_SHARP : 0) |
+                                                  (l.IsVertexSemiSharp(v) ? SDV_VTX_SEMI_SHARP : 0));
+        }
+    });
+}
+
+int sdv_ptex_face_ids(const sdv_refiner *r, int32_t *ids, size_t cap, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        const sdv_refiner &rr = need(r);
+        const int nf = rr.refiner->GetLevel(0).GetNumFaces();
+        check_cap(cap, nf + 1LL, "ptex face ids");
+        if (!ids) fail("null output");
+        Far::PtexIndices const &p = ptex_of(rr);
+        for (int f = 0; f < nf; ++f) ids[f] = p.GetFaceId(f);
+        ids[nf] = p.GetNumFaces();
+    });
+}
+
+int sdv_ptex_adjacency(const sdv_refiner *r, int32_t face, int32_t quadrant, int32_t adj_faces[4],
+                       int32_t adj_edges[4], char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        const sdv_refiner &rr = need(r);
+        if (!adj_faces || !adj_edges) fail("null output");
+        Far::TopologyLevel const &base = rr.refiner->GetLevel(0);
+        if (face < 0 || face >= base.GetNumFaces())
+            fail("face " + str(face) + " is out of range (" + str(base.GetNumFaces()) + " faces)");
+        const int n = base.GetFaceVertices(face).size();
+        const int regular = Sdc::SchemeTypeTraits::GetRegularFaceSize(rr.refiner->GetSchemeType());
+        // OpenSubdiv asserts the quadrant (and reads past the face's edges in
+        // a release build); it supports irregular faces under quad schemes only.
+        if (n != regular && regular != 4) fail("irregular faces have ptex sub-faces only under quad schemes");
+        const int quadrants = n == regular ? 1 : n;
+        if (quadrant < 0 || quadrant >= quadrants)
+            fail("quadrant " + str(quadrant) + " of face " + str(face) + " is out of range (the face has " +
+                 str(quadrants) + " ptex faces)");
+        Far::PtexIndices const &p = ptex_of(rr);
+        int faces[4] = {-1, -1, -1, -1}, edges[4] = {0, 0, 0, 0};
+        t_osd_errors.clear();
+        p.GetAdjacency(*rr.refiner, face, quadrant, faces, edges);
+        if (!t_osd_errors.empty()) throw ShimError(SDV_ERR_OSD, t_osd_errors);
+        for (int i = 0; i < 4; ++i) {
+            adj_faces[i] = faces[i];
+            adj_edges[i] = edges[i];
+        }
     });
 }
 

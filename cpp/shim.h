@@ -93,6 +93,30 @@ int sdv_refiner_warnings(const sdv_refiner *r, char *buf, size_t buf_len, size_t
 int sdv_refiner_refine_uniform(sdv_refiner *r, int32_t level, int32_t faces_first,
                                int32_t full_topology_last_level, char *err, size_t err_len);
 
+/*
+ * Far::TopologyRefiner::AdaptiveOptions, field by field (flags 0 or 1).
+ * isolation_level 0..10 and secondary_level 0..15 (OpenSubdiv stores both
+ * in 4 bits: the shim refuses what would wrap).
+ */
+typedef struct sdv_adaptive_options {
+    int32_t isolation_level;
+    int32_t secondary_level;
+    int32_t single_crease_patch;
+    int32_t inf_sharp_patch;
+    int32_t consider_fvar_channels;
+    int32_t faces_first;
+} sdv_adaptive_options;
+
+/*
+ * Far::TopologyRefiner::RefineAdaptive. `faces` lists the base faces to
+ * consider (num_faces entries, each in range); none (num_faces 0) means
+ * every face. Refused on a refiner already refined. Every adaptive level,
+ * the last included, has full topology.
+ */
+int sdv_refiner_refine_adaptive(sdv_refiner *r, const sdv_adaptive_options *opts,
+                                const int32_t *faces, size_t num_faces, char *err,
+                                size_t err_len);
+
 int32_t sdv_refiner_max_level(const sdv_refiner *r);
 int32_t sdv_refiner_num_fvar_channels(const sdv_refiner *r);
 
@@ -116,6 +140,102 @@ int sdv_level_fvar_value_count(const sdv_refiner *r, int32_t level, int32_t chan
 /* face_vertices entries: the value index of every face corner */
 int sdv_level_fvar_face_values(const sdv_refiner *r, int32_t level, int32_t channel,
                                int32_t *out, size_t cap, char *err, size_t err_len);
+
+/* A caller's output buffer of int32 values and its capacity. */
+typedef struct sdv_ibuf {
+    int32_t *data;
+    size_t cap;
+} sdv_ibuf;
+
+/* A caller's output buffer of bytes and its capacity. */
+typedef struct sdv_bbuf {
+    uint8_t *data;
+    size_t cap;
+} sdv_bbuf;
+
+/*
+ * Sizes of the child maps of `level` (0 <= level < max level): the total
+ * number of child faces and of interior child edges over its faces.
+ */
+int sdv_level_child_sizes(const sdv_refiner *r, int32_t level, int32_t *face_child_faces,
+                          int32_t *face_child_edges, char *err, size_t err_len);
+
+/*
+ * The child maps of `level` (0 <= level < max level), Far::TopologyLevel's
+ * child queries; -1 for a child sparse refinement did not create.
+ */
+typedef struct sdv_child_maps {
+    sdv_ibuf face_child_face_counts; /* faces */
+    sdv_ibuf face_child_faces;       /* sdv_level_child_sizes' face_child_faces */
+    sdv_ibuf face_child_edge_counts; /* faces */
+    sdv_ibuf face_child_edges;       /* sdv_level_child_sizes' face_child_edges */
+    sdv_ibuf edge_child_edges;       /* 2 * edges */
+    sdv_ibuf face_child_vertex;      /* faces (Loop: all -1) */
+    sdv_ibuf edge_child_vertex;      /* edges */
+    sdv_ibuf vertex_child_vertex;    /* vertices */
+    sdv_ibuf child_face_parent_face; /* faces of level + 1 */
+} sdv_child_maps;
+
+int sdv_level_child_maps(const sdv_refiner *r, int32_t level, const sdv_child_maps *out, char *err,
+                         size_t err_len);
+
+/*
+ * Sizes of the relations of `level` (a level with full topology): the
+ * total number of edge-faces, vertex-faces and vertex-edges.
+ */
+int sdv_level_relation_sizes(const sdv_refiner *r, int32_t level, int32_t *edge_faces,
+                             int32_t *vertex_faces, int32_t *vertex_edges, char *err, size_t err_len);
+
+/* Bits of sdv_relations' vertex_flags and edge_flags (Far::TopologyLevel's Is* queries). */
+enum {
+    SDV_VTX_BOUNDARY = 1,        /* IsVertexBoundary */
+    SDV_VTX_CORNER = 2,          /* IsVertexCorner */
+    SDV_VTX_VALENCE_REGULAR = 4, /* IsVertexValenceRegular */
+    SDV_VTX_NON_MANIFOLD = 8,    /* IsVertexNonManifold */
+    SDV_VTX_INF_SHARP = 16,      /* IsVertexInfSharp */
+    SDV_VTX_SEMI_SHARP = 32      /* IsVertexSemiSharp */
+};
+enum {
+    SDV_EDGE_NON_MANIFOLD = 1, /* IsEdgeNonManifold */
+    SDV_EDGE_BOUNDARY = 2,     /* IsEdgeBoundary */
+    SDV_EDGE_INF_SHARP = 4,    /* IsEdgeInfSharp */
+    SDV_EDGE_SEMI_SHARP = 8    /* IsEdgeSemiSharp */
+};
+/* Vertex rules: Sdc::Crease::Rule as 0 smooth, 1 dart, 2 crease, 3 corner, -1 unknown. */
+enum { SDV_RULE_UNKNOWN = -1, SDV_RULE_SMOOTH = 0, SDV_RULE_DART = 1, SDV_RULE_CREASE = 2, SDV_RULE_CORNER = 3 };
+
+/* The relations of a level with full topology; local indices as int32. */
+typedef struct sdv_relations {
+    sdv_ibuf face_edges;         /* face_vertices */
+    sdv_ibuf edge_face_counts;   /* edges */
+    sdv_ibuf edge_faces;         /* edge_faces total */
+    sdv_ibuf edge_face_local;    /* edge_faces total */
+    sdv_ibuf vertex_face_counts; /* vertices */
+    sdv_ibuf vertex_faces;       /* vertex_faces total */
+    sdv_ibuf vertex_face_local;  /* vertex_faces total */
+    sdv_ibuf vertex_edge_counts; /* vertices */
+    sdv_ibuf vertex_edges;       /* vertex_edges total */
+    sdv_ibuf vertex_edge_local;  /* vertex_edges total */
+    sdv_ibuf vertex_rule;        /* vertices: SDV_RULE_* */
+    sdv_bbuf vertex_flags;       /* vertices: SDV_VTX_* bits */
+    sdv_bbuf edge_flags;         /* edges: SDV_EDGE_* bits */
+} sdv_relations;
+
+int sdv_level_relations(const sdv_refiner *r, int32_t level, const sdv_relations *out, char *err,
+                        size_t err_len);
+
+/*
+ * Far::PtexIndices of the base level: `ids` receives the first ptex face of
+ * every base face and, last, the number of ptex faces (faces + 1 entries).
+ */
+int sdv_ptex_face_ids(const sdv_refiner *r, int32_t *ids, size_t cap, char *err, size_t err_len);
+/*
+ * Far::PtexIndices::GetAdjacency of base face `face`, sub-face `quadrant`
+ * (0 for a regular face, 0..n-1 for an n-sided irregular face): 4 ptex
+ * faces (-1 where none) and 4 edges of those faces.
+ */
+int sdv_ptex_adjacency(const sdv_refiner *r, int32_t face, int32_t quadrant, int32_t adj_faces[4],
+                       int32_t adj_edges[4], char *err, size_t err_len);
 
 /*
  * Interpolates one level: `src` holds the data of level-1 (width values per

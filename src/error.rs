@@ -183,6 +183,25 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// A refinement asked of a refiner that was already refined, which
+    /// OpenSubdiv's adaptive refinement refuses: build a new refiner.
+    #[error(
+        "the refiner is already refined (to level {level}): adaptive refinement needs an unrefined refiner"
+    )]
+    AlreadyRefined {
+        /// The refiner's deepest level.
+        level: u32,
+    },
+    /// Relations asked of a level that does not store them: a uniform last
+    /// level refined without full topology keeps its face-vertices only.
+    #[error(
+        "level {level} was refined without full topology: it keeps no edge or vertex relations \
+         (refine with full_topology_in_last_level)"
+    )]
+    NoFullTopology {
+        /// The level.
+        level: u32,
+    },
 }
 
 /// Why a refinement level is refused ([`Error::Level`]).

@@ -28,6 +28,8 @@
 //!   [`rules`] (`Sdc`: masks per scheme) and a crate-private topology layer
 //!   (`Vtr`: flat tables per level, and their splitting);
 //! - [`stencil`]: stencil tables and their fast apply kernels;
+//! - [`ptex`]: ptex face indices and adjacency of a base mesh
+//!   ([`PtexIndices`], OpenSubdiv's `Far::PtexIndices`);
 //! - `osd` (feature `osd`): the bridge to OpenSubdiv, the only module with
 //!   `unsafe`;
 //! - [`compare`]: level-by-level comparison of two refinements;
@@ -80,6 +82,7 @@ pub mod mesh;
 pub mod names;
 pub mod options;
 pub mod output;
+pub mod ptex;
 pub mod real;
 pub mod refiner;
 pub mod rules;
@@ -104,9 +107,10 @@ pub use options::{
     MAX_LEVEL, Options, Request, Scheme, TriangleSubdivision, UniformOptions,
 };
 pub use output::{
-    ChildMaps, FVarTopology, INVALID_INDEX, LevelCounts, LevelTopology, Limit, LimitData,
-    Refinement, Values, release_buffer_pool,
+    ChildMaps, FVarTopology, INVALID_INDEX, LevelCounts, LevelRelations, LevelTopology, Limit,
+    LimitData, Refinement, Values, release_buffer_pool,
 };
+pub use ptex::{PtexAdjacency, PtexIndices};
 pub use real::{Precision, Real};
 pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 

@@ -290,3 +290,65 @@ impl<T: Real> PartialEq<Values<T>> for Vec<T> {
 pub fn release_buffer_pool() -> usize {
     crate::topology::release_table_pool()
 }
+
+/// The relations OpenSubdiv stores for one level with full topology
+/// (`Far::TopologyLevel`'s relation queries and its per-vertex and per-edge
+/// tags), in OpenSubdiv's order. A uniform last level refined without full
+/// topology has none of them; every adaptive level has all of them.
+///
+/// Faces are indexed as in [`LevelTopology`]: `face_edges` is parallel to
+/// [`LevelTopology::face_vertices`] and shares its `face_offsets`.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct LevelRelations {
+    /// The edges of every face, edge `j` from the face's vertex `j` to
+    /// vertex `j + 1`, parallel to the face-vertices (`GetFaceEdges`).
+    pub face_edges: Vec<u32>,
+    /// The faces of every edge, concatenated, in `edge_face_offsets`' ranges
+    /// (`GetEdgeFaces`).
+    pub edge_faces: Vec<u32>,
+    /// Start of each edge's faces in `edge_faces`, plus one final entry.
+    pub edge_face_offsets: Vec<u32>,
+    /// For every entry of `edge_faces`, the position of the edge in that
+    /// face's edges (`GetEdgeFaceLocalIndices`).
+    pub edge_face_local: Vec<u16>,
+    /// The faces around every vertex, concatenated, in
+    /// `vertex_face_offsets`' ranges (`GetVertexFaces`).
+    pub vertex_faces: Vec<u32>,
+    /// Start of each vertex's faces in `vertex_faces`, plus one final entry.
+    pub vertex_face_offsets: Vec<u32>,
+    /// For every entry of `vertex_faces`, the position of the vertex in that
+    /// face's vertices (`GetVertexFaceLocalIndices`).
+    pub vertex_face_local: Vec<u16>,
+    /// The edges around every vertex, concatenated, in
+    /// `vertex_edge_offsets`' ranges (`GetVertexEdges`).
+    pub vertex_edges: Vec<u32>,
+    /// Start of each vertex's edges in `vertex_edges`, plus one final entry.
+    pub vertex_edge_offsets: Vec<u32>,
+    /// For every entry of `vertex_edges`, which end of that edge the vertex
+    /// is, 0 or 1 (`GetVertexEdgeLocalIndices`).
+    pub vertex_edge_local: Vec<u16>,
+    /// The subdivision rule of every vertex (`GetVertexRule`).
+    pub vertex_rules: Vec<crate::rules::Rule>,
+    /// Whether each vertex lies on a boundary (`IsVertexBoundary`).
+    pub vertex_boundary: Vec<bool>,
+    /// Whether each vertex has exactly one face (`IsVertexCorner`).
+    pub vertex_corner: Vec<bool>,
+    /// Whether each vertex has a regular valence for the scheme, or is a
+    /// corner (`IsVertexValenceRegular`: not extraordinary).
+    pub vertex_valence_regular: Vec<bool>,
+    /// Whether each vertex is non-manifold (`IsVertexNonManifold`).
+    pub vertex_non_manifold: Vec<bool>,
+    /// Whether each vertex is infinitely sharp (`IsVertexInfSharp`).
+    pub vertex_inf_sharp: Vec<bool>,
+    /// Whether each vertex is semi-sharp (`IsVertexSemiSharp`).
+    pub vertex_semi_sharp: Vec<bool>,
+    /// Whether each edge is non-manifold (`IsEdgeNonManifold`).
+    pub edge_non_manifold: Vec<bool>,
+    /// Whether each edge lies on a boundary (`IsEdgeBoundary`).
+    pub edge_boundary: Vec<bool>,
+    /// Whether each edge is infinitely sharp, boundary edges included
+    /// (`IsEdgeInfSharp`).
+    pub edge_inf_sharp: Vec<bool>,
+    /// Whether each edge is semi-sharp (`IsEdgeSemiSharp`).
+    pub edge_semi_sharp: Vec<bool>,
+}

@@ -17,8 +17,8 @@
 //! # Threads
 //! A [`TopologyRefiner`] is `Send` and `Sync`: every query and interpolation is a
 //! read-only use of OpenSubdiv's refiner (as OpenSubdiv itself allows from
-//! several threads), and only [`TopologyRefiner::refine_uniform`] mutates it, which
-//! needs `&mut self`. OpenSubdiv's error messages are captured per thread.
+//! several threads), and only [`TopologyRefiner::refine_uniform`] and
+//! [`TopologyRefiner::refine_adaptive`] mutate it, which needs `&mut self`. OpenSubdiv's error messages are captured per thread.
 
 use std::ffi::CStr;
 
@@ -55,6 +55,7 @@ pub fn version_number() -> u32 {
     unsafe { ffi::sdv_osd_version_number() as u32 }
 }
 
+mod adaptive;
 mod refiner;
 mod shim;
 mod stencils;

@@ -7,7 +7,7 @@ use super::{ERR_LEN, SDV_FACE_VARYING, SDV_VARYING, SDV_VERTEX};
 use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, OsdError, OsdErrorKind, Result};
 use crate::mesh::Mesh;
-use crate::options::{Options, UniformOptions};
+use crate::options::{AdaptiveOptions, Options, UniformOptions};
 use crate::output::LimitData;
 use crate::output::{FVarTopology, LevelCounts, LevelTopology};
 use crate::real::{Precision, Real};
@@ -25,13 +25,18 @@ pub struct TopologyRefiner {
     pub(super) options: Options,
     pub(super) fvar_channels: usize,
     pub(super) uniform: Option<UniformOptions>,
+    /// The options of an adaptive refinement (`refine_adaptive`), if any.
+    pub(super) adaptive: Option<AdaptiveOptions>,
+    /// OpenSubdiv's ptex indices of the base level, read on first use.
+    pub(super) ptex: std::sync::OnceLock<crate::ptex::PtexIndices>,
     pub(super) warnings: Vec<String>,
 }
 
-// SAFETY: the refiner is only mutated through `&mut self` (refine_uniform);
-// every `&self` call is a read-only use of OpenSubdiv's TopologyRefiner, which
-// OpenSubdiv supports from several threads, and the shim keeps its error
-// capture in thread-local storage.
+// SAFETY: the refiner is only mutated through `&mut self` (refine_uniform,
+// refine_adaptive); every `&self` call is a read-only use of OpenSubdiv's
+// TopologyRefiner, which OpenSubdiv supports from several threads, the shim
+// keeps its error capture in thread-local storage, and it builds its ptex
+// indices once under std::call_once.
 unsafe impl Send for TopologyRefiner {}
 // SAFETY: see above.
 unsafe impl Sync for TopologyRefiner {}
@@ -149,6 +154,8 @@ impl TopologyRefiner {
             options: *options,
             fvar_channels: mesh.fvar_channels.len(),
             uniform: None,
+            adaptive: None,
+            ptex: std::sync::OnceLock::new(),
             warnings,
         };
         refiner.warnings.extend(refiner.osd_warnings());
@@ -196,7 +203,8 @@ impl TopologyRefiner {
         self.base_corners
     }
 
-    /// Refines uniformly to `uniform.level` (any earlier refinement is discarded first).
+    /// Refines uniformly to `uniform.level` (any earlier refinement, uniform
+    /// or adaptive, is discarded first).
     pub fn refine_uniform(&mut self, uniform: UniformOptions) -> Result<()> {
         // Validate the level ourselves: OpenSubdiv would silently wrap it, and
         // refuse sizes that cannot fit before anything is allocated.
@@ -208,6 +216,7 @@ impl TopologyRefiner {
         )?;
         let mut err = ErrBuf::new();
         self.uniform = None;
+        self.adaptive = None;
         // SAFETY: `raw` is live and uniquely borrowed.
         let status = unsafe {
             ffi::sdv_refiner_refine_uniform(
@@ -224,7 +233,20 @@ impl TopologyRefiner {
         Ok(())
     }
 
-    /// The deepest refined level (0 before refinement).
+    /// The options of the last uniform refinement, if the refiner is refined
+    /// uniformly.
+    pub fn uniform_options(&self) -> Option<UniformOptions> {
+        self.uniform
+    }
+
+    /// The options of the adaptive refinement, if the refiner is refined
+    /// adaptively ([`TopologyRefiner::refine_adaptive`]).
+    pub fn adaptive_options(&self) -> Option<AdaptiveOptions> {
+        self.adaptive
+    }
+
+    /// The deepest refined level (0 before refinement; after adaptive
+    /// refinement possibly less than the isolation level).
     pub fn max_level(&self) -> u32 {
         // SAFETY: `raw` is live.
         unsafe { ffi::sdv_refiner_max_level(self.raw.as_ptr()).max(0) as u32 }
