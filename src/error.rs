@@ -105,10 +105,6 @@ pub enum Error {
         /// The element width.
         width: usize,
     },
-    /// A refiner refined a second time: OpenSubdiv refines a topology once
-    /// (uniformly or adaptively); build a new refiner instead.
-    #[error("the refiner is already refined: build a new one to refine again")]
-    AlreadyRefined,
     /// Something OpenSubdiv does that the native engine does not do yet.
     #[error("not supported by the native engine yet: {0}")]
     NotYetSupported(&'static str),

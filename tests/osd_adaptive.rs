@@ -183,12 +183,10 @@ fn regular_torus_stops_at_level_0() {
         r.child_maps(0),
         Err(Error::NoSuchLevel { level: 0, .. })
     ));
-    // Still adaptive: a second refinement is refused.
+    // Nothing refined, so, as in OpenSubdiv, the refiner may refine again.
     let mut r = r;
-    assert!(matches!(
-        r.refine_adaptive(AdaptiveOptions::new(2), &[]),
-        Err(Error::AlreadyRefined { level: 0 })
-    ));
+    r.refine_adaptive(AdaptiveOptions::new(2), &[]).unwrap();
+    assert_eq!(r.max_level(), 0);
 }
 
 /// One edge of sharpness 1 on a regular torus: its two (dart) end vertices
@@ -435,11 +433,18 @@ fn refusals_come_before_opensubdiv() {
     r.refine_adaptive(AdaptiveOptions::new(1).secondary(0), &[])
         .unwrap();
     assert_eq!(r.max_level(), 0);
-    // Refining twice, even after a refinement that stopped at level 0.
+    // A refinement that stopped at level 0 left no level: OpenSubdiv
+    // refines again; one that made levels is refused.
+    r.refine_adaptive(AdaptiveOptions::new(1), &[]).unwrap();
+    assert_eq!(r.max_level(), 1);
     assert!(matches!(
         r.refine_adaptive(AdaptiveOptions::new(1), &[]),
-        Err(Error::AlreadyRefined { level: 0 })
+        Err(Error::AlreadyRefined { level: 1 })
     ));
+    let mut z = fresh();
+    z.refine_uniform(UniformOptions::new(0)).unwrap();
+    z.refine_adaptive(AdaptiveOptions::new(1), &[]).unwrap();
+    assert_eq!(z.level_counts(1).unwrap().faces, 24);
     let mut a = fresh();
     a.refine_adaptive(AdaptiveOptions::new(1), &[]).unwrap();
     assert!(matches!(

@@ -90,7 +90,9 @@ impl TopologyRefiner {
         options: AdaptiveOptions,
         selected_faces: &[u32],
     ) -> Result<()> {
-        if self.uniform.is_some() || self.adaptive.is_some() {
+        // As OpenSubdiv: refused once levels exist (a uniform refinement to
+        // level 0, or an adaptive one that selected nothing, leaves none).
+        if self.max_level() > 0 {
             return Err(Error::AlreadyRefined {
                 level: self.max_level(),
             });
@@ -148,6 +150,7 @@ impl TopologyRefiner {
             ffi::sdv_refiner_refine_adaptive(r, &opts, faces.as_ptr(), faces.len(), e, ERR_LEN)
         })?;
         self.adaptive = Some(options);
+        self.uniform = None;
         Ok(())
     }
 

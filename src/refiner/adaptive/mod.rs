@@ -41,7 +41,7 @@ mod select;
 use super::Refiner;
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
-use crate::output::{ChildMaps, LevelCounts, LevelTopology};
+use crate::output::{ChildMaps, LevelCounts, LevelRelations, LevelTopology};
 use crate::rules::SchemeRules;
 use crate::topology::Level;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_quads_sparse};
@@ -86,7 +86,9 @@ impl Refiner {
         selected_faces: &[u32],
     ) -> Result<AdaptiveRefiner> {
         if self.max_level() > 0 {
-            return Err(Error::AlreadyRefined);
+            return Err(Error::AlreadyRefined {
+                level: self.max_level(),
+            });
         }
         for (level, max) in [
             (adaptive.isolation_level, MAX_LEVEL),
@@ -100,6 +102,14 @@ impl Refiner {
             }
         }
         let base = &self.levels[0];
+        // The first level is at most uniform level 1; deeper ones grow with
+        // the features, not the mesh (as the osd engine checks).
+        crate::limits::check_level_counts(
+            base.face_count(),
+            base.face_vertices.members.len(),
+            self.options.scheme,
+            1,
+        )?;
         if let Some(&f) = selected_faces
             .iter()
             .find(|&&f| f as usize >= base.face_count())
@@ -248,6 +258,45 @@ impl AdaptiveRefiner {
         let l = self.internal_level(level)?;
         crate::alloc::guard(Some(level), || {
             Ok(super::queries::topology_of(l, true, Vec::new(), Vec::new))
+        })
+    }
+
+    /// The relations, rules and tags of `level` (`Far::TopologyLevel`'s
+    /// relation and tag queries).
+    pub fn relations(&self, level: u32) -> Result<LevelRelations> {
+        let l = self.internal_level(level)?;
+        let features = &self.features[level as usize];
+        crate::alloc::guard(Some(level), || {
+            let offsets = |r: &crate::topology::Relation| r.offsets_slice().into_owned();
+            let vertex = |f: &dyn Fn(usize) -> bool| (0..l.vertex_count).map(f).collect();
+            let edge = |f: &dyn Fn(usize) -> bool| (0..l.edge_count()).map(f).collect();
+            Ok(LevelRelations {
+                face_edges: l.face_edges.to_vec(),
+                edge_faces: l.edge_faces.members.to_vec(),
+                edge_face_offsets: offsets(&l.edge_faces),
+                edge_face_local: l.edge_face_local.to_vec(),
+                vertex_faces: l.vertex_faces.members.to_vec(),
+                vertex_face_offsets: offsets(&l.vertex_faces),
+                vertex_face_local: l.vertex_face_local.to_vec(),
+                vertex_edges: l.vertex_edges.members.to_vec(),
+                vertex_edge_offsets: offsets(&l.vertex_edges),
+                vertex_edge_local: l.vertex_edge_local.to_vec(),
+                vertex_rules: (0..l.vertex_count)
+                    .map(|v| l.vertex_tag(v).rule())
+                    .collect(),
+                vertex_boundary: vertex(&|v| l.vertex_tag(v).boundary()),
+                vertex_corner: vertex(&|v| l.vertex_faces.count(v) == 1),
+                vertex_valence_regular: vertex(&|v| {
+                    !features[v].xordinary || l.vertex_faces.count(v) == 1
+                }),
+                vertex_non_manifold: vertex(&|v| l.vertex_tag(v).non_manifold()),
+                vertex_inf_sharp: vertex(&|v| l.vertex_tag(v).inf_sharp()),
+                vertex_semi_sharp: vertex(&|v| l.vertex_tag(v).semi_sharp()),
+                edge_non_manifold: edge(&|e| l.edge_tag(e).non_manifold()),
+                edge_boundary: edge(&|e| l.edge_tag(e).boundary()),
+                edge_inf_sharp: edge(&|e| l.edge_tag(e).inf_sharp()),
+                edge_semi_sharp: edge(&|e| l.edge_tag(e).semi_sharp()),
+            })
         })
     }
 
