@@ -136,20 +136,34 @@ pub(crate) fn interpolate<T: Real>(
 fn general<T: Real>(r: &Refiner, kind: Kind, level: usize, width: usize, src: &[T], dst: &mut [T]) {
     let mut acc = vec![T::ZERO; width];
     r.walk_masks::<T>(kind, level, |child, terms| {
-        acc.fill(T::ZERO);
-        for &(source, w) in terms {
-            let (data, i): (&[T], u32) = match source {
-                Source::Parent(i) => (src, i),
-                Source::Child(i) => (&*dst, i),
-            };
-            let row = &data[i as usize * width..(i as usize + 1) * width];
-            for (a, &s) in acc.iter_mut().zip(row) {
-                *a += s * w;
-            }
-        }
-        let c = child as usize * width;
-        dst[c..c + width].copy_from_slice(&acc);
+        accumulate(terms, src, dst, &mut acc, child);
     });
+}
+
+/// Writes child `child` of `dst` as the sum of `terms` in their order (a
+/// parent's value from `src`, a child's from `dst`), through `acc`, one row
+/// of the data's width.
+pub(crate) fn accumulate<T: Real>(
+    terms: &[(Source, T)],
+    src: &[T],
+    dst: &mut [T],
+    acc: &mut [T],
+    child: u32,
+) {
+    let width = acc.len();
+    acc.fill(T::ZERO);
+    for &(source, w) in terms {
+        let (data, i): (&[T], u32) = match source {
+            Source::Parent(i) => (src, i),
+            Source::Child(i) => (&*dst, i),
+        };
+        let row = &data[i as usize * width..(i as usize + 1) * width];
+        for (a, &s) in acc.iter_mut().zip(row) {
+            *a += s * w;
+        }
+    }
+    let c = child as usize * width;
+    dst[c..c + width].copy_from_slice(acc);
 }
 
 /// The mask of a smooth edge between two faces: the weights of its ends and

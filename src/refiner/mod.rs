@@ -33,7 +33,7 @@ mod limit;
 mod stencil_factory;
 
 pub use adaptive::AdaptiveRefiner;
-pub(crate) use kernel::{HoodBuf, Scratch};
+pub(crate) use kernel::{HoodBuf, Scratch, accumulate};
 pub use queries::Faces;
 pub use stencil_factory::FactorizedStencils;
 pub(crate) use whole::refine_last_with;
@@ -509,6 +509,17 @@ impl Refiner {
         }
     }
 
+    /// The step from level `level - 1` to `level`, as the masks read it.
+    fn step(&self, level: usize) -> Step<'_, Split> {
+        Step {
+            rules: &self.rules,
+            creasing: self.options.creasing,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            children: &self.refinements[level - 1],
+        }
+    }
+
     /// The terms of the face point of parent face `f` (level `level - 1`).
     pub(crate) fn face_terms<T: Real>(&self, level: usize, f: usize, s: &mut Scratch<T>) {
         face_terms(&self.rules, &self.levels[level - 1], f, s);
@@ -523,14 +534,7 @@ impl Refiner {
         s: &mut Scratch<T>,
     ) {
         let faces = self.edge_faces_of(level - 1, e);
-        let step = Step {
-            rules: &self.rules,
-            creasing: self.options.creasing,
-            parent: &self.levels[level - 1],
-            child: &self.levels[level],
-            children: &self.refinements[level - 1],
-        };
-        step.edge_terms(kind, e, faces.as_slice(), s);
+        self.step(level).edge_terms(kind, e, faces.as_slice(), s);
     }
 
     /// The terms of the child of parent vertex `v`: face weights, then edge
@@ -542,13 +546,7 @@ impl Refiner {
         v: usize,
         s: &mut Scratch<T>,
     ) {
-        let step = Step {
-            rules: &self.rules,
-            creasing: self.options.creasing,
-            parent: &self.levels[level - 1],
-            child: &self.levels[level],
-            children: &self.refinements[level - 1],
-        };
+        let step = self.step(level);
         if kind == Kind::Varying {
             return step.vertex_terms(kind, v, &[], &[], s);
         }

@@ -7,7 +7,7 @@
 use super::AdaptiveRefiner;
 use crate::error::{Buffer, Error, Result};
 use crate::real::Real;
-use crate::refiner::{Children, Kind, Scratch, Source, Step, face_terms};
+use crate::refiner::{Children, Kind, Scratch, Source, Step, accumulate, face_terms};
 use crate::topology::refine::sparse::SparseSplit;
 use glam::DVec3;
 
@@ -101,19 +101,7 @@ impl AdaptiveRefiner {
             let mut s = Scratch::<T>::new();
             let mut acc = vec![T::ZERO; width];
             let mut emit = |c: u32, terms: &[(Source, T)], dst: &mut [T]| {
-                acc.fill(T::ZERO);
-                for &(source, w) in terms {
-                    let (data, i): (&[T], u32) = match source {
-                        Source::Parent(i) => (src, i),
-                        Source::Child(i) => (&*dst, i),
-                    };
-                    let row = &data[i as usize * width..(i as usize + 1) * width];
-                    for (a, &x) in acc.iter_mut().zip(row) {
-                        *a += x * w;
-                    }
-                }
-                let c = c as usize * width;
-                dst[c..c + width].copy_from_slice(&acc);
+                accumulate(terms, src, dst, &mut acc, c);
             };
             // Face points, edge points, then vertex points, as OpenSubdiv.
             for (f, &c) in split.face_child_vertex.iter().enumerate() {

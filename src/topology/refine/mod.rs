@@ -131,12 +131,12 @@ impl Split {
 }
 
 #[inline]
-fn prev(j: usize, n: usize) -> usize {
+pub(super) fn prev(j: usize, n: usize) -> usize {
     if j == 0 { n - 1 } else { j - 1 }
 }
 
 #[inline]
-fn next(j: usize, n: usize) -> usize {
+pub(super) fn next(j: usize, n: usize) -> usize {
     if j + 1 == n { 0 } else { j + 1 }
 }
 

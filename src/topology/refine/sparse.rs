@@ -25,6 +25,7 @@
 //! (Catmull-Clark, bilinear) is sparse so far.
 
 use super::tags::child_edge;
+use super::{next, prev};
 use crate::options::Options;
 use crate::output::INVALID_INDEX as INVALID;
 use crate::rules::{SHARPNESS_INFINITE, crease};
@@ -139,16 +140,6 @@ pub struct SparseSplit {
     pub face_transitional: Vec<u8>,
     /// Whether each parent edge has faces selected on one side only.
     pub edge_transitional: Vec<bool>,
-}
-
-#[inline]
-fn prev(j: usize, n: usize) -> usize {
-    if j == 0 { n - 1 } else { j - 1 }
-}
-
-#[inline]
-fn next(j: usize, n: usize) -> usize {
-    if j + 1 == n { 0 } else { j + 1 }
 }
 
 /// Whether a child is created: marked selected or neighbouring.
