@@ -1,6 +1,6 @@
 //! Native feature-adaptive refinement against OpenSubdiv's
 //! `TopologyRefiner::RefineAdaptive`, element by element, over the corpus:
-//! every scheme with a sparse split (Catmull-Clark, bilinear) × boundary
+//! every scheme (Catmull-Clark, bilinear, Loop on the triangle meshes) × boundary
 //! interpolation × option sets × isolation levels, and selected-face sets.
 //! Levels, relations, rules and tags, parent-to-child maps, and positions
 //! and varying data interpolated level by level must be identical, bit for
@@ -10,10 +10,11 @@
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
 use subdiv::{AdaptiveOptions, BoundaryInterpolation, Mesh, Options, Scheme, osd, shapes};
 
-fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, faces: &[u32]) {
+/// Compares the engines; returns the deepest level refined (0 also when
+/// both refuse the mesh, as Loop refuses non-triangles: tested elsewhere).
+fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, faces: &[u32]) -> u32 {
     let Ok(native) = Refiner::new(mesh, options) else {
-        // Refused by both engines alike (tested elsewhere).
-        return;
+        return 0;
     };
     let native: AdaptiveRefiner = native.refine_adaptive(ao, faces).unwrap();
     let mut theirs = osd::TopologyRefiner::new(mesh, options).unwrap();
@@ -59,6 +60,7 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, face
             );
         }
     }
+    native.max_level()
 }
 
 fn option_sets(isolation: u32) -> [AdaptiveOptions; 5] {
@@ -74,8 +76,10 @@ fn option_sets(isolation: u32) -> [AdaptiveOptions; 5] {
 
 #[test]
 fn corpus_matches_opensubdiv() {
+    // Levels refined per scheme: each scheme must really be exercised.
+    let mut levels = [0u32; 3];
     for (name, mesh) in shapes::corpus() {
-        for scheme in [Scheme::Catmark, Scheme::Bilinear] {
+        for scheme in [Scheme::Catmark, Scheme::Bilinear, Scheme::Loop] {
             for boundary in [
                 BoundaryInterpolation::None,
                 BoundaryInterpolation::EdgeOnly,
@@ -86,12 +90,16 @@ fn corpus_matches_opensubdiv() {
                     .with_boundary(boundary);
                 for isolation in [1, 3, 6] {
                     for ao in option_sets(isolation) {
-                        compare(&name, &mesh, &options, ao, &[]);
+                        levels[scheme.code() as usize] += compare(&name, &mesh, &options, ao, &[]);
                     }
                 }
             }
         }
     }
+    assert!(
+        levels.iter().all(|&l| l > 100),
+        "levels refined per scheme: {levels:?}"
+    );
 }
 
 /// Selected faces: every third face, the last face, and a pseudo-random

@@ -6,7 +6,8 @@
 use glam::DVec3;
 use subdiv::refiner::Refiner;
 use subdiv::{
-    AdaptiveOptions, Element, Error, INVALID_INDEX, Mesh, Options, Scheme, UniformOptions, shapes,
+    AdaptiveOptions, Element, Error, FVarLinearInterpolation, INVALID_INDEX, Mesh, Options, Scheme,
+    UniformOptions, shapes,
 };
 
 fn adaptive(
@@ -151,6 +152,33 @@ fn bilinear_refines_only_non_quads_once() {
     }
 }
 
+/// Loop: every vertex of the icosahedron has valence 5 (extraordinary for
+/// Loop, whose regular valence is 6), so level 1 is whole: 12 + 30
+/// vertices, 2·30 + 3·20 edges, 4·20 triangles, and no face points. Level 2
+/// is whole too: the 60 corner triangles of level 1 are selected, and their
+/// vertices are all 42, so each middle triangle gets its three corners and
+/// (its edges being transitional) its middle. At level 3 only the 5
+/// triangles around each of the 12 old vertices are selected (4 children
+/// each); of the 15 triangles around such a patch, the 5 sharing an edge
+/// with it get 2 corners and the middle (3), the 10 touching it at a corner
+/// 1.
+#[test]
+fn loop_isolates_extraordinary_vertices() {
+    let options = Options::default().with_scheme(Scheme::Loop);
+    let a = adaptive(
+        &shapes::icosahedron(),
+        &options,
+        AdaptiveOptions::new(3),
+        &[],
+    );
+    assert_eq!(counts(&a, 1), (42, 120, 80));
+    assert_eq!(counts(&a, 2), (162, 480, 320));
+    let maps = a.child_maps(0).unwrap();
+    assert!(maps.face_child_vertex.iter().all(|&v| v == INVALID_INDEX));
+    assert_eq!(maps.face_child_faces.len(), 4 * 20);
+    assert_eq!(counts(&a, 3).2, 12 * (5 * 4 + 5 * 3 + 10));
+}
+
 #[test]
 fn refusals() {
     let cube = shapes::cube();
@@ -178,12 +206,23 @@ fn refusals() {
             ..
         })
     ));
-    let tet = shapes::tetrahedron();
-    let loop_refiner = Refiner::new(&tet, &Options::default().with_scheme(Scheme::Loop)).unwrap();
+    // Face-varying features of a non-linear channel are not isolated
+    // natively yet: refused rather than ignored.
+    let uvs = shapes::cube_with_uvs();
+    let smooth_uvs = options.with_fvar(FVarLinearInterpolation::None);
     assert!(matches!(
-        loop_refiner.refine_adaptive(AdaptiveOptions::new(2), &[]),
+        Refiner::new(&uvs, &smooth_uvs)
+            .unwrap()
+            .refine_adaptive(AdaptiveOptions::new(2).consider_fvar(true), &[]),
         Err(Error::NotYetSupported(_))
     ));
+    // Linear channels have no such features: accepted.
+    let linear = Refiner::new(&uvs, &options).unwrap();
+    assert!(
+        linear
+            .refine_adaptive(AdaptiveOptions::new(2).consider_fvar(true), &[])
+            .is_ok()
+    );
     let a = adaptive(&cube, &options, AdaptiveOptions::new(2), &[]);
     assert!(matches!(
         a.interpolate(3, 3, &[0.0; 98 * 3]),

@@ -31,8 +31,7 @@
 //! * `select.rs`: which faces a level selects;
 //! * `interpolate.rs`: vertex and varying primvars level by level.
 //!
-//! Face-varying channels on sparse levels and Loop's sparse triangle split
-//! are not there yet.
+//! Face-varying channels on sparse levels are not there yet.
 
 mod features;
 mod interpolate;
@@ -44,7 +43,7 @@ use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
 use crate::output::{ChildMaps, LevelCounts, LevelRelations, LevelTopology};
 use crate::rules::SchemeRules;
 use crate::topology::Level;
-use crate::topology::refine::sparse::{Selection, SparseSplit, refine_quads_sparse};
+use crate::topology::refine::sparse::{Selection, SparseSplit, refine_sparse};
 use features::{Features, base_features, child_features, regular_face_size};
 use select::{FeatureMask, face_has_features};
 
@@ -78,8 +77,8 @@ impl Refiner {
     /// isolation level beyond [`MAX_LEVEL`] or a secondary level beyond 15
     /// ([`Error::Level`]) and a selected face out of range
     /// ([`Error::NoSuchElement`]). Not yet supported natively
-    /// ([`Error::NotYetSupported`]): Loop, and face-varying channels that
-    /// `consider_fvar_channels` would read.
+    /// ([`Error::NotYetSupported`]): the non-linear face-varying channels
+    /// that `consider_fvar_channels` would read.
     pub fn refine_adaptive(
         self,
         adaptive: AdaptiveOptions,
@@ -122,11 +121,6 @@ impl Refiner {
             });
         }
         let scheme = self.options.scheme;
-        if scheme == Scheme::Loop {
-            return Err(Error::NotYetSupported(
-                "adaptive refinement of Loop meshes (the sparse triangle split)",
-            ));
-        }
         let nonlinear = scheme != Scheme::Bilinear;
         if adaptive.consider_fvar_channels
             && nonlinear
@@ -194,7 +188,7 @@ impl Refiner {
             if selection.is_empty() {
                 break;
             }
-            let (split, child) = refine_quads_sparse(
+            let (split, child) = refine_sparse(
                 parent,
                 &options,
                 selection,
@@ -311,13 +305,23 @@ impl AdaptiveRefiner {
         })?;
         let parent = &self.levels[level as usize];
         let offsets = parent.face_vertices.offsets_slice().into_owned();
+        let face_offsets = if s.triangles {
+            (0..=parent.face_count() as u32).map(|f| 4 * f).collect()
+        } else {
+            offsets.clone()
+        };
         Ok(ChildMaps {
             face_child_faces: s.face_child_faces.clone(),
-            face_child_face_offsets: offsets.clone(),
+            face_child_face_offsets: face_offsets,
             face_child_edges: s.face_child_edges.clone(),
             face_child_edge_offsets: offsets,
             edge_child_edges: s.edge_child_edges.clone(),
-            face_child_vertex: s.face_child_vertex.clone(),
+            // Loop's split has no face points: every one is invalid.
+            face_child_vertex: if s.triangles {
+                vec![crate::INVALID_INDEX; parent.face_count()]
+            } else {
+                s.face_child_vertex.clone()
+            },
             edge_child_vertex: s.edge_child_vertex.clone(),
             vertex_child_vertex: s.vertex_child_vertex.clone(),
             child_face_parent_face: s.child_face_parent.clone(),

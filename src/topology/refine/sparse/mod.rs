@@ -1,0 +1,449 @@
+//! Sparse refinement: part of a level split into the next — the native
+//! counterpart of OpenSubdiv's `Vtr::SparseSelector` and of the sparse paths
+//! of `Vtr::Refinement`, `Vtr::QuadRefinement` and `Vtr::TriRefinement`
+//! (`vtr/sparseSelector.cpp`, `vtr/refinement.cpp`, `vtr/quadRefinement.cpp`,
+//! `vtr/triRefinement.cpp`).
+//!
+//! Faces are selected ([`Selection`]); a selected face marks its edges and
+//! vertices. Everything that descends from a selected component is created,
+//! and so is the neighbourhood a selected vertex needs to be interpolated and
+//! refined again: at each selected vertex, the child face of every incident
+//! face at that corner, the child edges inside that face beside it (and the
+//! face point), the half of every incident edge at that vertex and the edge
+//! point. A triangle beside a selected one also gets its middle child when one
+//! of its edges is transitional. Children are numbered as uniform refinement
+//! numbers them, with the children not created left out (their index is
+//! [`INVALID`]), so a selection of every face numbers everything as
+//! [`super::refine_level`] does.
+//!
+//! A child is *incomplete* when its parent was not selected: it exists only
+//! as a neighbour, and its own neighbourhood in the child level is partial.
+//! Faces that were not selected but have children are *transitional*: the
+//! bits of [`SparseSplit::face_transitional`] say which of their edges have
+//! a selected face on one side only.
+//!
+//! The child level always has full topology (OpenSubdiv builds the levels of
+//! an adaptive refinement with every relation).
+//!
+//! # Files
+//! * this file: the selection, the numbering both ways, and the assembly of
+//!   the child level;
+//! * `quad.rs`, `tri.rs`: which children of a face are created and the child
+//!   level's relations, for the quad split (Catmull-Clark, bilinear) and
+//!   Loop's triangle split;
+//! * `tags.rs`: the child's tags and sharpness.
+
+mod quad;
+mod tags;
+mod tri;
+
+use crate::options::{Options, Scheme};
+use crate::output::INVALID_INDEX as INVALID;
+use crate::topology::{Level, Relation, Table};
+
+/// The faces selected for sparse refinement, with the edges and vertices
+/// they mark (`Vtr::SparseSelector::selectFace`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Selection {
+    faces: Vec<bool>,
+    edges: Vec<bool>,
+    vertices: Vec<bool>,
+    any: bool,
+}
+
+impl Selection {
+    /// Nothing selected in `parent`.
+    pub fn new(parent: &Level) -> Self {
+        Selection {
+            faces: vec![false; parent.face_count()],
+            edges: vec![false; parent.edge_count()],
+            vertices: vec![false; parent.vertex_count],
+            any: false,
+        }
+    }
+
+    /// Selects face `f` of `parent`, and with it its edges and vertices.
+    pub fn select_face(&mut self, parent: &Level, f: usize) {
+        if self.faces[f] {
+            return;
+        }
+        self.faces[f] = true;
+        self.any = true;
+        for &e in parent.face_edges_of(f) {
+            self.edges[e as usize] = true;
+        }
+        for &v in parent.face_verts(f) {
+            self.vertices[v as usize] = true;
+        }
+    }
+
+    /// Whether nothing is selected.
+    pub fn is_empty(&self) -> bool {
+        !self.any
+    }
+
+    /// Whether face `f` is selected.
+    pub fn face(&self, f: usize) -> bool {
+        self.faces[f]
+    }
+
+    /// Whether edge `e` is selected (an edge of a selected face).
+    pub fn edge(&self, e: usize) -> bool {
+        self.edges[e]
+    }
+
+    /// Whether vertex `v` is selected (a vertex of a selected face).
+    pub fn vertex(&self, v: usize) -> bool {
+        self.vertices[v]
+    }
+}
+
+/// Where a child vertex comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VertexParent {
+    /// The face point of a parent face.
+    Face(u32),
+    /// The edge point of a parent edge.
+    Edge(u32),
+    /// The vertex point of a parent vertex.
+    Vertex(u32),
+}
+
+/// The numbering of one sparse step, both ways: parent components to their
+/// children ([`INVALID`] where not created) and children to their parents.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SparseSplit {
+    /// The parent's selection.
+    pub selection: Selection,
+    /// The child faces of each parent face: one at each corner, parallel to
+    /// the parent's face-vertices (quad split), or four per triangle, the
+    /// middle one last (Loop).
+    pub face_child_faces: Vec<u32>,
+    /// The child edges inside each parent face, parallel to the parent's
+    /// face-vertices: from the face point towards the point of face-edge `j`
+    /// (quad split), or the edge of the middle triangle opposite corner `j`
+    /// (Loop).
+    pub face_child_edges: Vec<u32>,
+    /// The two halves of each parent edge, the one at its end 0 first.
+    pub edge_child_edges: Vec<[u32; 2]>,
+    /// The face point of each parent face (empty under Loop, which has none).
+    pub face_child_vertex: Vec<u32>,
+    /// The edge point of each parent edge.
+    pub edge_child_vertex: Vec<u32>,
+    /// The vertex point of each parent vertex.
+    pub vertex_child_vertex: Vec<u32>,
+    /// The parent face of each child face.
+    pub child_face_parent: Vec<u32>,
+    /// The parent of each child edge: a face for the first
+    /// [`SparseSplit::edges_from_faces`] child edges, an edge after them.
+    pub child_edge_parent: Vec<u32>,
+    /// For a child edge of a parent edge, the end of the parent it touches
+    /// (0 or 1); for a child edge of a face, its corner in the face.
+    pub child_edge_in_parent: Vec<u8>,
+    /// Number of child edges inside parent faces (numbered first).
+    pub edges_from_faces: usize,
+    /// The parent of each child vertex.
+    pub child_vertex_parent: Vec<VertexParent>,
+    /// Whether each child vertex is incomplete: its parent was not selected,
+    /// so only part of its neighbourhood exists in the child level.
+    pub child_vertex_incomplete: Vec<bool>,
+    /// For each parent face that was not selected but has children, which of
+    /// its edges (bit `j` for edge `j`, all bits merged into bit 0 for faces
+    /// of more than four sides) have a selected face on one side only.
+    pub face_transitional: Vec<u8>,
+    /// Whether each parent edge has faces selected on one side only.
+    pub edge_transitional: Vec<bool>,
+    /// Whether the split is Loop's (four children per triangle, no face
+    /// points) rather than the quad split (one child per corner).
+    pub triangles: bool,
+}
+
+/// Whether a child is created: marked selected or neighbouring.
+const MARKED: u32 = 1;
+
+/// Numbers the marked entries of `marks` from `first` in order, the others
+/// [`INVALID`]; returns how many were marked.
+fn sequence(marks: &mut [u32], first: u32) -> usize {
+    let mut n = 0;
+    for m in marks.iter_mut() {
+        if *m != 0 {
+            *m = first + n as u32;
+            n += 1;
+        } else {
+            *m = INVALID;
+        }
+    }
+    n
+}
+
+#[inline]
+fn valid(i: u32) -> bool {
+    i != INVALID
+}
+
+/// Which children of the parent's faces are marked: the child faces, the
+/// child edges inside faces, the face points, and the transitional mask of
+/// each face (see [`SparseSplit`]'s fields).
+struct FaceMarks {
+    child_faces: Vec<u32>,
+    child_edges: Vec<u32>,
+    child_vertex: Vec<u32>,
+    transitional: Vec<u8>,
+}
+
+/// Marks and numbers the children of `parent` under `selection`, in
+/// OpenSubdiv's order (children of vertices, faces, then edges; faces,
+/// edges, then vertices when `faces_first`).
+fn number_children(
+    parent: &Level,
+    selection: Selection,
+    faces_first: bool,
+    triangles: bool,
+) -> SparseSplit {
+    let (nv, ne) = (parent.vertex_count, parent.edge_count());
+    let sel = &selection;
+
+    // Vertices: the child of each selected vertex.
+    let mut vertex_child_vertex: Vec<u32> = (0..nv).map(|v| sel.vertex(v) as u32).collect();
+
+    // Edges: both halves and the edge point of a selected edge; the half at
+    // a selected end of any other edge, and its edge point.
+    let mut edge_child_edges = vec![[0u32; 2]; ne];
+    let mut edge_child_vertex = vec![0u32; ne];
+    let mut edge_transitional = vec![false; ne];
+    for e in 0..ne {
+        if sel.edge(e) {
+            edge_child_edges[e] = [MARKED; 2];
+            edge_child_vertex[e] = MARKED;
+        } else {
+            for (half, &end) in edge_child_edges[e].iter_mut().zip(&parent.edge_vertices[e]) {
+                if sel.vertex(end as usize) {
+                    *half = MARKED;
+                    edge_child_vertex[e] = MARKED;
+                }
+            }
+        }
+        let faces = parent.edge_faces_of(e);
+        edge_transitional[e] = match faces {
+            [] | [_] => false,
+            [f0, rest @ ..] => rest
+                .iter()
+                .any(|&f| sel.face(f as usize) != sel.face(*f0 as usize)),
+        };
+    }
+
+    let FaceMarks {
+        child_faces: mut face_child_faces,
+        child_edges: mut face_child_edges,
+        child_vertex: mut face_child_vertex,
+        transitional: face_transitional,
+    } = if triangles {
+        tri::mark_faces(parent, sel, &edge_transitional)
+    } else {
+        quad::mark_faces(parent, sel, &edge_transitional)
+    };
+    // Numbering, as OpenSubdiv sequences the marks.
+    let child_faces = sequence(&mut face_child_faces, 0);
+    let edges_from_faces = sequence(&mut face_child_edges, 0);
+    let edge_halves = bytemuck::cast_slice_mut::<[u32; 2], u32>(&mut edge_child_edges);
+    let edges_from_edges = sequence(edge_halves, edges_from_faces as u32);
+    let blocks: [&mut Vec<u32>; 3] = if faces_first {
+        [
+            &mut face_child_vertex,
+            &mut edge_child_vertex,
+            &mut vertex_child_vertex,
+        ]
+    } else {
+        [
+            &mut vertex_child_vertex,
+            &mut face_child_vertex,
+            &mut edge_child_vertex,
+        ]
+    };
+    let mut first = 0u32;
+    for block in blocks {
+        first += sequence(block, first) as u32;
+    }
+    let child_vertices = first as usize;
+
+    // Children to parents.
+    let mut child_face_parent = vec![0u32; child_faces];
+    let mut child_edge_parent = vec![0u32; edges_from_faces + edges_from_edges];
+    let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
+    for f in 0..parent.face_count() {
+        let children = if triangles {
+            4 * f..4 * f + 4
+        } else {
+            parent.face_vertices.range(f)
+        };
+        for &c in &face_child_faces[children] {
+            if valid(c) {
+                child_face_parent[c as usize] = f as u32;
+            }
+        }
+        for (j, i) in parent.face_vertices.range(f).enumerate() {
+            let c = face_child_edges[i];
+            if valid(c) {
+                child_edge_parent[c as usize] = f as u32;
+                child_edge_in_parent[c as usize] = j.min(255) as u8;
+            }
+        }
+    }
+    for (e, halves) in edge_child_edges.iter().enumerate() {
+        for (j, &c) in halves.iter().enumerate() {
+            if valid(c) {
+                child_edge_parent[c as usize] = e as u32;
+                child_edge_in_parent[c as usize] = j as u8;
+            }
+        }
+    }
+    let mut child_vertex_parent = vec![VertexParent::Vertex(0); child_vertices];
+    let mut child_vertex_incomplete = vec![true; child_vertices];
+    for (f, &c) in face_child_vertex.iter().enumerate() {
+        if valid(c) {
+            child_vertex_parent[c as usize] = VertexParent::Face(f as u32);
+            child_vertex_incomplete[c as usize] = !sel.face(f);
+        }
+    }
+    for (e, &c) in edge_child_vertex.iter().enumerate() {
+        if valid(c) {
+            child_vertex_parent[c as usize] = VertexParent::Edge(e as u32);
+            child_vertex_incomplete[c as usize] = !sel.edge(e);
+        }
+    }
+    for (v, &c) in vertex_child_vertex.iter().enumerate() {
+        if valid(c) {
+            child_vertex_parent[c as usize] = VertexParent::Vertex(v as u32);
+            child_vertex_incomplete[c as usize] = !sel.vertex(v);
+        }
+    }
+
+    SparseSplit {
+        selection,
+        face_child_faces,
+        face_child_edges,
+        edge_child_edges,
+        face_child_vertex,
+        edge_child_vertex,
+        vertex_child_vertex,
+        child_face_parent,
+        child_edge_parent,
+        child_edge_in_parent,
+        edges_from_faces,
+        child_vertex_parent,
+        child_vertex_incomplete,
+        face_transitional,
+        edge_transitional,
+        triangles,
+    }
+}
+
+/// A relation filled element by element in index order, with a local index
+/// per member.
+struct Filler {
+    offsets: Vec<u32>,
+    members: Vec<u32>,
+    locals: Vec<u16>,
+}
+
+impl Filler {
+    fn new(elements: usize) -> Self {
+        let mut offsets = Vec::with_capacity(elements + 1);
+        offsets.push(0);
+        Filler {
+            offsets,
+            members: Vec::new(),
+            locals: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, member: u32, local: usize) {
+        self.members.push(member);
+        self.locals.push(local as u16);
+    }
+
+    /// Ends the current element.
+    #[inline]
+    fn end(&mut self) {
+        self.offsets.push(self.members.len() as u32);
+    }
+
+    /// The relation, its local indices and its largest element.
+    fn finish(self) -> (Relation, Table<u16>, usize) {
+        let max = self
+            .offsets
+            .windows(2)
+            .map(|w| (w[1] - w[0]) as usize)
+            .max()
+            .unwrap_or(0);
+        (
+            Relation::from_parts(self.offsets.into(), self.members.into()),
+            self.locals.into(),
+            max,
+        )
+    }
+}
+
+/// The relations of a child level, in its index order.
+struct Topology {
+    face_vertices: Relation,
+    face_edges: Table<u32>,
+    edge_vertices: Table<[u32; 2]>,
+    edge_faces: Filler,
+    vertex_faces: Filler,
+    vertex_edges: Filler,
+}
+
+/// Splits the selected part of `parent` — into quads (Catmull-Clark,
+/// bilinear) or, under Loop, triangles into four — and returns the
+/// numbering and the child level with full topology, sharpness, tags and
+/// holes.
+pub fn refine_sparse(
+    parent: &Level,
+    options: &Options,
+    selection: Selection,
+    faces_first: bool,
+) -> (SparseSplit, Level) {
+    let triangles = options.scheme == Scheme::Loop;
+    let s = number_children(parent, selection, faces_first, triangles);
+    let t = if triangles {
+        tri::topology(parent, &s)
+    } else {
+        quad::topology(parent, &s)
+    };
+    let (edge_faces, edge_face_local, max_edge_faces) = t.edge_faces.finish();
+    let (vertex_faces, vertex_face_local, max_vf) = t.vertex_faces.finish();
+    let (vertex_edges, vertex_edge_local, max_ve) = t.vertex_edges.finish();
+    let face_holes = if parent.face_holes.is_empty() {
+        Vec::new()
+    } else {
+        s.child_face_parent
+            .iter()
+            .map(|&f| parent.is_hole(f as usize))
+            .collect()
+    };
+    let mut child = Level {
+        depth: parent.depth + 1,
+        vertex_count: s.child_vertex_parent.len(),
+        face_vertices: t.face_vertices,
+        face_edges: t.face_edges,
+        edge_vertices: t.edge_vertices,
+        edge_faces,
+        edge_face_local,
+        vertex_faces,
+        vertex_face_local,
+        vertex_edges,
+        vertex_edge_local,
+        derived_relations: false,
+        num_edges: s.child_edge_parent.len(),
+        face_holes,
+        max_edge_faces: parent.max_edge_faces.max(max_edge_faces),
+        max_valence: max_vf.max(max_ve).max(if triangles { 3 } else { 4 }),
+        ..Level::default()
+    };
+    tags::propagate_tags(parent, &mut child, &s);
+    tags::subdivide_sharpness(parent, &mut child, &s, options);
+    child.drop_default_tags();
+    (s, child)
+}
