@@ -433,3 +433,30 @@ fn refusals_and_face_varying() {
         })
     ));
 }
+
+/// Face-varying tables from the bridge after adaptive refinement: applied
+/// to the base values, they give every level's face-varying values.
+#[test]
+fn face_varying_after_adaptive_refinement() {
+    let mesh = shapes::cube_with_uvs();
+    let mut theirs = osd::TopologyRefiner::new(&mesh, &Options::default()).unwrap();
+    theirs
+        .refine_adaptive(AdaptiveOptions::new(2), &[])
+        .unwrap();
+    let channel = &mesh.fvar_channels[0];
+    let mut levels = vec![channel.values.clone()];
+    for l in 1..=theirs.max_level() {
+        let next = theirs
+            .interpolate_face_varying(0, l, channel.width, levels.last().unwrap())
+            .unwrap();
+        levels.push(next);
+    }
+    let t = theirs
+        .stencil_table_with(&StencilOptions::new().face_varying(0).control_vertices(true))
+        .unwrap();
+    close(
+        "uv adaptive",
+        &t.apply(channel.width, &channel.values).unwrap(),
+        &levels.concat(),
+    );
+}
