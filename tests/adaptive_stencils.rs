@@ -1,8 +1,9 @@
 //! Stencil tables in every mode of `Far::StencilTableFactory::Options`
 //! (`StencilOptions`): the native builder against OpenSubdiv's
 //! `StencilTableFactoryReal<double>::Create`, on adaptive refiners
-//! (isolation 1-4, two adaptive option sets) and uniform ones (levels 1-3),
-//! Catmull-Clark and bilinear, over corpus shapes. Tables must be identical:
+//! (isolation 1-4, two adaptive option sets, Catmull-Clark with the three
+//! boundary interpolations and bilinear) and uniform ones (levels 1-3 in
+//! both vertex orders, Catmull-Clark, bilinear and Loop), over corpus shapes. Tables must be identical:
 //! the same rows, sizes, offsets and indices in the same order, and weights
 //! bit for bit. Also: hand-derived rows, the refusals of both engines, and
 //! tables applied to base positions against level-by-level interpolation.
@@ -10,7 +11,10 @@
 
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
 use subdiv::stencil::{StencilInterpolation, StencilOptions, StencilTable};
-use subdiv::{AdaptiveOptions, Error, Mesh, Options, Scheme, UniformOptions, osd, shapes};
+use subdiv::{
+    AdaptiveOptions, BoundaryInterpolation, Error, Mesh, Options, Scheme, UniformOptions, osd,
+    shapes,
+};
 
 /// Every combination of the options: interpolation (vertex, varying) ×
 /// offsets × control vertices × intermediate levels × factorization ×
@@ -112,15 +116,22 @@ fn adaptive_pair(
 fn adaptive_tables_match_opensubdiv() {
     let mut tables = 0;
     for (name, mesh) in shapes_for_test() {
-        for scheme in [Scheme::Catmark, Scheme::Bilinear] {
-            let options = Options::shape_file_defaults().with_scheme(scheme);
+        for (scheme, boundary) in [
+            (Scheme::Catmark, BoundaryInterpolation::EdgeAndCorner),
+            (Scheme::Catmark, BoundaryInterpolation::EdgeOnly),
+            (Scheme::Catmark, BoundaryInterpolation::None),
+            (Scheme::Bilinear, BoundaryInterpolation::EdgeAndCorner),
+        ] {
+            let options = Options::shape_file_defaults()
+                .with_scheme(scheme)
+                .with_boundary(boundary);
             for isolation in 1..=4 {
                 let ao = AdaptiveOptions::new(isolation);
                 for ao in [ao, ao.single_crease_patch(true).faces_first(true)] {
                     let Some((native, theirs)) = adaptive_pair(&mesh, &options, ao) else {
                         continue;
                     };
-                    let case = format!("{name} {scheme:?} {ao:?}");
+                    let case = format!("{name} {scheme:?} {boundary:?} {ao:?}");
                     tables += compare_all(
                         &case,
                         native.max_level(),
