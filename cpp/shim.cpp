@@ -613,20 +613,14 @@ sdv_stencils *limit_stencils(const sdv_refiner &rr) {
     return out;
 }
 
-sdv_stencils *refined_stencils(const sdv_refiner &rr) {
-    Far::TopologyRefiner const &tr = *rr.refiner;
-    check_smooth_vertex_masks_all_levels(tr);
-    typedef Far::StencilTableFactoryReal<double> Factory;
-    Factory::Options o;
-    o.interpolationMode = Factory::INTERPOLATE_VERTEX;
-    o.generateOffsets = true;
-    o.generateIntermediateLevels = false;
-    // With no refinement the table is the identity over the base vertices.
-    o.generateControlVerts = tr.GetMaxLevel() == 0;
-    o.maxLevel = tr.GetMaxLevel();
-    Far::StencilTableReal<double> const *table = Factory::Create(tr, o);
+// A double table from OpenSubdiv into the shim's form (the table freed).
+sdv_stencils *take_table(Far::StencilTableReal<double> const *table) {
     if (!table) fail("StencilTableFactory::Create failed");
-    auto *out = new sdv_stencils();
+    auto *out = new (std::nothrow) sdv_stencils();
+    if (!out) {
+        delete table;
+        throw std::bad_alloc();
+    }
     try {
         out->sizes.assign(table->GetSizes().begin(), table->GetSizes().end());
         out->offsets.assign(table->GetOffsets().begin(), table->GetOffsets().end());
@@ -652,6 +646,52 @@ sdv_stencils *refined_stencils(const sdv_refiner &rr) {
     out->indices.resize(used);
     out->weights.resize(used);
     return out;
+}
+
+sdv_stencils *refined_stencils(const sdv_refiner &rr) {
+    Far::TopologyRefiner const &tr = *rr.refiner;
+    check_smooth_vertex_masks_all_levels(tr);
+    typedef Far::StencilTableFactoryReal<double> Factory;
+    Factory::Options o;
+    o.interpolationMode = Factory::INTERPOLATE_VERTEX;
+    o.generateOffsets = true;
+    o.generateIntermediateLevels = false;
+    // With no refinement the table is the identity over the base vertices.
+    o.generateControlVerts = tr.GetMaxLevel() == 0;
+    o.maxLevel = tr.GetMaxLevel();
+    return take_table(Factory::Create(tr, o));
+}
+
+sdv_stencils *stencils_with(const sdv_refiner &rr, const sdv_stencil_options &so) {
+    Far::TopologyRefiner const &tr = *rr.refiner;
+    typedef Far::StencilTableFactoryReal<double> Factory;
+    if (so.interpolation < 0 || so.interpolation > 2)
+        fail("stencil interpolation mode " + str(so.interpolation) + " is not 0..2");
+    if (so.max_level < 0 || so.max_level > 15) fail("stencil max level " + str(so.max_level) + " is not 0..15");
+    bool fvar = so.interpolation == 2;
+    if (fvar) check_channel(&rr, so.fvar_channel);
+    int last = std::min((int)so.max_level, tr.GetMaxLevel());
+    // copyStencilData jumps back to the builder's first row after the
+    // control vertices: an endless loop writing past its arrays.
+    if (last > 0 && so.generate_control_verts && !so.generate_intermediate_levels &&
+        !so.factorize_intermediate_levels)
+        fail_unsafe("control vertices with neither intermediate levels nor factorization: "
+                    "OpenSubdiv 3.5 loops and writes out of bounds on it");
+    for (int l = 0; l < last; ++l) {
+        if (so.interpolation == 0) check_smooth_vertex_masks(tr, l, -1);
+        if (fvar) check_smooth_vertex_masks(tr, l, so.fvar_channel);
+    }
+    Factory::Options o;
+    o.interpolationMode = so.interpolation == 0   ? Factory::INTERPOLATE_VERTEX
+                          : so.interpolation == 1 ? Factory::INTERPOLATE_VARYING
+                                                  : Factory::INTERPOLATE_FACE_VARYING;
+    o.generateOffsets = so.generate_offsets != 0;
+    o.generateControlVerts = so.generate_control_verts != 0;
+    o.generateIntermediateLevels = so.generate_intermediate_levels != 0;
+    o.factorizeIntermediateLevels = so.factorize_intermediate_levels != 0;
+    o.maxLevel = (unsigned)so.max_level;
+    o.fvarChannel = fvar ? (unsigned)so.fvar_channel : 0u;
+    return take_table(Factory::Create(tr, o));
 }
 
 
@@ -1020,6 +1060,15 @@ int sdv_stencils_create(const sdv_refiner *r, int32_t kind, sdv_stencils **out, 
             *out = limit_stencils(rr);
         else
             fail("unknown stencil kind " + str(kind));
+    });
+}
+
+int sdv_stencils_create_with(const sdv_refiner *r, const sdv_stencil_options *o, sdv_stencils **out,
+                             char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out || !o) fail("null argument");
+        *out = nullptr;
+        *out = stencils_with(need(r), *o);
     });
 }
 

@@ -276,6 +276,27 @@ enum { SDV_STENCIL_REFINED = 0, SDV_STENCIL_LIMIT = 1 };
 int sdv_stencils_create(const sdv_refiner *r, int32_t kind, sdv_stencils **out, char *err,
                         size_t err_len);
 void sdv_stencils_destroy(sdv_stencils *s);
+/*
+ * Far::StencilTableFactoryReal<double>::Create(refiner, options) with every
+ * field of StencilTableFactory::Options (interpolation: 0 vertex, 1 varying,
+ * 2 face-varying; max_level 0..15). Refused first: an unknown mode, a level
+ * beyond 15, face-varying without that channel, and control vertices with
+ * neither intermediate levels nor factorization on a refined refiner (3.5
+ * loops and writes out of bounds on it). Works after uniform and adaptive
+ * refinement.
+ */
+typedef struct sdv_stencil_options {
+    int32_t interpolation;
+    int32_t fvar_channel;
+    int32_t generate_offsets;
+    int32_t generate_control_verts;
+    int32_t generate_intermediate_levels;
+    int32_t factorize_intermediate_levels;
+    int32_t max_level;
+} sdv_stencil_options;
+int sdv_stencils_create_with(const sdv_refiner *r, const sdv_stencil_options *o, sdv_stencils **out,
+                             char *err, size_t err_len);
+
 /* rows = number of stencils (all blocks), nnz = total number of weights */
 void sdv_stencils_size(const sdv_stencils *s, size_t *rows, size_t *nnz);
 /* sizes: rows, offsets: rows, indices/weights: nnz */

@@ -122,6 +122,13 @@ pub enum Error {
         /// How many base vertices were given.
         count: usize,
     },
+    /// Stencil options refused before anything is built: a combination
+    /// OpenSubdiv 3.5 cannot build safely ([`crate::stencil::StencilOptions`]).
+    #[error("stencil options refused: {reason}")]
+    StencilOptions {
+        /// Why.
+        reason: &'static str,
+    },
     /// A stencil table whose parts do not fit together.
     #[error("malformed stencil table: {0}")]
     MalformedStencils(StencilFault),

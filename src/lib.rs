@@ -112,7 +112,9 @@ pub use output::{
 };
 pub use ptex::{PtexAdjacency, PtexIndices};
 pub use real::{Precision, Real};
-pub use stencil::{LimitStencilTable, StencilTable, StencilTableF32};
+pub use stencil::{
+    LimitStencilTable, StencilInterpolation, StencilOptions, StencilTable, StencilTableF32,
+};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(all(doctest, feature = "osd"))]

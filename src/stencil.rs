@@ -11,6 +11,9 @@
 use crate::error::{Buffer, Error, Result, StencilFault};
 use glam::Vec4;
 
+mod options;
+pub use options::{MAX_STENCIL_LEVEL, StencilInterpolation, StencilOptions};
+
 /// A stencil table in compressed-sparse-row form: row `i` is
 /// `sum(weights[k] * base[indices[k]])` for `k` in `offsets[i]..offsets[i] + sizes[i]`.
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -7,17 +7,26 @@ use super::shim::{ErrBuf, internal, to_i32};
 use super::{ERR_LEN, SDV_STENCIL_LIMIT, SDV_STENCIL_REFINED};
 use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, Result};
-use crate::stencil::{LimitStencilTable, StencilTable};
+use crate::stencil::{LimitStencilTable, StencilOptions, StencilTable};
 use std::ptr::NonNull;
 
 impl TopologyRefiner {
     fn stencils(&self, kind: i32) -> Result<StencilTable> {
+        // SAFETY: the refiner is live; `out` is written by the shim.
+        self.take_stencils(|out, e| unsafe {
+            ffi::sdv_stencils_create(self.raw.as_ptr(), kind, out, e, ERR_LEN)
+        })
+    }
+
+    /// A table created by `create(out, err)` (a shim call that writes the
+    /// new table into `out`), copied out and freed.
+    fn take_stencils(
+        &self,
+        create: impl FnOnce(*mut *mut ffi::sdv_stencils, *mut std::os::raw::c_char) -> i32,
+    ) -> Result<StencilTable> {
         let mut raw: *mut ffi::sdv_stencils = std::ptr::null_mut();
         let mut err = ErrBuf::new();
-        // SAFETY: `raw` is live; `raw` output is written by the shim.
-        err.run(|e| unsafe {
-            ffi::sdv_stencils_create(self.raw.as_ptr(), kind, &mut raw, e, ERR_LEN)
-        })?;
+        err.run(|e| create(&mut raw, e))?;
         let table =
             NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
         // Free the C++ table whatever happens below.
@@ -63,6 +72,47 @@ impl TopologyRefiner {
     /// the last level.
     pub fn stencil_table(&self) -> Result<StencilTable> {
         self.stencils(SDV_STENCIL_REFINED)
+    }
+
+    /// OpenSubdiv's stencil table for `options`
+    /// (`Far::StencilTableFactoryReal<double>::Create(refiner, options)`, every
+    /// field passed on), after uniform or adaptive refinement; see
+    /// [`StencilOptions`] for the rows it holds.
+    ///
+    /// Refused before OpenSubdiv sees anything: `max_level` beyond 15
+    /// ([`Error::Level`]), a face-varying channel the mesh lacks
+    /// ([`Error::NoSuchChannel`]), control vertices with neither intermediate
+    /// levels nor factorization on a refined refiner
+    /// ([`Error::StencilOptions`]; OpenSubdiv 3.5 loops and writes out of
+    /// bounds on it), and what the bridge refuses for every stencil table
+    /// (Catmull-Clark vertex masks beyond 46,340 faces at a vertex).
+    ///
+    /// ```
+    /// use subdiv::{osd, shapes, Options, UniformOptions};
+    /// use subdiv::stencil::StencilOptions;
+    /// let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let levels = r.stencil_table_with(&StencilOptions::new())?;
+    /// assert_eq!(levels.len(), 26 + 98); // levels 1 and 2
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
+        options.check(self.max_level(), self.fvar_channels)?;
+        let int = |v: usize, what| to_i32(v, what);
+        let o = ffi::sdv_stencil_options {
+            interpolation: options.interpolation.code(),
+            fvar_channel: int(options.fvar_channel, "face-varying channel")?,
+            generate_offsets: options.generate_offsets.into(),
+            generate_control_verts: options.generate_control_vertices.into(),
+            generate_intermediate_levels: options.generate_intermediate_levels.into(),
+            factorize_intermediate_levels: options.factorize_intermediate_levels.into(),
+            max_level: int(options.max_level as usize, "stencil max level")?,
+        };
+        // SAFETY: the refiner is live, `o` outlives the call; `out` is
+        // written by the shim.
+        self.take_stencils(|out, e| unsafe {
+            ffi::sdv_stencils_create_with(self.raw.as_ptr(), &o, out, e, ERR_LEN)
+        })
     }
 
     /// Stencils of the limit positions and tangents at the vertices of the last

@@ -90,40 +90,53 @@ impl AdaptiveRefiner {
         }
         crate::alloc::guard(Some(level), || {
             let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.vertex_count * width);
-            let split = &self.steps[level as usize - 1];
-            let step = Step {
-                rules: &self.rules,
-                creasing: self.options.creasing,
-                parent,
-                child,
-                children: split,
-            };
-            let mut s = Scratch::<T>::new();
             let mut acc = vec![T::ZERO; width];
-            let mut emit = |c: u32, terms: &[(Source, T)], dst: &mut [T]| {
-                accumulate(terms, src, dst, &mut acc, c);
-            };
-            // Face points, edge points, then vertex points, as OpenSubdiv.
-            for (f, &c) in split.face_child_vertex.iter().enumerate() {
-                if c != crate::INVALID_INDEX {
-                    face_terms(&self.rules, parent, f, &mut s);
-                    emit(c, &s.terms, &mut dst);
-                }
-            }
-            for (e, &c) in split.edge_child_vertex.iter().enumerate() {
-                if c != crate::INVALID_INDEX {
-                    step.edge_terms(kind, e, parent.edge_faces_of(e), &mut s);
-                    emit(c, &s.terms, &mut dst);
-                }
-            }
-            for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
-                if c != crate::INVALID_INDEX {
-                    let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
-                    step.vertex_terms(kind, v, faces, edges, &mut s);
-                    emit(c, &s.terms, &mut dst);
-                }
-            }
+            self.walk_level(kind, level as usize, |c, terms: &[(Source, T)]| {
+                accumulate(terms, src, &mut dst, &mut acc, c);
+            });
             Ok(dst)
         })
+    }
+
+    /// Calls `emit(child, terms)` for every child vertex of `level` (at
+    /// least 1) in OpenSubdiv's order — face points, edge points, then
+    /// vertex points, each in parent order, skipping the children a sparse
+    /// step did not create — with the terms in OpenSubdiv's accumulation
+    /// order (as [`crate::refiner::Refiner::walk_masks`] on uniform levels).
+    pub(super) fn walk_level<T: Real>(
+        &self,
+        kind: Kind,
+        level: usize,
+        mut emit: impl FnMut(u32, &[(Source, T)]),
+    ) {
+        let (parent, child) = (&self.levels[level - 1], &self.levels[level]);
+        let split = &self.steps[level - 1];
+        let step = Step {
+            rules: &self.rules,
+            creasing: self.options.creasing,
+            parent,
+            child,
+            children: split,
+        };
+        let mut s = Scratch::<T>::new();
+        for (f, &c) in split.face_child_vertex.iter().enumerate() {
+            if c != crate::INVALID_INDEX {
+                face_terms(&self.rules, parent, f, &mut s);
+                emit(c, &s.terms);
+            }
+        }
+        for (e, &c) in split.edge_child_vertex.iter().enumerate() {
+            if c != crate::INVALID_INDEX {
+                step.edge_terms(kind, e, parent.edge_faces_of(e), &mut s);
+                emit(c, &s.terms);
+            }
+        }
+        for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
+            if c != crate::INVALID_INDEX {
+                let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
+                step.vertex_terms(kind, v, faces, edges, &mut s);
+                emit(c, &s.terms);
+            }
+        }
     }
 }

@@ -36,6 +36,7 @@
 mod features;
 mod interpolate;
 mod select;
+mod stencils;
 
 use super::Refiner;
 use crate::error::{Element, Error, LevelRefusal, Result};
@@ -60,6 +61,8 @@ pub struct AdaptiveRefiner {
     levels: Vec<Level>,
     steps: Vec<SparseSplit>,
     features: Vec<Vec<Features>>,
+    /// Number of face-varying channels of the mesh (not refined yet).
+    fvar_channels: usize,
 }
 
 impl Refiner {
@@ -141,6 +144,7 @@ impl Refiner {
         let Refiner {
             options,
             mut levels,
+            fvar,
             ..
         } = self;
         levels.truncate(1);
@@ -210,6 +214,7 @@ impl Refiner {
             levels,
             steps,
             features,
+            fvar_channels: fvar.len(),
         }
     }
 }
@@ -223,6 +228,11 @@ impl AdaptiveRefiner {
     /// The adaptive options it was refined with.
     pub fn adaptive_options(&self) -> &AdaptiveOptions {
         &self.adaptive
+    }
+
+    /// Number of face-varying channels of the mesh.
+    pub fn fvar_channel_count(&self) -> usize {
+        self.fvar_channels
     }
 
     /// The deepest level refined: at most the isolation level, less when a

@@ -1,0 +1,339 @@
+//! Stencil tables in every mode of `Far::StencilTableFactory::Options`
+//! ([`StencilOptions`]), on adaptive and uniform refiners.
+//!
+//! One generic builder serves both: it walks each level's child vertices in
+//! OpenSubdiv's order with their refinement terms (the same terms primvar
+//! interpolation accumulates: [`AdaptiveRefiner::walk_level`] over the sparse
+//! maps, [`Refiner::walk_masks`] over a uniform split) and merges them into
+//! rows as OpenSubdiv's `Far::internal::StencilBuilder` does:
+//!
+//! * the vertices of all levels are numbered one after the other (base
+//!   vertices, then level 1, ...); a term naming a vertex below the
+//!   builder's "coarse" count is added as it is (weight `w`), any other is
+//!   replaced by that vertex's row, each entry weighted `row weight * w`;
+//! * factorized, the coarse vertices are the base vertices and the parent
+//!   level is read at its global number, so every row ends up over the base;
+//!   not factorized, every vertex before the level being built is coarse and
+//!   the parent level is read from number 0, so a level's rows are over the
+//!   previous level's own numbering;
+//! * a face point that an edge or vertex point reads (a child vertex) is
+//!   always replaced by its row;
+//! * within a row, an index already present has the product added to its
+//!   weight, a new one is appended: indices in order of first contribution,
+//!   weights accumulated in the order the terms come (the first product
+//!   stored as it is, later ones added);
+//! * mask terms of weight zero are skipped; entries of a row being copied
+//!   are not (none is zero: refinement weights are positive).
+//!
+//! With the same terms in the same order, every product and sum is the one
+//! OpenSubdiv computes, so indices and weights agree bit for bit. The work is
+//! linear in the size of the rows built (a slot per coarse vertex instead of
+//! OpenSubdiv's search of the row).
+
+use super::AdaptiveRefiner;
+use crate::error::{Error, Result};
+use crate::refiner::{Kind, Refiner, Source};
+use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
+
+/// Marks a coarse vertex without an entry in the row being built.
+const ABSENT: u32 = u32::MAX;
+
+/// Rows in compressed form: row `r` is `offsets[r]..offsets[r + 1]`.
+#[derive(Default)]
+struct Rows {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f64>,
+}
+
+impl Rows {
+    fn new() -> Self {
+        Rows {
+            offsets: vec![0],
+            ..Rows::default()
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    fn row(&self, r: usize) -> (&[u32], &[f64]) {
+        let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+}
+
+/// The row being built at the end of a [`Rows`], with the position of each
+/// coarse vertex in it.
+struct Merger {
+    slot: Vec<u32>,
+}
+
+impl Merger {
+    /// `StencilBuilder`'s merge: add `x` to the weight of `i`, or append it.
+    #[inline]
+    fn add(&mut self, out: &mut Rows, start: usize, i: u32, x: f64) {
+        let slot = &mut self.slot[i as usize];
+        if *slot == ABSENT {
+            *slot = (out.indices.len() - start) as u32;
+            out.indices.push(i);
+            out.weights.push(x);
+        } else {
+            out.weights[start + *slot as usize] += x;
+        }
+    }
+
+    /// Closes the row that starts at `start`.
+    fn end(&mut self, out: &mut Rows, start: usize) -> Result<()> {
+        for &i in &out.indices[start..] {
+            self.slot[i as usize] = ABSENT;
+        }
+        let end = u32::try_from(out.indices.len()).map_err(|_| Error::TooLarge {
+            what: "stencil terms",
+            count: out.indices.len(),
+            bits: 32,
+        })?;
+        out.offsets.push(end);
+        Ok(())
+    }
+}
+
+/// Receives each child vertex and its terms.
+type Emit<'a> = dyn FnMut(u32, &[(Source, f64)]) + 'a;
+
+/// A refinement whose levels the builder walks.
+trait Levels {
+    /// Number of vertices of `level`.
+    fn vertex_count(&self, level: usize) -> usize;
+    /// `emit(child, terms)` for every child vertex of `level` (at least 1),
+    /// in OpenSubdiv's order.
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>);
+}
+
+impl Levels for AdaptiveRefiner {
+    fn vertex_count(&self, level: usize) -> usize {
+        self.levels[level].vertex_count
+    }
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>) {
+        self.walk_level(kind, level, emit);
+    }
+}
+
+impl Levels for Refiner {
+    fn vertex_count(&self, level: usize) -> usize {
+        self.levels[level].vertex_count
+    }
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>) {
+        self.walk_masks(kind, level, emit);
+    }
+}
+
+/// The rows of the vertices of `level` in vertex order, from the terms of
+/// its child vertices; `prev` holds the rows of level `level - 1` when they
+/// replace parent terms (factorized, below level 1).
+fn level_rows(
+    refinement: &dyn Levels,
+    kind: Kind,
+    level: usize,
+    prev: Option<&Rows>,
+    merger: &mut Merger,
+) -> Result<Rows> {
+    let count = refinement.vertex_count(level);
+    // Rows in the order they are built, and the position of each child's.
+    let mut built = Rows::new();
+    let mut position = vec![ABSENT; count];
+    let mut failed = None;
+    refinement.walk(kind, level, &mut |child, terms| {
+        if failed.is_some() {
+            return;
+        }
+        let start = built.indices.len();
+        for &(source, w) in terms {
+            if w == 0.0 {
+                continue;
+            }
+            match (source, prev) {
+                // A face point of this level: its row, built earlier (read
+                // by position, as the row being built grows the arrays).
+                (Source::Child(c), _) => {
+                    let r = position[c as usize] as usize;
+                    for k in built.offsets[r] as usize..built.offsets[r + 1] as usize {
+                        let (i, x) = (built.indices[k], built.weights[k]);
+                        merger.add(&mut built, start, i, x * w);
+                    }
+                }
+                // A parent vertex replaced by its row (factorized).
+                (Source::Parent(p), Some(prev)) => {
+                    let (idx, wts) = prev.row(p as usize);
+                    for (&i, &x) in idx.iter().zip(wts) {
+                        merger.add(&mut built, start, i, x * w);
+                    }
+                }
+                // A coarse vertex: as it is.
+                (Source::Parent(p), None) => merger.add(&mut built, start, p, w),
+            }
+        }
+        position[child as usize] = built.len() as u32;
+        if let Err(e) = merger.end(&mut built, start) {
+            failed = Some(e);
+        }
+    });
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    // Back to vertex order.
+    let mut rows = Rows::new();
+    rows.indices.reserve(built.indices.len());
+    rows.weights.reserve(built.indices.len());
+    for &r in &position {
+        if r != ABSENT {
+            let (i, w) = built.row(r as usize);
+            rows.indices.extend_from_slice(i);
+            rows.weights.extend_from_slice(w);
+        }
+        rows.offsets.push(rows.indices.len() as u32);
+    }
+    Ok(rows)
+}
+
+/// The table of `options` over `levels` levels of `refinement` (checked by
+/// [`StencilOptions::check`]), whose base level has `base` vertices.
+fn build(
+    refinement: &dyn Levels,
+    options: &StencilOptions,
+    last: usize,
+    base: usize,
+) -> Result<StencilTable> {
+    let kind = match options.interpolation {
+        StencilInterpolation::Varying => Kind::Varying,
+        _ => Kind::Vertex,
+    };
+    let control = options.generate_control_vertices;
+    let factorize = options.factorize_intermediate_levels;
+    let mut table = StencilTable::default();
+    if last == 0 && !control {
+        return Ok(table);
+    }
+    let widest = (0..last)
+        .map(|l| refinement.vertex_count(l))
+        .max()
+        .unwrap_or(base);
+    let mut merger = Merger {
+        slot: vec![ABSENT; widest.max(base)],
+    };
+    let mut levels: Vec<Rows> = Vec::with_capacity(last);
+    for level in 1..=last {
+        let prev = (factorize && level > 1).then(|| &levels[level - 2]);
+        let rows = level_rows(refinement, kind, level, prev, &mut merger)?;
+        levels.push(rows);
+    }
+    let mut push = |idx: &[u32], w: &[f64]| {
+        table.offsets.push(table.indices.len() as u32);
+        table.sizes.push(idx.len() as u32);
+        table.indices.extend_from_slice(idx);
+        table.weights.extend_from_slice(w);
+    };
+    // OpenSubdiv's numbering: base rows, then each level's. Control rows
+    // come first when asked for; then the rows from `first` on.
+    let identity = !factorize && !options.generate_intermediate_levels;
+    if control || identity {
+        for i in 0..base as u32 {
+            push(&[i], &[1.0]);
+        }
+    }
+    let from = if options.generate_intermediate_levels || identity {
+        0
+    } else {
+        last.saturating_sub(1)
+    };
+    for rows in &levels[from..] {
+        for r in 0..rows.len() {
+            let (i, w) = rows.row(r);
+            push(i, w);
+        }
+    }
+    if u32::try_from(table.indices.len()).is_err() {
+        return Err(Error::TooLarge {
+            what: "stencil terms",
+            count: table.indices.len(),
+            bits: 32,
+        });
+    }
+    Ok(table)
+}
+
+impl AdaptiveRefiner {
+    /// The stencil table `options` describe
+    /// (`Far::StencilTableFactory::Create(refiner, options)` after
+    /// `RefineAdaptive`): rows for the vertices of the sparse levels, in the
+    /// order and over the vertices [`StencilOptions`] explains, with
+    /// OpenSubdiv's indices and weights bit for bit.
+    ///
+    /// Refused: `max_level` beyond 15 ([`Error::Level`]), the combination
+    /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), face-varying
+    /// interpolation ([`Error::NotYetSupported`]: adaptive refinement has no
+    /// face-varying channels natively yet; [`Error::NoSuchChannel`] first
+    /// when the mesh lacks the channel).
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options};
+    /// use subdiv::stencil::StencilOptions;
+    /// let cube = shapes::cube();
+    /// let adaptive = Refiner::new(&cube, &Options::default())?
+    ///     .refine_adaptive(AdaptiveOptions::new(2), &[])?;
+    /// let all = adaptive.stencil_table_with(&StencilOptions::new().control_vertices(true))?;
+    /// let counts: usize = (0..=2).map(|l| adaptive.level_counts(l).unwrap().vertices).sum();
+    /// assert_eq!(all.len(), counts);
+    /// assert_eq!(all.row(0), (&[0u32][..], &[1.0][..])); // a control vertex
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
+        let channels = self.fvar_channel_count();
+        let last = options.check(self.max_level(), channels)?;
+        if options.interpolation == StencilInterpolation::FaceVarying {
+            return Err(Error::NotYetSupported(
+                "face-varying stencils of adaptive refinement (no face-varying channels on sparse levels)",
+            ));
+        }
+        crate::alloc::guard(None, || {
+            build(self, options, last as usize, self.levels[0].vertex_count)
+        })
+    }
+}
+
+impl Refiner {
+    /// The stencil table `options` describe
+    /// (`Far::StencilTableFactory::Create(refiner, options)` after
+    /// `RefineUniform`), with OpenSubdiv's rows, indices and weights bit for
+    /// bit; see [`StencilOptions`] for the rows. [`Refiner::stencil_table`]
+    /// remains the fast (parallel) path for the last level's vertex stencils.
+    ///
+    /// Refused: `max_level` beyond 15 ([`Error::Level`]), the combination
+    /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), a missing
+    /// face-varying channel ([`Error::NoSuchChannel`]). Face-varying
+    /// interpolation is not native yet ([`Error::NotYetSupported`]): the
+    /// face-varying kernel accumulates values, not terms.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// use subdiv::stencil::StencilOptions;
+    /// let cube = shapes::cube();
+    /// let mut r = Refiner::new(&cube, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let last = r.stencil_table_with(&StencilOptions::new().intermediate_levels(false))?;
+    /// assert_eq!(last, r.stencil_table()?);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
+        let last = options.check(self.max_level(), self.fvar.len())?;
+        if options.interpolation == StencilInterpolation::FaceVarying {
+            return Err(Error::NotYetSupported(
+                "face-varying stencil tables (the face-varying kernel accumulates values, not terms)",
+            ));
+        }
+        crate::alloc::guard(None, || {
+            build(self, options, last as usize, self.levels[0].vertex_count)
+        })
+    }
+}
