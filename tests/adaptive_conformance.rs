@@ -129,3 +129,52 @@ fn selected_faces_match_opensubdiv() {
         }
     }
 }
+
+/// `compare::compare_adaptive` over `adaptive_levels` of both engines: equal
+/// on the corpus; a changed table is found at its first differing element.
+#[test]
+fn compare_adaptive_finds_the_first_difference() {
+    use subdiv::compare::{TableDifference, compare_adaptive};
+    let options = Options::shape_file_defaults();
+    for (name, mesh) in shapes::corpus() {
+        let ao = AdaptiveOptions::new(3);
+        let Ok(native) = Refiner::new(&mesh, &options) else {
+            continue;
+        };
+        let native = native
+            .refine_adaptive(ao, &[])
+            .unwrap()
+            .adaptive_levels(&mesh.positions)
+            .unwrap();
+        let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+        theirs.refine_adaptive(ao, &[]).unwrap();
+        let theirs = theirs.adaptive_levels(&mesh.positions).unwrap();
+        for c in compare_adaptive(&native, &theirs) {
+            assert!(c.identical(), "{name}: {c:?}");
+        }
+    }
+    let cube = shapes::cube();
+    let levels = Refiner::new(&cube, &options)
+        .unwrap()
+        .refine_adaptive(AdaptiveOptions::new(2), &[])
+        .unwrap()
+        .adaptive_levels(&cube.positions)
+        .unwrap();
+    let mut changed = levels.clone();
+    changed[1].topology.face_vertices[9] += 1; // face 2 (4 corners each)
+    changed[1].relations.vertex_edges[0] += 1;
+    changed[0].child_maps.as_mut().unwrap().edge_child_vertex[5] = 0;
+    changed[2].positions[7].y += 1e-12;
+    let c = compare_adaptive(&levels, &changed);
+    let diff = |table, index| Some(TableDifference { table, index });
+    assert_eq!(c[0].first_difference, diff("edge_child_vertex", 5));
+    assert_eq!(c[1].first_difference, diff("face_vertices", 2));
+    assert!(c[1].positions.identical());
+    assert_eq!(c[2].first_difference, None);
+    assert_eq!(c[2].positions.first_difference, Some(7));
+    assert_eq!(c[2].positions.worst, Some(7));
+    // A level only one side has.
+    let c = compare_adaptive(&levels, &levels[..2]);
+    assert_eq!(c.len(), 3);
+    assert_eq!(c[2].first_difference, diff("vertex_count", 0));
+}

@@ -8,11 +8,13 @@ use super::TopologyRefiner;
 use super::ffi;
 use super::shim::{ErrBuf, internal, to_i32};
 use crate::alloc::try_vec;
+use crate::compare::AdaptiveLevel;
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::{AdaptiveOptions, MAX_LEVEL};
 use crate::output::{ChildMaps, INVALID_INDEX, LevelRelations};
 use crate::ptex::{PtexAdjacency, PtexIndices};
 use crate::rules::Rule;
+use glam::DVec3;
 
 /// The deepest secondary level: OpenSubdiv stores it in 4 bits.
 const MAX_SECONDARY_LEVEL: u32 = 15;
@@ -311,6 +313,35 @@ impl TopologyRefiner {
                 edge_semi_sharp: flags(&edge_flags, ffi::SDV_EDGE_SEMI_SHARP as i32),
             })
         })
+    }
+
+    /// Every level with what [`crate::compare::compare_adaptive`] compares:
+    /// topology (face-varying channels included), relations, child maps and
+    /// the positions interpolated from `base` (the base level's, one per
+    /// vertex) level by level in `f64`. Every level needs full topology (as
+    /// after [`TopologyRefiner::refine_adaptive`]; else
+    /// [`Error::NoFullTopology`]).
+    pub fn adaptive_levels(&self, base: &[DVec3]) -> Result<Vec<AdaptiveLevel>> {
+        let mut flat: Vec<f64> = base.iter().flat_map(|p| p.to_array()).collect();
+        let mut out = Vec::new();
+        for level in 0..=self.max_level() {
+            if level > 0 {
+                flat = self.interpolate(level, 3, &flat)?;
+            }
+            out.push(AdaptiveLevel {
+                topology: self.level(level)?,
+                relations: self.relations(level)?,
+                child_maps: match level < self.max_level() {
+                    true => Some(self.child_maps(level)?),
+                    false => None,
+                },
+                positions: flat
+                    .chunks_exact(3)
+                    .map(|c| DVec3::new(c[0], c[1], c[2]))
+                    .collect(),
+            });
+        }
+        Ok(out)
     }
 
     /// OpenSubdiv's ptex faces of the base mesh (`Far::PtexIndices`: the

@@ -1,5 +1,5 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
-//! (`refine`, `compare`, `curve`, `report`), B-spline and NURBS curves
+//! (`refine`, `compare`, `curve`, `report`; `adaptive` for `--adaptive`), B-spline and NURBS curves
 //! through `curve --knots` (and against an independent implementation from
 //! the definitions: `curve_reference.rs`), Doo-Sabin through `refine`, every file of the
 //! malformed corpus through `refine` and `curve`, exhausted memory under
@@ -13,6 +13,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod adaptive;
 // `compare` and the report compare the two engines: they need OpenSubdiv.
 #[cfg(feature = "osd")]
 mod compare;

@@ -4,6 +4,7 @@ use clap::Args;
 use subdiv::{Engine, Error, Request};
 
 use crate::Failure;
+use crate::adaptive::AdaptiveArgs;
 use crate::args::{MeshArgs, SchemeArg, load, parse_levels, parse_tolerance};
 
 #[derive(Args)]
@@ -11,8 +12,10 @@ pub(crate) struct CompareArgs {
     #[command(flatten)]
     pub(crate) mesh: MeshArgs,
     /// Levels to compare: `A..B` (inclusive) or a single level.
-    #[arg(long, default_value = "1..4", value_parser = parse_levels)]
+    #[arg(long, default_value = "1..4", value_parser = parse_levels, conflicts_with = "adaptive")]
     pub(crate) levels: (u32, u32),
+    #[command(flatten)]
+    pub(crate) adaptive: AdaptiveArgs,
     /// Largest accepted deviation, relative to the bounding-box diagonal.
     #[arg(long, default_value = "1e-6", allow_negative_numbers = true, value_parser = parse_tolerance)]
     pub(crate) tolerance: f64,
@@ -51,6 +54,9 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
         return Err(Failure::Unavailable(
             "compare needs both engines and OpenSubdiv has no Doo-Sabin scheme; use `subdiv refine --scheme doo-sabin`".into(),
         ));
+    }
+    if let Some(level) = args.adaptive.adaptive {
+        return crate::adaptive::compare_adaptive(args, level);
     }
     let (name, mesh, options) = load(&args.mesh)?;
     let (first, last) = args.levels;

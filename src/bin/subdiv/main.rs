@@ -27,6 +27,7 @@ pub(crate) fn print_line(args: std::fmt::Arguments<'_>) {
     }
 }
 
+mod adaptive;
 mod args;
 mod bench;
 mod compare;
@@ -56,7 +57,8 @@ pub(crate) struct Cli {
 
 #[derive(Subcommand)]
 pub(crate) enum Command {
-    /// Refine a mesh uniformly and write the last level as OBJ.
+    /// Refine a mesh uniformly and write the last level as OBJ, or feature-adaptively
+    /// (--adaptive) and print or write (--levels-json) every level.
     Refine(RefineArgs),
     /// Refine with both engines and compare them level by level, vertex by vertex.
     Compare(CompareArgs),
@@ -111,7 +113,9 @@ impl Failure {
 impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         match e {
-            Error::OsdUnavailable => Failure::Unavailable(e.to_string()),
+            Error::OsdUnavailable | Error::NotYetSupported(_) => {
+                Failure::Unavailable(e.to_string())
+            }
             Error::Osd(ref osd) if osd.kind == subdiv::OsdErrorKind::Unsafe => {
                 Failure::Unavailable(e.to_string())
             }

@@ -10,6 +10,7 @@ use subdiv::{
 };
 
 use crate::Failure;
+use crate::adaptive::AdaptiveArgs;
 use crate::args::{MeshArgs, SchemeArg, load, parse, parse_level};
 use crate::output::write_output;
 
@@ -18,22 +19,28 @@ pub(crate) struct RefineArgs {
     #[command(flatten)]
     pub(crate) mesh: MeshArgs,
     /// Output OBJ file; without it nothing is written and a summary is printed.
-    #[arg(short, long, value_name = "OUT.obj")]
+    #[arg(short, long, value_name = "OUT.obj", conflicts_with = "adaptive")]
     pub(crate) output: Option<PathBuf>,
     /// Refinement level (0..=10).
-    #[arg(long, default_value = "2", value_parser = parse_level, allow_negative_numbers = true)]
+    #[arg(long, default_value = "2", value_parser = parse_level, allow_negative_numbers = true,
+          conflicts_with = "adaptive")]
     pub(crate) level: u32,
+    #[command(flatten)]
+    pub(crate) adaptive: AdaptiveArgs,
+    /// With --adaptive: write every level (counts, faces with holes, positions) as JSON.
+    #[arg(long, value_name = "OUT.json", requires = "adaptive")]
+    pub(crate) levels_json: Option<PathBuf>,
     /// Refinement engine: native or osd.
     #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
     pub(crate) engine: Engine,
     /// Write limit positions (and limit face-varying values) instead of refined ones.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "adaptive")]
     pub(crate) limit: bool,
     /// Doo-Sabin corner weights: original or centroid (with --scheme doo-sabin).
-    #[arg(long, value_name = "WEIGHTS", value_parser = parse::<subdiv::doo_sabin::Weights>)]
+    #[arg(long, value_name = "WEIGHTS", conflicts_with = "adaptive", value_parser = parse::<subdiv::doo_sabin::Weights>)]
     pub(crate) doo_sabin_weights: Option<subdiv::doo_sabin::Weights>,
     /// Doo-Sabin boundary rule: open or chaikin (with --scheme doo-sabin).
-    #[arg(long, value_name = "RULE", value_parser = parse::<subdiv::doo_sabin::Boundary>)]
+    #[arg(long, value_name = "RULE", conflicts_with = "adaptive", value_parser = parse::<subdiv::doo_sabin::Boundary>)]
     pub(crate) doo_sabin_boundary: Option<subdiv::doo_sabin::Boundary>,
     /// Print the process's peak memory (bytes) on stderr at the end (for `subdiv bench`).
     #[arg(long, hide = true)]
@@ -127,6 +134,11 @@ fn holes_note(holes: usize) -> String {
 }
 
 pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
+    if let (Some(_), SchemeArg::DooSabin) = (args.adaptive.adaptive, args.mesh.scheme) {
+        return Err(Failure::Usage(
+            "--adaptive does not apply to --scheme doo-sabin (catmark and bilinear; loop with --engine osd)".into(),
+        ));
+    }
     if args.mesh.scheme == SchemeArg::DooSabin {
         return refine_doo_sabin(args);
     }
@@ -137,7 +149,14 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
     }
     let (name, mesh, options) = load(&args.mesh)?;
     // Every error from here on names the input (unless it names its own file).
-    refine_loaded(args, &name, &mesh, &options).map_err(|f| f.in_input(&name))?;
+    match args.adaptive.adaptive {
+        Some(level) => {
+            args.adaptive.check_selected_faces(&name, &mesh)?;
+            crate::adaptive::refine_adaptive(args, level, &name, &mesh, &options)
+        }
+        None => refine_loaded(args, &name, &mesh, &options),
+    }
+    .map_err(|f| f.in_input(&name))?;
     if args.peak_memory {
         eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
     }

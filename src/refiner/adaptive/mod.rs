@@ -39,6 +39,7 @@ mod select;
 mod stencils;
 
 use super::Refiner;
+use crate::compare::AdaptiveLevel;
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
 use crate::output::{ChildMaps, LevelCounts, LevelRelations, LevelTopology};
@@ -46,6 +47,7 @@ use crate::rules::SchemeRules;
 use crate::topology::Level;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_sparse};
 use features::{Features, base_features, child_features, regular_face_size};
+use glam::DVec3;
 use select::{FeatureMask, face_has_features};
 
 /// The deepest secondary level OpenSubdiv's 4-bit field holds (15: none).
@@ -336,6 +338,27 @@ impl AdaptiveRefiner {
             vertex_child_vertex: s.vertex_child_vertex.clone(),
             child_face_parent_face: s.child_face_parent.clone(),
         })
+    }
+
+    /// Every level with what [`crate::compare::compare_adaptive`] compares:
+    /// topology, relations, child maps and the positions interpolated from
+    /// `base` (the base level's, one per vertex) level by level in `f64`.
+    pub fn adaptive_levels(&self, base: &[DVec3]) -> Result<Vec<AdaptiveLevel>> {
+        let positions = self.refine_positions(base)?;
+        (0..=self.max_level())
+            .zip(positions)
+            .map(|(level, positions)| {
+                Ok(AdaptiveLevel {
+                    topology: self.level(level)?,
+                    relations: self.relations(level)?,
+                    child_maps: match level < self.max_level() {
+                        true => Some(self.child_maps(level)?),
+                        false => None,
+                    },
+                    positions,
+                })
+            })
+            .collect()
     }
 
     /// Whether base face or level face `f` of `level` was selected for
