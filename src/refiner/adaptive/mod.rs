@@ -2,8 +2,8 @@
 //! `Far::TopologyRefiner::RefineAdaptive` (`far/topologyRefiner.cpp`): each
 //! level refines only the faces around features a regular patch cannot
 //! represent, down to the isolation level, with the neighbourhood those
-//! faces need ([`crate::topology::refine::sparse`]); every level keeps full
-//! topology and explicit parent-to-child maps.
+//! faces need (the sparse splits of `topology/refine/sparse/`); every level
+//! keeps full topology and explicit parent-to-child maps.
 //!
 //! ```
 //! use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options, INVALID_INDEX};
