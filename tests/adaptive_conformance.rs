@@ -2,13 +2,17 @@
 //! `TopologyRefiner::RefineAdaptive`, element by element, over the corpus:
 //! every scheme (Catmull-Clark, bilinear, Loop on the triangle meshes) × boundary
 //! interpolation × option sets × isolation levels, and selected-face sets.
-//! Levels, relations, rules and tags, parent-to-child maps, and positions
+//! Levels (face-varying topology in every linear-interpolation mode
+//! included), relations, rules and tags, parent-to-child maps, and positions
 //! and varying data interpolated level by level must be identical, bit for
 //! bit.
 #![cfg(feature = "osd")]
 
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
-use subdiv::{AdaptiveOptions, BoundaryInterpolation, Mesh, Options, Scheme, osd, shapes};
+use subdiv::{
+    AdaptiveOptions, BoundaryInterpolation, FVarLinearInterpolation, Mesh, Options, Scheme, osd,
+    shapes,
+};
 
 /// Compares the engines; returns the deepest level refined (0 also when
 /// both refuse the mesh, as Loop refuses non-triangles: tested elsewhere).
@@ -25,10 +29,7 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, face
     let (mut mine, mut osds) = (base.clone(), base.clone());
     let (mut mine_var, mut osds_var) = (base.clone(), base);
     for level in 0..=native.max_level() {
-        let (mut a, mut b) = (native.level(level).unwrap(), theirs.level(level).unwrap());
-        // Face-varying channels are not refined sparsely natively yet.
-        b.fvar.clear();
-        a.fvar.clear();
+        let (a, b) = (native.level(level).unwrap(), theirs.level(level).unwrap());
         assert_eq!(a, b, "{case}: level {level}");
         assert_eq!(
             native.relations(level).unwrap(),
@@ -91,6 +92,24 @@ fn corpus_matches_opensubdiv() {
                 for isolation in [1, 3, 6] {
                     for ao in option_sets(isolation) {
                         levels[scheme.code() as usize] += compare(&name, &mesh, &options, ao, &[]);
+                    }
+                }
+                // Face-varying channels refine sparsely in every mode.
+                if !mesh.fvar_channels.is_empty() {
+                    for fvar in [
+                        FVarLinearInterpolation::None,
+                        FVarLinearInterpolation::CornersOnly,
+                        FVarLinearInterpolation::CornersPlus1,
+                        FVarLinearInterpolation::CornersPlus2,
+                        FVarLinearInterpolation::Boundaries,
+                    ] {
+                        let options = options.with_fvar(fvar);
+                        for ao in [
+                            AdaptiveOptions::new(2),
+                            AdaptiveOptions::new(4).faces_first(true),
+                        ] {
+                            compare(&name, &mesh, &options, ao, &[]);
+                        }
                     }
                 }
             }

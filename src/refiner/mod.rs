@@ -224,7 +224,7 @@ impl Refiner {
             );
             for channel in &mut self.fvar {
                 let parent_fvar = channel.last().expect("base channel");
-                let child_fvar = fvar::refine(parent, &child, &r, parent_fvar, &self.options);
+                let child_fvar = fvar::refine(parent, &child, &r, None, parent_fvar, &self.options);
                 channel.push(child_fvar);
             }
             self.refinements.push(r);

@@ -99,6 +99,7 @@ pub(crate) fn refine_last_with<T: Real>(
                     &r.levels[level - 1],
                     &child,
                     &refinement,
+                    None,
                     parent,
                     &r.options,
                 );

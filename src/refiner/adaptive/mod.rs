@@ -42,9 +42,10 @@ use super::Refiner;
 use crate::compare::AdaptiveLevel;
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::{AdaptiveOptions, MAX_LEVEL, Options, Scheme};
-use crate::output::{ChildMaps, LevelCounts, LevelRelations, LevelTopology};
+use crate::output::{ChildMaps, FVarTopology, LevelCounts, LevelRelations, LevelTopology};
 use crate::rules::SchemeRules;
 use crate::topology::Level;
+use crate::topology::fvar::ChannelLevel;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_sparse};
 use features::{Features, base_features, child_features, regular_face_size};
 use glam::DVec3;
@@ -63,8 +64,9 @@ pub struct AdaptiveRefiner {
     levels: Vec<Level>,
     steps: Vec<SparseSplit>,
     features: Vec<Vec<Features>>,
-    /// Number of face-varying channels of the mesh (not refined yet).
-    fvar_channels: usize,
+    /// Face-varying topology: `fvar[channel][level]`, refined sparsely
+    /// with the levels.
+    fvar: Vec<Vec<ChannelLevel>>,
 }
 
 impl Refiner {
@@ -146,9 +148,12 @@ impl Refiner {
         let Refiner {
             options,
             mut levels,
-            fvar,
+            mut fvar,
             ..
         } = self;
+        for channel in &mut fvar {
+            channel.truncate(1);
+        }
         levels.truncate(1);
         let scheme = options.scheme;
         let reg = regular_face_size(scheme);
@@ -206,6 +211,19 @@ impl Refiner {
                 &split,
                 scheme,
             ));
+            for channel in &mut fvar {
+                let parent_fvar = channel.last().expect("base channel");
+                let parents = Some(split.child_face_parent.as_slice());
+                let child_fvar = crate::topology::fvar::refine(
+                    parent,
+                    &child,
+                    &split,
+                    parents,
+                    parent_fvar,
+                    &options,
+                );
+                channel.push(child_fvar);
+            }
             steps.push(split);
             levels.push(child);
         }
@@ -216,7 +234,7 @@ impl Refiner {
             levels,
             steps,
             features,
-            fvar_channels: fvar.len(),
+            fvar,
         }
     }
 }
@@ -234,7 +252,7 @@ impl AdaptiveRefiner {
 
     /// Number of face-varying channels of the mesh.
     pub fn fvar_channel_count(&self) -> usize {
-        self.fvar_channels
+        self.fvar.len()
     }
 
     /// The deepest level refined: at most the isolation level, less when a
@@ -263,7 +281,15 @@ impl AdaptiveRefiner {
     pub fn level(&self, level: u32) -> Result<LevelTopology> {
         let l = self.internal_level(level)?;
         crate::alloc::guard(Some(level), || {
-            Ok(super::queries::topology_of(l, true, Vec::new(), Vec::new))
+            let fvar = self
+                .fvar
+                .iter()
+                .map(|channel| FVarTopology {
+                    value_count: channel[level as usize].value_count(),
+                    face_values: channel[level as usize].face_values().to_vec(),
+                })
+                .collect();
+            Ok(super::queries::topology_of(l, true, fvar, Vec::new))
         })
     }
 

@@ -49,7 +49,7 @@ mod base;
 mod refine;
 
 pub use base::build_base;
-pub use refine::refine;
+pub use refine::{Children, refine};
 
 use super::{Level, Split};
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
@@ -391,10 +391,10 @@ impl ChannelLevel {
 /// order of `v`'s edges: the child level's own list, or — in a last level
 /// built for face-varying refinement, which keeps no vertex-edges — the
 /// halves of `v`'s edges at `v`, as OpenSubdiv finds them then.
-pub(super) fn child_vertex_edges<'a>(
+pub(super) fn child_vertex_edges<'a, R: refine::Children>(
     parent: &Level,
     child: &'a Level,
-    r: &Split,
+    r: &R,
     v: usize,
     c: usize,
 ) -> std::borrow::Cow<'a, [u32]> {

@@ -4,7 +4,95 @@
 
 use super::{ChannelLevel, FVarEdgeTag, ValueTag};
 use crate::options::{Options, Scheme};
+use crate::output::INVALID_INDEX;
+use crate::topology::refine::sparse::SparseSplit;
 use crate::topology::{Level, Split};
+
+/// How a refinement step numbers the children of its parent, as
+/// face-varying refinement reads it: uniformly ([`Split`]: every child
+/// exists) or sparsely ([`SparseSplit`]: a child not created is
+/// [`INVALID_INDEX`], and some that exist are incomplete).
+pub trait Children {
+    /// Whether children may be missing or incomplete.
+    const SPARSE: bool;
+    /// The face point of parent face `f`.
+    fn face_child(&self, f: usize) -> u32;
+    /// The edge point of parent edge `e`.
+    fn edge_child(&self, e: usize) -> u32;
+    /// The vertex point of parent vertex `v`.
+    fn vertex_child(&self, v: usize) -> u32;
+    /// The half of parent edge `e` at its end `j`.
+    fn edge_child_edge(&self, e: usize, j: usize) -> u32;
+    /// Whether parent faces have face points (not under Loop).
+    fn has_face_points(&self) -> bool;
+    /// Whether child vertex `c` has its whole neighbourhood in the child.
+    fn complete(&self, c: usize) -> bool;
+}
+
+impl Children for Split {
+    const SPARSE: bool = false;
+    #[inline(always)]
+    fn face_child(&self, f: usize) -> u32 {
+        Split::face_child(self, f)
+    }
+    #[inline(always)]
+    fn edge_child(&self, e: usize) -> u32 {
+        Split::edge_child(self, e)
+    }
+    #[inline(always)]
+    fn vertex_child(&self, v: usize) -> u32 {
+        Split::vertex_child(self, v)
+    }
+    #[inline(always)]
+    fn edge_child_edge(&self, e: usize, j: usize) -> u32 {
+        Split::edge_child_edge(self, e, j)
+    }
+    #[inline(always)]
+    fn has_face_points(&self) -> bool {
+        Split::has_face_points(self)
+    }
+    #[inline(always)]
+    fn complete(&self, _c: usize) -> bool {
+        true
+    }
+}
+
+impl Children for SparseSplit {
+    const SPARSE: bool = true;
+    #[inline]
+    fn face_child(&self, f: usize) -> u32 {
+        self.face_child_vertex
+            .get(f)
+            .copied()
+            .unwrap_or(INVALID_INDEX)
+    }
+    #[inline]
+    fn edge_child(&self, e: usize) -> u32 {
+        self.edge_child_vertex[e]
+    }
+    #[inline]
+    fn vertex_child(&self, v: usize) -> u32 {
+        self.vertex_child_vertex[v]
+    }
+    #[inline]
+    fn edge_child_edge(&self, e: usize, j: usize) -> u32 {
+        self.edge_child_edges[e][j]
+    }
+    #[inline]
+    fn has_face_points(&self) -> bool {
+        !self.triangles
+    }
+    #[inline]
+    fn complete(&self, c: usize) -> bool {
+        !self.child_vertex_incomplete[c]
+    }
+}
+
+/// Whether child `c` was not created (only in a sparse step).
+#[inline(always)]
+fn missing<R: Children>(c: u32) -> bool {
+    R::SPARSE && c == INVALID_INDEX
+}
 
 /// How the faces of a level split: the one scheme-dependent ingredient of
 /// face-varying refinement.
@@ -35,7 +123,7 @@ impl FaceSplit {
         }
     }
 
-    /// The parent face of a child face.
+    /// The parent face of a child face of a uniform split.
     fn parent_face(self, parent: &Level, child_face: u32) -> u32 {
         match self {
             FaceSplit::Quads => parent.face_vertices.element_of(child_face as usize) as u32,
@@ -45,11 +133,15 @@ impl FaceSplit {
 }
 
 /// Refines a channel from `parent_fvar` (on `parent`) to `child`, which
-/// `parent` was split into with the numbering `r`.
-pub fn refine(
+/// `parent` was split into with the numbering `r` — uniform or sparse: only
+/// the children that exist get values, and as in OpenSubdiv the crease ends
+/// of an incomplete edge point stay unset (nothing refines it further).
+/// `child_face_parent` gives a child face's parent face in a sparse step.
+pub fn refine<R: Children>(
     parent: &Level,
     child: &Level,
-    r: &Split,
+    r: &R,
+    child_face_parent: Option<&[u32]>,
     parent_fvar: &ChannelLevel,
     options: &Options,
 ) -> ChannelLevel {
@@ -69,19 +161,30 @@ pub fn refine(
     let mut counts = crate::alloc::vec_or_unwind(0u32, ncv);
     if r.has_face_points() {
         for f in 0..nf {
-            counts[r.face_child(f) as usize] = 1;
+            let c = r.face_child(f);
+            if !missing::<R>(c) {
+                counts[c as usize] = 1;
+            }
         }
     }
     for e in 0..ne {
-        counts[r.edge_child(e) as usize] = if p.edge_tags[e].is_mismatch() {
+        let c = r.edge_child(e);
+        if missing::<R>(c) {
+            continue;
+        }
+        counts[c as usize] = if p.edge_tags[e].is_mismatch() {
             parent.edge_faces.count(e).max(1) as u32
         } else {
             1
         };
     }
     for v in 0..nv {
+        let c = r.vertex_child(v);
+        if missing::<R>(c) {
+            continue;
+        }
         let matches = !p.value_tags[p.value_offsets[v] as usize].is_mismatch();
-        counts[r.vertex_child(v) as usize] = if matches {
+        counts[c as usize] = if matches {
             1
         } else {
             p.vertex_value_count(v) as u32
@@ -118,20 +221,30 @@ pub fn refine(
         if !p.edge_tags[e].is_mismatch() || e_faces.len() < 2 {
             continue;
         }
-        let c = r.edge_child(e) as usize;
-        let range = child.vertex_faces.range(c);
+        let c = r.edge_child(e);
+        if missing::<R>(c) {
+            continue;
+        }
+        let range = child.vertex_faces.range(c as usize);
         for (slot, &cf) in fvar.face_siblings[range.clone()]
             .iter_mut()
             .zip(&child.vertex_faces.members[range])
         {
-            let pf = split.parent_face(parent, cf);
+            let pf = match child_face_parent {
+                Some(parents) => parents[cf as usize],
+                None => split.parent_face(parent, cf),
+            };
             if let Some(j) = e_faces.iter().rposition(|&f| f == pf) {
                 *slot = j as u16;
             }
         }
     }
     for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
+        let c = r.vertex_child(v);
+        if missing::<R>(c) {
+            continue;
+        }
+        let c = c as usize;
         if counts[c] > 1 {
             let range = child.vertex_faces.range(c);
             fvar.face_siblings[range].copy_from_slice(p.vertex_face_siblings(parent, v));
@@ -141,7 +254,10 @@ pub fn refine(
     // Edge tags: edges inside faces are continuous, halves of an edge inherit.
     for e in 0..ne {
         for j in 0..2 {
-            fvar.edge_tags[r.edge_child_edge(e, j) as usize] = p.edge_tags[e];
+            let c = r.edge_child_edge(e, j);
+            if !missing::<R>(c) {
+                fvar.edge_tags[c as usize] = p.edge_tags[e];
+            }
         }
     }
 
@@ -156,14 +272,19 @@ pub fn refine(
     };
     for e in 0..ne {
         let t = p.edge_tags[e];
-        if t.is_mismatch() || t.is_linear() {
-            let c = r.edge_child(e) as usize;
+        let c = r.edge_child(e);
+        if (t.is_mismatch() || t.is_linear()) && !missing::<R>(c) {
+            let c = c as usize;
             let range = fvar.value_offsets[c] as usize..fvar.value_offsets[c + 1] as usize;
             fvar.value_tags[range].fill(split_edge_tag);
         }
     }
     for v in 0..nv {
-        let c = r.vertex_child(v) as usize;
+        let c = r.vertex_child(v);
+        if missing::<R>(c) {
+            continue;
+        }
+        let c = c as usize;
         let o = fvar.value_offsets[c] as usize;
         let n = counts[c] as usize;
         let po = p.value_offsets[v] as usize;
@@ -174,7 +295,11 @@ pub fn refine(
         // An edge point's value i spans the children of the edge's face i.
         let per_face = split.child_faces_per_edge_face();
         for e in 0..ne {
-            let c = r.edge_child(e) as usize;
+            let c = r.edge_child(e);
+            if missing::<R>(c) || !r.complete(c as usize) {
+                continue;
+            }
+            let c = c as usize;
             let o = fvar.value_offsets[c] as usize;
             if !fvar.value_tags[o].is_mismatch() {
                 continue;
@@ -188,7 +313,11 @@ pub fn refine(
         }
         // A vertex's child keeps its faces in the same order: same spans.
         for v in 0..nv {
-            let c = r.vertex_child(v) as usize;
+            let c = r.vertex_child(v);
+            if missing::<R>(c) || !r.complete(c as usize) {
+                continue;
+            }
+            let c = c as usize;
             let o = fvar.value_offsets[c] as usize;
             if !fvar.value_tags[o].is_mismatch() {
                 continue;
@@ -231,15 +360,19 @@ pub fn refine(
 /// Turns semi-sharp values of vertex children into creases once no
 /// semi-sharp edge is left inside their span (or the vertex lost all its
 /// semi-sharp features).
-fn reclassify_semi_sharp(
+fn reclassify_semi_sharp<R: Children>(
     parent: &Level,
     child: &Level,
-    r: &Split,
+    r: &R,
     p: &ChannelLevel,
     fvar: &mut ChannelLevel,
 ) {
     for v in 0..parent.vertex_count {
-        let c = r.vertex_child(v) as usize;
+        let c = r.vertex_child(v);
+        if missing::<R>(c) || !r.complete(c as usize) {
+            continue;
+        }
+        let c = c as usize;
         let range = fvar.value_offsets[c] as usize..fvar.value_offsets[c + 1] as usize;
         if !fvar.value_tags[range.start].is_mismatch() {
             continue;
