@@ -3,9 +3,9 @@
 //! every scheme (Catmull-Clark, bilinear, Loop on the triangle meshes) × boundary
 //! interpolation × option sets × isolation levels, and selected-face sets.
 //! Levels (face-varying topology in every linear-interpolation mode
-//! included), relations, rules and tags, parent-to-child maps, and positions
-//! and varying data interpolated level by level must be identical, bit for
-//! bit.
+//! included), relations, rules and tags, parent-to-child maps, and positions,
+//! varying data and face-varying values interpolated level by level must be
+//! identical, bit for bit.
 #![cfg(feature = "osd")]
 
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
@@ -28,6 +28,11 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, face
     let base: Vec<f64> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
     let (mut mine, mut osds) = (base.clone(), base.clone());
     let (mut mine_var, mut osds_var) = (base.clone(), base);
+    let mut channels: Vec<(Vec<f64>, Vec<f64>)> = mesh
+        .fvar_channels
+        .iter()
+        .map(|c| (c.values.clone(), c.values.clone()))
+        .collect();
     for level in 0..=native.max_level() {
         let (a, b) = (native.level(level).unwrap(), theirs.level(level).unwrap());
         assert_eq!(a, b, "{case}: level {level}");
@@ -59,6 +64,20 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, ao: AdaptiveOptions, face
                 bits(&osds_var),
                 "{case}: varying of level {level}"
             );
+            for (k, (mine_fv, osds_fv)) in channels.iter_mut().enumerate() {
+                let width = mesh.fvar_channels[k].width;
+                *mine_fv = native
+                    .interpolate_face_varying(k, level, width, mine_fv)
+                    .unwrap();
+                *osds_fv = theirs
+                    .interpolate_face_varying(k, level, width, osds_fv)
+                    .unwrap();
+                assert_eq!(
+                    bits(mine_fv),
+                    bits(osds_fv),
+                    "{case}: face-varying channel {k} of level {level}"
+                );
+            }
         }
     }
     native.max_level()

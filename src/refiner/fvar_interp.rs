@@ -26,11 +26,11 @@
 use super::Refiner;
 use super::kernel::{Cache, MAX_WIDTH};
 use crate::error::{Buffer, Error, Result};
-use crate::options::{Scheme, TriangleSubdivision};
+use crate::options::{Options, Scheme, TriangleSubdivision};
 use crate::real::Real;
-use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood, crease};
+use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::Level;
-use crate::topology::fvar::ChannelLevel;
+use crate::topology::fvar::{ChannelLevel, Children, missing};
 
 /// The columns one pass computes of values `stride` wide: `count` of them
 /// from `offset` (every column, for the usual widths).
@@ -155,9 +155,7 @@ impl Refiner {
         })
     }
 
-    /// One level of one channel: face points, edge points, vertex points.
-    /// The usual widths are computed whole, wider values in blocks of
-    /// columns (each block a full pass: the masks are linear).
+    /// One level of one channel.
     fn interpolate_fvar_level<T: Real>(
         &self,
         channel: usize,
@@ -166,96 +164,124 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
-        match width {
-            1 => self.fvar_pass(channel, level, Whole::<1>, src, dst),
-            2 => self.fvar_pass(channel, level, Whole::<2>, src, dst),
-            3 => self.fvar_pass(channel, level, Whole::<3>, src, dst),
-            4 => self.fvar_pass(channel, level, Whole::<4>, src, dst),
-            _ => {
-                for offset in (0..width).step_by(MAX_WIDTH) {
-                    let cols = Block {
-                        stride: width,
-                        offset,
-                        count: (width - offset).min(MAX_WIDTH),
-                    };
-                    self.fvar_pass(channel, level, cols, src, dst);
-                }
+        let step = FVarStep {
+            rules: &self.rules,
+            options: &self.options,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            r: &self.refinements[level - 1],
+            pf: &self.fvar[channel][level - 1],
+            cf: &self.fvar[channel][level],
+        };
+        fvar_level(&step, width, src, dst);
+    }
+}
+
+/// What one level's face-varying interpolation reads: the rules and
+/// options, the two levels, how the step numbers the children (uniformly or
+/// sparsely), and the channel at both levels.
+pub(crate) struct FVarStep<'a, R> {
+    pub rules: &'a SchemeRules,
+    pub options: &'a Options,
+    pub parent: &'a Level,
+    pub child: &'a Level,
+    pub r: &'a R,
+    pub pf: &'a ChannelLevel,
+    pub cf: &'a ChannelLevel,
+}
+
+/// One level of one channel: face points, edge points, vertex points. The
+/// usual widths are computed whole, wider values in blocks of columns (each
+/// block a full pass: the masks are linear).
+pub(crate) fn fvar_level<T: Real, R: Children + Sync>(
+    step: &FVarStep<'_, R>,
+    width: usize,
+    src: &[T],
+    dst: &mut [T],
+) {
+    match width {
+        1 => fvar_pass(step, Whole::<1>, src, dst),
+        2 => fvar_pass(step, Whole::<2>, src, dst),
+        3 => fvar_pass(step, Whole::<3>, src, dst),
+        4 => fvar_pass(step, Whole::<4>, src, dst),
+        _ => {
+            for offset in (0..width).step_by(MAX_WIDTH) {
+                let cols = Block {
+                    stride: width,
+                    offset,
+                    count: (width - offset).min(MAX_WIDTH),
+                };
+                fvar_pass(step, cols, src, dst);
             }
         }
     }
+}
 
-    /// Columns `cols` of one level of one channel: the face points, then the
-    /// edge points and the vertex points (which read the face points), each
-    /// kind in parallel over chunks of parent elements (see [`Pass`]).
-    fn fvar_pass<T: Real, C: Cols>(
-        &self,
-        channel: usize,
-        level: usize,
-        cols: C,
-        src: &[T],
-        dst: &mut [T],
-    ) {
-        let r = &self.refinements[level - 1];
-        let parent = &self.levels[level - 1];
-        let cf = &self.fvar[channel][level];
-        let pass = Pass::new(self, channel, level, cols, src);
-        let nf = if r.has_face_points() {
-            parent.face_count()
-        } else {
-            0
+/// Columns `cols` of one level of one channel: the face points, then the
+/// edge points and the vertex points (which read the face points), each kind
+/// in parallel over chunks of parent elements after a uniform split (see
+/// [`Pass`]), in one run after a sparse one.
+fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
+    step: &FVarStep<'_, R>,
+    cols: C,
+    src: &[T],
+    dst: &mut [T],
+) {
+    let cf = step.cf;
+    let pass = Pass::new(step, cols, src);
+    let blocks = step.r.vertex_runs(step.parent);
+    // The values of each kind of child vertex are one run of `dst`.
+    let run = |(first, count, _): (u32, usize, usize)| {
+        let (a, b) = (first as usize, first as usize + count);
+        (cf.vertex_value_offset(a), cf.vertex_value_offset(b))
+    };
+    let mut runs = [
+        (run(blocks[0]), 0),
+        (run(blocks[1]), 1),
+        (run(blocks[2]), 2),
+    ];
+    runs.sort_unstable();
+    let stride = cols.stride();
+    let mut parts: [Out<T>; 3] = [Out::empty(), Out::empty(), Out::empty()];
+    let mut rest = dst;
+    let mut at = 0;
+    for ((start, end), kind) in runs {
+        let (_, tail) = rest.split_at_mut((start - at) as usize * stride);
+        let (part, tail) = tail.split_at_mut((end - start) as usize * stride);
+        parts[kind] = Out {
+            data: part,
+            base: start,
         };
-        // The values of each kind of child vertex are one run of `dst`.
-        let run = |first: u32, count: usize| {
-            let (a, b) = (first as usize, first as usize + count);
-            (cf.vertex_value_offset(a), cf.vertex_value_offset(b))
-        };
-        let mut runs = [
-            (run(r.first_vertex_from_faces, nf), 0),
-            (run(r.first_vertex_from_edges, parent.edge_count()), 1),
-            (run(r.first_vertex_from_vertices, parent.vertex_count), 2),
-        ];
-        runs.sort_unstable();
-        let stride = cols.stride();
-        let mut parts: [Out<T>; 3] = [Out::empty(), Out::empty(), Out::empty()];
-        let mut rest = dst;
-        let mut at = 0;
-        for ((start, end), kind) in runs {
-            let (_, tail) = rest.split_at_mut((start - at) as usize * stride);
-            let (part, tail) = tail.split_at_mut((end - start) as usize * stride);
-            parts[kind] = Out {
-                data: part,
-                base: start,
-            };
-            rest = tail;
-            at = end;
-        }
-        let [mut faces, edges, vertices] = parts;
-        let first = [
-            r.first_vertex_from_faces,
-            r.first_vertex_from_edges,
-            r.first_vertex_from_vertices,
-        ];
-        in_chunks(cf, first[0], nf, faces.reborrow(), stride, |range, out| {
-            pass.face_points(range, out)
-        });
-        let faces = faces.view();
-        in_chunks(
-            cf,
-            first[1],
-            parent.edge_count(),
-            edges,
-            stride,
-            |range, out| pass.edge_points(range, out, faces),
-        );
-        in_chunks(
-            cf,
-            first[2],
-            parent.vertex_count,
-            vertices,
-            stride,
-            |range, out| pass.vertex_points(range, out, faces),
-        );
+        rest = tail;
+        at = end;
     }
+    let [mut faces, edges, vertices] = parts;
+    let chunks = |kind: usize| Chunks {
+        first: blocks[kind].0,
+        parents: blocks[kind].2,
+        uniform: !R::SPARSE,
+    };
+    in_chunks(cf, chunks(0), faces.reborrow(), stride, |range, out| {
+        pass.face_points(range, out)
+    });
+    let faces = faces.view();
+    in_chunks(cf, chunks(1), edges, stride, |range, out| {
+        pass.edge_points(range, out, faces)
+    });
+    in_chunks(cf, chunks(2), vertices, stride, |range, out| {
+        pass.vertex_points(range, out, faces)
+    });
+}
+
+/// The parent elements of one kind whose children [`in_chunks`] computes.
+struct Chunks {
+    /// The first child.
+    first: u32,
+    /// How many parents of the kind.
+    parents: usize,
+    /// Whether parent `first + i` has child `first + i` (a uniform split),
+    /// so that chunks of parents are chunks of children.
+    uniform: bool,
 }
 
 /// Values of a run of child vertices being written: `data` holds values
@@ -295,20 +321,20 @@ struct View<'a, T> {
     base: u32,
 }
 
-/// Calls `body(elements, out)` on chunks of the parent elements `0..count`
-/// whose child vertices start at `first` (their values in `out`), in
-/// parallel when the current rayon pool has more than one thread.
+/// Calls `body(elements, out)` on chunks of the parent elements of
+/// `chunks` (their children's values in `out`), in parallel when the
+/// current rayon pool has more than one thread and the split is uniform.
 fn in_chunks<T: Real>(
     cf: &ChannelLevel,
-    first: u32,
-    count: usize,
+    chunks: Chunks,
     out: Out<'_, T>,
     stride: usize,
     body: impl Fn(std::ops::Range<usize>, Out<'_, T>) + Sync,
 ) {
     use rayon::prelude::*;
     const CHUNK: usize = 4096;
-    if count <= CHUNK || rayon::current_num_threads() == 1 {
+    let (first, count) = (chunks.first, chunks.parents);
+    if count <= CHUNK || rayon::current_num_threads() == 1 || !chunks.uniform {
         body(0..count, out);
         return;
     }
@@ -339,11 +365,12 @@ fn in_chunks<T: Real>(
 /// channel follows the vertex topology and the element is smooth, the masks
 /// come from the kernel's cache of regular masks, as for vertex data;
 /// elsewhere from the rules, element by element.
-struct Pass<'a, T, C> {
-    refiner: &'a Refiner,
+struct Pass<'a, T, C, R> {
+    rules: &'a SchemeRules,
+    options: &'a Options,
     parent: &'a Level,
     child: &'a Level,
-    r: &'a crate::topology::Split,
+    r: &'a R,
     pf: &'a ChannelLevel,
     cf: &'a ChannelLevel,
     linear: bool,
@@ -352,20 +379,20 @@ struct Pass<'a, T, C> {
     src: &'a [T],
 }
 
-impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
-    fn new(refiner: &'a Refiner, channel: usize, level: usize, cols: C, src: &'a [T]) -> Self {
-        let pf = &refiner.fvar[channel][level - 1];
-        let scheme = refiner.rules.scheme();
+impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
+    fn new(step: &FVarStep<'a, R>, cols: C, src: &'a [T]) -> Self {
+        let scheme = step.rules.scheme();
         Pass {
-            refiner,
-            parent: &refiner.levels[level - 1],
-            child: &refiner.levels[level],
-            r: &refiner.refinements[level - 1],
-            pf,
-            cf: &refiner.fvar[channel][level],
-            linear: pf.is_linear() || scheme == Scheme::Bilinear,
+            rules: step.rules,
+            options: step.options,
+            parent: step.parent,
+            child: step.child,
+            r: step.r,
+            pf: step.pf,
+            cf: step.cf,
+            linear: step.pf.is_linear() || scheme == Scheme::Bilinear,
             tri_smooth: scheme == Scheme::Catmark
-                && refiner.options.triangles == TriangleSubdivision::Smooth,
+                && step.options.triangles == TriangleSubdivision::Smooth,
             cols,
             src,
         }
@@ -390,8 +417,11 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let (parent, r, pf, cf, cols) = (self.parent, self.r, self.pf, self.cf, self.cols);
         let mut cache = Cache::<T>::new();
         for f in faces {
+            if missing::<R>(r.face_child(f)) {
+                continue;
+            }
             let values = pf.face_values_of(parent, f);
-            let w = cache.face_weight(self.refiner, values.len());
+            let w = cache.face_weight(self.rules, values.len());
             let mut acc = [T::ZERO; MAX_WIDTH];
             for &x in values {
                 add(&mut acc, self.src, x, w, cols);
@@ -422,7 +452,11 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let centre = |f: u32| self.centre(f, faces);
         let mut face_sizes = Vec::new();
         for e in edges {
-            let c = r.edge_child(e) as usize;
+            let c = r.edge_child(e);
+            if missing::<R>(c) {
+                continue;
+            }
+            let c = c as usize;
             let first = cf.vertex_value_offset(c);
             if cf.vertex_value_tags(c)[0].is_mismatch() {
                 // One midpoint per value, from the face the value comes from.
@@ -447,7 +481,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
             let s = parent.edge_sharpness_at(e);
             let smooth = match e_faces {
                 &[f0, f1] if s <= 0.0 => cache.smooth_edge(
-                    self.refiner,
+                    self.rules,
                     [
                         self.tri_smooth && parent.face_vertices.count(f0 as usize) == 3,
                         self.tri_smooth && parent.face_vertices.count(f1 as usize) == 3,
@@ -484,12 +518,8 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
                 face_sizes: &face_sizes,
             };
             let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
-            self.refiner.rules.edge_vertex_mask(
-                &hood,
-                p_rule,
-                child.vertex_tag(c).rule(),
-                &mut mask,
-            );
+            self.rules
+                .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
             add(&mut acc, src, a, mask.vertex[0], cols);
             add(&mut acc, src, b, mask.vertex[1], cols);
             for (&f, &w) in e_faces.iter().zip(&mask.face) {
@@ -526,7 +556,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
             self.cols,
             self.src,
         );
-        let options = &self.refiner.options;
+        let options = self.options;
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
         let zero = [T::ZERO; MAX_WIDTH];
@@ -537,7 +567,11 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let corner_weight = T::from_f64(0.75);
         let end_weight = T::from_f64(0.125);
         for v in vertices {
-            let c = r.vertex_child(v) as usize;
+            let c = r.vertex_child(v);
+            if missing::<R>(c) {
+                continue;
+            }
+            let c = c as usize;
             let first = cf.vertex_value_offset(c);
             let c_tags = cf.vertex_value_tags(c);
             if !c_tags[0].is_mismatch() {
@@ -556,7 +590,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
                     && !edges.is_empty()
                 {
                     // The kernel's smooth vertex (as the rules give it).
-                    cache.smooth_vertex(self.refiner, v_faces.len())
+                    cache.smooth_vertex(self.rules, v_faces.len())
                 } else {
                     edge_sharpness.clear();
                     edge_sharpness
@@ -575,8 +609,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
                         child_edge_sharpness: &child_edge_sharpness,
                     };
                     let c_rule = child.vertex_tag(c).rule();
-                    self.refiner
-                        .rules
+                    self.rules
                         .vertex_vertex_mask(&hood, p_rule, c_rule, &mut mask);
                     &mask
                 };

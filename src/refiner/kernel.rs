@@ -8,7 +8,7 @@
 use super::{Kind, Refiner, Source, opposite_vertex};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
-use crate::rules::{EdgeNeighborhood, Mask, Rule, VertexNeighborhood};
+use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood};
 use crate::topology::Level;
 use crate::topology::refine::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
@@ -196,22 +196,22 @@ impl<T: Real> Cache<T> {
     }
 
     #[inline(always)]
-    pub(super) fn face_weight(&mut self, r: &Refiner, n: usize) -> T {
+    pub(super) fn face_weight(&mut self, rules: &SchemeRules, n: usize) -> T {
         match self.face.get(n) {
             Some(&Some(w)) => w,
-            _ => self.fill_face_weight(r, n),
+            _ => self.fill_face_weight(rules, n),
         }
     }
 
     #[cold]
     #[inline(never)]
-    fn fill_face_weight(&mut self, r: &Refiner, n: usize) -> T {
+    fn fill_face_weight(&mut self, rules: &SchemeRules, n: usize) -> T {
         if self.face.len() <= n {
             self.face.resize(n + 1, None);
         }
         *self.face[n].get_or_insert_with(|| {
             let mut m = Mask::new();
-            r.rules.face_vertex_mask::<T>(n, &mut m);
+            rules.face_vertex_mask::<T>(n, &mut m);
             m.vertex[0]
         })
     }
@@ -220,11 +220,15 @@ impl<T: Real> Cache<T> {
     /// are triangles under the smooth-triangle rule. `None` for a mask of
     /// another shape (then the general path computes the edge).
     #[inline(always)]
-    pub(super) fn smooth_edge(&mut self, r: &Refiner, tri: [bool; 2]) -> Option<EdgeWeights<T>> {
+    pub(super) fn smooth_edge(
+        &mut self,
+        rules: &SchemeRules,
+        tri: [bool; 2],
+    ) -> Option<EdgeWeights<T>> {
         let key = tri[0] as usize | (tri[1] as usize) << 1;
         match self.edge[key] {
             Some(w) => w,
-            None => self.fill_smooth_edge(r, key, tri),
+            None => self.fill_smooth_edge(rules, key, tri),
         }
     }
 
@@ -232,7 +236,7 @@ impl<T: Real> Cache<T> {
     #[inline(never)]
     fn fill_smooth_edge(
         &mut self,
-        r: &Refiner,
+        rules: &SchemeRules,
         key: usize,
         tri: [bool; 2],
     ) -> Option<EdgeWeights<T>> {
@@ -242,8 +246,7 @@ impl<T: Real> Cache<T> {
             face_sizes: &sizes,
         };
         let mut m = Mask::new();
-        r.rules
-            .edge_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut m);
+        rules.edge_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut m);
         let weights = (|| {
             Some(EdgeWeights {
                 ends: <[T; 2]>::try_from(&m.vertex[..]).ok()?,
@@ -260,17 +263,17 @@ impl<T: Real> Cache<T> {
 
     /// The smooth mask of an interior vertex with `n` faces and `n` edges.
     #[inline(always)]
-    pub(super) fn smooth_vertex(&mut self, r: &Refiner, n: usize) -> &Mask<T> {
+    pub(super) fn smooth_vertex(&mut self, rules: &SchemeRules, n: usize) -> &Mask<T> {
         // A filled mask has its vertex weight; the empty ones are unfilled.
         if self.vertex.get(n).is_none_or(|m| m.vertex.is_empty()) {
-            self.fill_smooth_vertex(r, n);
+            self.fill_smooth_vertex(rules, n);
         }
         &self.vertex[n]
     }
 
     #[cold]
     #[inline(never)]
-    fn fill_smooth_vertex(&mut self, r: &Refiner, n: usize) {
+    fn fill_smooth_vertex(&mut self, rules: &SchemeRules, n: usize) {
         if self.vertex.len() <= n {
             self.vertex.resize_with(n + 1, Mask::new);
         }
@@ -282,8 +285,7 @@ impl<T: Real> Cache<T> {
             child_sharpness: 0.0,
             child_edge_sharpness: &zeros,
         };
-        r.rules
-            .vertex_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut self.vertex[n]);
+        rules.vertex_vertex_mask(&hood, Rule::Smooth, Rule::Smooth, &mut self.vertex[n]);
     }
 }
 
@@ -412,7 +414,7 @@ impl<T: Real, const N: usize> Regular<T, N> {
     /// The mask from the rules; `None` for a mask of another shape.
     fn new(r: &Refiner) -> Option<Self> {
         let mut cache = Cache::<T>::new();
-        let m = cache.smooth_vertex(r, N);
+        let m = cache.smooth_vertex(&r.rules, N);
         Some(Regular {
             face: match m.face.len() {
                 0 => None,
@@ -573,7 +575,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Face points: the parent face's vertices.
     par_children(face_points, n, |f, slot, cache, _| {
         let verts = parent.face_verts(f);
-        let w = cache.face_weight(r, verts.len());
+        let w = cache.face_weight(&r.rules, verts.len());
         let mut acc = zero;
         // Quads (every face after the first level) in an unrolled loop.
         if let Ok(quad) = <&[u32; 4]>::try_from(verts) {
@@ -608,7 +610,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     // derived level gives without reading its faces.
     let loop_edge = if triangles {
         Cache::<T>::new()
-            .smooth_edge(r, [false, false])
+            .smooth_edge(&r.rules, [false, false])
             .and_then(|w| match w.faces {
                 Some(faces) if !w.centers => Some((w.ends, faces)),
                 _ => None,
@@ -622,7 +624,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     // terms in the same order).
     let quad_edge = if !triangles && !has_sharpness && derived.is_some() {
         Cache::<T>::new()
-            .smooth_edge(r, [false, false])
+            .smooth_edge(&r.rules, [false, false])
             .and_then(|w| match w.faces {
                 Some(faces) if w.centers => Some((w.ends, faces)),
                 _ => None,
@@ -685,7 +687,7 @@ fn run<T: Real, W: Width + Send + Sync>(
             let mut acc = zero;
             let weights = if smooth {
                 cache.smooth_edge(
-                    r,
+                    &r.rules,
                     [
                         tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
                         tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
@@ -749,7 +751,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                     faces: &faces[..count],
                     edges: count,
                     far: |k: usize| fars[k],
-                    mask: cache.smooth_vertex(r, count),
+                    mask: cache.smooth_vertex(&r.rules, count),
                 }
                 .sum(&mut acc, src, face_points, width);
                 store(slot, &acc, width);
@@ -772,7 +774,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                 faces,
                 edges: edges.len(),
                 far: |k: usize| parent.other_vertex(edges[k] as usize, v as u32),
-                mask: cache.smooth_vertex(r, faces.len()),
+                mask: cache.smooth_vertex(&r.rules, faces.len()),
             }
             .sum(&mut acc, src, face_points, width);
         } else {

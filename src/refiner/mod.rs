@@ -23,7 +23,7 @@ use crate::topology::fvar::ChannelLevel;
 use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
 pub mod adaptive;
-mod fvar_interp;
+pub(crate) mod fvar_interp;
 mod queries;
 mod whole;
 use glam::{DVec3, Vec3};

@@ -7,6 +7,7 @@
 use super::AdaptiveRefiner;
 use crate::error::{Buffer, Error, Result};
 use crate::real::Real;
+use crate::refiner::fvar_interp::{FVarStep, fvar_level};
 use crate::refiner::{Children, Kind, Scratch, Source, Step, accumulate, face_terms};
 use crate::topology::refine::sparse::SparseSplit;
 use glam::DVec3;
@@ -42,6 +43,57 @@ impl AdaptiveRefiner {
         src: &[T],
     ) -> Result<Vec<T>> {
         self.interpolate_kind(Kind::Varying, level, width, src)
+    }
+
+    /// Interpolates the values of face-varying `channel` (`width`
+    /// components each) from level `level - 1` to `level`
+    /// (`PrimvarRefiner::InterpolateFaceVarying`): `src` holds the channel's
+    /// values at `level - 1` (at level 0 the mesh's own), the result its
+    /// values at `level`, numbered as [`AdaptiveRefiner::level`] reports the
+    /// channel's face values.
+    pub fn interpolate_face_varying<T: Real>(
+        &self,
+        channel: usize,
+        level: u32,
+        width: usize,
+        src: &[T],
+    ) -> Result<Vec<T>> {
+        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            channel,
+            count: self.fvar.len(),
+        })?;
+        if level == 0 || level > self.max_level() {
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 1,
+                last: self.max_level(),
+            });
+        }
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let (pf, cf) = (&levels[level as usize - 1], &levels[level as usize]);
+        if src.len() != pf.value_count() * width {
+            return Err(Error::BufferLength {
+                buffer: Buffer::FaceVaryingSource,
+                expected: pf.value_count() * width,
+                got: src.len(),
+            });
+        }
+        crate::alloc::guard(Some(level), || {
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, cf.value_count() * width);
+            let step = FVarStep {
+                rules: &self.rules,
+                options: &self.options,
+                parent: &self.levels[level as usize - 1],
+                child: &self.levels[level as usize],
+                r: &self.steps[level as usize - 1],
+                pf,
+                cf,
+            };
+            fvar_level(&step, width, src, &mut dst);
+            Ok(dst)
+        })
     }
 
     /// Positions of every level, from the base positions, interpolated level

@@ -49,9 +49,10 @@ mod base;
 mod refine;
 
 pub use base::build_base;
+pub(crate) use refine::missing;
 pub use refine::{Children, refine};
 
-use super::{Level, Split};
+use super::Level;
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
 use crate::rules::crease;
 
@@ -349,9 +350,9 @@ impl ChannelLevel {
     /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child;
     /// `r` the split between them). Only channels with smooth boundaries keep
     /// crease spans.
-    pub fn fractional_weight(
+    pub fn fractional_weight<R: Children>(
         &self,
-        (parent, child, r): (&Level, &Level, &Split),
+        (parent, child, r): (&Level, &Level, &R),
         v: usize,
         s: usize,
         c: usize,

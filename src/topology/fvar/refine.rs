@@ -27,6 +27,10 @@ pub trait Children {
     fn has_face_points(&self) -> bool;
     /// Whether child vertex `c` has its whole neighbourhood in the child.
     fn complete(&self, c: usize) -> bool;
+    /// The child vertices of the parent's faces, edges and vertices: for
+    /// each kind, the first child, how many children, and how many parents
+    /// of that kind (each kind's children are consecutive).
+    fn vertex_runs(&self, parent: &Level) -> [(u32, usize, usize); 3];
 }
 
 impl Children for Split {
@@ -54,6 +58,19 @@ impl Children for Split {
     #[inline(always)]
     fn complete(&self, _c: usize) -> bool {
         true
+    }
+    fn vertex_runs(&self, parent: &Level) -> [(u32, usize, usize); 3] {
+        let nf = if self.has_face_points() {
+            parent.face_count()
+        } else {
+            0
+        };
+        let (ne, nv) = (parent.edge_count(), parent.vertex_count);
+        [
+            (self.first_vertex_from_faces, nf, nf),
+            (self.first_vertex_from_edges, ne, ne),
+            (self.first_vertex_from_vertices, nv, nv),
+        ]
     }
 }
 
@@ -86,11 +103,24 @@ impl Children for SparseSplit {
     fn complete(&self, c: usize) -> bool {
         !self.child_vertex_incomplete[c]
     }
+    fn vertex_runs(&self, _parent: &Level) -> [(u32, usize, usize); 3] {
+        [
+            &self.face_child_vertex,
+            &self.edge_child_vertex,
+            &self.vertex_child_vertex,
+        ]
+        .map(|children| {
+            let mut valid = children.iter().filter(|&&c| c != INVALID_INDEX);
+            let first = valid.next();
+            let count = first.map_or(0, |_| 1 + valid.count());
+            (first.copied().unwrap_or(0), count, children.len())
+        })
+    }
 }
 
 /// Whether child `c` was not created (only in a sparse step).
 #[inline(always)]
-fn missing<R: Children>(c: u32) -> bool {
+pub(crate) fn missing<R: Children>(c: u32) -> bool {
     R::SPARSE && c == INVALID_INDEX
 }
 
