@@ -391,7 +391,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
         let mut cache = Cache::<T>::new();
         for f in faces {
             let values = pf.face_values_of(parent, f);
-            let w = cache.face_weight(self.refiner, values.len());
+            let w = cache.face_weight(&self.refiner.rules, values.len());
             let mut acc = [T::ZERO; MAX_WIDTH];
             for &x in values {
                 add(&mut acc, self.src, x, w, cols);
@@ -447,7 +447,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
             let s = parent.edge_sharpness_at(e);
             let smooth = match e_faces {
                 &[f0, f1] if s <= 0.0 => cache.smooth_edge(
-                    self.refiner,
+                    &self.refiner.rules,
                     [
                         self.tri_smooth && parent.face_vertices.count(f0 as usize) == 3,
                         self.tri_smooth && parent.face_vertices.count(f1 as usize) == 3,
@@ -556,7 +556,7 @@ impl<'a, T: Real, C: Cols> Pass<'a, T, C> {
                     && !edges.is_empty()
                 {
                     // The kernel's smooth vertex (as the rules give it).
-                    cache.smooth_vertex(self.refiner, v_faces.len())
+                    cache.smooth_vertex(&self.refiner.rules, v_faces.len())
                 } else {
                     edge_sharpness.clear();
                     edge_sharpness
