@@ -4,7 +4,8 @@
     scripts/bench-table.py docs/bench/threads1/bench.json docs/bench/threads2/bench.json
 
 prints a Markdown table of the deepest level of every input (times from the
-first run, speed-ups from both) followed by the parallel-use rows. Nothing
+first run, speed-ups from both) followed by the parallel-use rows and the
+adaptive rows (their level is the isolation level). Nothing
 is typed by hand: rerun `subdiv bench` into docs/bench/ and this script, and
 paste its output into README.md's "Benchmarks" section.
 """
@@ -17,7 +18,7 @@ def main():
         sys.exit(__doc__)
     one, two = (json.load(open(path)) for path in sys.argv[1:])
     key = lambda r: (r["input"], r["scheme"], r["level"], r["task"])
-    second = {key(r): r for r in two["rows"] + two.get("parallel", [])}
+    second = {key(r): r for r in two["rows"] + two.get("parallel", []) + two.get("adaptive", [])}
     deepest = {}
     for r in one["rows"]:
         deepest[(r["input"], r["scheme"])] = max(deepest.get((r["input"], r["scheme"]), 0), r["level"])
@@ -27,7 +28,7 @@ def main():
     )
     print("| --- | --- | ---: | --- | ---: | ---: | ---: | ---: |")
     rows = [r for r in one["rows"] if r["level"] == deepest[(r["input"], r["scheme"])]]
-    for r in rows + one.get("parallel", []):
+    for r in rows + one.get("parallel", []) + one.get("adaptive", []):
         other = second.get(key(r))
         speedup2 = f"{other['osd'] / other['native']:.2f}x" if other else "-"
         print(

@@ -28,7 +28,7 @@ mod queries;
 mod whole;
 use glam::{DVec3, Vec3};
 
-mod kernel;
+pub(crate) mod kernel;
 mod limit;
 mod stencil_factory;
 

@@ -6,8 +6,10 @@
 
 use super::AdaptiveRefiner;
 use crate::error::{Buffer, Error, Result};
+use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::refiner::fvar_interp::{FVarStep, fvar_level};
+use crate::refiner::kernel::interpolate_sparse;
 use crate::refiner::{Children, Kind, Scratch, Source, Step, accumulate, face_terms};
 use crate::topology::refine::sparse::SparseSplit;
 use glam::DVec3;
@@ -142,6 +144,19 @@ impl AdaptiveRefiner {
         }
         crate::alloc::guard(Some(level), || {
             let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.vertex_count * width);
+            if kind == Kind::Vertex {
+                let step = Step {
+                    rules: &self.rules,
+                    creasing: self.options.creasing,
+                    parent,
+                    child,
+                    children: &self.steps[level as usize - 1],
+                };
+                let tri_smooth = self.options.scheme == Scheme::Catmark
+                    && self.options.triangles == TriangleSubdivision::Smooth;
+                interpolate_sparse(&step, tri_smooth, width, src, &mut dst);
+                return Ok(dst);
+            }
             let mut acc = vec![T::ZERO; width];
             self.walk_level(kind, level as usize, |c, terms: &[(Source, T)]| {
                 accumulate(terms, src, &mut dst, &mut acc, c);

@@ -15,6 +15,10 @@ pub(crate) struct BenchArgs {
     /// Smaller inputs and fewer repetitions.
     #[arg(long)]
     pub(crate) quick: bool,
+    /// Only the adaptive rows (feature-adaptive refinement at isolation 3
+    /// and 6): no uniform rows, parallel use, whole processes or OBJ writer.
+    #[arg(long)]
+    pub(crate) adaptive_only: bool,
     /// Threads for the native engine.
     #[arg(long, default_value_t = 1)]
     pub(crate) threads: usize,
@@ -47,24 +51,33 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         }
         v
     };
+    let adaptive_inputs =
+        super::adaptive::adaptive_inputs(&inputs, args.inputs.is_empty(), args.quick);
+    let inputs = if args.adaptive_only {
+        Vec::new()
+    } else {
+        inputs
+    };
     // Per input: one step per level and eight tasks (nine with UVs); then
-    // the two parallel-use steps.
+    // the two parallel-use steps; then two adaptive steps per isolation
+    // level and adaptive input.
     let steps: u64 = inputs
         .iter()
         .map(|i| i.max_level as u64 + 8 + u64::from(!i.mesh.fvar_channels.is_empty()))
         .sum::<u64>()
-        + 2;
+        + if inputs.is_empty() { 0 } else { 2 }
+        + 2 * (super::adaptive::ISOLATION_LEVELS.len() * adaptive_inputs.len()) as u64;
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let mut report = super::run::run(&inputs, args.quick, args.threads, |msg| {
+    let mut report = super::run::run(&inputs, &adaptive_inputs, args.quick, args.threads, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    if args.inputs.is_empty() {
+    if args.inputs.is_empty() && !args.adaptive_only {
         // The first input (the quad torus) at level 4; the inputs refined
         // at most two levels in process (the grid, the production-like
         // mesh) at levels 1 and 2, as production assets are refined.

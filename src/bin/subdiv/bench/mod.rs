@@ -2,6 +2,8 @@
 //! the same process and the same run (interleaved repetitions, medians), as
 //! `subdiv bench` prints and writes them.
 
+#[cfg(feature = "osd")]
+mod adaptive;
 mod command;
 #[cfg(feature = "osd")]
 mod parallel;

@@ -5,8 +5,8 @@ use std::fmt::Write as _;
 
 impl BenchReport {
     /// The report as Markdown: the comparison table, then the stencil
-    /// bandwidth, OpenSubdiv alone, parallel use, whole programs and the OBJ
-    /// writer.
+    /// bandwidth, OpenSubdiv alone, adaptive refinement, parallel use, whole
+    /// programs and the OBJ writer.
     pub fn markdown(&self) -> String {
         let mut s = String::new();
         let _ = writeln!(
@@ -17,11 +17,13 @@ impl BenchReport {
             self.threads,
             self.bandwidth / 1e9
         );
-        let _ = writeln!(
-            s,
-            "| input | scheme | level | task | native ms | OpenSubdiv ms | speed-up |"
-        );
-        let _ = writeln!(s, "| --- | --- | ---: | --- | ---: | ---: | ---: |");
+        if !self.rows.is_empty() || !self.parallel.is_empty() {
+            let _ = writeln!(
+                s,
+                "| input | scheme | level | task | native ms | OpenSubdiv ms | speed-up |"
+            );
+            let _ = writeln!(s, "| --- | --- | ---: | --- | ---: | ---: | ---: |");
+        }
         for r in self.rows.iter().chain(self.parallel.iter().map(|p| &p.row)) {
             let _ = writeln!(
                 s,
@@ -58,6 +60,37 @@ impl BenchReport {
                     a.level,
                     a.alone * 1e3,
                     a.interleaved * 1e3
+                );
+            }
+        }
+        if !self.adaptive.is_empty() {
+            let _ = writeln!(
+                s,
+                "\nAdaptive refinement ({} thread(s); Refiner::new + refine_adaptive against TopologyRefinerFactory::Create + RefineAdaptive, then every level's positions interpolated level by level; levels and positions checked equal bit for bit before timing; vertices: all refined levels):\n",
+                self.threads
+            );
+            let _ = writeln!(
+                s,
+                "| input | scheme | isolation | levels refined | task | vertices | native ms | OpenSubdiv ms | speed-up |"
+            );
+            let _ = writeln!(
+                s,
+                "| --- | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: |"
+            );
+            for a in &self.adaptive {
+                let r = &a.row;
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2}x |",
+                    r.input,
+                    r.scheme,
+                    a.isolation,
+                    a.max_level,
+                    r.task,
+                    r.vertices,
+                    r.native * 1e3,
+                    r.osd * 1e3,
+                    r.speedup()
                 );
             }
         }

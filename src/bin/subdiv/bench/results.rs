@@ -70,6 +70,10 @@ pub struct BenchReport {
     pub parallel: Vec<ParallelRow>,
     /// OpenSubdiv alone against OpenSubdiv interleaved, per input.
     pub osd_alone: Vec<AloneRow>,
+    /// Feature-adaptive refinement (issue #23): topology and positions at
+    /// isolation levels 3 and 6, apart from [`BenchReport::rows`] (whose
+    /// levels are uniform levels).
+    pub adaptive: Vec<AdaptiveRow>,
     /// Whole programs: the first input at level 4, and each input refined
     /// at most two levels (the big ones) at levels 1 and 2 (standard inputs
     /// only).
@@ -184,6 +188,20 @@ impl ParallelRow {
         let n = self.count as f64;
         (n / self.row.native, n / self.row.osd)
     }
+}
+
+/// One comparison of the adaptive section: `row.level` is the isolation
+/// level, `row.vertices` counts the vertices of every refined level.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct AdaptiveRow {
+    /// The isolation level asked for.
+    pub isolation: u32,
+    /// The deepest level both engines refined (below `isolation` when a
+    /// level selected nothing; 0 on a mesh without features).
+    pub max_level: u32,
+    /// The times.
+    #[serde(flatten)]
+    pub row: Row,
 }
 
 /// A named series of (level, native seconds, OpenSubdiv seconds).

@@ -1,5 +1,6 @@
 //! The in-process comparisons of `subdiv bench`.
 
+use super::adaptive::adaptive_rows;
 use super::parallel::{
     PARALLEL_COUNT, PARALLEL_LEVEL, deformed_frames, frames_row, many_meshes, meshes_row,
 };
@@ -11,10 +12,12 @@ use subdiv::options::UniformOptions;
 use subdiv::shapes::BenchShape;
 use subdiv::{Mesh, Result, osd, refiner};
 
-/// Runs every comparison on `inputs`; `progress` is called once per step
-/// with a description.
+/// Runs every comparison on `inputs` (the parallel-use section too, when
+/// there are some), then the adaptive rows on `adaptive_inputs`; `progress`
+/// is called once per step with a description.
 pub fn run(
     inputs: &[BenchShape],
+    adaptive_inputs: &[BenchShape],
     quick: bool,
     threads: usize,
     mut progress: impl FnMut(&str),
@@ -248,6 +251,12 @@ pub fn run(
         });
         push("factorized stencil apply (f32)", times);
     }
+    // After the uniform rows, so that those run as they did before the
+    // adaptive rows existed.
+    let mut adaptive = Vec::new();
+    for input in adaptive_inputs {
+        adaptive.extend(adaptive_rows(&pool, input, reps, &mut progress)?);
+    }
     let mut parallel = Vec::new();
     if let Some(first) = inputs.first() {
         progress(&format!(
@@ -257,13 +266,15 @@ pub fn run(
         let frames = deformed_frames(&first.mesh, PARALLEL_COUNT);
         parallel.push(frames_row(&pool, first, &frames, PARALLEL_LEVEL, reps)?);
     }
-    progress(&format!("parallel use: {PARALLEL_COUNT} meshes"));
-    parallel.push(meshes_row(
-        &pool,
-        &many_meshes(PARALLEL_COUNT, quick),
-        PARALLEL_LEVEL,
-        reps,
-    )?);
+    if !inputs.is_empty() {
+        progress(&format!("parallel use: {PARALLEL_COUNT} meshes"));
+        parallel.push(meshes_row(
+            &pool,
+            &many_meshes(PARALLEL_COUNT, quick),
+            PARALLEL_LEVEL,
+            reps,
+        )?);
+    }
     Ok(BenchReport {
         date: crate::date::today(),
         machine: machine_description(),
@@ -273,6 +284,7 @@ pub fn run(
         stencil_bandwidth,
         parallel,
         osd_alone,
+        adaptive,
         whole_process: Vec::new(),
         obj_writer: None,
         skipped: Vec::new(),

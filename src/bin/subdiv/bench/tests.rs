@@ -5,7 +5,8 @@
 use super::parallel::{deformed_frames, frames_row, many_meshes, meshes_row};
 use super::process::interleaved_processes;
 use super::results::{
-    AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row, WholeProcess,
+    AdaptiveRow, AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row,
+    WholeProcess,
 };
 use subdiv::shapes::BenchShape;
 use subdiv::{Options, Scheme, shapes};
@@ -157,6 +158,7 @@ fn empty_report(threads: usize) -> BenchReport {
         stencil_bandwidth: None,
         parallel: Vec::new(),
         osd_alone: Vec::new(),
+        adaptive: Vec::new(),
         whole_process: Vec::new(),
         obj_writer: None,
         skipped: Vec::new(),
@@ -371,4 +373,132 @@ fn the_targets_script_reads_the_bench_json() {
         );
     }
     assert_eq!(code, Some(1));
+}
+
+/// The adaptive rows on tiny inputs: both isolation levels, topology and
+/// positions where something was refined, topology only on a regular torus
+/// (nothing to refine); the standard adaptive inputs are the tori and the
+/// creased production-like mesh; the rows reach the Markdown and the JSON.
+#[test]
+fn adaptive_rows_on_tiny_inputs() {
+    use super::adaptive::{adaptive_inputs, adaptive_rows};
+    let pool = pool();
+    let shape = |name: &str, mesh| BenchShape {
+        name: name.into(),
+        mesh,
+        options: Options::default().with_scheme(Scheme::Catmark),
+        max_level: 4,
+    };
+    let mut steps = 0;
+    let mixed = adaptive_rows(
+        &pool,
+        &shape("torus 6x4 mixed", shapes::torus_mixed(6, 4)),
+        1,
+        |_| steps += 1,
+    )
+    .unwrap();
+    let tasks: Vec<(&str, u32, u32)> = mixed
+        .iter()
+        .map(|a| (a.row.task.as_str(), a.isolation, a.max_level))
+        .collect();
+    assert_eq!(
+        tasks,
+        [
+            ("adaptive topology (isolation 3)", 3, 3),
+            ("adaptive positions (f32, isolation 3)", 3, 3),
+            ("adaptive topology (isolation 6)", 6, 6),
+            ("adaptive positions (f32, isolation 6)", 6, 6),
+        ]
+    );
+    assert_eq!(steps, 4);
+    for a in &mixed {
+        assert_eq!(a.row.level, a.isolation);
+        assert!(a.row.native > 0.0 && a.row.osd > 0.0, "{a:?}");
+        assert!(a.row.vertices > 0);
+    }
+    // A regular quad torus has no feature: nothing refined, no positions.
+    let regular = adaptive_rows(
+        &pool,
+        &shape("torus 6x4 quads", shapes::torus(6, 4)),
+        1,
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(regular.len(), 2);
+    assert!(regular.iter().all(|a| a.max_level == 0
+        && a.row.task.starts_with("adaptive topology")
+        && a.row.vertices == 0));
+
+    let standard = subdiv::shapes::bench_shapes(true);
+    let inputs = adaptive_inputs(&standard, true, true);
+    let names: Vec<&str> = inputs.iter().map(|i| i.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "torus 25x25 quads",
+            "torus 20x20 mixed",
+            "torus 25x12 triangles",
+            "torus 25x12 triangles",
+            "production 24x20 with UVs",
+        ]
+    );
+    assert_eq!(adaptive_inputs(&standard, false, true).len(), 4);
+
+    let report = BenchReport {
+        adaptive: mixed,
+        ..empty_report(1)
+    };
+    let text = report.markdown();
+    assert!(text.contains("Adaptive refinement (1 thread(s)"), "{text}");
+    assert!(
+        text.contains(
+            "| torus 6x4 mixed | catmark | 6 | 6 | adaptive positions (f32, isolation 6) |"
+        ),
+        "{text}"
+    );
+    let json = serde_json::to_value(&report).unwrap();
+    assert_eq!(
+        json["adaptive"][0]["task"],
+        "adaptive topology (isolation 3)"
+    );
+    assert_eq!(json["adaptive"][0]["isolation"], 3);
+    assert_eq!(json["adaptive"][0]["level"], 3);
+    assert_eq!(json["adaptive"][3]["max_level"], 6);
+}
+
+/// scripts/check-targets.py judges the adaptive rows against issue 23's 3x.
+#[test]
+fn the_targets_script_judges_the_adaptive_rows() {
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/check-targets.py");
+    let dir = tempfile::tempdir().unwrap();
+    let adaptive = |task: &str, native, osd| AdaptiveRow {
+        isolation: 6,
+        max_level: 5,
+        row: Row {
+            level: 6,
+            ..row(task, native, osd)
+        },
+    };
+    let report = BenchReport {
+        adaptive: vec![
+            adaptive("adaptive topology (isolation 6)", 0.010, 0.040),
+            adaptive("adaptive positions (f32, isolation 6)", 0.010, 0.020),
+        ],
+        ..empty_report(1)
+    };
+    let path = dir.path().join("bench.json");
+    std::fs::write(&path, serde_json::to_string(&report).unwrap()).unwrap();
+    let out = std::process::Command::new("python3")
+        .arg(script)
+        .arg(&path)
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    for expected in [
+        "adaptive topology (isolation 6), torus catmark (5 level(s) refined), 1 thread(s): 4.00x (target 3x) met",
+        "adaptive positions (f32, isolation 6), torus catmark (5 level(s) refined), 1 thread(s): 2.00x (target 3x) NOT MET",
+    ] {
+        assert!(text.contains(expected), "{expected:?} in\n{text}");
+    }
+    assert_eq!(out.status.code(), Some(1), "{text}");
 }
