@@ -101,9 +101,16 @@ def test_the_gil_is_released_while_refining():
     refiner = subdiv.Refiner(mesh, 4)
     subdiv.refine(mesh, 3)  # warm up
     points = frame(mesh.points, 1)
-    assert coverage(lambda: subdiv.refine(mesh, 3)) > 0.4
-    assert coverage(lambda: subdiv.refine(mesh, 3, engine="osd")) > 0.4
-    assert coverage(lambda: refiner.interpolate(points)) > 0.4
+
+    # Best of three: on a loaded machine (CI beside other builds) the
+    # counting thread can lose its core for a while whatever the GIL does;
+    # one measurement in three with the core is enough to tell.
+    def best(call) -> float:
+        return max(coverage(call) for _ in range(3))
+
+    assert best(lambda: subdiv.refine(mesh, 3)) > 0.4
+    assert best(lambda: subdiv.refine(mesh, 3, engine="osd")) > 0.4
+    assert best(lambda: refiner.interpolate(points)) > 0.4
     # The measure itself: a call that holds the GIL (a regular expression
     # backtracking in C, about as long) leaves the other thread little time.
     assert coverage(lambda: re.match(r"(a|aa)*c", "a" * 30)) < 0.25
