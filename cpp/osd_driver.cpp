@@ -12,6 +12,13 @@
 //       [--boundary none|edge-only|edge-and-corner]
 //       [--fvar none|corners-only|corners-plus1|corners-plus2|boundaries|all]
 //       [--creasing uniform|chaikin] [--triangles catmark|smooth]
+//   osd_driver INPUT.obj OUTPUT.json --adaptive N [--secondary M]
+//       [--single-crease yes|no] [--inf-sharp yes|no] [--faces-first yes|no]
+//       (and the options above): refines with RefineAdaptive instead and
+//       writes every level as `subdiv refine --levels-json` does:
+//       {"levels": [{"vertices": V, "edges": E, "faces": F,
+//       "face_vertices": [[...], ...], "positions": [[x, y, z], ...]}, ...]},
+//       holes included, positions interpolated level by level in double.
 //
 // This file is deliberately self-contained: it shares no code with the crate's
 // own C++ bridge, so agreement between the two is evidence, not tautology.
@@ -249,6 +256,9 @@ ObjMesh parseObj(const std::string &path) {
 
 struct Settings {
     int level = 2;
+    int adaptive = -1;  // the isolation level; -1: uniform refinement
+    int secondary = 15;
+    bool singleCrease = false, infSharp = false, facesFirst = false;
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
     Sdc::Options opts;
 };
@@ -377,7 +387,9 @@ void usage() {
                  "usage: osd_driver INPUT.obj OUTPUT.obj [--level N] [--scheme catmark|loop|bilinear]\n"
                  "       [--boundary none|edge-only|edge-and-corner]\n"
                  "       [--fvar none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
-                 "       [--creasing uniform|chaikin] [--triangles catmark|smooth]\n");
+                 "       [--creasing uniform|chaikin] [--triangles catmark|smooth]\n"
+                 "       [--adaptive N [--secondary M] [--single-crease yes|no] [--inf-sharp yes|no]\n"
+                 "        [--faces-first yes|no]]\n");
 }
 
 // The process's peak resident memory (VmHWM), as `subdiv refine --peak-memory`
@@ -394,6 +406,70 @@ void printPeakMemory() {
     }
 }
 
+// Writes `text` to `path` whole, or removes what was written.
+void writeFile(const std::string &path, const std::string &text) {
+    FILE *fp = std::fopen(path.c_str(), "wb");
+    if (!fp) fail("cannot create '" + path + "': " + std::strerror(errno));
+    size_t wrote = std::fwrite(text.data(), 1, text.size(), fp);
+    int closed = std::fclose(fp);
+    if (wrote != text.size() || closed != 0) {
+        std::remove(path.c_str());
+        fail("cannot write '" + path + "'");
+    }
+}
+
+// Feature-adaptive refinement: every level's counts, faces and positions as
+// JSON.
+int writeAdaptive(Far::TopologyRefiner &refiner, const Settings &s, const ObjMesh &mesh,
+                  const std::string &path) {
+    Far::TopologyRefiner::AdaptiveOptions ao(s.adaptive);
+    ao.SetSecondaryLevel(s.secondary);
+    ao.useSingleCreasePatch = s.singleCrease;
+    ao.useInfSharpPatch = s.infSharp;
+    ao.orderVerticesFromFacesFirst = s.facesFirst;
+    refiner.RefineAdaptive(ao);
+    if (g_osdError) fail("OpenSubdiv reported an error during refinement: " + g_osdErrorText);
+
+    Far::PrimvarRefinerReal<double> primvar(refiner);
+    std::vector<Point3> pos(mesh.positions);
+    std::string out = "{\"levels\": [";
+    char buf[128];
+    for (int l = 0; l <= refiner.GetMaxLevel(); ++l) {
+        if (l > 0) {
+            std::vector<Point3> next((size_t)refiner.GetLevel(l).GetNumVertices());
+            Point3 const *src = pos.data();
+            Point3 *dst = next.data();
+            primvar.Interpolate(l, src, dst);
+            pos.swap(next);
+        }
+        Far::TopologyLevel const &L = refiner.GetLevel(l);
+        std::snprintf(buf, sizeof buf, "%s{\"vertices\": %d, \"edges\": %d, \"faces\": %d, ",
+                      l ? ", " : "", L.GetNumVertices(), L.GetNumEdges(), L.GetNumFaces());
+        out += buf;
+        out += "\"face_vertices\": [";
+        for (int f = 0; f < L.GetNumFaces(); ++f) {
+            Far::ConstIndexArray fv = L.GetFaceVertices(f);
+            out += f ? ", [" : "[";
+            for (int c = 0; c < fv.size(); ++c) {
+                std::snprintf(buf, sizeof buf, "%s%d", c ? ", " : "", fv[c]);
+                out += buf;
+            }
+            out += "]";
+        }
+        out += "], \"positions\": [";
+        for (size_t v = 0; v < pos.size(); ++v) {
+            std::snprintf(buf, sizeof buf, "%s[%.17g, %.17g, %.17g]", v ? ", " : "", pos[v].x,
+                          pos[v].y, pos[v].z);
+            out += buf;
+        }
+        out += "]}";
+    }
+    out += "]}\n";
+    if (g_osdError) fail("OpenSubdiv reported an error during interpolation: " + g_osdErrorText);
+    writeFile(path, out);
+    return 0;
+}
+
 int run(int argc, char **argv) {
     std::vector<std::string> positional;
     Settings s;
@@ -408,6 +484,16 @@ int run(int argc, char **argv) {
                 long l = parseLong(v, 0);
                 if (l < 0 || l > 15) fail("level must be in 0..=15");
                 s.level = (int)l;
+            } else if (a == "--adaptive" || a == "--secondary") {
+                long l = parseLong(v, 0);
+                if (l < 0 || l > 15) fail(a + " must be in 0..=15");
+                (a == "--adaptive" ? s.adaptive : s.secondary) = (int)l;
+            } else if (a == "--single-crease" || a == "--inf-sharp" || a == "--faces-first") {
+                if (v != "yes" && v != "no") fail(a + " takes yes or no");
+                bool on = v == "yes";
+                if (a == "--single-crease") s.singleCrease = on;
+                else if (a == "--inf-sharp") s.infSharp = on;
+                else s.facesFirst = on;
             } else if (a == "--scheme") {
                 if (v == "catmark") s.scheme = Sdc::SCHEME_CATMARK;
                 else if (v == "loop") s.scheme = Sdc::SCHEME_LOOP;
@@ -501,6 +587,7 @@ int run(int argc, char **argv) {
              (g_osdErrorText.empty() ? std::string() : ": " + g_osdErrorText));
     }
 
+    if (s.adaptive >= 0) return writeAdaptive(*refiner, s, mesh, positional[1]);
     if (s.level > 0) {
         Far::TopologyRefiner::UniformOptions uopts(s.level);
         refiner->RefineUniform(uopts);
@@ -575,14 +662,7 @@ int run(int argc, char **argv) {
         out += '\n';
     }
 
-    FILE *fp = std::fopen(positional[1].c_str(), "wb");
-    if (!fp) fail("cannot create '" + positional[1] + "': " + std::strerror(errno));
-    size_t wrote = std::fwrite(out.data(), 1, out.size(), fp);
-    int closed = std::fclose(fp);
-    if (wrote != out.size() || closed != 0) {
-        std::remove(positional[1].c_str());
-        fail("cannot write '" + positional[1] + "'");
-    }
+    writeFile(positional[1], out);
     return 0;
 }
 

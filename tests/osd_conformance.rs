@@ -836,3 +836,195 @@ fn random_meshes_match_the_driver() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------
+// Feature-adaptive refinement: `subdiv refine --adaptive N --levels-json`
+// (both engines) against the driver's `RefineAdaptive`, level by level.
+
+/// The levels of a `--levels-json` file: counts, faces and positions.
+#[derive(Debug, PartialEq)]
+struct AdaptiveLevel {
+    counts: [u64; 3],
+    faces: Vec<Vec<u64>>,
+    positions: Vec<[f64; 3]>,
+}
+
+fn adaptive_levels(path: &Path) -> Vec<AdaptiveLevel> {
+    let text = fs::read_to_string(path).expect("read a levels JSON file");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("parse a levels JSON file");
+    let num = |v: &serde_json::Value| v.as_u64().expect("a count");
+    json["levels"]
+        .as_array()
+        .expect("a levels array")
+        .iter()
+        .map(|l| AdaptiveLevel {
+            counts: [num(&l["vertices"]), num(&l["edges"]), num(&l["faces"])],
+            faces: serde_json::from_value(l["face_vertices"].clone()).expect("faces"),
+            positions: serde_json::from_value(l["positions"].clone()).expect("positions"),
+        })
+        .collect()
+}
+
+/// Refines `obj` adaptively to `isolation` with both programs (`flags` as
+/// (CLI flag, driver flag and value) pairs) and compares every level: counts
+/// and faces exactly, positions within 1e-9 of the base mesh's bounding-box
+/// diagonal (the bound; in practice they agree bit for bit, up to
+/// JSON's decimal round trip).
+fn check_adaptive(case: &str, obj: &str, isolation: u32, flags: &[(&[&str], &[&str])]) {
+    let dir = scratch(case);
+    let input = dir.join(format!("{case}.obj"));
+    fs::write(&input, obj).expect("write the input OBJ");
+    let iso = isolation.to_string();
+    let ref_out = dir.join(format!("{case}.driver.json"));
+    expect_success(
+        &format!("{case}: reference driver"),
+        Command::new(driver())
+            .arg(&input)
+            .arg(&ref_out)
+            .args(["--adaptive", &iso])
+            .args(flags.iter().flat_map(|(_, d)| d.iter())),
+    );
+    let reference = adaptive_levels(&ref_out);
+    let base = &reference[0].positions;
+    let (lo, hi) = base.iter().fold(
+        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(DVec3::from(*p)), hi.max(DVec3::from(*p))),
+    );
+    let tolerance = 1e-9 * (hi - lo).length().max(1.0);
+    for engine in ["osd", "native"] {
+        let our_out = dir.join(format!("{case}.{engine}.json"));
+        expect_success(
+            &format!("{case}: subdiv refine --engine {engine}"),
+            Command::new(subdiv_bin())
+                .arg("refine")
+                .arg(&input)
+                .args(["--engine", engine, "--adaptive", &iso, "--levels-json"])
+                .arg(&our_out)
+                .args(flags.iter().flat_map(|(c, _)| c.iter())),
+        );
+        let ours = adaptive_levels(&our_out);
+        assert_eq!(
+            ours.len(),
+            reference.len(),
+            "{case} ({engine}): number of levels"
+        );
+        for (l, (a, b)) in ours.iter().zip(&reference).enumerate() {
+            assert_eq!(a.counts, b.counts, "{case} ({engine}): counts of level {l}");
+            assert_eq!(a.faces, b.faces, "{case} ({engine}): faces of level {l}");
+            assert_eq!(a.positions.len(), b.positions.len());
+            for (v, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+                let d = (DVec3::from(*p) - DVec3::from(*q)).length();
+                assert!(
+                    d <= tolerance,
+                    "{case} ({engine}): level {l} vertex {v} is {p:?}, the driver's {q:?}"
+                );
+            }
+        }
+    }
+}
+
+/// The driver's adaptive counts of a Catmull-Clark cube, derived by hand in
+/// native_adaptive.rs.
+#[test]
+fn driver_adaptive_cube_counts() {
+    let dir = scratch("driver_adaptive_cube_counts");
+    let input = dir.join("cube.obj");
+    fs::write(&input, cube(&[])).unwrap();
+    let out = dir.join("cube.json");
+    expect_success(
+        "reference driver",
+        Command::new(driver())
+            .arg(&input)
+            .arg(&out)
+            .args(["--adaptive", "3"]),
+    );
+    let counts: Vec<[u64; 3]> = adaptive_levels(&out).iter().map(|l| l.counts).collect();
+    assert_eq!(
+        counts,
+        [[8, 12, 6], [26, 48, 24], [98, 192, 96], [296, 504, 216]]
+    );
+}
+
+/// Shapes after OpenSubdiv's regression shapes (creases, corners, holes,
+/// boundaries, n-gons, UV seams, non-manifold, Loop and bilinear) × the
+/// adaptive options that change the selection.
+#[test]
+fn adaptive_matches_the_driver() {
+    let catmark: &[(&str, String)] = &[
+        ("cube", cube(&[])),
+        (
+            "cube_semisharp",
+            cube(&[SEMI_SHARP_CHAIN, SEMI_SHARP_CORNER]),
+        ),
+        ("cube_sharp_loop", cube(&[SHARP_LOOP])),
+        (
+            "pyramid_pentagon_crease",
+            pyramid_pentagon(&["t crease 6/1/0 0 1 2 3 4 0 1.7"]),
+        ),
+        ("grid_holes", grid(4, &["t hole 2/0/0 5 10"])),
+        (
+            "grid_creased_border",
+            grid(4, &["t crease 5/1/0 0 1 2 3 4 10"]),
+        ),
+        ("uv_seam", cube_uv_seam(&[])),
+        ("fin", fin()),
+        ("bowtie", bowtie()),
+    ];
+    let option_sets: &[(&str, &[(&[&str], &[&str])])] = &[
+        ("default", &[]),
+        (
+            "secondary1",
+            &[(&["--secondary", "1"], &["--secondary", "1"])],
+        ),
+        (
+            "single_crease",
+            &[(&["--single-crease"], &["--single-crease", "yes"])],
+        ),
+        (
+            "inf_sharp",
+            &[
+                (&["--inf-sharp"], &["--inf-sharp", "yes"]),
+                (&["--boundary", "none"], &["--boundary", "none"]),
+            ],
+        ),
+        (
+            "faces_first_chaikin",
+            &[
+                (&["--faces-first"], &["--faces-first", "yes"]),
+                (&["--creasing", "chaikin"], &["--creasing", "chaikin"]),
+            ],
+        ),
+    ];
+    for (name, obj) in catmark {
+        for (set, flags) in option_sets {
+            for isolation in [2, 4] {
+                check_adaptive(
+                    &format!("adaptive_{name}_{set}_{isolation}"),
+                    obj,
+                    isolation,
+                    flags,
+                );
+            }
+        }
+    }
+    let loop_flags: &[(&[&str], &[&str])] = &[(&["--scheme", "loop"], &["--scheme", "loop"])];
+    check_adaptive(
+        "adaptive_loop_icosahedron",
+        &icosahedron(&[]),
+        3,
+        loop_flags,
+    );
+    check_adaptive(
+        "adaptive_loop_creased",
+        &icosahedron(&["t crease 4/3/0 0 11 5 1 0.3 1.6 2.2"]),
+        4,
+        loop_flags,
+    );
+    let bilinear: &[(&[&str], &[&str])] = &[(&["--scheme", "bilinear"], &["--scheme", "bilinear"])];
+    check_adaptive(
+        "adaptive_bilinear_pyramid",
+        &pyramid_pentagon(&[]),
+        3,
+        bilinear,
+    );
+}
