@@ -865,12 +865,15 @@ fn adaptive_levels(path: &Path) -> Vec<AdaptiveLevel> {
         .collect()
 }
 
+/// A flag as the CLI spells it, and as the driver does.
+type FlagPair<'a> = (&'a [&'a str], &'a [&'a str]);
+
 /// Refines `obj` adaptively to `isolation` with both programs (`flags` as
 /// (CLI flag, driver flag and value) pairs) and compares every level: counts
 /// and faces exactly, positions within 1e-9 of the base mesh's bounding-box
 /// diagonal (the bound; in practice they agree bit for bit, up to
 /// JSON's decimal round trip).
-fn check_adaptive(case: &str, obj: &str, isolation: u32, flags: &[(&[&str], &[&str])]) {
+fn check_adaptive(case: &str, obj: &str, isolation: u32, flags: &[FlagPair]) {
     let dir = scratch(case);
     let input = dir.join(format!("{case}.obj"));
     fs::write(&input, obj).expect("write the input OBJ");
@@ -970,7 +973,7 @@ fn adaptive_matches_the_driver() {
         ("fin", fin()),
         ("bowtie", bowtie()),
     ];
-    let option_sets: &[(&str, &[(&[&str], &[&str])])] = &[
+    let option_sets: &[(&str, &[FlagPair])] = &[
         ("default", &[]),
         (
             "secondary1",
@@ -1007,7 +1010,7 @@ fn adaptive_matches_the_driver() {
             }
         }
     }
-    let loop_flags: &[(&[&str], &[&str])] = &[(&["--scheme", "loop"], &["--scheme", "loop"])];
+    let loop_flags: &[FlagPair] = &[(&["--scheme", "loop"], &["--scheme", "loop"])];
     check_adaptive(
         "adaptive_loop_icosahedron",
         &icosahedron(&[]),
@@ -1020,7 +1023,7 @@ fn adaptive_matches_the_driver() {
         4,
         loop_flags,
     );
-    let bilinear: &[(&[&str], &[&str])] = &[(&["--scheme", "bilinear"], &["--scheme", "bilinear"])];
+    let bilinear: &[FlagPair] = &[(&["--scheme", "bilinear"], &["--scheme", "bilinear"])];
     check_adaptive(
         "adaptive_bilinear_pyramid",
         &pyramid_pentagon(&[]),
