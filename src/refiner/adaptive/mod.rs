@@ -31,7 +31,9 @@
 //! * `select.rs`: which faces a level selects;
 //! * `interpolate.rs`: vertex and varying primvars level by level.
 //!
-//! Face-varying channels on sparse levels are not there yet.
+//! Face-varying channels refine with the levels and interpolate on them;
+//! selecting faces by the features of non-linear face-varying channels
+//! (`consider_fvar_channels`) is not there yet.
 
 mod features;
 mod interpolate;

@@ -272,9 +272,9 @@ impl AdaptiveRefiner {
     ///
     /// Refused: `max_level` beyond 15 ([`Error::Level`]), the combination
     /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), face-varying
-    /// interpolation ([`Error::NotYetSupported`]: adaptive refinement has no
-    /// face-varying channels natively yet; [`Error::NoSuchChannel`] first
-    /// when the mesh lacks the channel).
+    /// interpolation ([`Error::NotYetSupported`]: the face-varying pass
+    /// computes values, not the per-term weights a stencil needs;
+    /// [`Error::NoSuchChannel`] first when the mesh lacks the channel).
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options};
@@ -293,7 +293,7 @@ impl AdaptiveRefiner {
         let last = options.check(self.max_level(), channels)?;
         if options.interpolation == StencilInterpolation::FaceVarying {
             return Err(Error::NotYetSupported(
-                "face-varying stencils of adaptive refinement (no face-varying channels on sparse levels)",
+                "face-varying stencil tables (the face-varying pass computes values, not stencil weights)",
             ));
         }
         crate::alloc::guard(None, || {
