@@ -19,8 +19,9 @@ use subdiv::io::points::{self as points_io, Points, PointsErrorKind};
 use subdiv::io::{mesh_to_obj_string, parse_obj, parse_obj_chunked, parse_obj_general};
 use subdiv::refiner::{self, Refiner};
 use subdiv::{
-    BoundaryInterpolation, CreasingMethod, Error, FVarChannel, FVarLinearInterpolation, Mesh,
-    ObjErrorKind, Options, Precision, Refinement, Scheme, TriangleSubdivision, UniformOptions,
+    AdaptiveOptions, BoundaryInterpolation, CreasingMethod, Error, FVarChannel,
+    FVarLinearInterpolation, INVALID_INDEX, Mesh, ObjErrorKind, Options, Precision, Refinement,
+    Scheme, TriangleSubdivision, UniformOptions,
 };
 
 /// Largest generated mesh: vertices, faces, corners per face.
@@ -31,6 +32,8 @@ pub const MAX_FACES: usize = 24;
 pub const MAX_FACE_SIZE: usize = 9;
 /// Largest refinement level tried.
 pub const MAX_FUZZ_LEVEL: u32 = 3;
+/// Largest isolation level tried (beyond it, only levels that must be refused).
+pub const MAX_FUZZ_ISOLATION: u32 = 6;
 
 // ---------------------------------------------------------------------------
 // Meshes from bytes
@@ -271,6 +274,58 @@ pub fn mesh_case(u: &mut Unstructured<'_>, wild: bool) -> AResult<MeshCase> {
         precision,
         limit,
     })
+}
+
+/// The arguments of one adaptive refinement.
+#[derive(Debug, Clone)]
+pub struct AdaptiveCase {
+    /// Every field of `Far::TopologyRefiner::AdaptiveOptions`.
+    pub options: AdaptiveOptions,
+    /// The selected base faces (every face when empty).
+    pub faces: Vec<u32>,
+}
+
+/// Builds an [`AdaptiveCase`] for a mesh of `face_count` faces: isolation
+/// `0..=MAX_FUZZ_ISOLATION`, secondary `0..=15`, any flags, a few selected
+/// faces (one time in two none); with `wild`, rarely, levels beyond
+/// OpenSubdiv's fields and faces out of range, which must be refused.
+pub fn adaptive_case(
+    u: &mut Unstructured<'_>,
+    face_count: usize,
+    wild: bool,
+) -> AResult<AdaptiveCase> {
+    let mut isolation = u.int_in_range(0..=MAX_FUZZ_ISOLATION)?;
+    let mut secondary = u.int_in_range(0..=15)?;
+    if wild && u.ratio(1u8, 16u8)? {
+        isolation = pick(u, &[11, 16, u32::MAX])?;
+    }
+    if wild && u.ratio(1u8, 16u8)? {
+        secondary = pick(u, &[16, 255, u32::MAX])?;
+    }
+    let flags: u8 = u.arbitrary()?;
+    let options = AdaptiveOptions::new(isolation)
+        .secondary(secondary)
+        .single_crease_patch(flags & 1 != 0)
+        .inf_sharp_patch(flags & 2 != 0)
+        .consider_fvar(flags & 4 != 0)
+        .faces_first(flags & 8 != 0);
+    let mut faces = Vec::new();
+    if flags & 16 != 0 {
+        for _ in 0..u.int_in_range(1..=4)? {
+            faces.push(index(u, face_count, wild)?);
+        }
+    }
+    Ok(AdaptiveCase { options, faces })
+}
+
+impl Default for AdaptiveCase {
+    /// Isolation level 2, every face: what a case runs when the bytes ran out.
+    fn default() -> Self {
+        AdaptiveCase {
+            options: AdaptiveOptions::new(2),
+            faces: Vec::new(),
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -650,6 +705,251 @@ pub fn check_differential(case: &MeshCase) {
             a.err(),
             e.err()
         ),
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Adaptive refinement
+// ---------------------------------------------------------------------------
+
+/// Why an adaptive refinement of a mesh that passed validation may be
+/// refused: the levels beyond OpenSubdiv's fields, a selected face out of
+/// range, what the native engine does not do yet (non-linear face-varying
+/// channels considered), and whatever refuses the base level.
+fn acceptable_for_adaptive(e: &Error) -> bool {
+    acceptable_for_valid_mesh(e)
+        || matches!(
+            e,
+            Error::NoSuchElement { .. } | Error::NotYetSupported(_) | Error::AlreadyRefined { .. }
+        )
+}
+
+/// Structural invariants of the child maps of `level` of an adaptive
+/// refinement: every valid child is in range, and every child face names a
+/// parent face whose children name it back.
+fn check_child_maps(a: &refiner::AdaptiveRefiner, level: u32) {
+    let maps = a
+        .child_maps(level)
+        .expect("child maps below the last level");
+    let parent = a.level_counts(level).expect("parent level");
+    let child = a.level_counts(level + 1).expect("child level");
+    let in_range = |v: &[u32], n: usize, what: &str| {
+        if let Some(i) = v.iter().find(|&&i| i != INVALID_INDEX && i as usize >= n) {
+            panic!("level {level}: {what} {i} >= {n}");
+        }
+    };
+    assert_eq!(maps.face_child_face_offsets.len(), parent.faces + 1);
+    assert_eq!(maps.face_child_edge_offsets.len(), parent.faces + 1);
+    assert_eq!(maps.edge_child_edges.len(), parent.edges);
+    assert_eq!(maps.face_child_vertex.len(), parent.faces);
+    assert_eq!(maps.edge_child_vertex.len(), parent.edges);
+    assert_eq!(maps.vertex_child_vertex.len(), parent.vertices);
+    assert_eq!(maps.child_face_parent_face.len(), child.faces);
+    in_range(&maps.face_child_faces, child.faces, "child face");
+    in_range(&maps.face_child_edges, child.edges, "child edge");
+    let edge_edges: Vec<u32> = maps.edge_child_edges.iter().flatten().copied().collect();
+    in_range(&edge_edges, child.edges, "edge child edge");
+    in_range(&maps.face_child_vertex, child.vertices, "face child vertex");
+    in_range(&maps.edge_child_vertex, child.vertices, "edge child vertex");
+    in_range(
+        &maps.vertex_child_vertex,
+        child.vertices,
+        "vertex child vertex",
+    );
+    for (c, &p) in maps.child_face_parent_face.iter().enumerate() {
+        assert!(
+            (p as usize) < parent.faces,
+            "level {level}: parent face {p}"
+        );
+        let (lo, hi) = (
+            maps.face_child_face_offsets[p as usize] as usize,
+            maps.face_child_face_offsets[p as usize + 1] as usize,
+        );
+        assert!(
+            maps.face_child_faces[lo..hi].contains(&(c as u32)),
+            "level {level}: child face {c} not among its parent {p}'s children"
+        );
+    }
+}
+
+/// The kind of a refusal, as far as a caller can tell: the name of the
+/// error's variant, where the bridge's `Osd(Refused)` for a non-triangle
+/// under Loop and for an unpaired smooth vertex count as the native
+/// engine's typed `NotTriangles` and `UnpairedSmoothVertex` (the same
+/// conditions, found by the shim).
+pub fn refusal_kind(e: &Error) -> String {
+    match e {
+        Error::Osd(o) if o.message.contains("Loop scheme needs triangles") => "NotTriangles".into(),
+        Error::Osd(o) if o.message.contains("do not pair up") => "UnpairedSmoothVertex".into(),
+        _ => format!("{e:?}")
+            .chars()
+            .take_while(|c| c.is_alphanumeric())
+            .collect(),
+    }
+}
+
+/// The native engine's adaptive refinement of one case (`mesh_refine`):
+/// `refine_adaptive` is refused with a typed error or gives levels whose
+/// queries, child maps, interpolation and stencils hold together; wrong
+/// arguments are refused.
+pub fn check_native_adaptive(case: &MeshCase, adaptive: &AdaptiveCase) {
+    let mesh = &case.mesh;
+    let Ok(r) = Refiner::new(mesh, &case.options) else {
+        return; // check_native covers the base level
+    };
+    let ao = adaptive.options;
+    let a = match r.refine_adaptive(ao, &adaptive.faces) {
+        Ok(a) => a,
+        Err(e) => {
+            assert!(acceptable_for_adaptive(&e), "refine_adaptive: {e:?}");
+            return;
+        }
+    };
+    let max = a.max_level();
+    // Bilinear refines its non-quads one level, whatever the isolation level.
+    let deepest = match case.options.scheme {
+        Scheme::Bilinear => 1,
+        _ => ao.isolation_level,
+    };
+    assert!(max <= deepest, "{max} levels");
+    assert!(a.level(max + 1).is_err());
+    assert!(a.child_maps(max).is_err());
+    assert!(a.relations(max + 1).is_err());
+    for level in 0..=max {
+        let counts = a.level_counts(level).expect("level counts");
+        let topology = a.level(level).expect("level");
+        assert_eq!(topology.vertex_count, counts.vertices);
+        assert_eq!(topology.face_count(), counts.faces);
+        assert!(
+            topology
+                .face_vertices
+                .iter()
+                .all(|&v| (v as usize) < counts.vertices),
+            "level {level}: face vertex out of range"
+        );
+        let relations = a.relations(level).expect("relations");
+        assert_eq!(relations.face_edges.len(), counts.face_vertices);
+        assert_eq!(relations.vertex_rules.len(), counts.vertices);
+        if level < max {
+            check_child_maps(&a, level);
+        }
+    }
+    let base = flat(&mesh.positions);
+    assert!(a.interpolate::<f64>(0, 3, &base).is_err());
+    assert!(a.interpolate::<f64>(max + 1, 3, &base).is_err());
+    let mut levels = vec![base.clone()];
+    let mut varying = base.clone();
+    for level in 1..=max {
+        assert!(a.interpolate::<f64>(level, 0, &[]).is_err());
+        let prev = levels.last().expect("level 0");
+        assert!(
+            a.interpolate::<f64>(level, 3, &prev[..prev.len() - 1])
+                .is_err()
+        );
+        let next = a.interpolate(level, 3, prev).expect("interpolate");
+        let nv = a.level_counts(level).expect("counts").vertices;
+        assert_eq!(next.len(), nv * 3);
+        varying = a
+            .interpolate_varying(level, 3, &varying)
+            .expect("interpolate varying");
+        assert_eq!(varying.len(), nv * 3);
+        let single: Vec<f32> = prev.iter().map(|&x| x as f32).collect();
+        let _ = a.interpolate::<f32>(level, 3, &single);
+        levels.push(next);
+    }
+    // Stencils reproduce the interpolation of the last level.
+    let options = subdiv::stencil::StencilOptions::new().intermediate_levels(false);
+    let table = a.stencil_table_with(&options).expect("stencil table");
+    if max > 0 {
+        let last = levels.last().expect("level 0");
+        assert_eq!(
+            table.len() * 3,
+            last.len(),
+            "one stencil per last-level vertex"
+        );
+        let applied = table.apply(3, &base).expect("apply stencils");
+        if case.tame() {
+            let scale = scale_of(&mesh.positions);
+            for (i, (x, y)) in applied.iter().zip(last).enumerate() {
+                assert!(
+                    close(*x, *y, scale),
+                    "stencil value {i}: {x} vs interpolated {y}"
+                );
+            }
+        }
+    }
+}
+
+/// Both engines refine a valid case adaptively (`adaptive_differential`):
+/// both refuse with the same kind of error, or every level is the same —
+/// topology, relations, child maps, positions and varying data bit for bit,
+/// and the stencil table.
+#[cfg(feature = "osd")]
+pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
+    use subdiv::osd;
+    let mesh = &case.mesh;
+    if osd_may_abort(mesh) {
+        return;
+    }
+    let ao = adaptive.options;
+    let faces = &adaptive.faces;
+    let native = Refiner::new(mesh, &case.options).and_then(|r| r.refine_adaptive(ao, faces));
+    let theirs = osd::TopologyRefiner::new(mesh, &case.options).and_then(|mut r| {
+        r.refine_adaptive(ao, faces)?;
+        Ok(r)
+    });
+    let (native, theirs) = match (native, theirs) {
+        (Ok(a), Ok(b)) => (a, b),
+        // Not done natively yet: nothing to compare.
+        (Err(Error::NotYetSupported(_)), _) => return,
+        (Err(a), Err(b)) => {
+            assert_eq!(
+                refusal_kind(&a),
+                refusal_kind(&b),
+                "refused differently: native {a:?}, osd {b:?}"
+            );
+            return;
+        }
+        (a, b) => panic!(
+            "one engine refused: native {:?}, osd {:?}",
+            a.err(),
+            b.err()
+        ),
+    };
+    assert_eq!(native.max_level(), theirs.max_level(), "levels refined");
+    let mine = native
+        .adaptive_levels(&mesh.positions)
+        .expect("native levels");
+    let osds = theirs.adaptive_levels(&mesh.positions).expect("osd levels");
+    for c in subdiv::compare::compare_adaptive(&mine, &osds) {
+        assert!(
+            c.identical(),
+            "engines differ at level {}: counts {:?}, first difference {:?}, positions {:?}",
+            c.level,
+            c.counts,
+            c.first_difference,
+            c.positions
+        );
+    }
+    let base = flat(&mesh.positions);
+    let (mut a, mut b) = (base.clone(), base);
+    for level in 1..=native.max_level() {
+        a = native
+            .interpolate_varying(level, 3, &a)
+            .expect("native varying");
+        b = theirs
+            .interpolate_varying(level, 3, &b)
+            .expect("osd varying");
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a), bits(&b), "varying data of level {level}");
+    }
+    let options = subdiv::stencil::StencilOptions::new();
+    match (
+        native.stencil_table_with(&options),
+        theirs.stencil_table_with(&options),
+    ) {
+        (Ok(x), Ok(y)) => assert!(x == y, "stencil tables differ"),
+        (x, y) => panic!("stencil tables: native {:?}, osd {:?}", x.err(), y.err()),
     }
 }
 

@@ -6,9 +6,9 @@ use super::{EdgeFaces, HoodBuf, Refiner};
 use crate::alloc::{collect_n, copied, vec_or_unwind};
 use crate::error::{Element, Error, Result};
 use crate::options::Scheme;
-use crate::output::{FVarTopology, LevelCounts, LevelTopology};
+use crate::output::{ChildMaps, FVarTopology, INVALID_INDEX, LevelCounts, LevelTopology};
 use crate::rules::Rule;
-use crate::topology::Level;
+use crate::topology::{Level, Split};
 
 impl Refiner {
     /// Element counts of `level` (`TopologyLevel::GetNumVertices` and friends).
@@ -147,6 +147,45 @@ impl Refiner {
         Ok((tag.rule(), tag.boundary()))
     }
 
+    /// How the components of `level` map to those of `level + 1`
+    /// (`Far::TopologyLevel`'s child queries on `level` and
+    /// `GetFaceParentFace` on `level + 1`), for `level < max_level()`, in
+    /// the uniform numbering: every child exists. A face with `n` corners
+    /// has `n` child faces (child `j` at corner `j`) and `n` child edges
+    /// inside it, both from its first corner's index; Loop's triangles have
+    /// four child faces each (from `4 f`, the middle one last), three child
+    /// edges, and no child vertex ([`INVALID_INDEX`], as OpenSubdiv reports
+    /// it). The same layout as the `osd` engine's `child_maps`.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let mut r = Refiner::new(&shapes::cube(), &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(1))?;
+    /// let maps = r.child_maps(0)?;
+    /// // Face 2's four quads are 8..12, in corner order; each knows its parent.
+    /// let f = 2;
+    /// let range = maps.face_child_face_offsets[f] as usize..maps.face_child_face_offsets[f + 1] as usize;
+    /// assert_eq!(maps.face_child_faces[range], [8, 9, 10, 11]);
+    /// assert_eq!(maps.child_face_parent_face[9], 2);
+    /// // Vertices first: the cube's 8 vertices keep their indices.
+    /// assert_eq!(maps.vertex_child_vertex, (0..8).collect::<Vec<u32>>());
+    /// assert!(r.child_maps(1).is_err());
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn child_maps(&self, level: u32) -> Result<ChildMaps> {
+        let (Some(parent), Some(split)) = (
+            self.levels.get(level as usize),
+            self.refinements.get(level as usize),
+        ) else {
+            return Err(Error::NoSuchLevel {
+                level,
+                first: 0,
+                last: self.max_level().saturating_sub(1),
+            });
+        };
+        crate::alloc::guard(Some(level), || Ok(uniform_child_maps(parent, split)))
+    }
+
     /// The deepest refined level.
     pub fn max_level(&self) -> u32 {
         (self.levels.len() - 1) as u32
@@ -235,6 +274,49 @@ pub struct Faces<'a> {
     /// Per face-varying channel, the value index of every face corner
     /// (parallel to `vertices`).
     pub fvar_face_values: Vec<&'a [u32]>,
+}
+
+/// The child maps of one uniform step ([`Refiner::child_maps`]), from the
+/// numbering of [`Split`].
+fn uniform_child_maps(parent: &Level, split: &Split) -> ChildMaps {
+    let nf = parent.face_count();
+    let corners = parent.face_vertices.members.len() as u32;
+    let corner_offsets = parent.face_vertices.offsets_slice().into_owned();
+    // Loop: four child faces per triangle, no face points.
+    let triangles = !split.has_face_points() && nf > 0;
+    let (child_faces, face_offsets) = if triangles {
+        (4 * nf as u32, (0..=nf as u32).map(|f| 4 * f).collect())
+    } else {
+        (corners, corner_offsets.clone())
+    };
+    let mut child_face_parent_face = Vec::with_capacity(child_faces as usize);
+    for f in 0..nf {
+        let n = face_offsets[f + 1] - face_offsets[f];
+        child_face_parent_face.extend(std::iter::repeat_n(f as u32, n as usize));
+    }
+    ChildMaps {
+        face_child_faces: (0..child_faces).collect(),
+        face_child_face_offsets: face_offsets,
+        // The edges inside a face are numbered from its first corner.
+        face_child_edges: (0..corners).collect(),
+        face_child_edge_offsets: corner_offsets,
+        edge_child_edges: (0..parent.edge_count())
+            .map(|e| [split.edge_child_edge(e, 0), split.edge_child_edge(e, 1)])
+            .collect(),
+        face_child_vertex: (0..nf)
+            .map(|f| match triangles {
+                true => INVALID_INDEX,
+                false => split.face_child(f),
+            })
+            .collect(),
+        edge_child_vertex: (0..parent.edge_count())
+            .map(|e| split.edge_child(e))
+            .collect(),
+        vertex_child_vertex: (0..parent.vertex_count)
+            .map(|v| split.vertex_child(v))
+            .collect(),
+        child_face_parent_face,
+    }
 }
 
 /// Element counts of a level.
