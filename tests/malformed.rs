@@ -551,6 +551,31 @@ mod osd_bridge {
             .expect_err("the bridge must refuse it before OpenSubdiv asserts")
             .to_string();
         assert!(err.contains("vertex 3") && err.contains("pair up"), "{err}");
+        // Made a semi-sharp corner, the vertex passes level 0 and becomes
+        // smooth one level down, where adaptive refinement (which selects
+        // the faces around its semi-sharp feature) refuses it in both engines.
+        let options = shape.options();
+        let mut mesh = shape.mesh.clone();
+        mesh.corners.push(subdiv::Corner {
+            vertex: 3,
+            sharpness: 1.0,
+        });
+        let adaptive = subdiv::AdaptiveOptions::new(2);
+        let native = refiner::Refiner::new(&mesh, &options)
+            .unwrap()
+            .refine_adaptive(adaptive, &[])
+            .expect_err("native adaptive must refuse an unpaired smooth vertex")
+            .to_string();
+        assert!(
+            native.contains("vertex 3") && native.contains("pair up"),
+            "{native}"
+        );
+        let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+        let err = theirs
+            .refine_adaptive(adaptive, &[])
+            .expect_err("the bridge must refuse it after RefineAdaptive")
+            .to_string();
+        assert!(err.contains("vertex 3") && err.contains("pair up"), "{err}");
     }
 
     #[test]

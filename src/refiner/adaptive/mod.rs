@@ -141,12 +141,16 @@ impl Refiner {
             ));
         }
         crate::alloc::guard(Some(adaptive.isolation_level), || {
-            Ok(self.refine_sparse_levels(adaptive, selected_faces))
+            self.refine_sparse_levels(adaptive, selected_faces)
         })
     }
 
     /// [`Refiner::refine_adaptive`]'s levels, once its arguments are checked.
-    fn refine_sparse_levels(self, adaptive: AdaptiveOptions, selected: &[u32]) -> AdaptiveRefiner {
+    fn refine_sparse_levels(
+        self,
+        adaptive: AdaptiveOptions,
+        selected: &[u32],
+    ) -> Result<AdaptiveRefiner> {
         let Refiner {
             options,
             mut levels,
@@ -229,7 +233,7 @@ impl Refiner {
             steps.push(split);
             levels.push(child);
         }
-        AdaptiveRefiner {
+        let refined = AdaptiveRefiner {
             rules: SchemeRules::new(&options),
             options,
             adaptive,
@@ -237,11 +241,44 @@ impl Refiner {
             steps,
             features,
             fvar,
-        }
+        };
+        refined.check_unpaired_smooth()?;
+        Ok(refined)
     }
 }
 
 impl AdaptiveRefiner {
+    /// Catmull-Clark's smooth masks need a vertex's faces and edges to pair
+    /// up; a vertex named twice by a face can break that and be smooth, or
+    /// become smooth as semi-sharp features decay. OpenSubdiv aborts on it
+    /// (the osd engine refuses it): refuse it too. Vertices without a child
+    /// are never interpolated from.
+    fn check_unpaired_smooth(&self) -> Result<()> {
+        if self.options.scheme != Scheme::Catmark {
+            return Ok(());
+        }
+        let smooth = |rule: crate::rules::Rule| {
+            matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
+        };
+        for (l, s) in self.steps.iter().enumerate() {
+            let (p, c) = (&self.levels[l], &self.levels[l + 1]);
+            for (v, &child) in s.vertex_child_vertex.iter().enumerate() {
+                if child == crate::INVALID_INDEX
+                    || p.vertex_faces.count(v) == p.vertex_edges.count(v)
+                {
+                    continue;
+                }
+                if smooth(p.vertex_tag(v).rule()) || smooth(c.vertex_tag(child as usize).rule()) {
+                    return Err(Error::UnpairedSmoothVertex {
+                        level: l as u32,
+                        vertex: v,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The options the topology was built with.
     pub fn options(&self) -> &Options {
         &self.options
