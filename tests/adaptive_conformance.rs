@@ -126,6 +126,11 @@ fn corpus_matches_opensubdiv() {
                         for ao in [
                             AdaptiveOptions::new(2),
                             AdaptiveOptions::new(4).faces_first(true),
+                            AdaptiveOptions::new(3).consider_fvar(true),
+                            AdaptiveOptions::new(4)
+                                .consider_fvar(true)
+                                .inf_sharp_patch(true)
+                                .secondary(2),
                         ] {
                             compare(&name, &mesh, &options, ao, &[]);
                         }

@@ -206,23 +206,32 @@ fn refusals() {
             ..
         })
     ));
-    // Face-varying features of a non-linear channel are not isolated
-    // natively yet: refused rather than ignored.
-    let uvs = shapes::cube_with_uvs();
-    let smooth_uvs = options.with_fvar(FVarLinearInterpolation::None);
-    assert!(matches!(
-        Refiner::new(&uvs, &smooth_uvs)
-            .unwrap()
-            .refine_adaptive(AdaptiveOptions::new(2).consider_fvar(true), &[]),
-        Err(Error::NotYetSupported(_))
-    ));
-    // Linear channels have no such features: accepted.
-    let linear = Refiner::new(&uvs, &options).unwrap();
-    assert!(
-        linear
-            .refine_adaptive(AdaptiveOptions::new(2).consider_fvar(true), &[])
-            .is_ok()
-    );
+    // Face-varying features: on a regular torus nothing is selected, but a
+    // channel split at every edge (each face its own values) has boundary
+    // features everywhere, which are isolated when asked, and only when the
+    // channel is not linear.
+    let seam = {
+        let mut m = shapes::torus(8, 6);
+        let corners = m.face_vertices.len();
+        m.fvar_channels.push(subdiv::FVarChannel {
+            width: 2,
+            values: (0..2 * corners).map(|x| x as f64).collect(),
+            indices: (0..corners as u32).collect(),
+        });
+        m
+    };
+    let levels = |fvar: FVarLinearInterpolation, consider: bool| {
+        let a = adaptive(
+            &seam,
+            &Options::shape_file_defaults().with_fvar(fvar),
+            AdaptiveOptions::new(2).consider_fvar(consider),
+            &[],
+        );
+        a.max_level()
+    };
+    assert_eq!(levels(FVarLinearInterpolation::None, false), 0);
+    assert!(levels(FVarLinearInterpolation::None, true) > 0);
+    assert_eq!(levels(FVarLinearInterpolation::All, true), 0);
     let a = adaptive(&cube, &options, AdaptiveOptions::new(2), &[]);
     assert!(matches!(
         a.interpolate(3, 3, &[0.0; 98 * 3]),

@@ -282,11 +282,10 @@ fn adaptive_usage_errors_name_the_problem() {
     assert_eq!(crate::support::file_names(&dir), ["cube.obj"]);
 }
 
-/// Loop refines adaptively in both engines, identically; what the native
-/// engine does not do yet (isolating the features of a non-linear
-/// face-varying channel) exits 4 and says so, writing nothing.
+/// Loop, and the features of a non-linear face-varying channel, refine
+/// adaptively in both engines, identically.
 #[test]
-fn loop_and_what_is_not_yet_supported() {
+fn loop_and_face_varying_features() {
     let dir = scratch("adaptive-loop");
     let ico = write(&dir, "ico.obj", &obj_text(&shapes::icosahedron()));
     let json = |engine: &str| {
@@ -325,29 +324,32 @@ fn loop_and_what_is_not_yet_supported() {
         assert!(o.status.success(), "{}", stderr(&o));
     }
 
+    // Face-varying features of a non-linear channel (`--consider-fvar`):
+    // both engines isolate the same faces.
     let uvs = write(&dir, "uvs.obj", &obj_text(&shapes::cube_with_uvs()));
-    let out = dir.join("uvs.json");
-    let o = refine(
-        &uvs,
-        &[
-            "--engine",
-            "native",
-            "--fvar",
-            "none",
-            "--adaptive",
-            "2",
-            "--consider-fvar",
-            "--levels-json",
-            out.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
-    let err = stderr(&o);
-    assert!(
-        err.contains("uvs.obj: not supported by the native engine yet: adaptive refinement considering face-varying channels"),
-        "{err}"
-    );
-    assert!(!out.exists());
+    let fvar_json = |engine: &str| {
+        let out = dir.join(format!("uvs-{engine}.json"));
+        let o = refine(
+            &uvs,
+            &[
+                "--engine",
+                engine,
+                "--fvar",
+                "none",
+                "--adaptive",
+                "3",
+                "--consider-fvar",
+                "--levels-json",
+                out.to_str().unwrap(),
+            ],
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out).unwrap()
+    };
+    let native = fvar_json("native");
+    if cfg!(feature = "osd") {
+        assert_eq!(native, fvar_json("osd"));
+    }
 }
 
 /// Without the `osd` feature, OpenSubdiv's adaptive refinement is "not

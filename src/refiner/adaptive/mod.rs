@@ -31,9 +31,9 @@
 //! * `select.rs`: which faces a level selects;
 //! * `interpolate.rs`: vertex and varying primvars level by level.
 //!
-//! Face-varying channels refine with the levels and interpolate on them;
-//! selecting faces by the features of non-linear face-varying channels
-//! (`consider_fvar_channels`) is not there yet.
+//! Face-varying channels refine with the levels and interpolate on them,
+//! and with `consider_fvar_channels` their own boundary features select
+//! faces too.
 
 mod features;
 mod interpolate;
@@ -51,7 +51,7 @@ use crate::topology::fvar::ChannelLevel;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_sparse};
 use features::{Features, base_features, child_features, regular_face_size};
 use glam::DVec3;
-use select::{FeatureMask, face_has_features};
+use select::{FeatureMask, face_is_selected};
 
 /// The deepest secondary level OpenSubdiv's 4-bit field holds (15: none).
 const MAX_SECONDARY_LEVEL: u32 = 15;
@@ -85,9 +85,7 @@ impl Refiner {
     /// ([`Error::AlreadyRefined`]); and, before anything is refined, an
     /// isolation level beyond [`MAX_LEVEL`] or a secondary level beyond 15
     /// ([`Error::Level`]) and a selected face out of range
-    /// ([`Error::NoSuchElement`]). Not yet supported natively
-    /// ([`Error::NotYetSupported`]): the non-linear face-varying channels
-    /// that `consider_fvar_channels` would read.
+    /// ([`Error::NoSuchElement`]).
     pub fn refine_adaptive(
         self,
         adaptive: AdaptiveOptions,
@@ -129,17 +127,6 @@ impl Refiner {
                 count: base.face_count(),
             });
         }
-        let scheme = self.options.scheme;
-        let nonlinear = scheme != Scheme::Bilinear;
-        if adaptive.consider_fvar_channels
-            && nonlinear
-            && !self.fvar.is_empty()
-            && self.options.fvar != crate::options::FVarLinearInterpolation::All
-        {
-            return Err(Error::NotYetSupported(
-                "adaptive refinement considering face-varying channels",
-            ));
-        }
         crate::alloc::guard(Some(adaptive.isolation_level), || {
             self.refine_sparse_levels(adaptive, selected_faces)
         })
@@ -172,7 +159,11 @@ impl Refiner {
         } else {
             irregular_faces as u32
         };
-        let more = FeatureMask::new(&adaptive, reg);
+        let mut more = FeatureMask::new(&adaptive, reg);
+        // Face-varying features count only where a channel is not linear.
+        more.fvar_features &= nonlinear
+            && !fvar.is_empty()
+            && options.fvar != crate::options::FVarLinearInterpolation::All;
         let less = if shallow < deepest {
             more.reduced(&adaptive)
         } else {
@@ -183,13 +174,17 @@ impl Refiner {
         for i in 1..=deepest {
             let parent = levels.last().expect("base level");
             let mask = if i <= shallow { &more } else { &less };
+            let channels: Vec<&ChannelLevel> = fvar
+                .iter()
+                .map(|c| c.last().expect("the parent level's channel"))
+                .collect();
             let mut selection = Selection::new(parent);
             let mut consider = |f: usize| {
                 if parent.is_hole(f) {
                     return;
                 }
                 let select = if nonlinear {
-                    face_has_features(parent, &features[i as usize - 1], f, mask, reg)
+                    face_is_selected(parent, &features[i as usize - 1], &channels, f, mask, reg)
                 } else {
                     parent.face_vertices.count(f) != reg
                 };

@@ -7,6 +7,7 @@ use super::features::Features;
 use crate::options::AdaptiveOptions;
 use crate::rules::Rule;
 use crate::topology::Level;
+use crate::topology::fvar::{ChannelLevel, ValueTag};
 
 /// The features to isolate at one level (`Far::internal::FeatureMask`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,6 +23,8 @@ pub(crate) struct FeatureMask {
     pub inf_sharp_irregular_corner: bool,
     pub unisolated_interior_edge: bool,
     pub non_manifold: bool,
+    /// Also isolate the features of the face-varying channels.
+    pub fvar_features: bool,
 }
 
 impl FeatureMask {
@@ -42,6 +45,7 @@ impl FeatureMask {
             inf_sharp_irregular_corner: true,
             unisolated_interior_edge: single && !inf_patch,
             non_manifold: true,
+            fvar_features: options.consider_fvar_channels,
         }
     }
 
@@ -104,6 +108,32 @@ impl Tag {
             rule: rule_bits(t.rule()),
             features: features[v],
         }
+    }
+
+    /// The tags of a vertex as one of its values in a face-varying channel
+    /// sees it (`FVarLevel::ValueTag::combineWithLevelVTag`): a value where
+    /// the channel's topology differs lies on an infinitely sharp boundary
+    /// of the channel, a crease or a corner.
+    fn with_value(mut self, value: ValueTag) -> Tag {
+        if !value.is_mismatch() {
+            return self;
+        }
+        self.rule = if value.is_corner() { CORNER } else { CREASE };
+        if value.is_crease() || value.is_semi_sharp() {
+            self.inf_sharp = false;
+            self.features.inf_sharp_crease = true;
+            self.corner = false;
+        } else {
+            self.inf_sharp = true;
+            self.features.inf_sharp_crease = false;
+            self.corner = !value.is_inf_irregular() && !value.has_inf_sharp_edges();
+        }
+        self.inf_sharp_edges = true;
+        self.features.inf_irregular = value.is_inf_irregular();
+        self.boundary = true;
+        self.features.xordinary = value.is_xordinary();
+        self.non_manifold |= value.is_non_manifold();
+        self
     }
 
     fn or(self, o: Tag) -> Tag {
@@ -207,6 +237,67 @@ fn is_single_crease_patch(level: &Level, composite: Tag, corners: &[Tag], verts:
         s(0) == s(2) && s(1) == s(3)
     };
     regular(verts[edge]) && regular(verts[(edge + 1) % 4])
+}
+
+/// Whether face `f` has features to isolate, or, when the mask says so, its
+/// face-varying channels do where their topology differs from the
+/// vertices' (`selectFeatureAdaptiveComponents`).
+pub(crate) fn face_is_selected(
+    level: &Level,
+    features: &[Features],
+    channels: &[&ChannelLevel],
+    f: usize,
+    mask: &FeatureMask,
+    regular_face_size: usize,
+) -> bool {
+    face_has_features(level, features, f, mask, regular_face_size)
+        || (mask.fvar_features
+            && channels.iter().any(|&channel| {
+                let verts = level.face_verts(f);
+                let matches = verts
+                    .iter()
+                    .all(|&v| !channel.vertex_value_tags(v as usize)[0].is_mismatch());
+                !matches && face_varying_features(level, features, channel, f, mask)
+            }))
+}
+
+/// Whether the face-varying boundary features of face `f`'s corners in one
+/// channel need isolating (`doesFaceHaveDistinctFaceVaryingFeatures`): the
+/// tags of each corner combined over all of its values in the channel, so
+/// that faces across the channel's boundaries stay within one level.
+fn face_varying_features(
+    level: &Level,
+    features: &[Features],
+    channel: &ChannelLevel,
+    f: usize,
+    mask: &FeatureMask,
+) -> bool {
+    let verts = level.face_verts(f);
+    let mut corners = [Tag::default(); 4];
+    for (slot, &v) in corners.iter_mut().zip(verts) {
+        let base = Tag::of(level, features, v as usize);
+        let values = channel.vertex_value_tags(v as usize);
+        *slot = if values[0].is_mismatch() {
+            values
+                .iter()
+                .map(|&value| base.with_value(value))
+                .fold(Tag::default(), Tag::or)
+        } else {
+            base
+        };
+    }
+    let corners = &corners[..verts.len().min(4)];
+    let composite = corners.iter().fold(Tag::default(), |a, &b| a.or(b));
+    if composite.features.incomplete {
+        return false;
+    }
+    if composite.non_manifold && mask.non_manifold {
+        return true;
+    }
+    if composite.features.xordinary && mask.xordinary_interior {
+        return true;
+    }
+    inf_sharp_face_has_features(composite, corners, mask)
 }
 
 /// Whether face `f` has features to isolate (`doesFaceHaveFeatures`).

@@ -46,6 +46,11 @@ pub fn build_base(
 ) -> ChannelLevel {
     let mode = Mode::new(options.fvar);
     let nv = level.vertex_count;
+    let regular_boundary_valence = if options.scheme == crate::options::Scheme::Loop {
+        3
+    } else {
+        2
+    };
     let mut fvar = ChannelLevel {
         mode,
         value_count,
@@ -252,6 +257,28 @@ pub fn build_base(
             }
             let inf_sharp =
                 all_sharp || span.inf_sharp_edges > 0 || (span.size == 1 && corners_sharp);
+            // The features an adaptive selection reads (`considerFVarChannels`).
+            let xordinary = if span.size == 1 {
+                !inf_sharp
+            } else {
+                span.size as usize != regular_boundary_valence
+            };
+            let inf_irregular = if span.inf_sharp_edges > 0 {
+                i32::from(span.size) - i32::from(span.inf_sharp_edges) > 1
+            } else if inf_sharp {
+                span.size > 1
+            } else {
+                xordinary
+            };
+            for (on, bit) in [
+                (xordinary, ValueTag::XORDINARY),
+                (span.inf_sharp_edges > 0, ValueTag::INF_SHARP_EDGES),
+                (inf_irregular, ValueTag::INF_IRREGULAR),
+            ] {
+                if on {
+                    vtag_i = vtag_i.with(bit);
+                }
+            }
             if !inf_sharp {
                 vtag_i = if span.semi_sharp_edges > 0 || vtag.semi_sharp() {
                     vtag_i.with(ValueTag::SEMI_SHARP)

@@ -101,6 +101,13 @@ impl ValueTag {
     const SEMI_SHARP: u8 = 4;
     const DEP_SHARP: u8 = 8;
     const NON_MANIFOLD: u8 = 16;
+    /// The value's span has not the regular boundary valence (what a
+    /// feature-adaptive selection of face-varying features reads).
+    const XORDINARY: u8 = 32;
+    /// Infinitely sharp edges lie inside the value's span.
+    const INF_SHARP_EDGES: u8 = 64;
+    /// The value's infinitely sharp features are not a regular patch's.
+    const INF_IRREGULAR: u8 = 128;
 
     /// The channel's topology around the vertex differs from the vertex's
     /// (a seam, a linearly interpolated boundary or a sharpened corner).
@@ -137,6 +144,30 @@ impl ValueTag {
     #[inline]
     pub fn is_dep_sharp(self) -> bool {
         self.0 & Self::DEP_SHARP != 0
+    }
+
+    /// Split off by a non-manifold arrangement of the channel.
+    #[inline]
+    pub fn is_non_manifold(self) -> bool {
+        self.0 & Self::NON_MANIFOLD != 0
+    }
+
+    /// Its span has not the regular boundary valence.
+    #[inline]
+    pub fn is_xordinary(self) -> bool {
+        self.0 & Self::XORDINARY != 0
+    }
+
+    /// Infinitely sharp edges lie inside its span.
+    #[inline]
+    pub fn has_inf_sharp_edges(self) -> bool {
+        self.0 & Self::INF_SHARP_EDGES != 0
+    }
+
+    /// Its infinitely sharp features are not a regular patch's.
+    #[inline]
+    pub fn is_inf_irregular(self) -> bool {
+        self.0 & Self::INF_IRREGULAR != 0
     }
 
     #[inline]
