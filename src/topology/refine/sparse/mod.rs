@@ -447,3 +447,81 @@ pub fn refine_sparse(
     child.drop_default_tags();
     (s, child)
 }
+
+/// The halves of the parent's edges, in child index order: their vertices
+/// and their faces. `child_face(pf, k, end)` is the child face of parent face
+/// `pf` beside its edge `k` at the edge's end `end` (as the face runs), and
+/// that child's local index of the half.
+fn edge_halves(
+    parent: &Level,
+    s: &SparseSplit,
+    edge_vertices: &mut Table<[u32; 2]>,
+    edge_faces: &mut Filler,
+    child_face: impl Fn(usize, usize, usize) -> (u32, usize),
+) {
+    for e in 0..parent.edge_count() {
+        let ends = parent.edge_vertices[e];
+        for j in 0..2 {
+            let c = s.edge_child_edges[e][j];
+            if !valid(c) {
+                continue;
+            }
+            edge_vertices[c as usize] = [
+                s.edge_child_vertex[e],
+                s.vertex_child_vertex[ends[j] as usize],
+            ];
+            for (&pf, &k) in parent
+                .edge_faces_of(e)
+                .iter()
+                .zip(parent.edge_face_locals(e))
+            {
+                let (pf, k) = (pf as usize, k as usize);
+                // Which child of the face the half lies in (a degenerate
+                // edge: by the half's own end).
+                let end = if ends[0] == ends[1] {
+                    j
+                } else {
+                    (parent.face_verts(pf)[k] != ends[j]) as usize
+                };
+                let (cf, local) = child_face(pf, k, end);
+                if valid(cf) {
+                    edge_faces.push(cf, local);
+                }
+            }
+            edge_faces.end();
+        }
+    }
+}
+
+/// The faces and edges of the child of parent vertex `v`: the child at the
+/// vertex's corner of each of its faces that exists (`child_face(pf, k)`:
+/// the child of face `pf` at its corner `k`, with its local index of the
+/// vertex) and the half of each of its edges at it.
+fn vertex_point(
+    parent: &Level,
+    s: &SparseSplit,
+    v: usize,
+    (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
+    child_face: impl Fn(usize, usize) -> (u32, usize),
+) {
+    for (&pf, &k) in parent
+        .vertex_faces_of(v)
+        .iter()
+        .zip(parent.vertex_face_locals(v))
+    {
+        let (cf, local) = child_face(pf as usize, k as usize);
+        if valid(cf) {
+            vertex_faces.push(cf, local);
+        }
+    }
+    for (&pe, &end) in parent
+        .vertex_edges_of(v)
+        .iter()
+        .zip(parent.vertex_edge_locals(v))
+    {
+        let ce = s.edge_child_edges[pe as usize][end as usize];
+        if valid(ce) {
+            vertex_edges.push(ce, 1);
+        }
+    }
+}

@@ -133,46 +133,27 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
             edge_faces.end();
         }
     }
-    for e in 0..parent.edge_count() {
-        let ends = parent.edge_vertices[e];
-        for j in 0..2 {
-            let c = s.edge_child_edges[e][j];
-            if !valid(c) {
-                continue;
-            }
-            edge_vertices[c as usize] = [
-                s.edge_child_vertex[e],
-                s.vertex_child_vertex[ends[j] as usize],
-            ];
-            for (&pf, &in_face) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-            {
-                let (pf, in_face) = (pf as usize, in_face as usize);
-                let range = parent.face_vertices.range(pf);
-                let n = range.len();
-                let of_edge = if ends[0] == ends[1] {
-                    j
-                } else {
-                    (parent.face_verts(pf)[in_face] != ends[j]) as usize
-                };
-                let in_child = (in_face + of_edge) % n;
-                let cf = s.face_child_faces[range.start + in_child];
-                if valid(cf) {
-                    let local = if n == 4 {
-                        in_face
-                    } else if of_edge == 1 {
-                        3
-                    } else {
-                        0
-                    };
-                    edge_faces.push(cf, local);
-                }
-            }
-            edge_faces.end();
-        }
-    }
+    super::edge_halves(
+        parent,
+        s,
+        &mut edge_vertices,
+        &mut edge_faces,
+        |pf, in_face, of_edge| {
+            let range = parent.face_vertices.range(pf);
+            let n = range.len();
+            let local = if n == 4 {
+                in_face
+            } else if of_edge == 1 {
+                3
+            } else {
+                0
+            };
+            (
+                s.face_child_faces[range.start + (in_face + of_edge) % n],
+                local,
+            )
+        },
+    );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
     let mut vertex_faces = Filler::new(nv);
@@ -237,35 +218,17 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
                 }
             }
             VertexParent::Vertex(v) => {
-                let v = v as usize;
-                for (&pf, &in_face) in parent
-                    .vertex_faces_of(v)
-                    .iter()
-                    .zip(parent.vertex_face_locals(v))
-                {
-                    let range = parent.face_vertices.range(pf as usize);
-                    let cf = s.face_child_faces[range.start + in_face as usize];
-                    if valid(cf) {
-                        vertex_faces.push(
-                            cf,
-                            if range.len() == 4 {
-                                in_face as usize
-                            } else {
-                                0
-                            },
-                        );
-                    }
-                }
-                for (&pe, &end) in parent
-                    .vertex_edges_of(v)
-                    .iter()
-                    .zip(parent.vertex_edge_locals(v))
-                {
-                    let ce = s.edge_child_edges[pe as usize][end as usize];
-                    if valid(ce) {
-                        vertex_edges.push(ce, 1);
-                    }
-                }
+                super::vertex_point(
+                    parent,
+                    s,
+                    v as usize,
+                    (&mut vertex_faces, &mut vertex_edges),
+                    |pf, k| {
+                        let range = parent.face_vertices.range(pf);
+                        let local = if range.len() == 4 { k } else { 0 };
+                        (s.face_child_faces[range.start + k], local)
+                    },
+                );
             }
         }
         vertex_faces.end();

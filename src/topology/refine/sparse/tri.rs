@@ -114,36 +114,18 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     }
 
     // The halves of edges.
-    for e in 0..parent.edge_count() {
-        let ends = parent.edge_vertices[e];
-        for j in 0..2 {
-            let c = s.edge_child_edges[e][j];
-            if !valid(c) {
-                continue;
-            }
-            edge_vertices[c as usize] = [
-                s.edge_child_vertex[e],
-                s.vertex_child_vertex[ends[j] as usize],
-            ];
-            for (&pf, &in_face) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-            {
-                let (pf, in_face) = (pf as usize, in_face as usize);
-                let of_edge = if ends[0] == ends[1] {
-                    j
-                } else {
-                    (parent.face_verts(pf)[in_face] != ends[j]) as usize
-                };
-                let cf = s.face_child_faces[4 * pf + (in_face + of_edge) % 3];
-                if valid(cf) {
-                    edge_faces.push(cf, in_face);
-                }
-            }
-            edge_faces.end();
-        }
-    }
+    super::edge_halves(
+        parent,
+        s,
+        &mut edge_vertices,
+        &mut edge_faces,
+        |pf, in_face, of_edge| {
+            (
+                s.face_child_faces[4 * pf + (in_face + of_edge) % 3],
+                in_face,
+            )
+        },
+    );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
     let mut vertex_faces = Filler::new(nv);
@@ -185,27 +167,13 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
                 }
             }
             VertexParent::Vertex(v) => {
-                let v = v as usize;
-                for (&pf, &k) in parent
-                    .vertex_faces_of(v)
-                    .iter()
-                    .zip(parent.vertex_face_locals(v))
-                {
-                    let cf = s.face_child_faces[4 * pf as usize + k as usize];
-                    if valid(cf) {
-                        vertex_faces.push(cf, k as usize);
-                    }
-                }
-                for (&pe, &end) in parent
-                    .vertex_edges_of(v)
-                    .iter()
-                    .zip(parent.vertex_edge_locals(v))
-                {
-                    let ce = s.edge_child_edges[pe as usize][end as usize];
-                    if valid(ce) {
-                        vertex_edges.push(ce, 1);
-                    }
-                }
+                super::vertex_point(
+                    parent,
+                    s,
+                    v as usize,
+                    (&mut vertex_faces, &mut vertex_edges),
+                    |pf, k| (s.face_child_faces[4 * pf + k], k),
+                );
             }
             VertexParent::Face(_) => unreachable!("Loop's split has no face points"),
         }
