@@ -28,8 +28,12 @@
 //! * `features.rs`: the vertex tags the selection reads beyond those
 //!   refinement keeps (extraordinary, incomplete, ...), on the base level
 //!   and passed from level to level;
-//! * `select.rs`: which faces a level selects;
-//! * `interpolate.rs`: vertex and varying primvars level by level.
+//! * `select.rs`: which faces a level selects (face-varying features
+//!   included);
+//! * `interpolate.rs`: vertex, varying and face-varying primvars level by
+//!   level;
+//! * `stencils.rs`: stencil tables in every mode of
+//!   `StencilTableFactory::Options` (face-varying ones not yet).
 //!
 //! Face-varying channels refine with the levels and interpolate on them,
 //! and with `consider_fvar_channels` their own boundary features select
