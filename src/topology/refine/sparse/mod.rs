@@ -347,13 +347,16 @@ struct Filler {
 }
 
 impl Filler {
-    fn new(elements: usize) -> Self {
+    /// Room for `elements` elements of `members` members in all (each
+    /// relation here is the transpose of one whose size is known: the
+    /// faces of the edges are the edges of the faces, and so on).
+    fn new(elements: usize, members: usize) -> Self {
         let mut offsets = Vec::with_capacity(elements + 1);
         offsets.push(0);
         Filler {
             offsets,
-            members: Vec::new(),
-            locals: Vec::new(),
+            members: Vec::with_capacity(members),
+            locals: Vec::with_capacity(members),
         }
     }
 

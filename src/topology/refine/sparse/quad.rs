@@ -109,7 +109,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     // Edge-vertices and edge-faces, child edges in index order: those
     // inside faces, then the halves of edges.
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne);
+    let mut edge_faces = Filler::new(ne, 4 * nf);
     for f in 0..parent.face_count() {
         let range = parent.face_vertices.range(f);
         let n = range.len();
@@ -156,8 +156,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv);
-    let mut vertex_edges = Filler::new(nv);
+    let mut vertex_faces = Filler::new(nv, 4 * nf);
+    let mut vertex_edges = Filler::new(nv, 2 * ne);
     for (c, &p) in s.child_vertex_parent.iter().enumerate() {
         debug_assert_eq!(vertex_faces.offsets.len(), c + 1);
         match p {

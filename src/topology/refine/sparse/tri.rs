@@ -61,7 +61,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne);
+    let mut edge_faces = Filler::new(ne, 3 * nf);
 
     // Faces, and the inner edges in index order (parent face order).
     for f in 0..parent.face_count() {
@@ -128,8 +128,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv);
-    let mut vertex_edges = Filler::new(nv);
+    let mut vertex_faces = Filler::new(nv, 3 * nf);
+    let mut vertex_edges = Filler::new(nv, 2 * ne);
     for &p in &s.child_vertex_parent {
         match p {
             VertexParent::Edge(e) => {
