@@ -245,4 +245,33 @@ fn refusals() {
         a.interpolate::<f64>(1, 0, &[]),
         Err(Error::ZeroWidth)
     ));
+    // The same checks for face-varying values, channel first.
+    let uv = adaptive(
+        &shapes::cube_with_uvs(),
+        &options,
+        AdaptiveOptions::new(2),
+        &[],
+    );
+    let values = shapes::cube_with_uvs().fvar_channels[0].values.clone();
+    assert!(matches!(
+        uv.interpolate_face_varying(1, 1, 2, &values),
+        Err(Error::NoSuchChannel {
+            channel: 1,
+            count: 1
+        })
+    ));
+    assert!(matches!(
+        uv.interpolate_face_varying(0, 3, 2, &values),
+        Err(Error::NoSuchLevel { level: 3, .. })
+    ));
+    assert!(matches!(
+        uv.interpolate_face_varying(0, 1, 0, &values),
+        Err(Error::ZeroWidth)
+    ));
+    assert!(matches!(
+        uv.interpolate_face_varying(0, 1, 2, &values[1..]),
+        Err(Error::BufferLength { .. })
+    ));
+    let level1 = uv.interpolate_face_varying(0, 1, 2, &values).unwrap();
+    assert_eq!(level1.len(), 2 * uv.level(1).unwrap().fvar[0].value_count);
 }

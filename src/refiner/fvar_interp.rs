@@ -127,28 +127,14 @@ impl Refiner {
         src: &[T],
     ) -> Result<Vec<T>> {
         crate::alloc::guard(Some(level), || {
-            let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            let (_, child) = fvar_call_levels(
+                &self.fvar,
                 channel,
-                count: self.fvar.len(),
-            })?;
-            if level == 0 || level > self.max_level() {
-                return Err(Error::NoSuchLevel {
-                    level,
-                    first: 1,
-                    last: self.max_level(),
-                });
-            }
-            if width == 0 {
-                return Err(Error::ZeroWidth);
-            }
-            let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
-            if src.len() != parent.value_count() * width {
-                return Err(Error::BufferLength {
-                    buffer: Buffer::FaceVaryingSource,
-                    expected: parent.value_count() * width,
-                    got: src.len(),
-                });
-            }
+                level,
+                self.max_level(),
+                width,
+                src.len(),
+            )?;
             let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.value_count() * width);
             self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
             Ok(dst)
@@ -175,6 +161,43 @@ impl Refiner {
         };
         fvar_level(&step, width, src, dst);
     }
+}
+
+/// The channel's levels `level - 1` and `level` for interpolating `src_len`
+/// values `width` wide, or the error naming what is wrong with the call: a
+/// channel, level or width that does not exist, or a source of the wrong
+/// length. `channels[c][l]` is channel `c` at level `l`.
+pub(crate) fn fvar_call_levels(
+    channels: &[Vec<ChannelLevel>],
+    channel: usize,
+    level: u32,
+    max_level: u32,
+    width: usize,
+    src_len: usize,
+) -> Result<(&ChannelLevel, &ChannelLevel)> {
+    let levels = channels.get(channel).ok_or(Error::NoSuchChannel {
+        channel,
+        count: channels.len(),
+    })?;
+    if level == 0 || level > max_level {
+        return Err(Error::NoSuchLevel {
+            level,
+            first: 1,
+            last: max_level,
+        });
+    }
+    if width == 0 {
+        return Err(Error::ZeroWidth);
+    }
+    let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
+    if src_len != parent.value_count() * width {
+        return Err(Error::BufferLength {
+            buffer: Buffer::FaceVaryingSource,
+            expected: parent.value_count() * width,
+            got: src_len,
+        });
+    }
+    Ok((parent, child))
 }
 
 /// What one level's face-varying interpolation reads: the rules and

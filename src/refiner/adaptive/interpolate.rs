@@ -8,7 +8,7 @@ use super::AdaptiveRefiner;
 use crate::error::{Buffer, Error, Result};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
-use crate::refiner::fvar_interp::{FVarStep, fvar_level};
+use crate::refiner::fvar_interp::{FVarStep, fvar_call_levels, fvar_level};
 use crate::refiner::kernel::interpolate_sparse;
 use crate::refiner::{Children, Kind, Scratch, Source, Step, accumulate, face_terms};
 use crate::topology::refine::sparse::SparseSplit;
@@ -60,28 +60,14 @@ impl AdaptiveRefiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+        let (pf, cf) = fvar_call_levels(
+            &self.fvar,
             channel,
-            count: self.fvar.len(),
-        })?;
-        if level == 0 || level > self.max_level() {
-            return Err(Error::NoSuchLevel {
-                level,
-                first: 1,
-                last: self.max_level(),
-            });
-        }
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        let (pf, cf) = (&levels[level as usize - 1], &levels[level as usize]);
-        if src.len() != pf.value_count() * width {
-            return Err(Error::BufferLength {
-                buffer: Buffer::FaceVaryingSource,
-                expected: pf.value_count() * width,
-                got: src.len(),
-            });
-        }
+            level,
+            self.max_level(),
+            width,
+            src.len(),
+        )?;
         crate::alloc::guard(Some(level), || {
             let mut dst = crate::alloc::vec_or_unwind(T::ZERO, cf.value_count() * width);
             let step = FVarStep {
