@@ -82,6 +82,12 @@ impl Selection {
         !self.any
     }
 
+    /// Whether everything is selected: every face, and so every edge, and
+    /// every vertex (none lies outside the faces).
+    pub fn is_whole(&self) -> bool {
+        self.faces.iter().all(|&f| f) && self.vertices.iter().all(|&v| v)
+    }
+
     /// Whether face `f` is selected.
     pub fn face(&self, f: usize) -> bool {
         self.faces[f]
@@ -409,7 +415,14 @@ pub fn refine_sparse(
     faces_first: bool,
 ) -> (SparseSplit, Level) {
     let triangles = options.scheme == Scheme::Loop;
+    let whole = selection.is_whole();
     let s = number_children(parent, selection, faces_first, triangles);
+    if whole {
+        // Every child exists and the numbering is the uniform one: the
+        // uniform split builds the same level, faster.
+        let (_, child) = super::refine_level(parent, options, faces_first, super::Build::Full);
+        return (s, child);
+    }
     let t = if triangles {
         tri::topology(parent, &s)
     } else {
