@@ -164,6 +164,24 @@ fn cgroup_headroom() -> Option<u64> {
     None
 }
 
+/// Refuses an interpolation from level `level - 1` to `level` of a refiner
+/// refined to `last` levels ([`Error::NoSuchLevel`]: the levels to
+/// interpolate are `1..=last`) or of values zero wide ([`Error::ZeroWidth`]),
+/// as every engine's interpolation calls do.
+pub(crate) fn check_interpolation_call(level: u32, last: u32, width: usize) -> Result<()> {
+    if level == 0 || level > last {
+        return Err(Error::NoSuchLevel {
+            level,
+            first: 1,
+            last,
+        });
+    }
+    if width == 0 {
+        return Err(Error::ZeroWidth);
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

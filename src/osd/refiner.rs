@@ -434,16 +434,7 @@ impl TopologyRefiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        if level == 0 || level > self.max_level() {
-            return Err(Error::NoSuchLevel {
-                level,
-                first: 1,
-                last: self.max_level(),
-            });
-        }
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
+        crate::limits::check_interpolation_call(level, self.max_level(), width)?;
         // Element counts of the level read from and the level written.
         let (from, to) = if kind == SDV_FACE_VARYING {
             if channel >= self.fvar_channels {

@@ -179,16 +179,7 @@ pub(crate) fn fvar_call_levels(
         channel,
         count: channels.len(),
     })?;
-    if level == 0 || level > max_level {
-        return Err(Error::NoSuchLevel {
-            level,
-            first: 1,
-            last: max_level,
-        });
-    }
-    if width == 0 {
-        return Err(Error::ZeroWidth);
-    }
+    crate::limits::check_interpolation_call(level, max_level, width)?;
     let (parent, child) = (&levels[level as usize - 1], &levels[level as usize]);
     if src_len != parent.value_count() * width {
         return Err(Error::BufferLength {

@@ -87,12 +87,12 @@ impl<T: Real> Scratch<T> {
 /// Widths handled on the stack; wider data takes the general path.
 pub(super) const MAX_WIDTH: usize = 16;
 
-trait Width: Copy {
+pub(super) trait Width: Copy {
     fn get(self) -> usize;
 }
 
 #[derive(Clone, Copy)]
-struct Fixed<const W: usize>;
+pub(super) struct Fixed<const W: usize>;
 
 impl<const W: usize> Width for Fixed<W> {
     #[inline(always)]
@@ -102,7 +102,7 @@ impl<const W: usize> Width for Fixed<W> {
 }
 
 #[derive(Clone, Copy)]
-struct Dynamic(usize);
+pub(super) struct Dynamic(pub(super) usize);
 
 impl Width for Dynamic {
     #[inline(always)]
@@ -290,7 +290,7 @@ impl<T: Real> Cache<T> {
 }
 
 #[inline(always)]
-fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, width: W) {
+pub(super) fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, width: W) {
     let n = width.get();
     let row = &data[i as usize * n..i as usize * n + n];
     for k in 0..n {
@@ -304,7 +304,7 @@ fn add<T: Real, W: Width>(acc: &mut [T; MAX_WIDTH], data: &[T], i: u32, w: T, wi
 /// value: the irregular path's loop stays out of the regular path's code.
 #[cold]
 #[inline(never)]
-fn sum_terms<T: Real, W: Width>(
+pub(super) fn sum_terms<T: Real, W: Width>(
     terms: &[(Source, T)],
     src: &[T],
     face_points: &[T],
@@ -477,7 +477,7 @@ fn smooth_edge_point<T: Real, W: Width>(
 /// captured length turns the copy into a call to `memcpy` and keeps `acc` in
 /// memory instead of registers.
 #[inline(always)]
-fn store<T: Real, W: Width>(slot: &mut [T], acc: &[T; MAX_WIDTH], width: W) {
+pub(super) fn store<T: Real, W: Width>(slot: &mut [T], acc: &[T; MAX_WIDTH], width: W) {
     let n = width.get();
     slot[..n].copy_from_slice(&acc[..n]);
 }
@@ -574,19 +574,7 @@ fn run<T: Real, W: Width + Send + Sync>(
 
     // Face points: the parent face's vertices.
     par_children(face_points, n, |f, slot, cache, _| {
-        let verts = parent.face_verts(f);
-        let w = cache.face_weight(&r.rules, verts.len());
-        let mut acc = zero;
-        // Quads (every face after the first level) in an unrolled loop.
-        if let Ok(quad) = <&[u32; 4]>::try_from(verts) {
-            for &v in quad {
-                add(&mut acc, src, v, w, width);
-            }
-        } else {
-            for &v in verts {
-                add(&mut acc, src, v, w, width);
-            }
-        }
+        let acc = face_point(parent.face_verts(f), cache, &r.rules, src, width);
         store(slot, &acc, width);
     });
     // Edge and vertex points read face points (children of faces) only.
@@ -786,202 +774,26 @@ fn run<T: Real, W: Width + Send + Sync>(
     });
 }
 
-/// One sparse level of vertex data (feature-adaptive refinement): the child
-/// vertices `split` created, in its numbering, from `src` (the parent
-/// level's) into `dst`. As [`run`] on a uniform level: the masks of smooth
-/// faces, edges and vertices cached per shape, the others through the
-/// general terms of `step`; the same weights and terms in the same order as
-/// [`crate::refiner::adaptive`]'s walk, so the results are bit-identical to
-/// it (and to OpenSubdiv). Serial.
-pub(crate) fn interpolate_sparse<T: Real>(
-    step: &super::Step<'_, crate::topology::refine::sparse::SparseSplit>,
-    tri_smooth: bool,
-    width: usize,
+/// The face point of a face with vertices `verts`: their average, quads
+/// (every face after the first level) in an unrolled loop.
+#[inline(always)]
+pub(super) fn face_point<T: Real, W: Width>(
+    verts: &[u32],
+    cache: &mut Cache<T>,
+    rules: &SchemeRules,
     src: &[T],
-    dst: &mut [T],
-) {
-    match width {
-        1 => run_sparse(step, tri_smooth, Fixed::<1>, src, dst),
-        2 => run_sparse(step, tri_smooth, Fixed::<2>, src, dst),
-        3 => run_sparse(step, tri_smooth, Fixed::<3>, src, dst),
-        4 => run_sparse(step, tri_smooth, Fixed::<4>, src, dst),
-        w if w <= MAX_WIDTH => run_sparse(step, tri_smooth, Dynamic(w), src, dst),
-        w => {
-            let mut acc = vec![T::ZERO; w];
-            walk_sparse::<T>(step, |c, terms| accumulate(terms, src, dst, &mut acc, c));
-        }
-    }
-}
-
-/// Every created child vertex of a sparse step with its general terms, in
-/// OpenSubdiv's order (face points, edge points, vertex points).
-fn walk_sparse<T: Real>(
-    step: &super::Step<'_, crate::topology::refine::sparse::SparseSplit>,
-    mut emit: impl FnMut(u32, &[(Source, T)]),
-) {
-    let (parent, split) = (step.parent, step.children);
-    let mut s = Scratch::<T>::new();
-    for (f, &c) in split.face_child_vertex.iter().enumerate() {
-        if c != crate::INVALID_INDEX {
-            super::face_terms(step.rules, parent, f, &mut s);
-            emit(c, &s.terms);
-        }
-    }
-    for (e, &c) in split.edge_child_vertex.iter().enumerate() {
-        if c != crate::INVALID_INDEX {
-            step.edge_terms(Kind::Vertex, e, parent.edge_faces_of(e), &mut s);
-            emit(c, &s.terms);
-        }
-    }
-    for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
-        if c != crate::INVALID_INDEX {
-            let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
-            step.vertex_terms(Kind::Vertex, v, faces, edges, &mut s);
-            emit(c, &s.terms);
-        }
-    }
-}
-
-fn run_sparse<T: Real, W: Width>(
-    step: &super::Step<'_, crate::topology::refine::sparse::SparseSplit>,
-    tri_smooth: bool,
     width: W,
-    src: &[T],
-    dst: &mut [T],
-) {
-    let (parent, split, rules) = (step.parent, step.children, step.rules);
-    let n = width.get();
-    let zero = [T::ZERO; MAX_WIDTH];
-    let mut cache = Cache::<T>::new();
-    let mut scratch = Scratch::<T>::new();
-    let slot = |c: u32| c as usize * n..c as usize * n + n;
-    // Face points: the parent face's vertices.
-    for (f, &c) in split.face_child_vertex.iter().enumerate() {
-        if c == crate::INVALID_INDEX {
-            continue;
+) -> [T; MAX_WIDTH] {
+    let w = cache.face_weight(rules, verts.len());
+    let mut acc = [T::ZERO; MAX_WIDTH];
+    if let Ok(quad) = <&[u32; 4]>::try_from(verts) {
+        for &v in quad {
+            add(&mut acc, src, v, w, width);
         }
-        let verts = parent.face_verts(f);
-        let w = cache.face_weight(rules, verts.len());
-        let mut acc = zero;
-        if let Ok(quad) = <&[u32; 4]>::try_from(verts) {
-            for &v in quad {
-                add(&mut acc, src, v, w, width);
-            }
-        } else {
-            for &v in verts {
-                add(&mut acc, src, v, w, width);
-            }
+    } else {
+        for &v in verts {
+            add(&mut acc, src, v, w, width);
         }
-        store(&mut dst[slot(c)], &acc, width);
     }
-    // Edge points: smooth edges between two faces through the cached mask,
-    // the others term by term. Face points are read from `dst` by their
-    // child index (no offset: `first_face_point` 0).
-    let has_sharpness = !parent.edge_sharpness.is_empty();
-    for (e, &c) in split.edge_child_vertex.iter().enumerate() {
-        if c == crate::INVALID_INDEX {
-            continue;
-        }
-        let faces = parent.edge_faces_of(e);
-        let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
-        let weights = if smooth {
-            cache.smooth_edge(
-                rules,
-                [
-                    tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
-                    tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
-                ],
-            )
-        } else {
-            None
-        };
-        let acc = if let Some(w) = weights {
-            let mut acc = zero;
-            let ev = parent.edge_vertices[e];
-            add(&mut acc, src, ev[0], w.ends[0], width);
-            add(&mut acc, src, ev[1], w.ends[1], width);
-            if let Some(fw) = w.faces {
-                for k in 0..2 {
-                    let f = faces[k] as usize;
-                    if w.centers {
-                        add(&mut acc, dst, split.face_child_vertex[f], fw[k], width);
-                    } else {
-                        let far = super::opposite_vertex(parent, f, e);
-                        add(&mut acc, src, far, fw[k], width);
-                    }
-                }
-            }
-            acc
-        } else {
-            step.edge_terms(Kind::Vertex, e, faces, &mut scratch);
-            sum_terms(&scratch.terms, src, dst, 0, width)
-        };
-        store(&mut dst[slot(c)], &acc, width);
-    }
-    // Vertex points: smooth and dart vertices through the cached mask of
-    // their valence, the others term by term.
-    let has_tags = !parent.vertex_tags.is_empty();
-    for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
-        if c == crate::INVALID_INDEX {
-            continue;
-        }
-        let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
-        let rule = if has_tags {
-            parent.vertex_tags[v].rule()
-        } else {
-            Rule::Smooth
-        };
-        let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
-            && faces.len() == edges.len()
-            && !edges.is_empty();
-        let acc = if smooth {
-            let mut acc = zero;
-            SmoothSparseVertex {
-                v,
-                faces,
-                edges,
-                parent,
-                face_child: &split.face_child_vertex,
-                mask: cache.smooth_vertex(rules, faces.len()),
-            }
-            .sum(&mut acc, src, dst, width);
-            acc
-        } else {
-            step.vertex_terms(Kind::Vertex, v, faces, edges, &mut scratch);
-            sum_terms(&scratch.terms, src, dst, 0, width)
-        };
-        store(&mut dst[slot(c)], &acc, width);
-    }
-}
-
-/// A smooth vertex of a sparse parent level: its faces' face points (read
-/// through the step's face-child map), its edges' far ends, itself.
-struct SmoothSparseVertex<'a, T> {
-    v: usize,
-    faces: &'a [u32],
-    edges: &'a [u32],
-    parent: &'a Level,
-    face_child: &'a [u32],
-    mask: &'a Mask<T>,
-}
-
-impl<T: Real> SmoothSparseVertex<'_, T> {
-    /// Adds the terms of the vertex's child in mask order, as
-    /// `Step::vertex_terms` lists them.
-    #[inline(always)]
-    fn sum<W: Width>(&self, acc: &mut [T; MAX_WIDTH], src: &[T], dst: &[T], width: W) {
-        for (&f, &w) in self.faces.iter().zip(&self.mask.face) {
-            add(acc, dst, self.face_child[f as usize], w, width);
-        }
-        for (&e, &w) in self.edges.iter().zip(&self.mask.edge) {
-            add(
-                acc,
-                src,
-                self.parent.other_vertex(e as usize, self.v as u32),
-                w,
-                width,
-            );
-        }
-        add(acc, src, self.v as u32, self.mask.vertex[0], width);
-    }
+    acc
 }

@@ -250,35 +250,12 @@ impl Refiner {
         if self.options.scheme != Scheme::Catmark {
             return Ok(());
         }
-        let (p, c, r) = (&self.levels[l], &self.levels[l + 1], &self.refinements[l]);
-        for v in 0..p.vertex_count {
-            if p.vertex_faces.count(v) == p.vertex_edges.count(v) {
-                continue;
-            }
-            let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
-            if smooth(p.vertex_tag(v).rule())
-                || smooth(c.vertex_tag(r.vertex_child(v) as usize).rule())
-            {
-                return Err(Error::UnpairedSmoothVertex {
-                    level: l as u32,
-                    vertex: v,
-                });
-            }
-        }
-        Ok(())
+        let (p, c) = (&self.levels[l], &self.levels[l + 1]);
+        check_unpaired_smooth_step(p, c, &self.refinements[l], l)
     }
 
     fn check_buffers<T>(&self, level: u32, width: usize, src: &[T], dst: &[T]) -> Result<()> {
-        if level == 0 || level > self.max_level() {
-            return Err(Error::NoSuchLevel {
-                level,
-                first: 1,
-                last: self.max_level(),
-            });
-        }
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
+        crate::limits::check_interpolation_call(level, self.max_level(), width)?;
         let (n_src, n_dst) = (
             self.levels[level as usize - 1].vertex_count,
             self.levels[level as usize].vertex_count,
@@ -712,4 +689,34 @@ impl<C: Children> Step<'_, C> {
         }
         s.terms.push((Source::Parent(v as u32), s.mask.vertex[0]));
     }
+}
+
+/// Refuses a vertex of `p` (level `l`) whose faces and edges do not pair up
+/// (a face names it twice) and that is smooth in `p` or in `c`, its child
+/// after step `r` ([`Error::UnpairedSmoothVertex`]): Catmull-Clark's smooth
+/// masks cannot weigh it (OpenSubdiv aborts). Vertices without a child (a
+/// sparse step) are never interpolated from and pass.
+pub(crate) fn check_unpaired_smooth_step<C: Children>(
+    p: &Level,
+    c: &Level,
+    r: &C,
+    l: usize,
+) -> Result<()> {
+    let smooth = |rule: Rule| matches!(rule, Rule::Smooth | Rule::Dart);
+    for v in 0..p.vertex_count {
+        if p.vertex_faces.count(v) == p.vertex_edges.count(v) {
+            continue;
+        }
+        let child = r.vertex_child(v);
+        if child == crate::INVALID_INDEX {
+            continue;
+        }
+        if smooth(p.vertex_tag(v).rule()) || smooth(c.vertex_tag(child as usize).rule()) {
+            return Err(Error::UnpairedSmoothVertex {
+                level: l as u32,
+                vertex: v,
+            });
+        }
+    }
+    Ok(())
 }

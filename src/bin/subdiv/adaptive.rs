@@ -356,17 +356,8 @@ pub(crate) fn compare_adaptive(
     let identical = rows.iter().all(|r| r.agrees && r.positions_identical);
     let deepest = |l: &[AdaptiveLevel]| l.len().saturating_sub(1) as u32;
     let options_text = format!(
-        "{} boundary={} fvar={} creasing={} triangles={}{}, {}",
-        options.scheme,
-        options.boundary,
-        options.fvar,
-        options.creasing,
-        options.triangles,
-        if args.mesh.faces_first {
-            " faces-first"
-        } else {
-            ""
-        },
+        "{}, {}",
+        crate::compare::describe_options(&options, args.mesh.faces_first),
         args.adaptive.describe(level)
     );
     if args.json {

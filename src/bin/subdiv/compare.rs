@@ -91,19 +91,7 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     let agrees = rows.iter().all(|r| r.agrees);
     let report = CompareReport {
         input: &name,
-        options: format!(
-            "{} boundary={} fvar={} creasing={} triangles={}{}",
-            options.scheme,
-            options.boundary,
-            options.fvar,
-            options.creasing,
-            options.triangles,
-            if args.mesh.faces_first {
-                " faces-first"
-            } else {
-                ""
-            }
-        ),
+        options: describe_options(&options, args.mesh.faces_first),
         precision: args.mesh.precision.name(),
         tolerance: args.tolerance,
         levels: rows,
@@ -148,4 +136,17 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
         );
     }
     if agrees { Ok(()) } else { Err(Failure::Differ) }
+}
+
+/// The options a comparison ran with, as its report names them.
+pub(crate) fn describe_options(options: &subdiv::Options, faces_first: bool) -> String {
+    format!(
+        "{} boundary={} fvar={} creasing={} triangles={}{}",
+        options.scheme,
+        options.boundary,
+        options.fvar,
+        options.creasing,
+        options.triangles,
+        if faces_first { " faces-first" } else { "" }
+    )
 }

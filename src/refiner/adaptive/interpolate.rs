@@ -5,12 +5,12 @@
 //! bit-identical to OpenSubdiv's.
 
 use super::AdaptiveRefiner;
+use super::kernel::{interpolate_sparse, walk_sparse};
 use crate::error::{Buffer, Error, Result};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::refiner::fvar_interp::{FVarStep, fvar_call_levels, fvar_level};
-use crate::refiner::kernel::interpolate_sparse;
-use crate::refiner::{Children, Kind, Scratch, Source, Step, accumulate, face_terms};
+use crate::refiner::{Children, Kind, Source, Step, accumulate};
 use crate::topology::refine::sparse::SparseSplit;
 use glam::DVec3;
 
@@ -107,16 +107,7 @@ impl AdaptiveRefiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        if level == 0 || level > self.max_level() {
-            return Err(Error::NoSuchLevel {
-                level,
-                first: 1,
-                last: self.max_level(),
-            });
-        }
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
+        crate::limits::check_interpolation_call(level, self.max_level(), width)?;
         let (parent, child) = (
             &self.levels[level as usize - 1],
             &self.levels[level as usize],
@@ -152,44 +143,20 @@ impl AdaptiveRefiner {
     }
 
     /// Calls `emit(child, terms)` for every child vertex of `level` (at
-    /// least 1) in OpenSubdiv's order — face points, edge points, then
-    /// vertex points, each in parent order, skipping the children a sparse
-    /// step did not create — with the terms in OpenSubdiv's accumulation
-    /// order (as [`crate::refiner::Refiner::walk_masks`] on uniform levels).
+    /// least 1), as [`walk_sparse`] does for its step.
     pub(super) fn walk_level<T: Real>(
         &self,
         kind: Kind,
         level: usize,
-        mut emit: impl FnMut(u32, &[(Source, T)]),
+        emit: impl FnMut(u32, &[(Source, T)]),
     ) {
-        let (parent, child) = (&self.levels[level - 1], &self.levels[level]);
-        let split = &self.steps[level - 1];
         let step = Step {
             rules: &self.rules,
             creasing: self.options.creasing,
-            parent,
-            child,
-            children: split,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            children: &self.steps[level - 1],
         };
-        let mut s = Scratch::<T>::new();
-        for (f, &c) in split.face_child_vertex.iter().enumerate() {
-            if c != crate::INVALID_INDEX {
-                face_terms(&self.rules, parent, f, &mut s);
-                emit(c, &s.terms);
-            }
-        }
-        for (e, &c) in split.edge_child_vertex.iter().enumerate() {
-            if c != crate::INVALID_INDEX {
-                step.edge_terms(kind, e, parent.edge_faces_of(e), &mut s);
-                emit(c, &s.terms);
-            }
-        }
-        for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
-            if c != crate::INVALID_INDEX {
-                let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
-                step.vertex_terms(kind, v, faces, edges, &mut s);
-                emit(c, &s.terms);
-            }
-        }
+        walk_sparse(kind, &step, emit);
     }
 }

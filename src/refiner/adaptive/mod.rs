@@ -31,7 +31,8 @@
 //! * `select.rs`: which faces a level selects (face-varying features
 //!   included);
 //! * `interpolate.rs`: vertex, varying and face-varying primvars level by
-//!   level;
+//!   level; `kernel.rs`: the vertex-data kernel of sparse levels (smooth
+//!   masks cached per shape);
 //! * `stencils.rs`: stencil tables in every mode of
 //!   `StencilTableFactory::Options` (face-varying ones not yet).
 //!
@@ -41,6 +42,7 @@
 
 mod features;
 mod interpolate;
+mod kernel;
 mod select;
 mod stencils;
 
@@ -256,24 +258,9 @@ impl AdaptiveRefiner {
         if self.options.scheme != Scheme::Catmark {
             return Ok(());
         }
-        let smooth = |rule: crate::rules::Rule| {
-            matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
-        };
-        for (l, s) in self.steps.iter().enumerate() {
+        for (l, step) in self.steps.iter().enumerate() {
             let (p, c) = (&self.levels[l], &self.levels[l + 1]);
-            for (v, &child) in s.vertex_child_vertex.iter().enumerate() {
-                if child == crate::INVALID_INDEX
-                    || p.vertex_faces.count(v) == p.vertex_edges.count(v)
-                {
-                    continue;
-                }
-                if smooth(p.vertex_tag(v).rule()) || smooth(c.vertex_tag(child as usize).rule()) {
-                    return Err(Error::UnpairedSmoothVertex {
-                        level: l as u32,
-                        vertex: v,
-                    });
-                }
-            }
+            super::check_unpaired_smooth_step(p, c, step, l)?;
         }
         Ok(())
     }

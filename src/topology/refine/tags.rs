@@ -88,17 +88,40 @@ fn propagate_tags(parent: &Level, child: &mut Level, r: &Split, store_edges: boo
             child.set_edge_tag(r.edge_child_edge(e, 0) as usize, t);
             child.set_edge_tag(r.edge_child_edge(e, 1) as usize, t);
         }
-        let sharp = t.semi_sharp() || t.inf_sharp();
-        let mut tag = VertexTag::default();
-        tag.set_non_manifold(t.non_manifold());
-        tag.set_boundary(t.boundary());
-        tag.set_semi_sharp_edges(t.semi_sharp());
-        tag.set_inf_sharp_edges(t.inf_sharp());
-        tag.set_rule(if sharp { Rule::Crease } else { Rule::Smooth });
-        child.set_vertex_tag(r.edge_child(e) as usize, tag);
+        child.set_vertex_tag(r.edge_child(e) as usize, edge_point_tag(t));
     }
     for (v, &tag) in parent.vertex_tags.iter().enumerate() {
         child.set_vertex_tag(r.vertex_child(v) as usize, tag);
+    }
+}
+
+/// The tags of the point of an edge tagged `t`: its boundary and
+/// non-manifold flags, its sharp edges, and the crease rule when the edge is
+/// sharp.
+pub(super) fn edge_point_tag(t: EdgeTag) -> VertexTag {
+    let sharp = t.semi_sharp() || t.inf_sharp();
+    let mut tag = VertexTag::default();
+    tag.set_non_manifold(t.non_manifold());
+    tag.set_boundary(t.boundary());
+    tag.set_semi_sharp_edges(t.semi_sharp());
+    tag.set_inf_sharp_edges(t.inf_sharp());
+    tag.set_rule(if sharp { Rule::Crease } else { Rule::Smooth });
+    tag
+}
+
+/// The sharpness of child `c` of parent vertex `v` (whose tags it
+/// inherited): infinite stays infinite, semi-sharp decays and loses its tag
+/// once smooth.
+pub(super) fn vertex_point_sharpness(parent: &Level, child: &mut Level, v: usize, c: usize) {
+    let tag = child.vertex_tag(c);
+    if tag.inf_sharp() {
+        child.set_vertex_sharpness(c, SHARPNESS_INFINITE);
+    } else if tag.semi_sharp() {
+        let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness_at(v));
+        child.set_vertex_sharpness(c, s);
+        if !crease::is_sharp(s) {
+            child.update_vertex_tag(c, |t| t.set_semi_sharp(false));
+        }
     }
 }
 
@@ -207,17 +230,7 @@ fn subdivide_sharpness(
     };
     if sharp_vertices {
         for v in 0..parent.vertex_count {
-            let c = r.vertex_child(v) as usize;
-            let tag = child.vertex_tag(c);
-            if tag.inf_sharp() {
-                child.set_vertex_sharpness(c, SHARPNESS_INFINITE);
-            } else if tag.semi_sharp() {
-                let s = crease::subdivide_vertex_sharpness(parent.vertex_sharpness_at(v));
-                child.set_vertex_sharpness(c, s);
-                if !crease::is_sharp(s) {
-                    child.update_vertex_tag(c, |t| t.set_semi_sharp(false));
-                }
-            }
+            vertex_point_sharpness(parent, child, v, r.vertex_child(v) as usize);
         }
     }
     // Edge points of semi-sharp edges: Crease while a half stays sharp.

@@ -5,9 +5,9 @@
 
 use super::{SparseSplit, valid};
 use crate::options::Options;
-use crate::rules::{SHARPNESS_INFINITE, crease};
-use crate::topology::refine::tags::child_edge;
-use crate::topology::{EdgeTag, Level, VertexTag};
+use crate::rules::crease;
+use crate::topology::Level;
+use crate::topology::refine::tags::{child_edge, edge_point_tag, vertex_point_sharpness};
 
 /// Child tags (`Refinement::propagateComponentTags`): halves of edges
 /// inherit their parent's tags, edges inside faces and face points are
@@ -31,22 +31,6 @@ pub(super) fn propagate_tags(parent: &Level, child: &mut Level, s: &SparseSplit)
             child.set_vertex_tag(c as usize, parent.vertex_tag(v));
         }
     }
-}
-
-/// The tags of the point of an edge tagged `t`.
-fn edge_point_tag(t: EdgeTag) -> VertexTag {
-    let sharp = t.semi_sharp() || t.inf_sharp();
-    let mut tag = VertexTag::default();
-    tag.set_non_manifold(t.non_manifold());
-    tag.set_boundary(t.boundary());
-    tag.set_semi_sharp_edges(t.semi_sharp());
-    tag.set_inf_sharp_edges(t.inf_sharp());
-    tag.set_rule(if sharp {
-        crate::rules::Rule::Crease
-    } else {
-        crate::rules::Rule::Smooth
-    });
-    tag
 }
 
 /// Edge and vertex sharpness of the child, then the rules of child vertices
@@ -74,19 +58,8 @@ pub(super) fn subdivide_sharpness(
         }
     }
     for (v, &c) in s.vertex_child_vertex.iter().enumerate() {
-        if !valid(c) {
-            continue;
-        }
-        let c = c as usize;
-        let tag = child.vertex_tag(c);
-        if tag.inf_sharp() {
-            child.set_vertex_sharpness(c, SHARPNESS_INFINITE);
-        } else if tag.semi_sharp() {
-            let sharpness = crease::subdivide_vertex_sharpness(parent.vertex_sharpness_at(v));
-            child.set_vertex_sharpness(c, sharpness);
-            if !crease::is_sharp(sharpness) {
-                child.update_vertex_tag(c, |t| t.set_semi_sharp(false));
-            }
+        if valid(c) {
+            vertex_point_sharpness(parent, child, v, c as usize);
         }
     }
     for (e, &c) in s.edge_child_vertex.iter().enumerate() {
