@@ -20,6 +20,7 @@ use crate::output::Values;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::ChannelLevel;
+pub(crate) use crate::topology::fvar::Children;
 use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
 pub mod adaptive;
@@ -531,33 +532,6 @@ impl Refiner {
         let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
         step.vertex_terms(kind, v, faces, edges, s);
         s.hood = buf;
-    }
-}
-
-/// How one refinement step numbers the children of its parent's elements:
-/// uniformly by arithmetic ([`Split`]) or through explicit maps (a sparse
-/// step of adaptive refinement).
-pub(crate) trait Children {
-    /// The face point of parent face `f`.
-    fn face_child(&self, f: usize) -> u32;
-    /// The edge point of parent edge `e`.
-    fn edge_child(&self, e: usize) -> u32;
-    /// The vertex point of parent vertex `v`.
-    fn vertex_child(&self, v: usize) -> u32;
-}
-
-impl Children for Split {
-    #[inline]
-    fn face_child(&self, f: usize) -> u32 {
-        Split::face_child(self, f)
-    }
-    #[inline]
-    fn edge_child(&self, e: usize) -> u32 {
-        Split::edge_child(self, e)
-    }
-    #[inline]
-    fn vertex_child(&self, v: usize) -> u32 {
-        Split::vertex_child(self, v)
     }
 }
 

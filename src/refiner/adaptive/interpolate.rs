@@ -10,24 +10,8 @@ use crate::error::{Buffer, Error, Result};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::refiner::fvar_interp::{FVarStep, fvar_call_levels, fvar_level};
-use crate::refiner::{Children, Kind, Source, Step, accumulate};
-use crate::topology::refine::sparse::SparseSplit;
+use crate::refiner::{Kind, Source, Step, accumulate};
 use glam::DVec3;
-
-impl Children for SparseSplit {
-    #[inline]
-    fn face_child(&self, f: usize) -> u32 {
-        self.face_child_vertex[f]
-    }
-    #[inline]
-    fn edge_child(&self, e: usize) -> u32 {
-        self.edge_child_vertex[e]
-    }
-    #[inline]
-    fn vertex_child(&self, v: usize) -> u32 {
-        self.vertex_child_vertex[v]
-    }
-}
 
 impl AdaptiveRefiner {
     /// Interpolates vertex data of `width` components from level `level - 1`

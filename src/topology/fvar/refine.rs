@@ -8,10 +8,11 @@ use crate::output::INVALID_INDEX;
 use crate::topology::refine::sparse::SparseSplit;
 use crate::topology::{Level, Split};
 
-/// How a refinement step numbers the children of its parent, as
-/// face-varying refinement reads it: uniformly ([`Split`]: every child
-/// exists) or sparsely ([`SparseSplit`]: a child not created is
-/// [`INVALID_INDEX`], and some that exist are incomplete).
+/// How a refinement step numbers the children of its parent: uniformly
+/// ([`Split`]: every child exists) or sparsely ([`SparseSplit`]: a child not
+/// created is [`INVALID_INDEX`], and some that exist are incomplete). Read by
+/// face-varying refinement and interpolation and by the refiner's masks
+/// (`crate::refiner::Step`).
 pub trait Children {
     /// Whether children may be missing or incomplete.
     const SPARSE: bool;
