@@ -41,8 +41,7 @@ pub(super) struct Chunk<'a> {
 /// Reads one chunk; `None` when a line needs the sequential reader.
 fn read_chunk(text: &str) -> Option<Chunk<'_>> {
     let mut c = Chunk::default();
-    let (mut vertices, mut uvs) = (Vec::new(), Vec::new());
-    for (i, line) in text.lines().enumerate() {
+    for (i, line) in fast::lines(text).enumerate() {
         let bytes = line.as_bytes();
         match bytes {
             [b'v', s, rest @ ..] if fast::is_space(*s) => {
@@ -53,13 +52,14 @@ fn read_chunk(text: &str) -> Option<Chunk<'_>> {
                 c.uv_values.extend_from_slice(&fast::numbers::<2>(rest)?);
             }
             [b'f', s, rest @ ..] if fast::is_space(*s) => {
+                let (had_vertices, had_uvs) = (c.face_vertices.len(), c.uv_indices.len());
                 let with_uv = fast::face(
                     rest,
                     usize::MAX,
                     usize::MAX,
                     crate::mesh::MAX_VALENCE,
-                    &mut vertices,
-                    &mut uvs,
+                    &mut c.face_vertices,
+                    &mut c.uv_indices,
                 )?;
                 if c.first_face.get_or_insert((with_uv, i + 1)).0 != with_uv {
                     return None;
@@ -68,10 +68,9 @@ fn read_chunk(text: &str) -> Option<Chunk<'_>> {
                     let top = indices.iter().max().map_or(0, |&m| m as usize + 1);
                     top.saturating_sub(have)
                 };
-                c.needs.0 = c.needs.0.max(need(&vertices, c.positions.len()));
-                c.needs.1 = c.needs.1.max(need(&uvs, c.uv_values.len() / 2));
-                c.face_vertices.extend_from_slice(&vertices);
-                c.uv_indices.extend_from_slice(&uvs);
+                let (vertices, uvs) = (&c.face_vertices[had_vertices..], &c.uv_indices[had_uvs..]);
+                c.needs.0 = c.needs.0.max(need(vertices, c.positions.len()));
+                c.needs.1 = c.needs.1.max(need(uvs, c.uv_values.len() / 2));
                 c.face_ends.push(u32::try_from(c.face_vertices.len()).ok()?);
             }
             _ if fast::ignored(bytes) => {}
@@ -132,6 +131,7 @@ mod tests {
             assert_eq!(read.len(), pieces);
             let lines: usize = read.iter().map(|c| c.lines).sum();
             assert_eq!(lines, text.lines().count());
+            assert_eq!(lines, fast::lines(&text).count());
             assert_eq!(parse_obj_chunked(&text, file, pieces), general, "{pieces}");
         }
         // A face before the vertex it names: the chunks read, the join

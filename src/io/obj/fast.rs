@@ -10,30 +10,30 @@
 //! syntax (`[+-]digits[.digits][e[+-]digits]`), which it and Rust's own
 //! parser both round correctly, to the same value.
 
+/// The lines of `text` as `str::lines` cuts them — at `\n`, a `\r` before
+/// it dropped, no empty line after a final `\n` — found by `memchr`'s
+/// vectorised search (`str::lines` searches a word at a time).
+pub(super) fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = text;
+    std::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        let Some(end) = memchr::memchr(b'\n', rest.as_bytes()) else {
+            return Some(std::mem::take(&mut rest));
+        };
+        // `\n` is one byte of its own in UTF-8: both cuts are on character
+        // boundaries.
+        let line = &rest[..end];
+        rest = &rest[end + 1..];
+        Some(line.strip_suffix('\r').unwrap_or(line))
+    })
+}
+
 /// ASCII whitespace as `str::split_ascii_whitespace` counts it.
 #[inline]
 pub(super) fn is_space(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | b'\n' | b'\x0C' | b'\r')
-}
-
-/// The next field of `line` from `*at` (skipping whitespace first), or
-/// `None` at the end of the line.
-#[inline]
-fn field<'a>(line: &'a [u8], at: &mut usize) -> Option<&'a [u8]> {
-    let mut i = *at;
-    while i < line.len() && is_space(line[i]) {
-        i += 1;
-    }
-    if i == line.len() {
-        *at = i;
-        return None;
-    }
-    let start = i;
-    while i < line.len() && !is_space(line[i]) {
-        i += 1;
-    }
-    *at = i;
-    Some(&line[start..i])
 }
 
 /// A finite number of plain decimal syntax, or `None`: a field starting
@@ -42,8 +42,21 @@ fn field<'a>(line: &'a [u8], at: &mut usize) -> Option<&'a [u8]> {
 /// and Rust's parser agree on the syntax and round to the same value; a
 /// field it reads only in part (`1e`, `1_0`, `0x1`, `1,5`) is left to the
 /// general parser.
-#[inline]
+#[cfg(test)]
 fn number(s: &[u8]) -> Option<f64> {
+    let mut at = 0;
+    let x = number_at(s, &mut at)?;
+    (at == s.len()).then_some(x)
+}
+
+/// The number at `line[*at..]` (which starts a field), `*at` moved past
+/// it, when it is of plain decimal syntax, finite, and the whole field
+/// ([`number`]'s rules): read where it stands, the field's end found by the
+/// parser itself. A number's characters are never whitespace, so the
+/// parser stops where the field ends or earlier.
+#[inline]
+fn number_at(line: &[u8], at: &mut usize) -> Option<f64> {
+    let s = &line[*at..];
     let unsigned = match s.first()? {
         b'+' | b'-' => &s[1..],
         _ => s,
@@ -52,7 +65,17 @@ fn number(s: &[u8]) -> Option<f64> {
         return None;
     }
     let (x, used): (f64, usize) = fast_float2::parse_partial(s).ok()?;
-    (used == s.len() && x.is_finite()).then_some(x)
+    *at += used;
+    let whole = line.get(*at).is_none_or(|&b| is_space(b));
+    (whole && x.is_finite()).then_some(x)
+}
+
+/// `*at` moved past the whitespace at `line[*at..]`.
+#[inline]
+fn skip_space(line: &[u8], at: &mut usize) {
+    while line.get(*at).is_some_and(|&b| is_space(b)) {
+        *at += 1;
+    }
 }
 
 /// Exactly `N` finite numbers after the keyword (`line` starts after it),
@@ -62,33 +85,48 @@ pub(super) fn numbers<const N: usize>(line: &[u8]) -> Option<[f64; N]> {
     let mut at = 0;
     let mut out = [0.0; N];
     for x in &mut out {
-        *x = number(field(line, &mut at)?)?;
+        skip_space(line, &mut at);
+        *x = number_at(line, &mut at)?;
     }
-    field(line, &mut at).is_none().then_some(out)
+    skip_space(line, &mut at);
+    (at == line.len()).then_some(out)
 }
 
-/// A positive decimal index of at most nine digits (no sign, no overflow).
+/// The digits at `line[*at..]` (at least one, at most `most`) as a
+/// number, `*at` moved past them; `None` without a digit or with more than
+/// `most` (at most 19, so the value fits).
 #[inline]
-fn index(s: &[u8]) -> Option<u32> {
-    if s.is_empty() || s.len() > 9 {
-        return None;
-    }
-    let mut n = 0u32;
-    for &b in s {
+fn digits(line: &[u8], at: &mut usize, most: usize) -> Option<u64> {
+    let start = *at;
+    let mut n = 0u64;
+    while let Some(&b) = line.get(*at) {
         if !b.is_ascii_digit() {
+            break;
+        }
+        if *at - start == most {
             return None;
         }
-        n = n * 10 + u32::from(b - b'0');
+        n = n * 10 + u64::from(b - b'0');
+        *at += 1;
     }
-    (n > 0).then_some(n)
+    (*at > start).then_some(n)
 }
 
-/// Whether a normal index is an integer the general parser accepts without
-/// a second look: an optional minus and at most 18 digits.
+/// A positive decimal index of at most nine digits (no sign, no overflow)
+/// at `line[*at..]`, `*at` moved past it.
 #[inline]
-fn normal_index(s: &[u8]) -> bool {
-    let digits = s.strip_prefix(b"-").unwrap_or(s);
-    !digits.is_empty() && digits.len() <= 18 && digits.iter().all(u8::is_ascii_digit)
+fn index(line: &[u8], at: &mut usize) -> Option<usize> {
+    digits(line, at, 9).filter(|&n| n > 0).map(|n| n as usize)
+}
+
+/// A normal index at `line[*at..]` the general parser accepts without a
+/// second look — an optional minus and at most 18 digits — skipped.
+#[inline]
+fn skip_normal_index(line: &[u8], at: &mut usize) -> Option<()> {
+    if line.get(*at) == Some(&b'-') {
+        *at += 1;
+    }
+    digits(line, at, 18).map(drop)
 }
 
 /// Whether `line` is a statement the reader ignores whatever follows its
@@ -103,12 +141,15 @@ pub(super) fn ignored(line: &[u8]) -> bool {
 /// The corners of a face line (`line` starts after the `f`) whose every
 /// corner is `v`, `v/vt`, `v//vn` or `v/vt/vn` with plain positive vertex
 /// and texture-coordinate indices (and integer normal indices, which are
-/// not checked against anything): their 0-based vertex
-/// and texture-coordinate indices into `vertices` and `uvs` (cleared first),
-/// and whether the corners have texture coordinates. `None` for anything
-/// else — other forms, indices out of range (`vertex_count`, `uv_count`),
-/// mixed corners, fewer than 3 or more than `max` corners — which the
-/// general parser reads.
+/// not checked against anything): their 0-based vertex and
+/// texture-coordinate indices appended to `vertices` and `uvs`, and whether
+/// the corners have texture coordinates. `None` for anything else — other
+/// forms, indices out of range (`vertex_count`, `uv_count`), mixed corners,
+/// fewer than 3 or more than `max` corners — which the general parser
+/// reads; `vertices` and `uvs` are then as they were.
+///
+/// One pass over the bytes: each corner's numbers are read where they
+/// stand, with no field split first.
 pub(super) fn face(
     line: &[u8],
     vertex_count: usize,
@@ -117,45 +158,96 @@ pub(super) fn face(
     vertices: &mut Vec<u32>,
     uvs: &mut Vec<u32>,
 ) -> Option<bool> {
-    vertices.clear();
-    uvs.clear();
+    let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
+    let read = corners(line, vertex_count, uv_count, max, vertices, uvs)
+        .filter(|_| vertices.len() - had_vertices >= 3);
+    if read.is_none() {
+        vertices.truncate(had_vertices);
+        uvs.truncate(had_uvs);
+    }
+    read
+}
+
+/// [`face`]'s pass, leaving what it appended when it fails.
+#[inline]
+fn corners(
+    line: &[u8],
+    vertex_count: usize,
+    uv_count: usize,
+    max: usize,
+    vertices: &mut Vec<u32>,
+    uvs: &mut Vec<u32>,
+) -> Option<bool> {
+    let first = vertices.len();
     let mut at = 0;
     let mut with_uv = None;
-    while let Some(corner) = field(line, &mut at) {
-        let mut parts = corner.split(|&b| b == b'/');
-        let v = parts.next().unwrap_or_default();
-        let (t, n) = (parts.next(), parts.next());
-        if parts.next().is_some() {
+    loop {
+        skip_space(line, &mut at);
+        if at == line.len() {
+            return Some(with_uv.unwrap_or(false));
+        }
+        let v = index(line, &mut at)?;
+        let mut t = None;
+        if line.get(at) == Some(&b'/') {
+            at += 1;
+            if line.get(at) == Some(&b'/') {
+                // `v//vn`: a normal index, read but not checked against the
+                // normals, as the general parser does.
+                at += 1;
+                skip_normal_index(line, &mut at)?;
+            } else {
+                t = Some(index(line, &mut at)?);
+                if line.get(at) == Some(&b'/') {
+                    at += 1;
+                    skip_normal_index(line, &mut at)?;
+                }
+            }
+        }
+        // The corner ends here, or the line is not one the fast path reads.
+        if line.get(at).is_some_and(|&b| !is_space(b)) {
             return None;
         }
-        // `v//vn`: no texture coordinate. A normal index is read but not
-        // checked against the normals, as the general parser does.
-        let t = t.filter(|t| !(t.is_empty() && n.is_some()));
-        if n.is_some_and(|n| !normal_index(n)) {
-            return None;
-        }
-        let v = index(v)? as usize;
         if v > vertex_count || *with_uv.get_or_insert(t.is_some()) != t.is_some() {
             return None;
         }
         vertices.push((v - 1) as u32);
         if let Some(t) = t {
-            let t = index(t)? as usize;
             if t > uv_count {
                 return None;
             }
             uvs.push((t - 1) as u32);
         }
-        if vertices.len() > max {
+        if vertices.len() - first > max {
             return None;
         }
     }
-    (vertices.len() >= 3).then_some(with_uv.unwrap_or(false))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_are_cut_as_str_lines_cuts_them() {
+        for text in [
+            "",
+            "\n",
+            "\n\n",
+            "a",
+            "a\n",
+            "a\r\n",
+            "a\r",
+            "\r",
+            "\r\n\r\n",
+            "a\n\nb",
+            "a\rb\r\n c\r\r\n",
+            "é\n\r\nü",
+            " \r\r",
+        ] {
+            let ours: Vec<&str> = lines(text).collect();
+            assert_eq!(ours, text.lines().collect::<Vec<_>>(), "{text:?}");
+        }
+    }
 
     #[test]
     fn plain_numbers_only_and_the_same_values_as_std() {
@@ -224,14 +316,31 @@ mod tests {
 
     #[test]
     fn faces_of_plain_indices_only() {
-        let (mut v, mut t) = (Vec::new(), Vec::new());
-        let mut f = |line: &str, nv, nt| face(line.as_bytes(), nv, nt, 8, &mut v, &mut t);
-        assert_eq!(f(" 1 2 3", 3, 0), Some(false));
-        assert_eq!(f(" 1/1 2/2 3/3 4/1", 4, 3), Some(true));
+        let (mut v, mut t) = (vec![7], vec![9]);
+        let mut f = |line: &str, nv, nt| {
+            let read = face(line.as_bytes(), nv, nt, 8, &mut v, &mut t);
+            (read, v.split_off(1), t.split_off(1))
+        };
+        assert_eq!(f(" 1 2 3", 3, 0), (Some(false), vec![0, 1, 2], vec![]));
+        assert_eq!(
+            f(" 1/1 2/2 3/3 4/1", 4, 3),
+            (Some(true), vec![0, 1, 2, 3], vec![0, 1, 2, 0])
+        );
         // Normals: read as integers, not checked.
-        assert_eq!(f(" 1//7 2//-1 3//0", 3, 0), Some(false));
-        assert_eq!(f(" 1/1/9 2/2/9 3/1/9", 3, 2), Some(true));
-        // Out of range, zero, negative, signs, normals, mixed, too few or many.
+        assert_eq!(
+            f(" 1//7 2//-1 3//0", 3, 0),
+            (Some(false), vec![0, 1, 2], vec![])
+        );
+        assert_eq!(
+            f("\t3/1/9  2/2/9\x0c1/1/-000000000000000009 \r", 3, 2),
+            (Some(true), vec![2, 1, 0], vec![0, 1, 0])
+        );
+        assert_eq!(
+            f(" 999999999 1 2", 999_999_999, 0),
+            (Some(false), vec![999_999_998, 0, 1], vec![])
+        );
+        // Out of range, zero, negative, signs, normals, mixed, too few or
+        // many, digits too many, anything after a corner: nothing appended.
         for line in [
             " 1 2 4",
             " 0 1 2",
@@ -241,15 +350,21 @@ mod tests {
             " 1/1/ 2/2/2 3/3/3",
             " 1/1/1/1 2/2 3/3",
             " 1// 2// 3//",
+            " 1//- 2//1 3//1",
+            " 1//1234567890123456789 2//1 3//1",
+            " 1/ 2/ 3/",
             " 1/1 2//1 3/1",
             " 1/1 2 3",
             " 1 2",
             " 1 2 3 1 2 3 1 2 3",
             " 1/4 2/1 3/1",
             " 1 2 3 #",
+            " 1 2 3#",
+            " 1 2 3a",
+            " 1 2 0001234567",
             " 1 2 1234567890",
         ] {
-            assert_eq!(f(line, 3, 3), None, "{line:?}");
+            assert_eq!(f(line, 3, 3), (None, vec![], vec![]), "{line:?}");
         }
     }
 

@@ -118,6 +118,18 @@ fn error_at(file: &Path, line: usize, kind: ObjErrorKind) -> ObjError {
 fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFile, ObjError>> {
     let read = chunks::read_chunks(text, count)?;
     let mut p = Parser::default();
+    // Room for everything at once, each table written once: no vector
+    // grows (and copies itself into fresh pages) while the chunks join.
+    let total = |n: fn(&chunks::Chunk<'_>) -> usize| read.iter().map(n).sum::<usize>();
+    p.mesh.positions.reserve_exact(total(|c| c.positions.len()));
+    p.mesh
+        .face_vertices
+        .reserve_exact(total(|c| c.face_vertices.len()));
+    p.mesh
+        .face_offsets
+        .reserve_exact(total(|c| c.face_ends.len()));
+    p.uv_values.reserve_exact(total(|c| c.uv_values.len()));
+    p.uv_indices.reserve_exact(total(|c| c.uv_indices.len()));
     let mut first_line = 0;
     let mut deferred = Vec::new();
     for c in read {
@@ -159,9 +171,8 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
 fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let error = |line: usize, kind: ObjErrorKind| error_at(file, line, kind);
     let mut parser = Parser::default();
-    let mut corners = (Vec::new(), Vec::new());
-    for (i, line) in text.lines().enumerate() {
-        if fast_path && parser.fast_statement(i + 1, line.as_bytes(), &mut corners) {
+    for (i, line) in fast::lines(text).enumerate() {
+        if fast_path && parser.fast_statement(i + 1, line.as_bytes()) {
             continue;
         }
         parser
@@ -323,14 +334,8 @@ impl Parser {
 
     /// Reads one line by the fast path ([`fast`]) if it can: true when it
     /// did, with the same effect as [`Parser::statement`]; false (nothing
-    /// changed) for a line the general parser must read. `corners` is
-    /// scratch space for a face's indices.
-    fn fast_statement(
-        &mut self,
-        line: usize,
-        text: &[u8],
-        (vertices, uvs): &mut (Vec<u32>, Vec<u32>),
-    ) -> bool {
+    /// changed) for a line the general parser must read.
+    fn fast_statement(&mut self, line: usize, text: &[u8]) -> bool {
         match text {
             [b'v', s, rest @ ..] if fast::is_space(*s) => {
                 let Some(p) = fast::numbers::<3>(rest) else {
@@ -347,18 +352,20 @@ impl Parser {
             [b'f', s, rest @ ..] if fast::is_space(*s) => {
                 let vertex_count = self.mesh.positions.len();
                 let uv_count = self.uv_values.len() / 2;
+                let (vertices, uvs) = (&mut self.mesh.face_vertices, &mut self.uv_indices);
+                let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
                 let Some(with_uv) =
                     fast::face(rest, vertex_count, uv_count, MAX_VALENCE, vertices, uvs)
                 else {
                     return false;
                 };
-                let end = u32::try_from(self.mesh.face_vertices.len() + vertices.len());
+                let end = u32::try_from(vertices.len());
                 let (Ok(end), true) = (end, self.uv_mode.is_none_or(|(m, _)| m == with_uv)) else {
+                    vertices.truncate(had_vertices);
+                    uvs.truncate(had_uvs);
                     return false;
                 };
                 self.uv_mode.get_or_insert((with_uv, line));
-                self.mesh.face_vertices.extend_from_slice(vertices);
-                self.uv_indices.extend_from_slice(uvs);
                 self.mesh.face_offsets.push(end);
             }
             _ if fast::ignored(text) => {}
