@@ -93,6 +93,14 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
                     .push(format!("whole process, {} level {level}: {e}", input.name)),
             }
         }
+        for input in inputs.iter().filter(|i| i.max_level <= 2) {
+            match super::process::obj_reader_rate(input, args.threads) {
+                Ok(o) => report.obj_reader.push(o),
+                Err(e) => report
+                    .skipped
+                    .push(format!("OBJ reader, {}: {e}", input.name)),
+            }
+        }
         match super::process::obj_writer_rate(&inputs[0]) {
             Ok(o) => report.obj_writer = Some(o),
             Err(e) => report.skipped.push(format!("OBJ writer: {e}")),

@@ -1,6 +1,6 @@
 //! Whole programs timed interleaved: `subdiv refine` and the C++ driver.
 
-use super::results::{ObjWriterRate, ProgramKind, ProgramResult, WholeProcess};
+use super::results::{ObjReaderRate, ObjWriterRate, ProgramKind, ProgramResult, WholeProcess};
 use super::timing::median;
 use crate::refine::write_refinement;
 use std::time::Instant;
@@ -80,6 +80,42 @@ pub(crate) fn obj_writer_rate(input: &BenchShape) -> Result<ObjWriterRate, Strin
         level: input.max_level,
         bytes: std::fs::metadata(&path).map_or(0, |m| m.len()),
         seconds: best,
+    })
+}
+
+/// The OBJ reader's speed on `input` written as an OBJ file with its tags
+/// and UVs (what `subdiv refine INPUT.obj` reads): the best of three reads
+/// on one thread and on `threads` threads, each checked to give the mesh
+/// back.
+pub(crate) fn obj_reader_rate(input: &BenchShape, threads: usize) -> Result<ObjReaderRate, String> {
+    let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;
+    let path = dir.path().join("input.obj");
+    subdiv::io::write_mesh_obj(&path, &input.mesh, Precision::F64).map_err(|e| e.to_string())?;
+    let best = |threads: usize| -> Result<f64, String> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| e.to_string())?;
+        let mut best = f64::MAX;
+        for _ in 0..3 {
+            let t = Instant::now();
+            let shape = pool
+                .install(|| subdiv::io::read_obj(&path))
+                .map_err(|e| e.to_string())?;
+            best = best.min(t.elapsed().as_secs_f64());
+            if shape.mesh.face_vertices != input.mesh.face_vertices {
+                return Err("the file read back is not the mesh written".into());
+            }
+        }
+        Ok(best)
+    };
+    let threads = threads.max(1);
+    Ok(ObjReaderRate {
+        input: input.name.clone(),
+        bytes: std::fs::metadata(&path).map_or(0, |m| m.len()),
+        seconds_one_thread: best(1)?,
+        threads,
+        seconds: best(threads)?,
     })
 }
 

@@ -130,6 +130,22 @@ impl BenchReport {
                 o.mb_per_s()
             );
         }
+        if !self.obj_reader.is_empty() {
+            s.push('\n');
+        }
+        for o in &self.obj_reader {
+            let (one, many) = o.mb_per_s();
+            let _ = write!(
+                s,
+                "OBJ reader ({}, {:.1} MB file): {one:.0} MB/s on 1 thread",
+                o.input,
+                o.bytes as f64 / 1e6,
+            );
+            if o.threads > 1 {
+                let _ = write!(s, ", {many:.0} MB/s on {} threads", o.threads);
+            }
+            s.push('\n');
+        }
         for why in &self.skipped {
             let _ = writeln!(s, "\nSkipped: {why}");
         }

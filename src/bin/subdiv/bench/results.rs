@@ -80,6 +80,9 @@ pub struct BenchReport {
     pub whole_process: Vec<WholeProcess>,
     /// The OBJ writer's rate on the first input (standard inputs only).
     pub obj_writer: Option<ObjWriterRate>,
+    /// The OBJ reader's rate on each input refined at most two levels (the
+    /// big ones; standard inputs only).
+    pub obj_reader: Vec<ObjReaderRate>,
     /// Sections that could not run, with the reason.
     pub skipped: Vec<String>,
 }
@@ -160,6 +163,31 @@ pub struct ObjWriterRate {
     pub bytes: u64,
     /// The best of three writes, seconds.
     pub seconds: f64,
+}
+
+/// The OBJ reader's best times reading one input's file (`subdiv::io::read_obj`,
+/// as `subdiv refine` does: the file read, then parsed), on one thread and on
+/// the run's threads.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ObjReaderRate {
+    /// The input.
+    pub input: String,
+    /// The file's size (positions, UVs, faces and tags).
+    pub bytes: u64,
+    /// The best of three reads on one thread, seconds.
+    pub seconds_one_thread: f64,
+    /// The run's threads.
+    pub threads: usize,
+    /// The best of three reads on the run's threads, seconds.
+    pub seconds: f64,
+}
+
+impl ObjReaderRate {
+    /// Megabytes (10^6 bytes) per second on one thread and on the run's threads.
+    pub fn mb_per_s(&self) -> (f64, f64) {
+        let mb = self.bytes as f64 / 1e6;
+        (mb / self.seconds_one_thread, mb / self.seconds)
+    }
 }
 
 impl ObjWriterRate {

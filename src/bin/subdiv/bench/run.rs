@@ -287,6 +287,7 @@ pub fn run(
         adaptive,
         whole_process: Vec::new(),
         obj_writer: None,
+        obj_reader: Vec::new(),
         skipped: Vec::new(),
     })
 }

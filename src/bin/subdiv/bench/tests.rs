@@ -5,8 +5,8 @@
 use super::parallel::{deformed_frames, frames_row, many_meshes, meshes_row};
 use super::process::interleaved_processes;
 use super::results::{
-    AdaptiveRow, AloneRow, BenchReport, ObjWriterRate, ProgramKind, ProgramResult, Row,
-    WholeProcess,
+    AdaptiveRow, AloneRow, BenchReport, ObjReaderRate, ObjWriterRate, ProgramKind, ProgramResult,
+    Row, WholeProcess,
 };
 use subdiv::shapes::BenchShape;
 use subdiv::{Options, Scheme, shapes};
@@ -161,6 +161,7 @@ fn empty_report(threads: usize) -> BenchReport {
         adaptive: Vec::new(),
         whole_process: Vec::new(),
         obj_writer: None,
+        obj_reader: Vec::new(),
         skipped: Vec::new(),
     }
 }
@@ -212,6 +213,13 @@ fn whole_process_and_writer_are_measurements_only() {
             bytes: 250_000_000,
             seconds: 0.5,
         }),
+        obj_reader: vec![ObjReaderRate {
+            input: "grid".into(),
+            bytes: 41_400_000,
+            seconds_one_thread: 0.046,
+            threads: 2,
+            seconds: 0.036,
+        }],
         ..empty_report(1)
     };
     let text = report.markdown();
@@ -222,6 +230,7 @@ fn whole_process_and_writer_are_measurements_only() {
         "over the C++ program: 5.50x\n",
         "  peak memory native (the larger of its runs) / C++ program: 0.45\n",
         "OBJ writer (torus 100x100 quads, level 4, f64 positions, 250 MB): 500 MB/s\n",
+        "OBJ reader (grid, 41.4 MB file): 900 MB/s on 1 thread, 1150 MB/s on 2 threads\n",
     ] {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
@@ -284,6 +293,13 @@ fn the_targets_script_reads_the_bench_json() {
             bytes: 300_000_000,
             seconds: 1.0,
         }),
+        obj_reader: vec![ObjReaderRate {
+            input: "grid".into(),
+            bytes: 41_000_000,
+            seconds_one_thread: 0.041,
+            threads: 1,
+            seconds: 0.041,
+        }],
         ..empty_report(1)
     };
     let (code, text) = check(&fair);
@@ -292,6 +308,7 @@ fn the_targets_script_reads_the_bench_json() {
         "stencil apply (f32), torus catmark: 5.00x (target 4x) met",
         "stencil apply bandwidth, 1 thread(s): 60% of measured (target 50%) met",
         "OBJ writer (torus, level 4): 300 MB/s (target 200 MB/s) met",
+        "OBJ reader on one thread, grid: 1000 MB/s (target 1000 MB/s) met",
     ] {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
