@@ -41,27 +41,34 @@ pub(super) struct Chunk<'a> {
 /// Reads one chunk; `None` when a line needs the sequential reader.
 fn read_chunk(text: &str) -> Option<Chunk<'_>> {
     let mut c = Chunk::default();
-    for (i, line) in fast::lines(text).enumerate() {
-        let bytes = line.as_bytes();
-        match bytes {
-            [b'v', s, rest @ ..] if fast::is_space(*s) => {
-                c.positions
-                    .push(DVec3::from_array(fast::numbers::<3>(rest)?));
+    let mut cursor = fast::Cursor::new(text);
+    let mut line = 0;
+    while !cursor.is_done() {
+        line += 1;
+        c.lines = line;
+        let rest = cursor.rest();
+        let end = match rest {
+            [b'v', s, tail @ ..] if fast::is_blank(*s) => {
+                let (p, end) = fast::numbers::<3>(tail)?;
+                c.positions.push(DVec3::from_array(p));
+                2 + end
             }
-            [b'v', b't', s, rest @ ..] if fast::is_space(*s) => {
-                c.uv_values.extend_from_slice(&fast::numbers::<2>(rest)?);
+            [b'v', b't', s, tail @ ..] if fast::is_blank(*s) => {
+                let (uv, end) = fast::numbers::<2>(tail)?;
+                c.uv_values.extend_from_slice(&uv);
+                3 + end
             }
-            [b'f', s, rest @ ..] if fast::is_space(*s) => {
+            [b'f', s, tail @ ..] if fast::is_blank(*s) => {
                 let (had_vertices, had_uvs) = (c.face_vertices.len(), c.uv_indices.len());
-                let with_uv = fast::face(
-                    rest,
+                let (with_uv, end) = fast::face(
+                    tail,
                     usize::MAX,
                     usize::MAX,
                     crate::mesh::MAX_VALENCE,
                     &mut c.face_vertices,
                     &mut c.uv_indices,
                 )?;
-                if c.first_face.get_or_insert((with_uv, i + 1)).0 != with_uv {
+                if c.first_face.get_or_insert((with_uv, line)).0 != with_uv {
                     return None;
                 }
                 let need = |indices: &[u32], have: usize| {
@@ -72,19 +79,30 @@ fn read_chunk(text: &str) -> Option<Chunk<'_>> {
                 c.needs.0 = c.needs.0.max(need(vertices, c.positions.len()));
                 c.needs.1 = c.needs.1.max(need(uvs, c.uv_values.len() / 2));
                 c.face_ends.push(u32::try_from(c.face_vertices.len()).ok()?);
+                2 + end
             }
-            _ if fast::ignored(bytes) => {}
             _ => {
-                // What the general parser takes for the keyword.
-                let text = line.split('#').next().unwrap_or("");
-                match text.split_ascii_whitespace().next() {
-                    None => {}
-                    Some("v" | "vt" | "f") => return None,
-                    Some(_) => c.deferred.push((i + 1, line)),
+                let end = fast::line_end(rest);
+                if !fast::ignored(&rest[..end]) {
+                    let text = cursor.take_line();
+                    // What the general parser takes for the keyword.
+                    match text
+                        .split('#')
+                        .next()
+                        .unwrap_or("")
+                        .split_ascii_whitespace()
+                        .next()
+                    {
+                        None => {}
+                        Some("v" | "vt" | "f") => return None,
+                        Some(_) => c.deferred.push((line, text)),
+                    }
+                    continue;
                 }
+                end
             }
-        }
-        c.lines = i + 1;
+        };
+        cursor.skip(end);
     }
     Some(c)
 }

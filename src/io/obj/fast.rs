@@ -10,24 +10,86 @@
 //! syntax (`[+-]digits[.digits][e[+-]digits]`), which it and Rust's own
 //! parser both round correctly, to the same value.
 
-/// The lines of `text` as `str::lines` cuts them — at `\n`, a `\r` before
-/// it dropped, no empty line after a final `\n` — found by `memchr`'s
-/// vectorised search (`str::lines` searches a word at a time).
-pub(super) fn lines(text: &str) -> impl Iterator<Item = &str> {
-    let mut rest = text;
-    std::iter::from_fn(move || {
-        if rest.is_empty() {
-            return None;
+/// A reading position in a text, at the start of a line. The fast path
+/// reads the line where it stands ([`Cursor::rest`]: the text from the
+/// line on, which the fast path reads up to the line feed) and moves past
+/// it ([`Cursor::skip`]); the general parser takes the line as `str::lines`
+/// cuts it ([`Cursor::take_line`]). So the fast path's lines are found by
+/// the parsers' own pass over their bytes, and only the others by a search.
+pub(super) struct Cursor<'a> {
+    text: &'a str,
+    at: usize,
+}
+
+impl<'a> Cursor<'a> {
+    /// At the first line of `text`.
+    pub(super) fn new(text: &'a str) -> Self {
+        Cursor { text, at: 0 }
+    }
+
+    /// Whether every line has been read (`str::lines` gives no empty line
+    /// after a final line feed).
+    pub(super) fn is_done(&self) -> bool {
+        self.at == self.text.len()
+    }
+
+    /// The text from the line at the cursor to the end.
+    pub(super) fn rest(&self) -> &'a [u8] {
+        &self.text.as_bytes()[self.at..]
+    }
+
+    /// Moves past the line the fast path read, whose end (its line feed, or
+    /// the end of the text) is at `end` in [`Cursor::rest`].
+    pub(super) fn skip(&mut self, end: usize) {
+        self.at = (self.at + end + 1).min(self.text.len());
+    }
+
+    /// The line at the cursor as `str::lines` cuts it — up to the line feed,
+    /// a carriage return before it dropped — found by `memchr`'s vectorised
+    /// search; the cursor moves past it.
+    pub(super) fn take_line(&mut self) -> &'a str {
+        let rest = &self.text[self.at..];
+        match memchr::memchr(b'\n', rest.as_bytes()) {
+            // `\n` is one byte of its own in UTF-8: the cuts are on
+            // character boundaries.
+            Some(end) => {
+                self.at += end + 1;
+                let line = &rest[..end];
+                line.strip_suffix('\r').unwrap_or(line)
+            }
+            None => {
+                self.at = self.text.len();
+                rest
+            }
         }
-        let Some(end) = memchr::memchr(b'\n', rest.as_bytes()) else {
-            return Some(std::mem::take(&mut rest));
-        };
-        // `\n` is one byte of its own in UTF-8: both cuts are on character
-        // boundaries.
-        let line = &rest[..end];
-        rest = &rest[end + 1..];
-        Some(line.strip_suffix('\r').unwrap_or(line))
-    })
+    }
+}
+
+/// The lines of `text` as `str::lines` cuts them, by [`Cursor::take_line`].
+#[cfg(test)]
+pub(super) fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut cursor = Cursor::new(text);
+    std::iter::from_fn(move || (!cursor.is_done()).then(|| cursor.take_line()))
+}
+
+/// Whitespace within a line: ASCII whitespace but the line feed, which
+/// ends it.
+#[inline]
+pub(super) fn is_blank(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\x0C' | b'\r')
+}
+
+/// Whether the line ends at `text[at]`: a line feed, or the end of the text.
+#[inline]
+fn is_line_end(text: &[u8], at: usize) -> bool {
+    text.get(at).is_none_or(|&b| b == b'\n')
+}
+
+/// The end of the line that starts `text`: its line feed, or the end of the
+/// text.
+#[inline]
+pub(super) fn line_end(text: &[u8]) -> usize {
+    memchr::memchr(b'\n', text).unwrap_or(text.len())
 }
 
 /// ASCII whitespace as `str::split_ascii_whitespace` counts it.
@@ -70,26 +132,27 @@ fn number_at(line: &[u8], at: &mut usize) -> Option<f64> {
     (whole && x.is_finite()).then_some(x)
 }
 
-/// `*at` moved past the whitespace at `line[*at..]`.
+/// `*at` moved past the whitespace at `line[*at..]`, not past the line's end.
 #[inline]
-fn skip_space(line: &[u8], at: &mut usize) {
-    while line.get(*at).is_some_and(|&b| is_space(b)) {
+fn skip_blank(line: &[u8], at: &mut usize) {
+    while line.get(*at).copied().is_some_and(is_blank) {
         *at += 1;
     }
 }
 
-/// Exactly `N` finite numbers after the keyword (`line` starts after it),
-/// nothing else on the line.
+/// Exactly `N` finite numbers after the keyword, nothing else on the line:
+/// `line` starts after the keyword and runs to its line feed (or further:
+/// the rest of the text). The numbers and where the line ends in `line`.
 #[inline]
-pub(super) fn numbers<const N: usize>(line: &[u8]) -> Option<[f64; N]> {
+pub(super) fn numbers<const N: usize>(line: &[u8]) -> Option<([f64; N], usize)> {
     let mut at = 0;
     let mut out = [0.0; N];
     for x in &mut out {
-        skip_space(line, &mut at);
+        skip_blank(line, &mut at);
         *x = number_at(line, &mut at)?;
     }
-    skip_space(line, &mut at);
-    (at == line.len()).then_some(out)
+    skip_blank(line, &mut at);
+    is_line_end(line, at).then_some((out, at))
 }
 
 /// The digits at `line[*at..]` (at least one, at most `most`) as a
@@ -172,12 +235,14 @@ pub(super) fn ignored(line: &[u8]) -> bool {
         .any(|k| line.starts_with(k) && line.get(k.len()).is_none_or(|&b| is_space(b)))
 }
 
-/// The corners of a face line (`line` starts after the `f`) whose every
+/// The corners of a face line (`line` starts after the `f` and runs to its
+/// line feed, or further: the rest of the text) whose every
 /// corner is `v`, `v/vt`, `v//vn` or `v/vt/vn` with plain positive vertex
 /// and texture-coordinate indices (and integer normal indices, which are
 /// not checked against anything): their 0-based vertex and
-/// texture-coordinate indices appended to `vertices` and `uvs`, and whether
-/// the corners have texture coordinates. `None` for anything else — other
+/// texture-coordinate indices appended to `vertices` and `uvs`, whether
+/// the corners have texture coordinates, and where the line ends in
+/// `line`. `None` for anything else — other
 /// forms, indices out of range (`vertex_count`, `uv_count`), mixed corners,
 /// fewer than 3 or more than `max` corners — which the general parser
 /// reads; `vertices` and `uvs` are then as they were.
@@ -191,7 +256,7 @@ pub(super) fn face(
     max: usize,
     vertices: &mut Vec<u32>,
     uvs: &mut Vec<u32>,
-) -> Option<bool> {
+) -> Option<(bool, usize)> {
     let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
     let read = corners(line, vertex_count, uv_count, max, vertices, uvs)
         .filter(|_| vertices.len() - had_vertices >= 3);
@@ -211,14 +276,14 @@ fn corners(
     max: usize,
     vertices: &mut Vec<u32>,
     uvs: &mut Vec<u32>,
-) -> Option<bool> {
+) -> Option<(bool, usize)> {
     let first = vertices.len();
     let mut at = 0;
     let mut with_uv = None;
     loop {
-        skip_space(line, &mut at);
-        if at == line.len() {
-            return Some(with_uv.unwrap_or(false));
+        skip_blank(line, &mut at);
+        if is_line_end(line, at) {
+            return Some((with_uv.unwrap_or(false), at));
         }
         let v = index(line, &mut at)?;
         let mut t = None;
@@ -382,12 +447,18 @@ mod tests {
 
     #[test]
     fn numbers_take_exactly_n_fields() {
-        assert_eq!(numbers::<3>(b" 1 2 3"), Some([1.0, 2.0, 3.0]));
-        assert_eq!(numbers::<3>(b"\t1\t2  3 \r"), Some([1.0, 2.0, 3.0]));
-        assert_eq!(numbers::<3>(b" 1 2"), None);
-        assert_eq!(numbers::<3>(b" 1 2 3 4"), None);
-        assert_eq!(numbers::<3>(b" 1 2 3 # comment"), None);
-        assert_eq!(numbers::<2>(b" 0.5 0.25"), Some([0.5, 0.25]));
+        let n3 = |s: &str| numbers::<3>(s.as_bytes());
+        assert_eq!(n3(" 1 2 3"), Some(([1.0, 2.0, 3.0], 6)));
+        assert_eq!(n3("\t1\t2  3 \r"), Some(([1.0, 2.0, 3.0], 9)));
+        // The line ends at its line feed; what follows is the next line's.
+        assert_eq!(n3(" 1 2 3\nv 4 5 6"), Some(([1.0, 2.0, 3.0], 6)));
+        assert_eq!(n3(" 1 2 3\r\n"), Some(([1.0, 2.0, 3.0], 7)));
+        assert_eq!(n3(" 1 2\n3"), None);
+        assert_eq!(n3(" 1 2\n 3\n"), None);
+        assert_eq!(n3(" 1 2"), None);
+        assert_eq!(n3(" 1 2 3 4"), None);
+        assert_eq!(n3(" 1 2 3 # comment"), None);
+        assert_eq!(numbers::<2>(b" 0.5 0.25"), Some(([0.5, 0.25], 9)));
     }
 
     #[test]
@@ -397,26 +468,37 @@ mod tests {
             let read = face(line.as_bytes(), nv, nt, 8, &mut v, &mut t);
             (read, v.split_off(1), t.split_off(1))
         };
-        assert_eq!(f(" 1 2 3", 3, 0), (Some(false), vec![0, 1, 2], vec![]));
+        assert_eq!(f(" 1 2 3", 3, 0), (Some((false, 6)), vec![0, 1, 2], vec![]));
         assert_eq!(
             f(" 1/1 2/2 3/3 4/1", 4, 3),
-            (Some(true), vec![0, 1, 2, 3], vec![0, 1, 2, 0])
+            (Some((true, 16)), vec![0, 1, 2, 3], vec![0, 1, 2, 0])
         );
         // Normals: read as integers, not checked.
         assert_eq!(
             f(" 1//7 2//-1 3//0", 3, 0),
-            (Some(false), vec![0, 1, 2], vec![])
+            (Some((false, 16)), vec![0, 1, 2], vec![])
         );
         assert_eq!(
             f("\t3/1/9  2/2/9\x0c1/1/-000000000000000009 \r", 3, 2),
-            (Some(true), vec![2, 1, 0], vec![0, 1, 0])
+            (Some((true, 39)), vec![2, 1, 0], vec![0, 1, 0])
         );
         assert_eq!(
             f(" 999999999 1 2", 999_999_999, 0),
-            (Some(false), vec![999_999_998, 0, 1], vec![])
+            (Some((false, 14)), vec![999_999_998, 0, 1], vec![])
+        );
+        // The line ends at its line feed, wherever the next line's digits
+        // are.
+        assert_eq!(
+            f(" 1 2 3\n4 5 6", 6, 0),
+            (Some((false, 6)), vec![0, 1, 2], vec![])
+        );
+        assert_eq!(
+            f(" 1/1 2/2 3/3\r\n12345678", 3, 3),
+            (Some((true, 13)), vec![0, 1, 2], vec![0, 1, 2])
         );
         // Out of range, zero, negative, signs, normals, mixed, too few or
-        // many, digits too many, anything after a corner: nothing appended.
+        // many, digits too many, anything after a corner, a line cut short
+        // by its line feed: nothing appended.
         for line in [
             " 1 2 4",
             " 0 1 2",
@@ -432,6 +514,8 @@ mod tests {
             " 1/1 2//1 3/1",
             " 1/1 2 3",
             " 1 2",
+            " 1 2\n3",
+            " 1/1 2/2 3/\n3",
             " 1 2 3 1 2 3 1 2 3",
             " 1/4 2/1 3/1",
             " 1 2 3 #",

@@ -113,27 +113,34 @@ fn error_at(file: &Path, line: usize, kind: ObjErrorKind) -> ObjError {
     }
 }
 
+/// The chunks' tables joined in order: the first chunk's grown (in place,
+/// or moved by the allocator without a copy) to the whole size once, the
+/// others appended, so no table is copied twice or grows step by step.
+fn join<T: Copy>(parts: Vec<Vec<T>>) -> Vec<T> {
+    let total = parts.iter().map(Vec::len).sum::<usize>();
+    let mut parts = parts.into_iter();
+    let mut all = parts.next().unwrap_or_default();
+    all.reserve_exact(total - all.len());
+    for part in parts {
+        all.extend_from_slice(&part);
+    }
+    all
+}
+
 /// The text read in `count` chunks in parallel ([`chunks`]) and joined;
 /// `None` when it must be read line by line instead.
 fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFile, ObjError>> {
-    let read = chunks::read_chunks(text, count)?;
+    let mut read = chunks::read_chunks(text, count)?;
     let mut p = Parser::default();
-    // Room for everything at once, each table written once: no vector
-    // grows (and copies itself into fresh pages) while the chunks join.
-    let total = |n: fn(&chunks::Chunk<'_>) -> usize| read.iter().map(n).sum::<usize>();
-    p.mesh.positions.reserve_exact(total(|c| c.positions.len()));
-    p.mesh
-        .face_vertices
-        .reserve_exact(total(|c| c.face_vertices.len()));
-    p.mesh
-        .face_offsets
-        .reserve_exact(total(|c| c.face_ends.len()));
-    p.uv_values.reserve_exact(total(|c| c.uv_values.len()));
-    p.uv_indices.reserve_exact(total(|c| c.uv_indices.len()));
+    let (mut vertices_before, mut uvs_before) = (0, 0);
     let mut first_line = 0;
     let mut deferred = Vec::new();
-    for c in read {
-        if c.needs.0 > p.mesh.positions.len() || c.needs.1 > p.uv_values.len() / 2 {
+    p.mesh
+        .face_offsets
+        .reserve_exact(read.iter().map(|c| c.face_ends.len()).sum());
+    let mut corners_before = 0;
+    for c in &read {
+        if c.needs.0 > vertices_before || c.needs.1 > uvs_before {
             return None;
         }
         if let Some((with_uv, line)) = c.first_face {
@@ -143,18 +150,36 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
                 None => p.uv_mode = Some((with_uv, first_line + line)),
             }
         }
-        let base = p.mesh.face_vertices.len();
         for &end in &c.face_ends {
-            let end = u32::try_from(base + end as usize).ok()?;
+            let end = u32::try_from(corners_before + end as usize).ok()?;
             p.mesh.face_offsets.push(end);
         }
-        p.mesh.positions.extend_from_slice(&c.positions);
-        p.mesh.face_vertices.extend_from_slice(&c.face_vertices);
-        p.uv_values.extend_from_slice(&c.uv_values);
-        p.uv_indices.extend_from_slice(&c.uv_indices);
+        vertices_before += c.positions.len();
+        uvs_before += c.uv_values.len() / 2;
+        corners_before += c.face_vertices.len();
         deferred.extend(c.deferred.iter().map(|&(line, s)| (first_line + line, s)));
         first_line += c.lines;
     }
+    p.mesh.positions = join(
+        read.iter_mut()
+            .map(|c| std::mem::take(&mut c.positions))
+            .collect(),
+    );
+    p.mesh.face_vertices = join(
+        read.iter_mut()
+            .map(|c| std::mem::take(&mut c.face_vertices))
+            .collect(),
+    );
+    p.uv_values = join(
+        read.iter_mut()
+            .map(|c| std::mem::take(&mut c.uv_values))
+            .collect(),
+    );
+    p.uv_indices = join(
+        read.iter_mut()
+            .map(|c| std::mem::take(&mut c.uv_indices))
+            .collect(),
+    );
     for (line, statement) in deferred {
         if let Err(kind) = p.statement(line, statement) {
             return Some(Err(error_at(file, line, kind)));
@@ -171,13 +196,19 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
 fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let error = |line: usize, kind: ObjErrorKind| error_at(file, line, kind);
     let mut parser = Parser::default();
-    for (i, line) in fast::lines(text).enumerate() {
-        if fast_path && parser.fast_statement(i + 1, line.as_bytes()) {
-            continue;
+    let mut cursor = fast::Cursor::new(text);
+    let mut line = 0;
+    while !cursor.is_done() {
+        line += 1;
+        if fast_path {
+            if let Some(end) = parser.fast_statement(line, cursor.rest()) {
+                cursor.skip(end);
+                continue;
+            }
         }
         parser
-            .statement(i + 1, line)
-            .map_err(|kind| error(i + 1, kind))?;
+            .statement(line, cursor.take_line())
+            .map_err(|kind| error(line, kind))?;
     }
     parser.finish().map_err(|(line, kind)| error(line, kind))
 }
@@ -332,46 +363,46 @@ impl Parser {
         });
     }
 
-    /// Reads one line by the fast path ([`fast`]) if it can: true when it
-    /// did, with the same effect as [`Parser::statement`]; false (nothing
-    /// changed) for a line the general parser must read.
-    fn fast_statement(&mut self, line: usize, text: &[u8]) -> bool {
+    /// Reads one line by the fast path ([`fast`]) if it can — `text` is the
+    /// text from the line on — and says where the line ends in `text` (its
+    /// line feed, or the end of the text), with the same effect as
+    /// [`Parser::statement`]; `None` (nothing changed) for a line the
+    /// general parser must read.
+    fn fast_statement(&mut self, line: usize, text: &[u8]) -> Option<usize> {
         match text {
-            [b'v', s, rest @ ..] if fast::is_space(*s) => {
-                let Some(p) = fast::numbers::<3>(rest) else {
-                    return false;
-                };
+            [b'v', s, rest @ ..] if fast::is_blank(*s) => {
+                let (p, end) = fast::numbers::<3>(rest)?;
                 self.mesh.positions.push(DVec3::from_array(p));
+                Some(2 + end)
             }
-            [b'v', b't', s, rest @ ..] if fast::is_space(*s) => {
-                let Some(uv) = fast::numbers::<2>(rest) else {
-                    return false;
-                };
+            [b'v', b't', s, rest @ ..] if fast::is_blank(*s) => {
+                let (uv, end) = fast::numbers::<2>(rest)?;
                 self.uv_values.extend_from_slice(&uv);
+                Some(3 + end)
             }
-            [b'f', s, rest @ ..] if fast::is_space(*s) => {
+            [b'f', s, rest @ ..] if fast::is_blank(*s) => {
                 let vertex_count = self.mesh.positions.len();
                 let uv_count = self.uv_values.len() / 2;
                 let (vertices, uvs) = (&mut self.mesh.face_vertices, &mut self.uv_indices);
                 let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
-                let Some(with_uv) =
-                    fast::face(rest, vertex_count, uv_count, MAX_VALENCE, vertices, uvs)
+                let (with_uv, end) =
+                    fast::face(rest, vertex_count, uv_count, MAX_VALENCE, vertices, uvs)?;
+                let last = u32::try_from(vertices.len());
+                let (Ok(last), true) = (last, self.uv_mode.is_none_or(|(m, _)| m == with_uv))
                 else {
-                    return false;
-                };
-                let end = u32::try_from(vertices.len());
-                let (Ok(end), true) = (end, self.uv_mode.is_none_or(|(m, _)| m == with_uv)) else {
                     vertices.truncate(had_vertices);
                     uvs.truncate(had_uvs);
-                    return false;
+                    return None;
                 };
                 self.uv_mode.get_or_insert((with_uv, line));
-                self.mesh.face_offsets.push(end);
+                self.mesh.face_offsets.push(last);
+                Some(2 + end)
             }
-            _ if fast::ignored(text) => {}
-            _ => return false,
+            _ => {
+                let end = fast::line_end(text);
+                fast::ignored(&text[..end]).then_some(end)
+            }
         }
-        true
     }
 
     /// Reads one line.
