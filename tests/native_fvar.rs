@@ -409,6 +409,19 @@ fn generated() -> Vec<(String, Mesh)> {
         ("pole-6-three-seams".into(), pole_three_seams()),
         ("grid-two-darts".into(), grid_two_darts()),
         ("grid-unused".into(), grid_unused()),
+        // The benchmark's tori with UVs (`shapes::with_torus_uvs`).
+        (
+            "torus-uv-quads".into(),
+            shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6),
+        ),
+        (
+            "torus-uv-mixed".into(),
+            shapes::with_torus_uvs(shapes::torus_mixed(8, 6), 8, 6),
+        ),
+        (
+            "torus-uv-triangles".into(),
+            shapes::with_torus_uvs(shapes::torus_triangles(8, 6), 8, 6),
+        ),
     ];
     for (name, m) in &out {
         m.validate().unwrap_or_else(|e| panic!("{name}: {e}"));

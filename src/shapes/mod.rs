@@ -162,6 +162,42 @@ pub fn torus_triangles(nu: u32, nv: u32) -> Mesh {
     mesh
 }
 
+/// `mesh` — [`torus`], [`torus_mixed`] or [`torus_triangles`] of `nu` ×
+/// `nv` cells (both at least 3) — with the torus unwrapped onto the unit
+/// square as its one face-varying channel: (`nu` + 1) × (`nv` + 1) UVs, two
+/// seam loops (the rings through vertex 0, which has four values; the other
+/// vertices of a seam have two), as a texture artist would cut a torus.
+pub fn with_torus_uvs(mut mesh: Mesh, nu: u32, nv: u32) -> Mesh {
+    let mut values = Vec::with_capacity(2 * (nu as usize + 1) * (nv as usize + 1));
+    for j in 0..=nv {
+        for i in 0..=nu {
+            values.extend([i as f64 / nu as f64, j as f64 / nv as f64]);
+        }
+    }
+    // A face's cell: the lowest ring of its vertices, or the last one when
+    // the face closes the torus (its vertices are on rings 0 and n - 1).
+    let cell = |rings: &mut dyn Iterator<Item = u32>, n: u32| {
+        let (lo, hi) = rings.fold((u32::MAX, 0), |(lo, hi), r| (lo.min(r), hi.max(r)));
+        if hi - lo > 1 { n - 1 } else { lo }
+    };
+    let mut indices = Vec::with_capacity(mesh.face_vertices.len());
+    for f in mesh.faces() {
+        let ci = cell(&mut f.iter().map(|&v| v % nu), nu);
+        let cj = cell(&mut f.iter().map(|&v| v / nu), nv);
+        for &v in f {
+            let (i, j) = (v % nu, v / nu);
+            let (di, dj) = (u32::from(i != ci), u32::from(j != cj));
+            indices.push((cj + dj) * (nu + 1) + ci + di);
+        }
+    }
+    mesh.fvar_channels = vec![FVarChannel {
+        width: 2,
+        values,
+        indices,
+    }];
+    mesh
+}
+
 /// A regular tetrahedron (4 triangles), for the Loop scheme.
 pub fn tetrahedron() -> Mesh {
     Mesh::from_faces(
@@ -210,7 +246,9 @@ pub struct BenchShape {
 /// (Catmull-Clark and Loop), a 1000×1000 quad grid refined one level, and
 /// the production-like mesh of [`production`] (560 × 480 cells, 291,200
 /// faces, one UV channel) refined two levels with USD's defaults (boundary
-/// edge-and-corner, face-varying corners-plus-1). `quick` shrinks them.
+/// edge-and-corner, face-varying corners-plus-1), and the four tori again
+/// with UVs ([`with_torus_uvs`]) refined two levels with the same defaults.
+/// `quick` shrinks them.
 pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
     let d = if quick { 4 } else { 1 };
     let input = |name: &str, mesh: Mesh, scheme: Scheme, max_level: u32| BenchShape {
@@ -225,7 +263,7 @@ pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
     let usd = Options::default()
         .with_boundary(BoundaryInterpolation::EdgeAndCorner)
         .with_fvar(FVarLinearInterpolation::CornersPlus1);
-    vec![
+    let mut shapes = vec![
         input(
             &format!("torus {0}x{0} quads", 100 / d),
             torus(100 / d, 100 / d),
@@ -262,7 +300,29 @@ pub fn bench_shapes(quick: bool) -> Vec<BenchShape> {
             options: usd,
             max_level: 2,
         },
-    ]
+    ];
+    // Every torus again with its UVs (two seam loops), refined as assets
+    // are: two levels, USD's defaults.
+    let with_uvs: Vec<BenchShape> = shapes[..4]
+        .iter()
+        .map(|t| {
+            let (nu, nv) = if t.name.contains("mixed") {
+                (80 / d, 80 / d)
+            } else if t.name.contains("triangles") {
+                (100 / d, 50 / d)
+            } else {
+                (100 / d, 100 / d)
+            };
+            BenchShape {
+                name: format!("{} with UVs", t.name),
+                mesh: with_torus_uvs(t.mesh.clone(), nu, nv),
+                options: usd.with_scheme(t.options.scheme),
+                max_level: 2,
+            }
+        })
+        .collect();
+    shapes.extend(with_uvs);
+    shapes
 }
 
 #[cfg(test)]
@@ -286,6 +346,51 @@ mod tests {
         }
         for &(a, b) in &directed {
             assert!(directed.contains(&(b, a)));
+        }
+    }
+
+    /// Every face of the unwrapped tori maps onto one cell of the unit
+    /// square, corner by corner; vertex 0 has four values, the other seam
+    /// vertices two, every other vertex one.
+    #[test]
+    fn torus_uvs_unwrap_every_cell_with_two_seams() {
+        let (nu, nv) = (5, 4);
+        for mesh in [torus(nu, nv), torus_mixed(nu, nv), torus_triangles(nu, nv)] {
+            let m = with_torus_uvs(mesh, nu, nv);
+            assert!(m.validate().unwrap().warnings.is_empty());
+            let uv = &m.fvar_channels[0];
+            assert_eq!(uv.values.len(), 2 * 6 * 5);
+            let mut values_of = vec![std::collections::BTreeSet::new(); m.vertex_count()];
+            for (f, face) in m.faces().enumerate() {
+                let corners =
+                    &uv.indices[m.face_offsets[f] as usize..m.face_offsets[f + 1] as usize];
+                let at = |k: usize| {
+                    [
+                        uv.values[2 * corners[k] as usize],
+                        uv.values[2 * corners[k] as usize + 1],
+                    ]
+                };
+                // The corners' UVs span one cell, and each sits where its
+                // vertex sits on the torus (mod the seams).
+                let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+                for k in 0..face.len() {
+                    let [u, v] = at(k);
+                    lo = [lo[0].min(u), lo[1].min(v)];
+                    hi = [hi[0].max(u), hi[1].max(v)];
+                    let (i, j) = (face[k] % nu, face[k] / nu);
+                    assert_eq!((u * nu as f64).round() as u32 % nu, i);
+                    assert_eq!((v * nv as f64).round() as u32 % nv, j);
+                    values_of[face[k] as usize].insert(corners[k]);
+                }
+                assert!((hi[0] - lo[0] - 1.0 / nu as f64).abs() < 1e-12, "face {f}");
+                assert!((hi[1] - lo[1] - 1.0 / nv as f64).abs() < 1e-12, "face {f}");
+            }
+            for (v, values) in values_of.iter().enumerate() {
+                let (i, j) = (v as u32 % nu, v as u32 / nu);
+                let expected =
+                    1 + usize::from(i == 0) + usize::from(j == 0) + usize::from(i == 0 && j == 0);
+                assert_eq!(values.len(), expected, "vertex {v}");
+            }
         }
     }
 

@@ -78,11 +78,18 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     })?;
     bar.finish_and_clear();
     if args.inputs.is_empty() && !args.adaptive_only {
-        // The first input (the quad torus) at level 4; the inputs refined
-        // at most two levels in process (the grid, the production-like
-        // mesh) at levels 1 and 2, as production assets are refined.
+        // The first input (the quad torus) at level 4; the big inputs
+        // refined at most two levels in process (the grid, the
+        // production-like mesh) at levels 1 and 2, as production assets are
+        // refined.
         let mut runs = vec![(&inputs[0], 4)];
-        for input in inputs.iter().filter(|i| i.max_level <= 2) {
+        // The big inputs: refined at most two levels, with 100,000 faces or
+        // more at full size (`--quick` divides the face counts by 16).
+        let scale = if args.quick { 16 } else { 1 };
+        let big = |i: &&subdiv::shapes::BenchShape| {
+            i.max_level <= 2 && i.mesh.face_count() * scale >= 100_000
+        };
+        for input in inputs.iter().filter(big) {
             runs.extend([(input, 1), (input, 2)]);
         }
         for (input, level) in runs {
@@ -93,7 +100,7 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
                     .push(format!("whole process, {} level {level}: {e}", input.name)),
             }
         }
-        for input in inputs.iter().filter(|i| i.max_level <= 2) {
+        for input in inputs.iter().filter(big) {
             match super::process::obj_reader_rate(input, args.threads) {
                 Ok(o) => report.obj_reader.push(o),
                 Err(e) => report
