@@ -97,7 +97,7 @@ fn native_counts<T: Real>(
     options: &Options,
     uniform: UniformOptions,
 ) -> Result<Vec<LevelCounts>> {
-    let base = mesh.flat_positions::<T>();
+    let base = mesh.positions_as::<T>();
     let channels = !mesh.fvar_channels.is_empty();
     let (counts, ..) =
         crate::refiner::refine_last_with(mesh, options, uniform, 3, &base, channels)?;
@@ -113,7 +113,7 @@ fn osd_counts<T: Real>(
 ) -> Result<Vec<LevelCounts>> {
     let mut r = crate::osd::TopologyRefiner::new(mesh, options)?;
     r.refine_uniform(uniform)?;
-    drop(r.interpolate_last(3, &mesh.flat_positions::<T>())?);
+    drop(r.interpolate_last(3, &mesh.positions_as::<T>())?);
     for (c, channel) in mesh.fvar_channels.iter().enumerate() {
         let mut values = channel.values_as::<T>();
         for level in 1..=uniform.level {

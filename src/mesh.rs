@@ -305,6 +305,25 @@ impl Mesh {
             .collect()
     }
 
+    /// [`Mesh::flat_positions`] without a copy when `T` is `f64` (a `DVec3`
+    /// is three `f64`s: the positions are borrowed as they are); converted
+    /// into a new vector for `f32`. What a refinement that only reads its
+    /// base values takes, instead of a second copy of the base.
+    ///
+    /// ```
+    /// let cube = subdiv::shapes::cube();
+    /// let flat = cube.positions_as::<f64>();
+    /// assert!(matches!(flat, std::borrow::Cow::Borrowed(_)));
+    /// assert_eq!(*flat, *cube.flat_positions::<f64>());
+    /// assert_eq!(*cube.positions_as::<f32>(), *cube.flat_positions::<f32>());
+    /// ```
+    pub fn positions_as<T: crate::Real>(&self) -> std::borrow::Cow<'_, [T]> {
+        match bytemuck::try_cast_slice::<DVec3, T>(&self.positions) {
+            Ok(flat) if T::PRECISION == crate::Precision::F64 => std::borrow::Cow::Borrowed(flat),
+            _ => std::borrow::Cow::Owned(self.flat_positions()),
+        }
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

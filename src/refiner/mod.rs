@@ -377,11 +377,13 @@ impl Refiner {
     /// ```
     pub fn interpolate_last<T: Real>(&self, width: usize, base: &[T]) -> Result<Values<T>> {
         crate::alloc::guard(None, || {
-            let mut current = Table::from_slice(base);
+            // Level 1 reads `base` where it is: no copy of it.
+            let mut current: Option<Table<T>> = None;
             for level in 1..=self.max_level() {
-                current = self.interpolate_table(level, width, &current)?;
+                let src = current.as_deref().unwrap_or(base);
+                current = Some(self.interpolate_table(level, width, src)?);
             }
-            Ok(Values(current))
+            Ok(Values(current.unwrap_or_else(|| Table::from_slice(base))))
         })
     }
 

@@ -75,7 +75,8 @@ pub(crate) fn refine_last_with<T: Real>(
             });
         }
         let mut counts = vec![r.level_counts(0)?];
-        let mut data = Table::from_slice(base);
+        // Level 1 reads `base` where it is: no copy of it.
+        let mut data: Option<Table<T>> = None;
         let mut fvar_values: Vec<Vec<T>> = if channels {
             mesh.fvar_channels.iter().map(|c| c.values_as()).collect()
         } else {
@@ -110,8 +111,9 @@ pub(crate) fn refine_last_with<T: Real>(
             r.check_unpaired_smooth_step(level - 1)?;
             counts.push(r.level_counts(level as u32)?);
             let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
-            r.interpolate_level(Kind::Vertex, level, width, &data, &mut next);
-            data = next;
+            let src = data.as_deref().unwrap_or(base);
+            r.interpolate_level(Kind::Vertex, level, width, src, &mut next);
+            data = Some(next);
             for (c, values) in fvar_values.iter_mut().enumerate() {
                 let w = mesh.fvar_channels[c].width;
                 *values = r.interpolate_face_varying(c, level as u32, w, values)?;
@@ -126,7 +128,8 @@ pub(crate) fn refine_last_with<T: Real>(
                 }
             }
         }
-        Ok((counts, Values(data), fvar_values))
+        let last = data.unwrap_or_else(|| Table::from_slice(base));
+        Ok((counts, Values(last), fvar_values))
     })
 }
 

@@ -251,7 +251,7 @@ pub(crate) fn write_native_last(
         r: &subdiv::refiner::Refiner,
         mesh: &Mesh,
     ) -> subdiv::Result<(Values<T>, Option<Vec<T>>)> {
-        let positions = r.interpolate_last(3, &mesh.flat_positions::<T>())?;
+        let positions = r.interpolate_last(3, &mesh.positions_as::<T>())?;
         // Only the first face-varying channel is written.
         let uv = match mesh.fvar_channels.first() {
             Some(channel) => {
