@@ -96,7 +96,8 @@ def judge(report):
     for r in report["rows"]:
         if r["input"] in shallow:
             speedup = r["osd"] / r["native"]
-            yield ("%s, %s level %d, %d thread(s)" % (r["task"], r["input"], r["level"], threads),
+            yield ("%s, %s %s level %d, %d thread(s)" % (
+                r["task"], r["input"], r["scheme"], r["level"], threads),
                    "%.2fx" % speedup, "%gx" % goal, speedup >= goal)
     for a in report.get("adaptive", []):
         speedup = a["osd"] / a["native"]

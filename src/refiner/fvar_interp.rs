@@ -99,8 +99,9 @@ fn put<T: Real, C: Cols>(dst: &mut [T], i: u32, acc: &[T; MAX_WIDTH], cols: C) {
     dst[start..start + cols.count()].copy_from_slice(&acc[..cols.count()]);
 }
 
-/// Loop: the value at the corner of face `f` opposite edge `e`.
-#[inline]
+/// Loop: the value at the corner of face `f` opposite edge `e` (corner
+/// `k + 2` of a triangle whose edge `k` it is; a comparison, not a division).
+#[inline(always)]
 fn opposite_value(pf: &ChannelLevel, parent: &Level, f: usize, e: usize) -> u32 {
     let k = parent
         .face_edges_of(f)
@@ -108,7 +109,12 @@ fn opposite_value(pf: &ChannelLevel, parent: &Level, f: usize, e: usize) -> u32 
         .position(|&x| x as usize == e)
         .unwrap_or(0);
     let values = pf.face_values_of(parent, f);
-    values[(k + 2) % values.len()]
+    let j = k + 2;
+    values[if j >= values.len() {
+        j - values.len()
+    } else {
+        j
+    }]
 }
 
 impl Refiner {

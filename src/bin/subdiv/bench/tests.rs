@@ -338,8 +338,8 @@ fn the_targets_script_reads_the_bench_json() {
     };
     let (code, text) = check(&production);
     for expected in [
-        "topology + positions + UVs, production level 1, 1 thread(s): 4.00x (target 3x) met",
-        "UVs (f32), production level 2, 1 thread(s): 2.00x (target 3x) NOT MET",
+        "topology + positions + UVs, production catmark level 1, 1 thread(s): 4.00x (target 3x) met",
+        "UVs (f32), production catmark level 2, 1 thread(s): 2.00x (target 3x) NOT MET",
     ] {
         assert!(text.contains(expected), "{expected:?} in\n{text}");
     }
