@@ -10,6 +10,7 @@ use super::{Level, Relation, Table};
 use crate::mesh::Mesh;
 use crate::options::{BoundaryInterpolation, Options, Scheme};
 use crate::rules::crease;
+use std::ops::Range;
 
 const NONE: u32 = u32::MAX;
 
@@ -19,14 +20,15 @@ const NONE: u32 = u32::MAX;
 ///
 /// The mesh must have been validated ([`Mesh::validate`]).
 pub fn build_base_level(mesh: &Mesh, options: &Options) -> Level {
-    let mut level = topology_from_face_vertices(mesh);
+    let mut level = topology_from_face_vertices(mesh, VERTEX_BLOCK);
     assign_tags(&mut level, mesh, options);
     level
 }
 
 /// Edges, edge-faces, vertex-faces and vertex-edges from the face-vertex lists,
-/// with non-manifold detection, orientation and local indices.
-fn topology_from_face_vertices(mesh: &Mesh) -> Level {
+/// with non-manifold detection, orientation and local indices (the
+/// per-vertex passes in blocks of `block` vertices on several threads).
+fn topology_from_face_vertices(mesh: &Mesh, block: usize) -> Level {
     let nv = mesh.vertex_count();
     let face_vertices = Relation::from_parts(
         Table::from_slice(&mesh.face_offsets),
@@ -144,9 +146,9 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
             level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
         }
     }
-    let mut corners = FirstCorners::default();
-    orient_incident_components(&mut level, &mut corners);
-    populate_local_indices(&mut level, &mut corners);
+    let blocks = vertex_blocks(nv, rayon::current_num_threads(), block);
+    orient_incident_components(&mut level, &blocks);
+    populate_local_indices(&mut level, &blocks);
     level.max_edge_faces = (0..ne)
         .map(|e| level.edge_faces.count(e))
         .max()
@@ -159,22 +161,118 @@ fn topology_from_face_vertices(mesh: &Mesh) -> Level {
     level
 }
 
+/// Vertices per block of the per-vertex passes (orientation, local
+/// indices) when they run on several threads.
+const VERTEX_BLOCK: usize = 16_384;
+
+/// The vertex ranges the per-vertex passes take one at a time: the whole
+/// level on a pool of one thread or for a small level, else blocks of
+/// `block` vertices for the pool's threads. Each vertex's results depend on
+/// nothing another vertex's pass writes, so blocks give the same level as
+/// one pass.
+fn vertex_blocks(nv: usize, threads: usize, block: usize) -> Vec<Range<usize>> {
+    if threads <= 1 || nv <= block {
+        // One block: the whole level.
+        return std::iter::once(0..nv).collect();
+    }
+    (0..nv)
+        .step_by(block)
+        .map(|start| start..(start + block).min(nv))
+        .collect()
+}
+
+/// `data` (parallel to the members of `relation`) cut into the members of
+/// each block of vertices.
+fn split_by_blocks<'a, T>(
+    mut data: &'a mut [T],
+    relation: &Relation,
+    blocks: &[Range<usize>],
+) -> Vec<&'a mut [T]> {
+    let mut at = 0;
+    let mut parts = Vec::with_capacity(blocks.len());
+    for b in blocks {
+        let end = relation.start(b.end);
+        let (part, rest) = std::mem::take(&mut data).split_at_mut(end - at);
+        parts.push(part);
+        data = rest;
+        at = end;
+    }
+    parts
+}
+
+/// Runs `pass` on every block with its parts of two tables (split by
+/// [`split_by_blocks`]), on the current pool when there are several blocks,
+/// and returns what the blocks return, in block order.
+fn for_blocks<A: Send, B: Send, R: Send>(
+    blocks: &[Range<usize>],
+    a: Vec<A>,
+    b: Vec<B>,
+    pass: impl Fn(Range<usize>, A, B) -> Vec<R> + Sync,
+) -> Vec<R> {
+    use rayon::prelude::*;
+    let work: Vec<_> = blocks.iter().cloned().zip(a).zip(b).collect();
+    if work.len() == 1 {
+        return work
+            .into_iter()
+            .flat_map(|((r, a), b)| pass(r, a, b))
+            .collect();
+    }
+    let results: Vec<Vec<R>> = work
+        .into_par_iter()
+        .map(|((r, a), b)| pass(r, a, b))
+        .collect();
+    results.into_iter().flatten().collect()
+}
+
 /// Orders the faces and edges of every manifold vertex counter-clockwise,
-/// tagging as non-manifold every vertex where that fails.
-fn orient_incident_components(level: &mut Level, corners: &mut FirstCorners) {
-    let mut faces = Vec::new();
-    let mut edges = Vec::new();
-    for v in 0..level.vertex_count {
+/// tagging as non-manifold every vertex where that fails; block by block
+/// ([`vertex_blocks`]).
+fn orient_incident_components(level: &mut Level, blocks: &[Range<usize>]) {
+    let mut vf = std::mem::take(&mut level.vertex_faces.members);
+    let mut ve = std::mem::take(&mut level.vertex_edges.members);
+    let failed = {
+        let level = &*level;
+        let vf_parts = split_by_blocks(&mut vf, &level.vertex_faces, blocks);
+        let ve_parts = split_by_blocks(&mut ve, &level.vertex_edges, blocks);
+        for_blocks(blocks, vf_parts, ve_parts, |range, vf, ve| {
+            orient_block(level, range, vf, ve)
+        })
+    };
+    level.vertex_faces.members = vf;
+    level.vertex_edges.members = ve;
+    for v in failed {
+        level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
+    }
+}
+
+/// [`orient_incident_components`] on the vertices of `range`, whose faces
+/// and edges are `vf` and `ve` (the members of the block); returns the
+/// vertices that could not be ordered.
+fn orient_block(level: &Level, range: Range<usize>, vf: &mut [u32], ve: &mut [u32]) -> Vec<u32> {
+    let mut corners = FirstCorners::default();
+    let (mut faces, mut edges) = (Vec::new(), Vec::new());
+    let (vf_base, ve_base) = (
+        level.vertex_faces.start(range.start),
+        level.vertex_edges.start(range.start),
+    );
+    let mut failed = Vec::new();
+    for v in range {
         if level.vertex_tag(v).non_manifold() {
             continue;
         }
-        if order_vertex(level, corners, v as u32, &mut faces, &mut edges) {
-            level.vertex_faces.get_mut(v).copy_from_slice(&faces);
-            level.vertex_edges.get_mut(v).copy_from_slice(&edges);
+        let f = level.vertex_faces.range(v);
+        let f = f.start - vf_base..f.end - vf_base;
+        let e = level.vertex_edges.range(v);
+        let e = e.start - ve_base..e.end - ve_base;
+        let hood = (&vf[f.clone()], &ve[e.clone()]);
+        if order_vertex(level, &mut corners, v as u32, hood, &mut faces, &mut edges) {
+            vf[f].copy_from_slice(&faces);
+            ve[e].copy_from_slice(&edges);
         } else {
-            level.update_vertex_tag(v, |t| t.set_non_manifold(true));
+            failed.push(v as u32);
         }
     }
+    failed
 }
 
 /// The faces of every edge in the order they were appended to it (face by
@@ -228,11 +326,10 @@ fn order_vertex(
     level: &Level,
     corners: &mut FirstCorners,
     v: u32,
+    (v_faces, v_edges): (&[u32], &[u32]),
     faces: &mut Vec<u32>,
     edges: &mut Vec<u32>,
 ) -> bool {
-    let v_faces = level.vertex_faces_of(v as usize);
-    let v_edges = level.vertex_edges_of(v as usize);
     let (nf, ne) = (v_faces.len(), v_edges.len());
     faces.clear();
     edges.clear();
@@ -297,19 +394,39 @@ fn order_vertex(
 
 /// Local indices: where a vertex sits in each face and which end of each edge
 /// it is (where an edge sits in each face is already known,
-/// [`edge_face_locals`]). Repeated members of a face (only possible when
-/// non-manifold) are assigned in order of occurrence.
-fn populate_local_indices(level: &mut Level, corners: &mut FirstCorners) {
+/// [`edge_faces_and_locals`]). Repeated members of a face (only possible when
+/// non-manifold) are assigned in order of occurrence. Block by block
+/// ([`vertex_blocks`]).
+fn populate_local_indices(level: &mut Level, blocks: &[Range<usize>]) {
     let mut vfl = crate::alloc::vec_or_unwind(0u16, level.vertex_faces.members.len());
-    for v in 0..level.vertex_count {
-        let range = level.vertex_faces.range(v);
+    let mut vel = crate::alloc::vec_or_unwind(0u16, level.vertex_edges.members.len());
+    {
+        let level = &*level;
+        let vfl_parts = split_by_blocks(&mut vfl, &level.vertex_faces, blocks);
+        let vel_parts = split_by_blocks(&mut vel, &level.vertex_edges, blocks);
+        for_blocks(blocks, vfl_parts, vel_parts, |range, vfl, vel| {
+            local_indices_block(level, range, vfl, vel);
+            Vec::<()>::new()
+        });
+    }
+    level.vertex_face_local = vfl.into();
+    level.vertex_edge_local = vel.into();
+}
+
+/// [`populate_local_indices`] on the vertices of `range`, writing their
+/// parts `vfl` and `vel` of the two tables.
+fn local_indices_block(level: &Level, range: Range<usize>, vfl: &mut [u16], vel: &mut [u16]) {
+    let mut corners = FirstCorners::default();
+    let vf_base = level.vertex_faces.start(range.start);
+    let ve_base = level.vertex_edges.start(range.start);
+    for v in range {
         let mut last = NONE;
-        for i in range.clone() {
+        for i in level.vertex_faces.range(v) {
             let f = level.vertex_faces.members[i];
             let verts = level.face_verts(f as usize);
             let k = if f == last {
                 // The same face again: the next occurrence.
-                let start = vfl[i - 1] as usize + 1;
+                let start = vfl[i - 1 - vf_base] as usize + 1;
                 verts[start..]
                     .iter()
                     .position(|&x| x == v as u32)
@@ -317,25 +434,20 @@ fn populate_local_indices(level: &mut Level, corners: &mut FirstCorners) {
             } else {
                 corners.get(f, verts, v as u32)
             };
-            vfl[i] = k as u16;
+            vfl[i - vf_base] = k as u16;
             last = f;
         }
-    }
-    let mut vel = crate::alloc::vec_or_unwind(0u16, level.vertex_edges.members.len());
-    for v in 0..level.vertex_count {
-        let range = level.vertex_edges.range(v);
-        for i in range.clone() {
+        let edges = level.vertex_edges.range(v);
+        for i in edges.clone() {
             let e = level.vertex_edges.members[i];
             let [a, b] = level.edge_vertices[e as usize];
-            vel[i] = if a != b {
+            vel[i - ve_base] = if a != b {
                 (b == v as u32) as u16
             } else {
-                (i > range.start && level.vertex_edges.members[i - 1] == e) as u16
+                (i > edges.start && level.vertex_edges.members[i - 1] == e) as u16
             };
         }
     }
-    level.vertex_face_local = vfl.into();
-    level.vertex_edge_local = vel.into();
 }
 
 /// User sharpness and holes, then OpenSubdiv's boundary and non-manifold
@@ -421,5 +533,37 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         tag.set_boundary(boundary > 0);
         tag.set_corner(topological_corner && tag.inf_sharp());
         level.set_vertex_tag(v, tag);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The per-vertex passes in blocks of 1-7 vertices on two threads build
+    /// the same level as one pass over every vertex: on the corpus
+    /// (non-manifold, degenerate and inconsistent shapes among them) and
+    /// the production-like mesh.
+    #[test]
+    fn blocks_of_vertices_build_the_same_level() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let mut meshes = crate::shapes::corpus();
+        meshes.push(("production".into(), crate::shapes::production(8, 6)));
+        let mut blocked = 0;
+        for (name, mesh) in &meshes {
+            if mesh.validate().is_err() {
+                continue;
+            }
+            let whole = format!("{:?}", topology_from_face_vertices(mesh, usize::MAX));
+            for block in [1, 2, 3, 7] {
+                let level = pool.install(|| topology_from_face_vertices(mesh, block));
+                assert_eq!(format!("{level:?}"), whole, "{name}, blocks of {block}");
+            }
+            blocked += usize::from(mesh.vertex_count() > 7);
+        }
+        assert!(blocked > 10, "{blocked}");
     }
 }

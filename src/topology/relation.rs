@@ -119,13 +119,6 @@ impl Relation {
         &self.members[self.range(i)]
     }
 
-    /// The members of element `i`, mutably.
-    #[inline]
-    pub fn get_mut(&mut self, i: usize) -> &mut [u32] {
-        let r = self.range(i);
-        &mut self.members[r]
-    }
-
     /// Number of members of element `i`.
     #[inline(always)]
     pub fn count(&self, i: usize) -> usize {
