@@ -258,68 +258,58 @@ pub(super) fn face(
     uvs: &mut Vec<u32>,
 ) -> Option<(bool, usize)> {
     let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
-    let read = corners(line, vertex_count, uv_count, max, vertices, uvs)
-        .filter(|_| vertices.len() - had_vertices >= 3);
+    // The pass, leaving what it appended when it fails.
+    let mut corners = || -> Option<(bool, usize)> {
+        let first = vertices.len();
+        let mut at = 0;
+        let mut with_uv = None;
+        loop {
+            skip_blank(line, &mut at);
+            if is_line_end(line, at) {
+                return Some((with_uv.unwrap_or(false), at));
+            }
+            let v = index(line, &mut at)?;
+            let mut t = None;
+            if line.get(at) == Some(&b'/') {
+                at += 1;
+                if line.get(at) == Some(&b'/') {
+                    // `v//vn`: a normal index, read but not checked against the
+                    // normals, as the general parser does.
+                    at += 1;
+                    skip_normal_index(line, &mut at)?;
+                } else {
+                    t = Some(index(line, &mut at)?);
+                    if line.get(at) == Some(&b'/') {
+                        at += 1;
+                        skip_normal_index(line, &mut at)?;
+                    }
+                }
+            }
+            // The corner ends here, or the line is not one the fast path reads.
+            if line.get(at).is_some_and(|&b| !is_space(b)) {
+                return None;
+            }
+            if v > vertex_count || *with_uv.get_or_insert(t.is_some()) != t.is_some() {
+                return None;
+            }
+            vertices.push((v - 1) as u32);
+            if let Some(t) = t {
+                if t > uv_count {
+                    return None;
+                }
+                uvs.push((t - 1) as u32);
+            }
+            if vertices.len() - first > max {
+                return None;
+            }
+        }
+    };
+    let read = corners().filter(|_| vertices.len() - had_vertices >= 3);
     if read.is_none() {
         vertices.truncate(had_vertices);
         uvs.truncate(had_uvs);
     }
     read
-}
-
-/// [`face`]'s pass, leaving what it appended when it fails.
-#[inline]
-fn corners(
-    line: &[u8],
-    vertex_count: usize,
-    uv_count: usize,
-    max: usize,
-    vertices: &mut Vec<u32>,
-    uvs: &mut Vec<u32>,
-) -> Option<(bool, usize)> {
-    let first = vertices.len();
-    let mut at = 0;
-    let mut with_uv = None;
-    loop {
-        skip_blank(line, &mut at);
-        if is_line_end(line, at) {
-            return Some((with_uv.unwrap_or(false), at));
-        }
-        let v = index(line, &mut at)?;
-        let mut t = None;
-        if line.get(at) == Some(&b'/') {
-            at += 1;
-            if line.get(at) == Some(&b'/') {
-                // `v//vn`: a normal index, read but not checked against the
-                // normals, as the general parser does.
-                at += 1;
-                skip_normal_index(line, &mut at)?;
-            } else {
-                t = Some(index(line, &mut at)?);
-                if line.get(at) == Some(&b'/') {
-                    at += 1;
-                    skip_normal_index(line, &mut at)?;
-                }
-            }
-        }
-        // The corner ends here, or the line is not one the fast path reads.
-        if line.get(at).is_some_and(|&b| !is_space(b)) {
-            return None;
-        }
-        if v > vertex_count || *with_uv.get_or_insert(t.is_some()) != t.is_some() {
-            return None;
-        }
-        vertices.push((v - 1) as u32);
-        if let Some(t) = t {
-            if t > uv_count {
-                return None;
-            }
-            uvs.push((t - 1) as u32);
-        }
-        if vertices.len() - first > max {
-            return None;
-        }
-    }
 }
 
 #[cfg(test)]
