@@ -80,8 +80,8 @@ pub struct BenchReport {
     pub whole_process: Vec<WholeProcess>,
     /// The OBJ writer's rate on the first input (standard inputs only).
     pub obj_writer: Option<ObjWriterRate>,
-    /// The OBJ reader's rate on each input refined at most two levels (the
-    /// big ones; standard inputs only).
+    /// The OBJ reader's rate on each big input (refined at most two levels,
+    /// 100,000 faces or more at full size; standard inputs only).
     pub obj_reader: Vec<ObjReaderRate>,
     /// Sections that could not run, with the reason.
     pub skipped: Vec<String>,
