@@ -351,6 +351,30 @@ fn warnings_are_summarised_and_holes_are_counted() {
         "{}",
         stdout(&o)
     );
+    // With no boundary interpolation the faces at the boundary are holes:
+    // the eight outer faces of a 3x3 grid, not the middle one.
+    let mut grid = String::new();
+    for y in 0..4 {
+        for x in 0..4 {
+            grid.push_str(&format!("v {x} {y} 0\n"));
+        }
+    }
+    for y in 0..3 {
+        for x in 0..3 {
+            let v = 1 + y * 4 + x;
+            grid.push_str(&format!("f {} {} {} {}\n", v, v + 1, v + 5, v + 4));
+        }
+    }
+    let grid = write(&dir, "grid.obj", &grid);
+    let o = subdiv(&["refine", grid.to_str().unwrap(), "--boundary", "none"]);
+    assert!(o.status.success());
+    assert!(
+        stdout(&o).contains("faces 9→36→144")
+            && stdout(&o)
+                .contains("(128 of the last level's faces are holes: outputs leave them out)"),
+        "{}",
+        stdout(&o)
+    );
     let out = dir.join("holes-out.obj");
     let o = subdiv(&[
         "refine",

@@ -99,8 +99,12 @@ pub(crate) fn hole_faces(mesh: &Mesh, options: &Options, level: u32) -> Result<u
     // the base level's topology tells.
     let mut is_hole = vec![false; mesh.face_count()];
     if options.boundary == BoundaryInterpolation::None && options.scheme != Scheme::Bilinear {
-        let base = subdiv::refiner::Refiner::new(mesh, options)?.level(0)?;
-        is_hole.copy_from_slice(&base.face_holes);
+        // The base level's flags, borrowed (`Refiner::level` would copy
+        // every table of the level).
+        let r = subdiv::refiner::Refiner::new(mesh, options)?;
+        if let Some(holes) = r.faces(0)?.holes {
+            is_hole.copy_from_slice(holes);
+        }
     } else {
         for &f in &mesh.holes {
             if let Some(h) = is_hole.get_mut(f as usize) {
