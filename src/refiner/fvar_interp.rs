@@ -24,7 +24,7 @@
 //! known at compile time, wider values in blocks of 16 columns.
 
 use super::Refiner;
-use super::kernel::{Cache, MAX_WIDTH};
+use super::kernel::{Cache, MAX_WIDTH, takes_smooth_mask};
 use crate::error::{Buffer, Error, Result};
 use crate::options::{Options, Scheme, TriangleSubdivision};
 use crate::real::Real;
@@ -605,10 +605,7 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
                 let edges = parent.vertex_edges_of(v);
                 let v_faces = parent.vertex_faces_of(v);
                 let p_rule = parent.vertex_tag(v).rule();
-                let m = if matches!(p_rule, Rule::Smooth | Rule::Dart)
-                    && v_faces.len() == edges.len()
-                    && !edges.is_empty()
-                {
+                let m = if takes_smooth_mask(p_rule, v_faces.len(), edges.len()) {
                     // The kernel's smooth vertex (as the rules give it).
                     cache.smooth_vertex(self.rules, v_faces.len())
                 } else {

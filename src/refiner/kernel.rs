@@ -177,6 +177,15 @@ pub(super) struct EdgeWeights<T> {
     pub centers: bool,
 }
 
+/// Whether a vertex with `rule`, `faces` faces and `edges` edges is refined
+/// by the cached smooth mask of its valence ([`Cache::smooth_vertex`]): a
+/// smooth or dart vertex whose faces and edges pair up. Vertex, sparse and
+/// face-varying passes all decide by this.
+#[inline(always)]
+pub(super) fn takes_smooth_mask(rule: Rule, faces: usize, edges: usize) -> bool {
+    matches!(rule, Rule::Smooth | Rule::Dart) && faces == edges && edges > 0
+}
+
 /// Masks of regular neighbourhoods, computed on first use.
 pub(super) struct Cache<T> {
     face: Vec<Option<T>>,
@@ -753,9 +762,7 @@ fn run<T: Real, W: Width + Send + Sync>(
         } else {
             Rule::Smooth
         };
-        let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
-            && faces.len() == edges.len()
-            && !edges.is_empty();
+        let smooth = takes_smooth_mask(rule, faces.len(), edges.len());
         if smooth {
             SmoothVertex {
                 v,

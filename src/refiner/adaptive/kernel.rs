@@ -6,7 +6,7 @@
 
 use crate::real::Real;
 use crate::refiner::kernel::{
-    Cache, Dynamic, Fixed, MAX_WIDTH, Width, add, face_point, store, sum_terms,
+    Cache, Dynamic, Fixed, MAX_WIDTH, Width, add, face_point, store, sum_terms, takes_smooth_mask,
 };
 use crate::refiner::{Kind, Scratch, Source, Step, accumulate, face_terms, opposite_vertex};
 use crate::rules::{Mask, Rule};
@@ -153,9 +153,7 @@ fn run_sparse<T: Real, W: Width>(
         } else {
             Rule::Smooth
         };
-        let smooth = matches!(rule, Rule::Smooth | Rule::Dart)
-            && faces.len() == edges.len()
-            && !edges.is_empty();
+        let smooth = takes_smooth_mask(rule, faces.len(), edges.len());
         let acc = if smooth {
             let mut acc = zero;
             SmoothSparseVertex {
