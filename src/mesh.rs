@@ -318,10 +318,14 @@ impl Mesh {
     /// assert_eq!(*cube.positions_as::<f32>(), *cube.flat_positions::<f32>());
     /// ```
     pub fn positions_as<T: crate::Real>(&self) -> std::borrow::Cow<'_, [T]> {
-        match bytemuck::try_cast_slice::<DVec3, T>(&self.positions) {
-            Ok(flat) if T::PRECISION == crate::Precision::F64 => std::borrow::Cow::Borrowed(flat),
-            _ => std::borrow::Cow::Owned(self.flat_positions()),
+        // Only `f64` shares the positions' layout (a cast to `f32` would
+        // reinterpret their bits).
+        if T::PRECISION == crate::Precision::F64 {
+            if let Ok(flat) = bytemuck::try_cast_slice::<DVec3, T>(&self.positions) {
+                return std::borrow::Cow::Borrowed(flat);
+            }
         }
+        std::borrow::Cow::Owned(self.flat_positions())
     }
 
     /// Number of vertices.
