@@ -1,7 +1,8 @@
 //! Migration guide (docs/MIGRATING.md), row 7: `Far::StencilTableFactory`
 //! (+ `UpdateValues`, `Osd::CpuEvaluator::EvalStencils`) →
 //! `Refiner::stencil_table` → `StencilTable::apply` / `apply_par`, and
-//! `Refiner::stencil_table_f32` → `StencilTableF32::apply_into`.
+//! `Refiner::stencil_table_f32` → `StencilTableF32::apply_into`, and
+//! `StencilTableFactory::Options` → `Refiner::stencil_table_with`.
 //!
 //! Builds the table once, animates a few frames with it, and checks it
 //! against refining level by level; with the `osd` feature, against
@@ -114,7 +115,54 @@ fn main() -> Result<(), Error> {
              f32 frame == CpuEvaluator::EvalStencils bit for bit"
         );
     }
+    face_varying_table()?;
     #[cfg(not(feature = "osd"))]
     println!("(built without the `osd` feature: the OpenSubdiv comparison is skipped)");
+    Ok(())
+}
+
+/// `StencilTableFactory::Options`: a face-varying table of every level with
+/// the control values, applied to the UVs of a cube; with `osd`, identical to
+/// OpenSubdiv's (indices and weights bit for bit).
+fn face_varying_table() -> Result<(), Error> {
+    use subdiv::stencil::StencilOptions;
+    let mesh = shapes::cube_with_uvs();
+    let options = Options::default();
+    // [stencil-options]
+    let mut refiner = Refiner::new(&mesh, &options)?;
+    refiner.refine_uniform(UniformOptions::new(2))?;
+    let uv_options = StencilOptions::new()
+        .face_varying(0) // interpolationMode = INTERPOLATE_FACE_VARYING, fvarChannel = 0
+        .control_vertices(true) // generateControlVerts = true
+        .intermediate_levels(true); // generateIntermediateLevels = true (the default)
+    let uv_table = refiner.stencil_table_with(&uv_options)?; // StencilTableFactory::Create(*refiner, options)
+    let uv = &mesh.fvar_channels[0];
+    let all_uvs = uv_table.apply(uv.width, &uv.values)?; // every level's UVs, level 0 first
+    // [end]
+    let mut levels = vec![uv.values.clone()];
+    for level in 1..=2 {
+        let next =
+            refiner.interpolate_face_varying(0, level, uv.width, &levels[level as usize - 1])?;
+        levels.push(next);
+    }
+    let by_level = levels.concat();
+    assert_eq!(all_uvs.len(), by_level.len());
+    let d = all_uvs
+        .iter()
+        .zip(&by_level)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(d < 1e-12, "{d}");
+    println!(
+        "face-varying table: {} rows (UVs of levels 0-2), applied == level by level to {d:.1e}",
+        uv_table.len()
+    );
+    #[cfg(feature = "osd")]
+    {
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &options)?;
+        osd.refine_uniform(UniformOptions::new(2))?;
+        assert_eq!(osd.stencil_table_with(&uv_options)?, uv_table);
+        println!("face-varying table: native == OpenSubdiv (indices and weights bit for bit)");
+    }
     Ok(())
 }

@@ -5,8 +5,9 @@
 //! boundary interpolations and bilinear) and uniform ones (levels 1-3 in
 //! both vertex orders, Catmull-Clark, bilinear and Loop), over corpus shapes. Tables must be identical:
 //! the same rows, sizes, offsets and indices in the same order, and weights
-//! bit for bit. Also: hand-derived rows, the refusals of both engines, and
-//! tables applied to base positions against level-by-level interpolation.
+//! bit for bit. Also: face-varying tables in every linear-interpolation option,
+//! hand-derived rows, the refusals of both engines, and tables applied to
+//! base positions and values against level-by-level interpolation.
 #![cfg(feature = "osd")]
 
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
@@ -65,15 +66,17 @@ fn same(case: &str, mine: &StencilTable, theirs: &StencilTable) {
     );
 }
 
-/// Both engines' tables for every option set, or the same refusal.
+/// Both engines' tables for every option set of `options`, or the same
+/// refusal.
 fn compare_all(
     case: &str,
+    options: Vec<StencilOptions>,
     refined: u32,
     mine: impl Fn(&StencilOptions) -> subdiv::Result<StencilTable>,
     theirs: impl Fn(&StencilOptions) -> subdiv::Result<StencilTable>,
 ) -> usize {
     let mut tables = 0;
-    for o in all_options() {
+    for o in options {
         let case = format!("{case} {o:?}");
         if unbuildable(&o, refined) {
             assert!(
@@ -134,6 +137,7 @@ fn adaptive_tables_match_opensubdiv() {
                     let case = format!("{name} {scheme:?} {boundary:?} {ao:?}");
                     tables += compare_all(
                         &case,
+                        all_options(),
                         native.max_level(),
                         |o| native.stencil_table_with(o),
                         |o| theirs.stencil_table_with(o),
@@ -163,6 +167,7 @@ fn uniform_tables_match_opensubdiv() {
                     let case = format!("{name} {scheme:?} {uo:?}");
                     tables += compare_all(
                         &case,
+                        all_options(),
                         level,
                         |o| native.stencil_table_with(o),
                         |o| theirs.stencil_table_with(o),
@@ -362,10 +367,9 @@ fn applied_tables_equal_levels() {
     }
 }
 
-/// Refusals, the same from both engines; face-varying tables from the
-/// bridge, not yet natively.
+/// Refusals, the same from both engines.
 #[test]
-fn refusals_and_face_varying() {
+fn refusals() {
     let mesh = shapes::cube_with_uvs();
     let options = Options::default();
     let mut native = Refiner::new(&mesh, &options).unwrap();
@@ -396,53 +400,139 @@ fn refusals_and_face_varying() {
             count: 1
         })
     ));
-    let uv = StencilOptions::new().face_varying(0).control_vertices(true);
-    assert!(matches!(
-        native.stencil_table_with(&uv),
-        Err(Error::NotYetSupported(_))
-    ));
-    let t = theirs.stencil_table_with(&uv).unwrap();
-    let values: usize = (0..=2)
-        .map(|l| theirs.level(l).unwrap().fvar[0].value_count)
-        .sum();
-    assert_eq!(t.len(), values);
-    // The face-varying table applied to the base values gives the refined
-    // values of every level.
-    let base = mesh.fvar_channels[0].values.clone();
-    let width = mesh.fvar_channels[0].width;
-    let mut levels = vec![base.clone()];
-    for l in 1..=2 {
-        let next = theirs
-            .interpolate_face_varying(0, l, width, levels.last().unwrap())
-            .unwrap();
-        levels.push(next);
+}
+
+/// Shapes with face-varying channels: seams, n-gons, triangles, creases
+/// and corners under the seams, holes; whether Loop applies.
+fn fvar_shapes() -> Vec<(&'static str, Mesh, bool)> {
+    let mut creased = shapes::cube_with_uvs();
+    creased.add_crease(0, 1, 1.5);
+    creased.add_crease(1, 2, 0.5);
+    creased.add_crease(2, 3, 10.0);
+    creased.add_corner(5, 2.3);
+    vec![
+        ("cube-uv", shapes::cube_with_uvs(), false),
+        ("cube-uv-creased", creased, false),
+        (
+            "cube-uv-triangulated",
+            shapes::triangulate_with_uvs(&shapes::cube_with_uvs()),
+            true,
+        ),
+        (
+            "torus-uv-mixed",
+            shapes::with_torus_uvs(shapes::torus_mixed(6, 4), 6, 4),
+            false,
+        ),
+        (
+            "torus-uv-triangles",
+            shapes::with_torus_uvs(shapes::torus_triangles(6, 4), 6, 4),
+            true,
+        ),
+        ("production", shapes::production(6, 4), false),
+    ]
+}
+
+/// Every option set with face-varying interpolation of channel 0.
+fn fvar_options() -> Vec<StencilOptions> {
+    all_options()
+        .into_iter()
+        .filter(|o| o.interpolation == StencilInterpolation::Vertex)
+        .map(|o| o.face_varying(0))
+        .collect()
+}
+
+/// Face-varying stencil tables (`INTERPOLATE_FACE_VARYING`) in every mode,
+/// in all six linear-interpolation options, after uniform refinement (both
+/// vertex orders, Catmull-Clark, bilinear, Loop) and adaptive refinement
+/// (with and without `considerFVarChannels`): identical to OpenSubdiv's,
+/// weights bit for bit.
+#[test]
+fn face_varying_tables_match_opensubdiv() {
+    use subdiv::FVarLinearInterpolation as F;
+    let mut tables = 0;
+    for (name, mesh, triangles) in fvar_shapes() {
+        let schemes: &[Scheme] = if triangles {
+            &[Scheme::Catmark, Scheme::Loop]
+        } else {
+            &[Scheme::Catmark, Scheme::Bilinear]
+        };
+        for &scheme in schemes {
+            for fvar in [
+                F::None,
+                F::CornersOnly,
+                F::CornersPlus1,
+                F::CornersPlus2,
+                F::Boundaries,
+                F::All,
+            ] {
+                let options = Options::shape_file_defaults()
+                    .with_scheme(scheme)
+                    .with_fvar(fvar);
+                let mut native = Refiner::new(&mesh, &options).unwrap();
+                let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+                for (level, faces_first) in [(1, false), (2, true), (3, false)] {
+                    let uo = UniformOptions::new(level).faces_first(faces_first);
+                    native.refine_uniform(uo).unwrap();
+                    theirs.refine_uniform(uo).unwrap();
+                    let case = format!("{name} {scheme:?} {fvar:?} {uo:?}");
+                    tables += compare_all(
+                        &case,
+                        fvar_options(),
+                        level,
+                        |o| native.stencil_table_with(o),
+                        |o| theirs.stencil_table_with(o),
+                    );
+                }
+                if scheme == Scheme::Loop {
+                    continue;
+                }
+                for ao in [
+                    AdaptiveOptions::new(2),
+                    AdaptiveOptions::new(3)
+                        .consider_fvar(true)
+                        .faces_first(true),
+                ] {
+                    let Some((native, theirs)) = adaptive_pair(&mesh, &options, ao) else {
+                        continue;
+                    };
+                    let case = format!("{name} {scheme:?} {fvar:?} {ao:?}");
+                    tables += compare_all(
+                        &case,
+                        fvar_options(),
+                        native.max_level(),
+                        |o| native.stencil_table_with(o),
+                        |o| theirs.stencil_table_with(o),
+                    );
+                }
+            }
+        }
     }
-    close("uv", &t.apply(width, &base).unwrap(), &levels.concat());
-    // Without channels, face-varying tables are refused too.
-    let plain = shapes::cube();
-    let adaptive = Refiner::new(&plain, &options)
-        .unwrap()
-        .refine_adaptive(AdaptiveOptions::new(2), &[])
-        .unwrap();
-    let mut theirs = osd::TopologyRefiner::new(&plain, &options).unwrap();
-    theirs
-        .refine_adaptive(AdaptiveOptions::new(2), &[])
-        .unwrap();
-    let fv = StencilOptions::new().face_varying(0);
-    assert!(matches!(
-        adaptive.stencil_table_with(&fv),
-        Err(Error::NoSuchChannel {
-            channel: 0,
-            count: 0
-        })
-    ));
-    assert!(matches!(
-        theirs.stencil_table_with(&fv),
-        Err(Error::NoSuchChannel {
-            channel: 0,
-            count: 0
-        })
-    ));
+    assert!(tables > 5000, "{tables} tables compared");
+}
+
+/// A face-varying table with control vertices and intermediate levels,
+/// applied to the base values, gives the values of every level as the
+/// face-varying interpolation computes them (to rounding: the table sums
+/// merged products of weights).
+#[test]
+fn applied_face_varying_table_equals_levels() {
+    for (name, mesh, _) in fvar_shapes() {
+        let mut r = Refiner::new(&mesh, &Options::default()).unwrap();
+        r.refine_uniform(UniformOptions::new(3)).unwrap();
+        let t = r
+            .stencil_table_with(&StencilOptions::new().face_varying(0).control_vertices(true))
+            .unwrap();
+        let base = mesh.fvar_channels[0].values.clone();
+        let width = mesh.fvar_channels[0].width;
+        let mut levels = vec![base.clone()];
+        for l in 1..=3 {
+            let next = r
+                .interpolate_face_varying(0, l, width, levels.last().unwrap())
+                .unwrap();
+            levels.push(next);
+        }
+        close(name, &t.apply(width, &base).unwrap(), &levels.concat());
+    }
 }
 
 /// Face-varying tables from the bridge after adaptive refinement: applied

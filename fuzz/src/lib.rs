@@ -714,13 +714,12 @@ pub fn check_differential(case: &MeshCase) {
 
 /// Why an adaptive refinement of a mesh that passed validation may be
 /// refused: the levels beyond OpenSubdiv's fields, a selected face out of
-/// range, what the native engine does not do yet (non-linear face-varying
-/// channels considered), and whatever refuses the base level.
+/// range, a refinement already made, and whatever refuses the base level.
 fn acceptable_for_adaptive(e: &Error) -> bool {
     acceptable_for_valid_mesh(e)
         || matches!(
             e,
-            Error::NoSuchElement { .. } | Error::NotYetSupported(_) | Error::AlreadyRefined { .. }
+            Error::NoSuchElement { .. } | Error::AlreadyRefined { .. }
         )
 }
 
@@ -883,7 +882,7 @@ pub fn check_native_adaptive(case: &MeshCase, adaptive: &AdaptiveCase) {
 /// Both engines refine a valid case adaptively (`adaptive_differential`):
 /// both refuse with the same kind of error, or every level is the same —
 /// topology, relations, child maps, positions and varying data bit for bit,
-/// and the stencil table.
+/// and the stencil tables (vertex and each face-varying channel's).
 #[cfg(feature = "osd")]
 pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
     use subdiv::osd;
@@ -900,8 +899,6 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
     });
     let (native, theirs) = match (native, theirs) {
         (Ok(a), Ok(b)) => (a, b),
-        // Not done natively yet: nothing to compare.
-        (Err(Error::NotYetSupported(_)), _) => return,
         (Err(a), Err(b)) => {
             assert_eq!(
                 refusal_kind(&a),
@@ -943,13 +940,24 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b), "varying data of level {level}");
     }
-    let options = subdiv::stencil::StencilOptions::new();
-    match (
-        native.stencil_table_with(&options),
-        theirs.stencil_table_with(&options),
-    ) {
-        (Ok(x), Ok(y)) => assert!(x == y, "stencil tables differ"),
-        (x, y) => panic!("stencil tables: native {:?}, osd {:?}", x.err(), y.err()),
+    // The vertex table, and each face-varying channel's.
+    let mut tables = vec![subdiv::stencil::StencilOptions::new()];
+    tables.extend(
+        (0..mesh.fvar_channels.len())
+            .map(|c| subdiv::stencil::StencilOptions::new().face_varying(c)),
+    );
+    for options in tables {
+        match (
+            native.stencil_table_with(&options),
+            theirs.stencil_table_with(&options),
+        ) {
+            (Ok(x), Ok(y)) => assert!(x == y, "stencil tables differ: {options:?}"),
+            (x, y) => panic!(
+                "stencil tables ({options:?}): native {:?}, osd {:?}",
+                x.err(),
+                y.err()
+            ),
+        }
     }
 }
 

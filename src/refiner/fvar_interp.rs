@@ -23,14 +23,14 @@
 //! masks instead of the rules; widths up to 4 are computed with the width
 //! known at compile time, wider values in blocks of 16 columns.
 
-use super::Refiner;
 use super::kernel::{Cache, MAX_WIDTH, takes_smooth_mask};
+use super::{Emit, Refiner, Source};
 use crate::error::{Buffer, Error, Result};
 use crate::options::{Options, Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
-use crate::topology::Level;
 use crate::topology::fvar::{ChannelLevel, Children, missing};
+use crate::topology::{Level, Split};
 
 /// The columns one pass computes of values `stride` wide: `count` of them
 /// from `offset` (every column, for the usual widths).
@@ -156,7 +156,12 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
-        let step = FVarStep {
+        fvar_level(&self.fvar_step(channel, level), width, src, dst);
+    }
+
+    /// The step of face-varying `channel` from level `level - 1` to `level`.
+    pub(crate) fn fvar_step(&self, channel: usize, level: usize) -> FVarStep<'_, Split> {
+        FVarStep {
             rules: &self.rules,
             options: &self.options,
             parent: &self.levels[level - 1],
@@ -164,8 +169,7 @@ impl Refiner {
             r: &self.refinements[level - 1],
             pf: &self.fvar[channel][level - 1],
             cf: &self.fvar[channel][level],
-        };
-        fvar_level(&step, width, src, dst);
+        }
     }
 }
 
@@ -248,7 +252,7 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
     dst: &mut [T],
 ) {
     let cf = step.cf;
-    let pass = Pass::new(step, cols, src);
+    let pass = Pass::new(step);
     let blocks = step.r.vertex_runs(step.parent);
     // The values of each kind of child vertex are one run of `dst`.
     let run = |(first, count, _): (u32, usize, usize)| {
@@ -282,15 +286,109 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
         uniform: !R::SPARSE,
     };
     in_chunks(cf, chunks(0), faces.reborrow(), stride, |range, out| {
-        pass.face_points(range, out)
+        pass.face_points(range, &mut Values::new(src, View::empty(), out, cols))
     });
     let faces = faces.view();
     in_chunks(cf, chunks(1), edges, stride, |range, out| {
-        pass.edge_points(range, out, faces)
+        pass.edge_points(range, &mut Values::new(src, faces, out, cols))
     });
     in_chunks(cf, chunks(2), vertices, stride, |range, out| {
-        pass.vertex_points(range, out, faces)
+        pass.vertex_points(range, &mut Values::new(src, faces, out, cols))
     });
+}
+
+/// The terms of every value of one level of one channel, in OpenSubdiv's
+/// order (face points, edge points, vertex points, each by parent element,
+/// a vertex's values in sibling order): `emit(value, terms)`, each term
+/// reading a value of the parent level or a face point's value of the
+/// child level, with the weights the interpolation multiplies it by. Every
+/// value of the channel at the child level comes once.
+pub(crate) fn fvar_terms<R: Children>(step: &FVarStep<'_, R>, emit: &mut Emit<'_>) {
+    let pass = Pass::<f64, R>::new(step);
+    let blocks = step.r.vertex_runs(step.parent);
+    let mut sink = Terms {
+        terms: Vec::new(),
+        emit,
+    };
+    pass.face_points(0..blocks[0].2, &mut sink);
+    pass.edge_points(0..blocks[1].2, &mut sink);
+    pass.vertex_points(0..blocks[2].2, &mut sink);
+}
+
+/// What the pass does with each value's terms, in the order it finds them:
+/// accumulates them ([`Values`]) or hands them on ([`Terms`]).
+trait Sink<T> {
+    /// Adds `w` times value `x` of the parent level to the value being
+    /// built.
+    fn parent(&mut self, x: u32, w: T);
+    /// Adds `w` times value `x` of the child level (a face point's, built
+    /// earlier) to the value being built.
+    fn centre(&mut self, x: u32, w: T);
+    /// The value being built is value `x` of the child level; the next
+    /// starts from zero.
+    fn finish(&mut self, x: u32);
+}
+
+/// Accumulates columns `cols` of each value and writes it into `out`.
+struct Values<'a, 'o, T, C> {
+    acc: [T; MAX_WIDTH],
+    src: &'a [T],
+    faces: View<'a, T>,
+    out: Out<'o, T>,
+    cols: C,
+}
+
+impl<'a, 'o, T: Real, C: Cols> Values<'a, 'o, T, C> {
+    fn new(src: &'a [T], faces: View<'a, T>, out: Out<'o, T>, cols: C) -> Self {
+        Values {
+            acc: [T::ZERO; MAX_WIDTH],
+            src,
+            faces,
+            out,
+            cols,
+        }
+    }
+}
+
+impl<T: Real, C: Cols> Sink<T> for Values<'_, '_, T, C> {
+    #[inline(always)]
+    fn parent(&mut self, x: u32, w: T) {
+        add(&mut self.acc, self.src, x, w, self.cols);
+    }
+    #[inline(always)]
+    fn centre(&mut self, x: u32, w: T) {
+        add(
+            &mut self.acc,
+            self.faces.data,
+            x - self.faces.base,
+            w,
+            self.cols,
+        );
+    }
+    #[inline(always)]
+    fn finish(&mut self, x: u32) {
+        put(self.out.data, x - self.out.base, &self.acc, self.cols);
+        self.acc = [T::ZERO; MAX_WIDTH];
+    }
+}
+
+/// Collects each value's terms and hands them to `emit`.
+struct Terms<'e, 'f> {
+    terms: Vec<(Source, f64)>,
+    emit: &'e mut Emit<'f>,
+}
+
+impl Sink<f64> for Terms<'_, '_> {
+    fn parent(&mut self, x: u32, w: f64) {
+        self.terms.push((Source::Parent(x), w));
+    }
+    fn centre(&mut self, x: u32, w: f64) {
+        self.terms.push((Source::Child(x), w));
+    }
+    fn finish(&mut self, x: u32) {
+        (self.emit)(x, &self.terms);
+        self.terms.clear();
+    }
 }
 
 /// The parent elements of one kind whose children [`in_chunks`] computes.
@@ -341,6 +439,12 @@ struct View<'a, T> {
     base: u32,
 }
 
+impl<T> View<'_, T> {
+    fn empty() -> Self {
+        View { data: &[], base: 0 }
+    }
+}
+
 /// Calls `body(elements, out)` on chunks of the parent elements of
 /// `chunks` (their children's values in `out`), in parallel when the
 /// current rayon pool has more than one thread and the split is uniform.
@@ -381,11 +485,11 @@ fn in_chunks<T: Real>(
         .for_each(|(range, out)| body(range, out));
 }
 
-/// One pass of one level of one channel over columns `cols`. Where the
+/// One pass of one level of one channel, its terms going to a [`Sink`]. Where the
 /// channel follows the vertex topology and the element is smooth, the masks
 /// come from the kernel's cache of regular masks, as for vertex data;
 /// elsewhere from the rules, element by element.
-struct Pass<'a, T, C, R> {
+struct Pass<'a, T, R> {
     rules: &'a SchemeRules,
     options: &'a Options,
     parent: &'a Level,
@@ -395,12 +499,11 @@ struct Pass<'a, T, C, R> {
     cf: &'a ChannelLevel,
     linear: bool,
     tri_smooth: bool,
-    cols: C,
-    src: &'a [T],
+    weights: std::marker::PhantomData<T>,
 }
 
-impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
-    fn new(step: &FVarStep<'a, R>, cols: C, src: &'a [T]) -> Self {
+impl<'a, T: Real, R: Children> Pass<'a, T, R> {
+    fn new(step: &FVarStep<'a, R>) -> Self {
         let scheme = step.rules.scheme();
         Pass {
             rules: step.rules,
@@ -413,28 +516,20 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             linear: step.pf.is_linear() || scheme == Scheme::Bilinear,
             tri_smooth: scheme == Scheme::Catmark
                 && step.options.triangles == TriangleSubdivision::Smooth,
-            cols,
-            src,
+            weights: std::marker::PhantomData,
         }
     }
 
-    /// Where the value of the face point of parent face `f` is in `faces`.
+    /// The value (of the child level) of the face point of parent face `f`.
     #[inline(always)]
-    fn centre(&self, f: u32, faces: View<'_, T>) -> u32 {
+    fn centre(&self, f: u32) -> u32 {
         self.cf
             .vertex_value_offset(self.r.face_child(f as usize) as usize)
-            - faces.base
-    }
-
-    /// Writes `acc` as value `i` of the level into `out`.
-    #[inline(always)]
-    fn put(&self, out: &mut Out<'_, T>, i: u32, acc: &[T; MAX_WIDTH]) {
-        put(out.data, i - out.base, acc, self.cols);
     }
 
     /// Face points (none with Loop's split): the average of the face's values.
-    fn face_points(&self, faces: std::ops::Range<usize>, mut out: Out<'_, T>) {
-        let (parent, r, pf, cf, cols) = (self.parent, self.r, self.pf, self.cf, self.cols);
+    fn face_points(&self, faces: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+        let (parent, r, pf, cf) = (self.parent, self.r, self.pf, self.cf);
         let mut cache = Cache::<T>::new();
         for f in faces {
             if missing::<R>(r.face_child(f)) {
@@ -442,34 +537,19 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             }
             let values = pf.face_values_of(parent, f);
             let w = cache.face_weight(self.rules, values.len());
-            let mut acc = [T::ZERO; MAX_WIDTH];
             for &x in values {
-                add(&mut acc, self.src, x, w, cols);
+                sink.parent(x, w);
             }
-            self.put(
-                &mut out,
-                cf.vertex_value_offset(r.face_child(f) as usize),
-                &acc,
-            );
+            sink.finish(cf.vertex_value_offset(r.face_child(f) as usize));
         }
     }
 
     /// Edge points; `faces` holds the face points.
-    fn edge_points(&self, edges: std::ops::Range<usize>, mut out: Out<'_, T>, faces: View<'_, T>) {
-        let (parent, child, r, pf, cf, cols, src) = (
-            self.parent,
-            self.child,
-            self.r,
-            self.pf,
-            self.cf,
-            self.cols,
-            self.src,
-        );
+    fn edge_points(&self, edges: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+        let (parent, child, r, pf, cf) = (self.parent, self.child, self.r, self.pf, self.cf);
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
         let half = T::from_f64(0.5);
-        let zero = [T::ZERO; MAX_WIDTH];
-        let centre = |f: u32| self.centre(f, faces);
         let mut face_sizes = Vec::new();
         for e in edges {
             let c = r.edge_child(e);
@@ -482,20 +562,18 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
                 // One midpoint per value, from the face the value comes from.
                 for i in 0..cf.vertex_value_count(c) {
                     let [a, b] = pf.edge_face_values(parent, e, i);
-                    let mut acc = zero;
-                    add(&mut acc, src, a, half, cols);
-                    add(&mut acc, src, b, half, cols);
-                    self.put(&mut out, first + i as u32, &acc);
+                    sink.parent(a, half);
+                    sink.parent(b, half);
+                    sink.finish(first + i as u32);
                 }
                 continue;
             }
             let e_faces = parent.edge_faces_of(e);
             let [a, b] = pf.edge_face_values(parent, e, 0);
-            let mut acc = zero;
             if self.linear {
-                add(&mut acc, src, a, half, cols);
-                add(&mut acc, src, b, half, cols);
-                self.put(&mut out, first, &acc);
+                sink.parent(a, half);
+                sink.parent(b, half);
+                sink.finish(first);
                 continue;
             }
             let s = parent.edge_sharpness_at(e);
@@ -512,19 +590,19 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             if let Some(w) = smooth {
                 // The kernel's smooth edge: the weights and terms the rules
                 // give below, in the same order.
-                add(&mut acc, src, a, w.ends[0], cols);
-                add(&mut acc, src, b, w.ends[1], cols);
+                sink.parent(a, w.ends[0]);
+                sink.parent(b, w.ends[1]);
                 if let Some(fw) = w.faces {
                     for (&f, fw) in e_faces.iter().zip(fw) {
                         if w.centers {
-                            add(&mut acc, faces.data, centre(f), fw, cols);
+                            sink.centre(self.centre(f), fw);
                         } else {
                             let x = opposite_value(pf, parent, f as usize, e);
-                            add(&mut acc, src, x, fw, cols);
+                            sink.parent(x, fw);
                         }
                     }
                 }
-                self.put(&mut out, first, &acc);
+                sink.finish(first);
                 continue;
             }
             face_sizes.clear();
@@ -540,47 +618,26 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             let p_rule = if s > 0.0 { Rule::Crease } else { Rule::Smooth };
             self.rules
                 .edge_vertex_mask(&hood, p_rule, child.vertex_tag(c).rule(), &mut mask);
-            add(&mut acc, src, a, mask.vertex[0], cols);
-            add(&mut acc, src, b, mask.vertex[1], cols);
+            sink.parent(a, mask.vertex[0]);
+            sink.parent(b, mask.vertex[1]);
             for (&f, &w) in e_faces.iter().zip(&mask.face) {
                 if mask.face_weights_for_centers {
-                    add(&mut acc, faces.data, centre(f), w, cols);
+                    sink.centre(self.centre(f), w);
                 } else {
                     // Loop: the value at the face's corner opposite the edge.
-                    add(
-                        &mut acc,
-                        src,
-                        opposite_value(pf, parent, f as usize, e),
-                        w,
-                        cols,
-                    );
+                    sink.parent(opposite_value(pf, parent, f as usize, e), w);
                 }
             }
-            self.put(&mut out, first, &acc);
+            sink.finish(first);
         }
     }
 
     /// Vertex points; `faces` holds the face points.
-    fn vertex_points(
-        &self,
-        vertices: std::ops::Range<usize>,
-        mut out: Out<'_, T>,
-        faces: View<'_, T>,
-    ) {
-        let (parent, child, r, pf, cf, cols, src) = (
-            self.parent,
-            self.child,
-            self.r,
-            self.pf,
-            self.cf,
-            self.cols,
-            self.src,
-        );
+    fn vertex_points(&self, vertices: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+        let (parent, child, r, pf, cf) = (self.parent, self.child, self.r, self.pf, self.cf);
         let options = self.options;
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
-        let zero = [T::ZERO; MAX_WIDTH];
-        let centre = |f: u32| self.centre(f, faces);
         let mut edge_sharpness = Vec::new();
         let mut child_edge_sharpness = Vec::new();
         let mut edge_values = Vec::new();
@@ -596,10 +653,9 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             let c_tags = cf.vertex_value_tags(c);
             if !c_tags[0].is_mismatch() {
                 let own = pf.vertex_value(v, 0);
-                let mut acc = zero;
                 if self.linear {
-                    add(&mut acc, src, own, T::ONE, cols);
-                    self.put(&mut out, first, &acc);
+                    sink.parent(own, T::ONE);
+                    sink.finish(first);
                     continue;
                 }
                 let edges = parent.vertex_edges_of(v);
@@ -631,16 +687,16 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
                     &mask
                 };
                 for (&f, &w) in v_faces.iter().zip(&m.face) {
-                    add(&mut acc, faces.data, centre(f), w, cols);
+                    sink.centre(self.centre(f), w);
                 }
                 if !m.edge.is_empty() {
                     pf.vertex_edge_values(parent, v, &mut edge_values);
                     for (&x, &w) in edge_values.iter().zip(&m.edge) {
-                        add(&mut acc, src, x, w, cols);
+                        sink.parent(x, w);
                     }
                 }
-                add(&mut acc, src, own, m.vertex[0], cols);
-                self.put(&mut out, first, &acc);
+                sink.parent(own, m.vertex[0]);
+                sink.finish(first);
                 continue;
             }
             // Each value on its own: a corner, a crease, or a corner decaying
@@ -648,9 +704,8 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
             let p_tags = pf.vertex_value_tags(v);
             for (s, &tag) in c_tags.iter().enumerate() {
                 let own = pf.vertex_value(v, s);
-                let mut acc = zero;
                 if self.linear || tag.is_corner() {
-                    add(&mut acc, src, own, T::ONE, cols);
+                    sink.parent(own, T::ONE);
                 } else {
                     let [e0, e1] = pf.crease_end_values(parent, v, s);
                     let (mut vw, mut ew) = (corner_weight, end_weight);
@@ -668,11 +723,11 @@ impl<'a, T: Real, C: Cols, R: Children> Pass<'a, T, C, R> {
                         vw = crease * corner_weight + corner;
                         ew = crease * end_weight;
                     }
-                    add(&mut acc, src, e0, ew, cols);
-                    add(&mut acc, src, e1, ew, cols);
-                    add(&mut acc, src, own, vw, cols);
+                    sink.parent(e0, ew);
+                    sink.parent(e1, ew);
+                    sink.parent(own, vw);
                 }
-                self.put(&mut out, first + s as u32, &acc);
+                sink.finish(first + s as u32);
             }
         }
     }

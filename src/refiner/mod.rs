@@ -83,6 +83,10 @@ pub(crate) enum Source {
     Child(u32),
 }
 
+/// Receives each child vertex (or face-varying value) and its mask terms,
+/// weights in `f64`.
+pub(crate) type Emit<'a> = dyn FnMut(u32, &[(Source, f64)]) + 'a;
+
 /// The three kinds of parent element a child vertex comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Block {

@@ -11,6 +11,7 @@ use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::refiner::fvar_interp::{FVarStep, fvar_call_levels, fvar_level};
 use crate::refiner::{Kind, Source, Step, accumulate};
+use crate::topology::refine::sparse::SparseSplit;
 use glam::DVec3;
 
 impl AdaptiveRefiner {
@@ -44,7 +45,7 @@ impl AdaptiveRefiner {
         width: usize,
         src: &[T],
     ) -> Result<Vec<T>> {
-        let (pf, cf) = fvar_call_levels(
+        let (_, cf) = fvar_call_levels(
             &self.fvar,
             channel,
             level,
@@ -54,18 +55,27 @@ impl AdaptiveRefiner {
         )?;
         crate::alloc::guard(Some(level), || {
             let mut dst = crate::alloc::vec_or_unwind(T::ZERO, cf.value_count() * width);
-            let step = FVarStep {
-                rules: &self.rules,
-                options: &self.options,
-                parent: &self.levels[level as usize - 1],
-                child: &self.levels[level as usize],
-                r: &self.steps[level as usize - 1],
-                pf,
-                cf,
-            };
-            fvar_level(&step, width, src, &mut dst);
+            fvar_level(
+                &self.fvar_step(channel, level as usize),
+                width,
+                src,
+                &mut dst,
+            );
             Ok(dst)
         })
+    }
+
+    /// The step of face-varying `channel` from level `level - 1` to `level`.
+    pub(super) fn fvar_step(&self, channel: usize, level: usize) -> FVarStep<'_, SparseSplit> {
+        FVarStep {
+            rules: &self.rules,
+            options: &self.options,
+            parent: &self.levels[level - 1],
+            child: &self.levels[level],
+            r: &self.steps[level - 1],
+            pf: &self.fvar[channel][level - 1],
+            cf: &self.fvar[channel][level],
+        }
     }
 
     /// Positions of every level, from the base positions, interpolated level

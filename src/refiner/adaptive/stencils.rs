@@ -32,7 +32,8 @@
 
 use super::AdaptiveRefiner;
 use crate::error::{Error, Result};
-use crate::refiner::{Kind, Refiner, Source};
+use crate::refiner::fvar_interp::fvar_terms;
+use crate::refiner::{Emit, Kind, Refiner, Source};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
 
 /// Marks a coarse vertex without an entry in the row being built.
@@ -99,16 +100,39 @@ impl Merger {
     }
 }
 
-/// Receives each child vertex and its terms.
-type Emit<'a> = dyn FnMut(u32, &[(Source, f64)]) + 'a;
-
-/// A refinement whose levels the builder walks.
+/// A refinement whose levels the builder walks: its vertices, or the
+/// values of one face-varying channel ([`Channel`]).
 trait Levels {
-    /// Number of vertices of `level`.
+    /// Number of vertices (values) of `level`.
     fn vertex_count(&self, level: usize) -> usize;
-    /// `emit(child, terms)` for every child vertex of `level` (at least 1),
-    /// in OpenSubdiv's order.
+    /// `emit(child, terms)` for every child vertex (value) of `level` (at
+    /// least 1), in OpenSubdiv's order.
     fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>);
+}
+
+/// The values of face-varying channel `channel` of a refinement: the rows
+/// `InterpolateFaceVarying` builds when its primvars are stencils.
+struct Channel<'a, L> {
+    refinement: &'a L,
+    channel: usize,
+}
+
+impl Levels for Channel<'_, AdaptiveRefiner> {
+    fn vertex_count(&self, level: usize) -> usize {
+        self.refinement.fvar[self.channel][level].value_count()
+    }
+    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_>) {
+        fvar_terms(&self.refinement.fvar_step(self.channel, level), emit);
+    }
+}
+
+impl Levels for Channel<'_, Refiner> {
+    fn vertex_count(&self, level: usize) -> usize {
+        self.refinement.fvar[self.channel][level].value_count()
+    }
+    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_>) {
+        fvar_terms(&self.refinement.fvar_step(self.channel, level), emit);
+    }
 }
 
 impl Levels for AdaptiveRefiner {
@@ -127,6 +151,24 @@ impl Levels for Refiner {
     fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>) {
         self.walk_masks(kind, level, emit);
     }
+}
+
+/// The table `options` ask for (checked, up to level `last`): over the
+/// refinement's vertices, or over the values of the face-varying channel
+/// they name.
+fn table(
+    vertices: &dyn Levels,
+    values: &dyn Levels,
+    options: &StencilOptions,
+    last: usize,
+) -> Result<StencilTable> {
+    let levels = match options.interpolation {
+        StencilInterpolation::FaceVarying => values,
+        _ => vertices,
+    };
+    crate::alloc::guard(None, || {
+        build(levels, options, last, levels.vertex_count(0))
+    })
 }
 
 /// The rows of the vertices of `level` in vertex order, from the terms of
@@ -271,10 +313,8 @@ impl AdaptiveRefiner {
     /// OpenSubdiv's indices and weights bit for bit.
     ///
     /// Refused: `max_level` beyond 15 ([`Error::Level`]), the combination
-    /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), face-varying
-    /// interpolation ([`Error::NotYetSupported`]: the face-varying pass
-    /// computes values, not the per-term weights a stencil needs;
-    /// [`Error::NoSuchChannel`] first when the mesh lacks the channel).
+    /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), a missing
+    /// face-varying channel ([`Error::NoSuchChannel`]).
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options};
@@ -291,14 +331,11 @@ impl AdaptiveRefiner {
     pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
         let channels = self.fvar_channel_count();
         let last = options.check(self.max_level(), channels)?;
-        if options.interpolation == StencilInterpolation::FaceVarying {
-            return Err(Error::NotYetSupported(
-                "face-varying stencil tables (the face-varying pass computes values, not stencil weights)",
-            ));
-        }
-        crate::alloc::guard(None, || {
-            build(self, options, last as usize, self.levels[0].vertex_count)
-        })
+        let channel = Channel {
+            refinement: self,
+            channel: options.fvar_channel,
+        };
+        table(self, &channel, options, last as usize)
     }
 }
 
@@ -311,9 +348,7 @@ impl Refiner {
     ///
     /// Refused: `max_level` beyond 15 ([`Error::Level`]), the combination
     /// OpenSubdiv 3.5 cannot build ([`Error::StencilOptions`]), a missing
-    /// face-varying channel ([`Error::NoSuchChannel`]). Face-varying
-    /// interpolation is not native yet ([`Error::NotYetSupported`]): the
-    /// face-varying kernel accumulates values, not terms.
+    /// face-varying channel ([`Error::NoSuchChannel`]).
     ///
     /// ```
     /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
@@ -327,13 +362,10 @@ impl Refiner {
     /// ```
     pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
         let last = options.check(self.max_level(), self.fvar.len())?;
-        if options.interpolation == StencilInterpolation::FaceVarying {
-            return Err(Error::NotYetSupported(
-                "face-varying stencil tables (the face-varying kernel accumulates values, not terms)",
-            ));
-        }
-        crate::alloc::guard(None, || {
-            build(self, options, last as usize, self.levels[0].vertex_count)
-        })
+        let channel = Channel {
+            refinement: self,
+            channel: options.fvar_channel,
+        };
+        table(self, &channel, options, last as usize)
     }
 }
