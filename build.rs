@@ -1,6 +1,7 @@
 //! Builds the C++ shim over OpenSubdiv (feature `osd`, on by default).
 //!
-//! * `cc` compiles `cpp/shim.cpp`; `bindgen` binds `cpp/shim.h` only.
+//! * `cc` compiles `cpp/shim.cpp` and `cpp/patches.cpp` (their shared
+//!   internals in `cpp/internal.h`); `bindgen` binds `cpp/shim.h` only.
 //! * OpenSubdiv is found in `SUBDIV_OSD_DIR` (with `include/` and `lib/`) when
 //!   set, else in the system paths where Debian's `libosd-dev` installs it.
 //! * A missing OpenSubdiv fails early, naming the package and the way out.
@@ -18,6 +19,8 @@ mod osd {
     pub fn build() {
         println!("cargo:rerun-if-changed=cpp/shim.h");
         println!("cargo:rerun-if-changed=cpp/shim.cpp");
+        println!("cargo:rerun-if-changed=cpp/patches.cpp");
+        println!("cargo:rerun-if-changed=cpp/internal.h");
         println!("cargo:rerun-if-env-changed=SUBDIV_OSD_DIR");
 
         let (include_dir, lib_dir) = match env::var_os("SUBDIV_OSD_DIR") {
@@ -43,6 +46,7 @@ mod osd {
             .cpp(true)
             .std("c++14")
             .file("cpp/shim.cpp")
+            .file("cpp/patches.cpp")
             .include("cpp")
             .include(&include_dir)
             .warnings(true)

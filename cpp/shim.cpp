@@ -2,7 +2,7 @@
 // OpenSubdiv's Far layer. Every entry point catches every exception, and every
 // index of a descriptor is checked before OpenSubdiv sees it.
 
-#include "shim.h"
+#include "internal.h"
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/primvarRefiner.h>
@@ -30,6 +30,7 @@
 #include <vector>
 
 using namespace OpenSubdiv;
+using namespace sdv_internal;
 
 namespace {
 
@@ -55,58 +56,11 @@ void install_callbacks() {
     });
 }
 
-// An error with a status, thrown inside the shim and turned into a return code.
-struct ShimError : std::runtime_error {
-    int status;
-    ShimError(int s, const std::string &m) : std::runtime_error(m), status(s) {}
-};
-
-[[noreturn]] void fail(const std::string &msg) { throw ShimError(SDV_ERR_INVALID, msg); }
-[[noreturn]] void fail_unsafe(const std::string &msg) { throw ShimError(SDV_ERR_UNSAFE, msg); }
-
-void write_err(char *err, size_t err_len, const char *msg) {
-    if (!err || err_len == 0) return;
-    size_t n = std::strlen(msg);
-    if (n >= err_len) n = err_len - 1;
-    std::memcpy(err, msg, n);
-    err[n] = '\0';
-}
-
-template <class F>
-int guarded(char *err, size_t err_len, F &&body) {
-    if (err && err_len) err[0] = '\0';
-    try {
-        body();
-        return SDV_OK;
-    } catch (const ShimError &e) {
-        write_err(err, err_len, e.what());
-        return e.status;
-    } catch (const std::bad_alloc &) {
-        write_err(err, err_len, "out of memory");
-        return SDV_ERR_INTERNAL;
-    } catch (const std::exception &e) {
-        write_err(err, err_len, (std::string("C++ exception: ") + e.what()).c_str());
-        return SDV_ERR_INTERNAL;
-    } catch (...) {
-        write_err(err, err_len, "unknown C++ exception");
-        return SDV_ERR_INTERNAL;
-    }
-}
-
-std::string str(long long v) { return std::to_string(v); }
-
 }  // namespace
 
-struct sdv_refiner {
-    Far::TopologyRefiner *refiner = nullptr;
-    std::string warnings;
-    bool full_topology_last_level = true;  // level 0 always has full topology
-    // Far::PtexIndices of the base level (which never changes), built on
-    // first use; call_once makes that safe from several threads.
-    mutable std::once_flag ptex_once;
-    mutable std::unique_ptr<Far::PtexIndices> ptex;
-    ~sdv_refiner() { delete refiner; }
-};
+namespace sdv_internal {
+std::string &osd_errors() { return t_osd_errors; }
+}  // namespace sdv_internal
 
 struct sdv_evaluator {
     Far::StencilTable const *table = nullptr;
@@ -114,17 +68,8 @@ struct sdv_evaluator {
     ~sdv_evaluator() { delete table; }
 };
 
-struct sdv_stencils {
-    std::vector<int32_t> sizes, offsets, indices;
-    std::vector<double> weights;
-};
-
 namespace {
 
-const sdv_refiner &need(const sdv_refiner *r) {
-    if (!r || !r->refiner) fail("null refiner");
-    return *r;
-}
 
 Far::TopologyLevel const &level_of(const sdv_refiner *r, int32_t level) {
     const sdv_refiner &rr = need(r);
@@ -146,11 +91,6 @@ void need_full_topology(const sdv_refiner *r, int32_t level, const char *what) {
              " are not available: the last level was refined without full topology");
 }
 
-void check_cap(size_t cap, long long need_n, const char *what) {
-    if (need_n < 0 || cap < (size_t)need_n)
-        throw ShimError(SDV_ERR_CAPACITY, std::string(what) + ": buffer holds " + str((long long)cap) +
-                                              " elements but " + str(need_n) + " are needed");
-}
 
 void check_len(size_t len, long long need_n, const char *what) {
     if (len != (size_t)need_n)
@@ -910,6 +850,8 @@ int sdv_refiner_refine_adaptive(sdv_refiner *r, const sdv_adaptive_options *opts
             throw ShimError(SDV_ERR_OSD, t_osd_errors);
         }
         check_unpaired_smooth_vertices(*r);
+        r->adaptive_faces.assign(num_faces ? (size_t)n : 0, false);
+        for (size_t i = 0; i < num_faces; ++i) r->adaptive_faces[(size_t)faces[i]] = true;
     });
 }
 

@@ -318,6 +318,102 @@ void sdv_evaluator_counts(const sdv_evaluator *e, int32_t *controls, int32_t *st
 int sdv_evaluator_eval_f32(const sdv_evaluator *e, int32_t width, const float *src, size_t src_len,
                            float *dst, size_t dst_len, char *err, size_t err_len);
 
+/*
+ * Far::PatchTable (cpp/patches.cpp): PatchTableFactory::Create on a refined
+ * refiner, with a Far::PatchMap for locating (ptex face, u, v).
+ */
+typedef struct sdv_patches sdv_patches;
+
+/* Far::PatchTableFactory::Options, field by field (flags 0 or 1). */
+typedef struct sdv_patch_options {
+    int32_t end_cap_type; /* EndCapType: 0 none, 1 bilinear, 2 B-spline, 3 Gregory basis, 4 legacy Gregory */
+    int32_t share_end_cap_patch_points;
+    int32_t generate_all_levels;
+    int32_t include_base_level_indices;
+    int32_t include_fvar_base_level_indices;
+    int32_t triangulate_quads;
+    int32_t use_single_crease_patch;
+    int32_t use_inf_sharp_patch;
+    int32_t max_isolation_level; /* 0..10 */
+    int32_t generate_varying_tables;
+    int32_t generate_varying_local_points;
+    int32_t generate_fvar_tables;
+    int32_t patch_precision_double;
+    int32_t fvar_patch_precision_double;
+    int32_t generate_fvar_legacy_linear_patches;
+    int32_t generate_legacy_sharp_corner_patches;
+} sdv_patch_options;
+
+/*
+ * PatchTableFactory::Create(refiner, options, selectedFaces). `fvar_channels`
+ * (num_fvar_channels entries) are the channels of face-varying tables;
+ * `faces` (num_faces, each in range) the base faces to build patches for,
+ * none meaning all. Refused before OpenSubdiv sees them: an unrefined
+ * refiner, a channel or face out of range, an option out of its field.
+ */
+int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const int32_t *fvar_channels,
+                       size_t num_fvar_channels, const int32_t *faces, size_t num_faces,
+                       sdv_patches **out, char *err, size_t err_len);
+void sdv_patches_destroy(sdv_patches *p);
+
+typedef struct sdv_patch_counts {
+    int32_t num_arrays;
+    int32_t num_patches;
+    int32_t num_control_vertices; /* entries of the control-vertex table, all arrays */
+    int32_t num_local_points;
+    int32_t num_local_points_varying;
+    int32_t max_valence;
+    int32_t num_ptex_faces;
+    int32_t num_quad_offsets; /* entries of the legacy Gregory quad-offset table */
+    int32_t num_valence_entries; /* entries of the legacy Gregory vertex valence table */
+    int32_t feature_adaptive;
+} sdv_patch_counts;
+int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, size_t err_len);
+
+/* Patch array `array`: PatchDescriptor::Type, patch count, control vertices per patch. */
+int sdv_patches_array(const sdv_patches *p, int32_t array, int32_t *type, int32_t *num_patches,
+                      int32_t *num_cvs, char *err, size_t err_len);
+
+/*
+ * The whole tables, arrays one after the other: control vertices
+ * (num_control_vertices), PatchParam words (2 per patch: field0, field1),
+ * single-crease sharpness (1 per patch, 0 where none), quad offsets and
+ * the vertex valence table (legacy Gregory; empty otherwise).
+ */
+typedef struct sdv_patch_tables {
+    sdv_ibuf cvs;
+    uint32_t *params;
+    size_t params_cap;
+    float *sharpness;
+    size_t sharpness_cap;
+    uint32_t *quad_offsets;
+    size_t quad_offsets_cap;
+    sdv_ibuf valence;
+} sdv_patch_tables;
+int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *err, size_t err_len);
+
+/* Local-point stencils (0 vertex, 1 varying), weights as double. */
+int sdv_patches_local_stencils(const sdv_patches *p, int32_t kind, sdv_stencils **out, char *err,
+                               size_t err_len);
+
+/*
+ * PatchMap::FindPatch(face, u, v): `found` 0 when no patch covers the
+ * location (a hole); else the patch's array and its index in the array.
+ * face must be a ptex face, u and v in [0, 1].
+ */
+int sdv_patches_find(const sdv_patches *p, int32_t face, double u, double v, int32_t *found,
+                     int32_t *array, int32_t *patch, char *err, size_t err_len);
+
+/*
+ * PatchTable::EvaluateBasis<double> for patch `patch` of array `array` at
+ * (u, v) in [0, 1]^2: the weights of its control vertices (cap at least its
+ * control-vertex count); derivative outputs may be NULL (second ones only
+ * together with the first).
+ */
+int sdv_patches_evaluate_basis(const sdv_patches *p, int32_t array, int32_t patch, double u, double v,
+                               double *w, double *du, double *dv, double *duu, double *duv,
+                               double *dvv, size_t cap, char *err, size_t err_len);
+
 #ifdef __cplusplus
 }
 #endif

@@ -74,6 +74,49 @@ pub enum Error {
         /// How many such elements the level has.
         count: usize,
     },
+    /// A ptex face the mesh does not have (patch tables and limit
+    /// evaluation locate points by ptex face, `Far::PtexIndices`).
+    #[error("ptex face {face} does not exist (the mesh has {count})")]
+    NoSuchPtexFace {
+        /// The ptex face asked for.
+        face: usize,
+        /// How many the mesh has.
+        count: usize,
+    },
+    /// A patch a patch table does not have.
+    #[error(
+        "patch {patch} of array {array} does not exist (the table has {arrays} arrays, that one {patches} patches)"
+    )]
+    NoSuchPatch {
+        /// The array asked for.
+        array: usize,
+        /// The patch asked for in it.
+        patch: usize,
+        /// How many arrays the table has.
+        arrays: usize,
+        /// How many patches the array has (0 when it does not exist).
+        patches: usize,
+    },
+    /// A location no patch covers (a hole).
+    #[error("no patch covers ptex face {face} at ({u}, {v}): the face is a hole")]
+    NoPatchAt {
+        /// The ptex face.
+        face: u32,
+        /// The location's u.
+        u: f64,
+        /// The location's v.
+        v: f64,
+    },
+    /// A parametric location outside its face's unit square.
+    #[error("location on ptex face {face}: {coordinate} = {value} is not in [0, 1]")]
+    Location {
+        /// The ptex face.
+        face: u32,
+        /// `"u"` or `"v"`.
+        coordinate: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// A face-varying channel the mesh does not have.
     #[error("face-varying channel {channel} does not exist (the mesh has {count})")]
     NoSuchChannel {

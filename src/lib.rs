@@ -30,6 +30,9 @@
 //! - [`stencil`]: stencil tables and their fast apply kernels;
 //! - [`ptex`]: ptex face indices and adjacency of a base mesh
 //!   ([`PtexIndices`], OpenSubdiv's `Far::PtexIndices`);
+//! - [`patches`]: patch tables as data (`Far::PatchTable`'s arrays,
+//!   `PatchParam` words, `PatchTableFactory::Options`), built by the `osd`
+//!   engine today;
 //! - `osd` (feature `osd`): the bridge to OpenSubdiv, the only module with
 //!   `unsafe`;
 //! - [`compare`]: level-by-level comparison of two refinements;
@@ -82,6 +85,7 @@ pub mod mesh;
 pub mod names;
 pub mod options;
 pub mod output;
+pub mod patches;
 pub mod ptex;
 pub mod real;
 pub mod refiner;

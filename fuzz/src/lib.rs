@@ -959,6 +959,78 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
             ),
         }
     }
+    check_osd_patches(&theirs, case, adaptive);
+}
+
+/// OpenSubdiv's patch table of an adaptive refinement, through the bridge:
+/// options derived from the case (every end-cap type, single-crease and
+/// infinitely sharp patches as refined, the refinement's selected faces),
+/// then a patch found and its basis evaluated at the centre of each of the
+/// first ptex faces. The table is refused (legacy Gregory end caps off
+/// Catmull-Clark) or consistent, and every basis is a partition of unity.
+#[cfg(feature = "osd")]
+fn check_osd_patches(
+    theirs: &subdiv::osd::TopologyRefiner,
+    case: &MeshCase,
+    adaptive: &AdaptiveCase,
+) {
+    use subdiv::patches::{Derivatives, EndCapType, PatchOptions};
+    let ao = adaptive.options;
+    let end_caps = [
+        EndCapType::None,
+        EndCapType::BilinearBasis,
+        EndCapType::BSplineBasis,
+        EndCapType::GregoryBasis,
+        EndCapType::LegacyGregory,
+    ][(ao.isolation_level as usize + adaptive.faces.len()) % 5];
+    let options = PatchOptions {
+        share_end_cap_points: ao.order_vertices_from_faces_first,
+        legacy_sharp_corner_patches: !ao.consider_fvar_channels,
+        ..PatchOptions::new()
+            .max_isolation(ao.isolation_level.min(10))
+            .end_caps(end_caps)
+            .single_crease_patch(ao.use_single_crease_patch)
+            .inf_sharp_patch(ao.use_inf_sharp_patch)
+    };
+    let patches = match theirs.patch_table(&options, &adaptive.faces) {
+        Ok(p) => p,
+        Err(e) => {
+            assert!(
+                end_caps == EndCapType::LegacyGregory
+                    && case.options.scheme != subdiv::Scheme::Catmark,
+                "patch table refused: {e}"
+            );
+            return;
+        }
+    };
+    let t = patches.table();
+    let points = (0..=theirs.max_level())
+        .map(|l| theirs.level_counts(l).map_or(0, |c| c.vertices))
+        .sum::<usize>()
+        + t.local_points;
+    for a in &t.arrays {
+        assert_eq!(
+            a.control_vertices.len(),
+            a.len() * a.patch_type.control_vertices()
+        );
+        assert!(a.control_vertices.iter().all(|&v| (v as usize) < points));
+    }
+    for face in 0..t.ptex_faces.min(16) as u32 {
+        let Some(h) = patches
+            .find_patch(face, 0.5, 0.5)
+            .expect("a ptex face in range")
+        else {
+            continue;
+        };
+        if !t.arrays[h.array].patch_type.is_evaluable() {
+            continue;
+        }
+        let w = patches
+            .evaluate_basis(h, 0.5, 0.5, Derivatives::Second)
+            .expect("an evaluable patch");
+        let sum: f64 = w.point.iter().sum();
+        assert!((sum - 1.0).abs() < 1e-9, "basis sums to {sum}");
+    }
 }
 
 // ---------------------------------------------------------------------------

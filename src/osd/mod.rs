@@ -56,12 +56,14 @@ pub fn version_number() -> u32 {
 }
 
 mod adaptive;
+mod patches;
 mod refiner;
 mod shim;
 mod stencils;
 mod whole;
 
 pub use crate::output::{LevelCounts, LimitData};
+pub use patches::OsdPatchTable;
 pub use refiner::TopologyRefiner;
 pub use stencils::StencilEvaluator;
 pub use whole::refine;

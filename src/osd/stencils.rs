@@ -27,46 +27,11 @@ impl TopologyRefiner {
         let mut raw: *mut ffi::sdv_stencils = std::ptr::null_mut();
         let mut err = ErrBuf::new();
         err.run(|e| create(&mut raw, e))?;
-        let table =
-            NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
-        // Free the C++ table whatever happens below.
-        struct Owned(NonNull<ffi::sdv_stencils>);
-        impl Drop for Owned {
-            fn drop(&mut self) {
-                // SAFETY: created by sdv_stencils_create, freed once.
-                unsafe { ffi::sdv_stencils_destroy(self.0.as_ptr()) }
-            }
-        }
-        let table = Owned(table);
-        let (mut rows, mut nnz) = (0usize, 0usize);
-        // SAFETY: the table is live.
-        unsafe { ffi::sdv_stencils_size(table.0.as_ptr(), &mut rows, &mut nnz) };
-        let mut sizes = try_vec(0i32, rows)?;
-        let mut offsets = try_vec(0i32, rows)?;
-        let mut indices = try_vec(0i32, nnz)?;
-        let mut weights = try_vec(0f64, nnz)?;
-        // SAFETY: the buffers have the capacities passed, which the shim checks.
-        err.run(|e| unsafe {
-            ffi::sdv_stencils_export(
-                table.0.as_ptr(),
-                sizes.as_mut_ptr(),
-                offsets.as_mut_ptr(),
-                indices.as_mut_ptr(),
-                weights.as_mut_ptr(),
-                rows,
-                nnz,
-                e,
-                ERR_LEN,
-            )
-        })?;
-        Ok(StencilTable {
-            sizes: sizes.into_iter().map(|v| v as u32).collect(),
-            offsets: offsets.into_iter().map(|v| v as u32).collect(),
-            indices: indices.into_iter().map(|v| v as u32).collect(),
-            weights,
-        })
+        take_stencils(raw)
     }
+}
 
+impl TopologyRefiner {
     /// OpenSubdiv's stencil table (`Far::StencilTableFactory`, vertex
     /// interpolation, last level only) mapping base vertices to the vertices of
     /// the last level.
@@ -228,4 +193,47 @@ impl StencilEvaluator {
         self.eval_into(width, src, &mut dst)?;
         Ok(dst)
     }
+}
+
+/// The stencil table the shim created at `raw` (freed here whatever
+/// happens), read into a [`StencilTable`].
+pub(super) fn take_stencils(raw: *mut ffi::sdv_stencils) -> Result<StencilTable> {
+    let mut err = ErrBuf::new();
+    let table = NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
+    // Free the C++ table whatever happens below.
+    struct Owned(NonNull<ffi::sdv_stencils>);
+    impl Drop for Owned {
+        fn drop(&mut self) {
+            // SAFETY: created by sdv_stencils_create, freed once.
+            unsafe { ffi::sdv_stencils_destroy(self.0.as_ptr()) }
+        }
+    }
+    let table = Owned(table);
+    let (mut rows, mut nnz) = (0usize, 0usize);
+    // SAFETY: the table is live.
+    unsafe { ffi::sdv_stencils_size(table.0.as_ptr(), &mut rows, &mut nnz) };
+    let mut sizes = try_vec(0i32, rows)?;
+    let mut offsets = try_vec(0i32, rows)?;
+    let mut indices = try_vec(0i32, nnz)?;
+    let mut weights = try_vec(0f64, nnz)?;
+    // SAFETY: the buffers have the capacities passed, which the shim checks.
+    err.run(|e| unsafe {
+        ffi::sdv_stencils_export(
+            table.0.as_ptr(),
+            sizes.as_mut_ptr(),
+            offsets.as_mut_ptr(),
+            indices.as_mut_ptr(),
+            weights.as_mut_ptr(),
+            rows,
+            nnz,
+            e,
+            ERR_LEN,
+        )
+    })?;
+    Ok(StencilTable {
+        sizes: sizes.into_iter().map(|v| v as u32).collect(),
+        offsets: offsets.into_iter().map(|v| v as u32).collect(),
+        indices: indices.into_iter().map(|v| v as u32).collect(),
+        weights,
+    })
 }

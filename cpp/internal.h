@@ -1,0 +1,101 @@
+// Internals the shim's C++ files share (cpp/shim.cpp, cpp/patches.cpp): the
+// opaque types behind cpp/shim.h and the error machinery every entry point
+// uses. Not part of the C ABI.
+#ifndef SUBDIV_SHIM_INTERNAL_H
+#define SUBDIV_SHIM_INTERNAL_H
+
+#include "shim.h"
+
+#include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+struct sdv_refiner {
+    OpenSubdiv::Far::TopologyRefiner *refiner = nullptr;
+    std::string warnings;
+    bool full_topology_last_level = true;  // level 0 always has full topology
+    // Far::PtexIndices of the base level (which never changes), built on
+    // first use; call_once makes that safe from several threads.
+    mutable std::once_flag ptex_once;
+    mutable std::unique_ptr<OpenSubdiv::Far::PtexIndices> ptex;
+    // The base faces RefineAdaptive was given (empty: every face): patches
+    // of other faces are undefined, so patch tables refuse them.
+    std::vector<bool> adaptive_faces;
+    ~sdv_refiner() { delete refiner; }
+};
+
+struct sdv_stencils {
+    std::vector<int32_t> sizes, offsets, indices;
+    std::vector<double> weights;
+};
+
+namespace sdv_internal {
+
+using namespace OpenSubdiv;
+
+// Messages OpenSubdiv reported through Far::Error on this thread since they
+// were last cleared (defined in shim.cpp, which installs the callbacks).
+std::string &osd_errors();
+
+// An error with a status, thrown inside the shim and turned into a return code.
+struct ShimError : std::runtime_error {
+    int status;
+    ShimError(int s, const std::string &m) : std::runtime_error(m), status(s) {}
+};
+
+[[noreturn]] inline void fail(const std::string &msg) { throw ShimError(SDV_ERR_INVALID, msg); }
+[[noreturn]] inline void fail_unsafe(const std::string &msg) { throw ShimError(SDV_ERR_UNSAFE, msg); }
+
+inline void write_err(char *err, size_t err_len, const char *msg) {
+    if (!err || err_len == 0) return;
+    size_t n = std::strlen(msg);
+    if (n >= err_len) n = err_len - 1;
+    std::memcpy(err, msg, n);
+    err[n] = '\0';
+}
+
+template <class F>
+int guarded(char *err, size_t err_len, F &&body) {
+    if (err && err_len) err[0] = '\0';
+    try {
+        body();
+        return SDV_OK;
+    } catch (const ShimError &e) {
+        write_err(err, err_len, e.what());
+        return e.status;
+    } catch (const std::bad_alloc &) {
+        write_err(err, err_len, "out of memory");
+        return SDV_ERR_INTERNAL;
+    } catch (const std::exception &e) {
+        write_err(err, err_len, (std::string("C++ exception: ") + e.what()).c_str());
+        return SDV_ERR_INTERNAL;
+    } catch (...) {
+        write_err(err, err_len, "unknown C++ exception");
+        return SDV_ERR_INTERNAL;
+    }
+}
+
+inline std::string str(long long v) { return std::to_string(v); }
+
+
+inline const sdv_refiner &need(const sdv_refiner *r) {
+    if (!r || !r->refiner) fail("null refiner");
+    return *r;
+}
+
+inline void check_cap(size_t cap, long long need_n, const char *what) {
+    if (need_n < 0 || cap < (size_t)need_n)
+        throw ShimError(SDV_ERR_CAPACITY, std::string(what) + ": buffer holds " + str((long long)cap) +
+                                              " elements but " + str(need_n) + " are needed");
+}
+
+}  // namespace sdv_internal
+
+#endif

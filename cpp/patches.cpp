@@ -1,0 +1,310 @@
+// subdiv shim, patch tables: Far::PatchTableFactory, Far::PatchTable and
+// Far::PatchMap behind the C ABI of cpp/shim.h. As everywhere in the shim,
+// every entry point catches every exception, and every input that would make
+// OpenSubdiv read out of bounds, assert or loop is refused before it sees it.
+
+#include "internal.h"
+
+#include <opensubdiv/far/patchDescriptor.h>
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/stencilTable.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+using namespace OpenSubdiv;
+using namespace sdv_internal;
+
+struct sdv_patches {
+    std::unique_ptr<Far::PatchTable> table;
+    std::unique_ptr<Far::PatchMap> map;
+    bool vertex_double = false;  // precision of the vertex local-point stencils
+};
+
+namespace {
+
+const sdv_patches &need_patches(const sdv_patches *p) {
+    if (!p || !p->table) fail("null patch table");
+    return *p;
+}
+
+bool flag(int32_t v, const char *name) {
+    if (v != 0 && v != 1) fail(std::string("patch option ") + name + " is " + str(v) + ", not 0 or 1");
+    return v != 0;
+}
+
+Far::PatchTableFactory::Options factory_options(const sdv_patch_options &o) {
+    if (o.end_cap_type < 0 || o.end_cap_type > 4) fail("end-cap type " + str(o.end_cap_type) + " is not 0..4");
+    // The field is 4 bits wide: 11..15 would be taken as they are, 16 and
+    // more wrap; OpenSubdiv isolates 10 levels at most.
+    if (o.max_isolation_level < 0 || o.max_isolation_level > 10)
+        fail("maximum isolation level " + str(o.max_isolation_level) + " is not 0..10");
+    Far::PatchTableFactory::Options f(o.max_isolation_level);
+    f.endCapType = (unsigned)o.end_cap_type;
+    f.shareEndCapPatchPoints = flag(o.share_end_cap_patch_points, "shareEndCapPatchPoints");
+    f.generateAllLevels = flag(o.generate_all_levels, "generateAllLevels");
+    f.includeBaseLevelIndices = flag(o.include_base_level_indices, "includeBaseLevelIndices");
+    f.includeFVarBaseLevelIndices = flag(o.include_fvar_base_level_indices, "includeFVarBaseLevelIndices");
+    f.triangulateQuads = flag(o.triangulate_quads, "triangulateQuads");
+    f.useSingleCreasePatch = flag(o.use_single_crease_patch, "useSingleCreasePatch");
+    f.useInfSharpPatch = flag(o.use_inf_sharp_patch, "useInfSharpPatch");
+    f.generateVaryingTables = flag(o.generate_varying_tables, "generateVaryingTables");
+    f.generateVaryingLocalPoints = flag(o.generate_varying_local_points, "generateVaryingLocalPoints");
+    f.generateFVarTables = flag(o.generate_fvar_tables, "generateFVarTables");
+    f.patchPrecisionDouble = flag(o.patch_precision_double, "patchPrecisionDouble");
+    f.fvarPatchPrecisionDouble = flag(o.fvar_patch_precision_double, "fvarPatchPrecisionDouble");
+    f.generateFVarLegacyLinearPatches =
+        flag(o.generate_fvar_legacy_linear_patches, "generateFVarLegacyLinearPatches");
+    f.generateLegacySharpCornerPatches =
+        flag(o.generate_legacy_sharp_corner_patches, "generateLegacySharpCornerPatches");
+    return f;
+}
+
+// A local-point stencil table of either precision, weights as double.
+template <typename REAL>
+sdv_stencils *copy_stencils(Far::StencilTableReal<REAL> const *t) {
+    std::unique_ptr<sdv_stencils> out(new sdv_stencils());
+    if (t) {
+        int n = t->GetNumStencils();
+        out->sizes.reserve(n);
+        out->offsets.reserve(n);
+        for (int i = 0; i < n; ++i) {
+            auto s = t->GetStencil(i);
+            out->offsets.push_back((int32_t)out->indices.size());
+            out->sizes.push_back(s.GetSize());
+            for (int k = 0; k < s.GetSize(); ++k) {
+                out->indices.push_back(s.GetVertexIndices()[k]);
+                out->weights.push_back((double)s.GetWeights()[k]);
+            }
+        }
+    }
+    return out.release();
+}
+
+bool evaluable(Far::PatchDescriptor::Type t) {
+    switch (t) {
+        case Far::PatchDescriptor::REGULAR:
+        case Far::PatchDescriptor::LOOP:
+        case Far::PatchDescriptor::GREGORY_BASIS:
+        case Far::PatchDescriptor::GREGORY_TRIANGLE:
+        case Far::PatchDescriptor::QUADS:
+        case Far::PatchDescriptor::TRIANGLES:
+            return true;
+        default:
+            return false;
+    }
+}
+
+void check_unit(double x, const char *name) {
+    if (!std::isfinite(x) || x < 0.0 || x > 1.0) fail(std::string(name) + " " + std::to_string(x) + " is not in [0, 1]");
+}
+
+}  // namespace
+
+extern "C" {
+
+int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const int32_t *fvar_channels,
+                       size_t num_fvar_channels, const int32_t *faces, size_t num_faces, sdv_patches **out,
+                       char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out || !o) fail("null argument");
+        *out = nullptr;
+        const sdv_refiner &rr = need(r);
+        Far::TopologyRefiner const &tr = *rr.refiner;
+        Far::PatchTableFactory::Options f = factory_options(*o);
+        if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_LEGACY_GREGORY &&
+            tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
+            fail("legacy Gregory end caps exist for Catmull-Clark only");
+        int channels = tr.GetNumFVarChannels();
+        if (num_fvar_channels > 0 && !fvar_channels) fail("null face-varying channel list");
+        if (num_fvar_channels > (size_t)channels)
+            fail(str((long long)num_fvar_channels) + " face-varying channels asked for, the refiner has " +
+                 str(channels));
+        for (size_t i = 0; i < num_fvar_channels; ++i)
+            if (fvar_channels[i] < 0 || fvar_channels[i] >= channels)
+                fail("face-varying channel " + str(fvar_channels[i]) + " does not exist (the refiner has " +
+                     str(channels) + ")");
+        f.numFVarChannels = (int)num_fvar_channels;
+        f.fvarChannelIndices = num_fvar_channels ? fvar_channels : nullptr;
+        int base_faces = tr.GetLevel(0).GetNumFaces();
+        if (num_faces > 0 && !faces) fail("null face list");
+        if (num_faces > (size_t)0x7fffffff) fail("too many selected faces");
+        for (size_t i = 0; i < num_faces; ++i)
+            if (faces[i] < 0 || faces[i] >= base_faces)
+                fail("selected face " + str(faces[i]) + " is out of range (" + str(base_faces) + " faces)");
+        if (num_faces > 0 && !tr.IsUniform() && !rr.adaptive_faces.empty()) {
+            // OpenSubdiv leaves patches of faces it did not refine undefined.
+            for (size_t i = 0; i < num_faces; ++i)
+                if (!rr.adaptive_faces[(size_t)faces[i]])
+                    fail("selected face " + str(faces[i]) +
+                         " was not among the faces refined adaptively: its patches are undefined");
+        }
+        Far::ConstIndexArray selected(faces, (int)num_faces);
+        std::unique_ptr<sdv_patches> p(new sdv_patches());
+        osd_errors().clear();
+        p->table.reset(Far::PatchTableFactory::Create(tr, f, selected));
+        if (!osd_errors().empty()) throw ShimError(SDV_ERR_OSD, osd_errors());
+        if (!p->table) throw ShimError(SDV_ERR_OSD, "PatchTableFactory::Create returned no table");
+        p->map.reset(new Far::PatchMap(*p->table));
+        p->vertex_double = p->table->LocalPointStencilPrecisionMatchesType<double>();
+        *out = p.release();
+    });
+}
+
+void sdv_patches_destroy(sdv_patches *p) { delete p; }
+
+int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        Far::PatchTable const &t = *need_patches(p).table;
+        out->num_arrays = t.GetNumPatchArrays();
+        out->num_patches = t.GetNumPatchesTotal();
+        out->num_control_vertices = (int32_t)t.GetPatchControlVerticesTable().size();
+        out->num_local_points = t.GetNumLocalPoints();
+        out->num_local_points_varying = t.GetNumLocalPointsVarying();
+        out->max_valence = t.GetMaxValence();
+        out->num_ptex_faces = t.GetNumPtexFaces();
+        out->num_quad_offsets = (int32_t)t.GetQuadOffsetsTable().size();
+        out->num_valence_entries = (int32_t)t.GetVertexValenceTable().size();
+        out->feature_adaptive = t.IsFeatureAdaptive() ? 1 : 0;
+    });
+}
+
+int sdv_patches_array(const sdv_patches *p, int32_t array, int32_t *type, int32_t *num_patches, int32_t *num_cvs,
+                      char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!type || !num_patches || !num_cvs) fail("null output");
+        Far::PatchTable const &t = *need_patches(p).table;
+        if (array < 0 || array >= t.GetNumPatchArrays())
+            fail("patch array " + str(array) + " does not exist (" + str(t.GetNumPatchArrays()) + " arrays)");
+        Far::PatchDescriptor d = t.GetPatchArrayDescriptor(array);
+        *type = (int32_t)d.GetType();
+        *num_patches = t.GetNumPatches(array);
+        *num_cvs = d.GetNumControlVertices();
+    });
+}
+
+int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        Far::PatchTable const &t = *need_patches(p).table;
+        auto const &cvs = t.GetPatchControlVerticesTable();
+        auto const &params = t.GetPatchParamTable();
+        auto const &sharp_index = t.GetSharpnessIndexTable();
+        auto const &sharp_values = t.GetSharpnessValues();
+        auto const &quad = t.GetQuadOffsetsTable();
+        auto const &valence = t.GetVertexValenceTable();
+        size_t patches = params.size();
+        check_cap(out->cvs.cap, (long long)cvs.size(), "patch control vertices");
+        check_cap(out->params_cap, 2 * (long long)patches, "patch params");
+        check_cap(out->sharpness_cap, (long long)patches, "patch sharpness");
+        check_cap(out->quad_offsets_cap, (long long)quad.size(), "quad offsets");
+        check_cap(out->valence.cap, (long long)valence.size(), "vertex valence table");
+        if ((!cvs.empty() && !out->cvs.data) || (patches && (!out->params || !out->sharpness)) ||
+            (!quad.empty() && !out->quad_offsets) || (!valence.empty() && !out->valence.data))
+            fail("null output");
+        std::copy(cvs.begin(), cvs.end(), out->cvs.data);
+        for (size_t i = 0; i < patches; ++i) {
+            out->params[2 * i] = params[i].field0;
+            out->params[2 * i + 1] = params[i].field1;
+            // No sharpness table (single-crease patches off), or no entry.
+            float s = 0.0f;
+            if (i < sharp_index.size()) {
+                Far::Index k = sharp_index[i];
+                if (k != Far::INDEX_INVALID) {
+                    if (k < 0 || (size_t)k >= sharp_values.size())
+                        throw ShimError(SDV_ERR_INTERNAL, "patch sharpness index out of range");
+                    s = sharp_values[(size_t)k];
+                }
+            }
+            out->sharpness[i] = s;
+        }
+        std::copy(quad.begin(), quad.end(), out->quad_offsets);
+        std::copy(valence.begin(), valence.end(), out->valence.data);
+    });
+}
+
+int sdv_patches_local_stencils(const sdv_patches *p, int32_t kind, sdv_stencils **out, char *err,
+                               size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!out) fail("null output");
+        *out = nullptr;
+        Far::PatchTable const &t = *need_patches(p).table;
+        // PatchTable's accessors assert that the precision asked for is the
+        // table's: ask for the one it has.
+        if (kind == 0) {
+            if (t.LocalPointStencilPrecisionMatchesType<double>())
+                *out = copy_stencils(t.GetLocalPointStencilTable<double>());
+            else
+                *out = copy_stencils(t.GetLocalPointStencilTable<float>());
+        } else if (kind == 1) {
+            if (t.LocalPointVaryingStencilPrecisionMatchesType<double>())
+                *out = copy_stencils(t.GetLocalPointVaryingStencilTable<double>());
+            else
+                *out = copy_stencils(t.GetLocalPointVaryingStencilTable<float>());
+        } else {
+            fail("unknown local-point stencil kind " + str(kind));
+        }
+    });
+}
+
+int sdv_patches_find(const sdv_patches *p, int32_t face, double u, double v, int32_t *found, int32_t *array,
+                     int32_t *patch, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!found || !array || !patch) fail("null output");
+        const sdv_patches &pp = need_patches(p);
+        int faces = pp.table->GetNumPtexFaces();
+        if (face < 0 || face >= faces) fail("ptex face " + str(face) + " does not exist (" + str(faces) + " ptex faces)");
+        check_unit(u, "u");
+        check_unit(v, "v");
+        Far::PatchTable::PatchHandle const *h = pp.map->FindPatch(face, u, v);
+        *found = h ? 1 : 0;
+        *array = h ? h->arrayIndex : -1;
+        if (h) {
+            // The handle's patch index counts over all arrays.
+            Far::PatchTable const &t = *pp.table;
+            int first = 0;
+            for (int a = 0; a < h->arrayIndex; ++a) first += t.GetNumPatches(a);
+            *patch = h->patchIndex - first;
+        } else {
+            *patch = -1;
+        }
+    });
+}
+
+int sdv_patches_evaluate_basis(const sdv_patches *p, int32_t array, int32_t patch, double u, double v, double *w,
+                               double *du, double *dv, double *duu, double *duv, double *dvv, size_t cap,
+                               char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        Far::PatchTable const &t = *need_patches(p).table;
+        if (array < 0 || array >= t.GetNumPatchArrays())
+            fail("patch array " + str(array) + " does not exist (" + str(t.GetNumPatchArrays()) + " arrays)");
+        if (patch < 0 || patch >= t.GetNumPatches(array))
+            fail("patch " + str(patch) + " does not exist in array " + str(array) + " (" +
+                 str(t.GetNumPatches(array)) + " patches)");
+        Far::PatchDescriptor d = t.GetPatchArrayDescriptor(array);
+        if (!evaluable(d.GetType()))
+            fail("patches of type " + str((int)d.GetType()) + " cannot be evaluated (EvaluateBasis has no basis for them)");
+        check_unit(u, "u");
+        check_unit(v, "v");
+        if (!w) fail("null output");
+        if ((du == nullptr) != (dv == nullptr)) fail("first derivatives come in pairs");
+        if ((duu == nullptr) != (duv == nullptr) || (duu == nullptr) != (dvv == nullptr))
+            fail("second derivatives come in threes");
+        if (duu && !du) fail("second derivatives need the first");
+        // The basis functions write up to 20 weights whatever the patch's size.
+        check_cap(cap, 20, "basis weights");
+        Far::PatchTable::PatchHandle h;
+        h.arrayIndex = array;
+        int first = 0;
+        for (int a = 0; a < array; ++a) first += t.GetNumPatches(a);
+        h.patchIndex = first + patch;
+        h.vertIndex = patch * d.GetNumControlVertices();
+        t.EvaluateBasis<double>(h, u, v, w, du, dv, duu, duv, dvv);
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,374 @@
+//! Patch tables: the limit surface as OpenSubdiv's `Far::PatchTable`
+//! describes it — arrays of patches (regular B-spline, Loop box-spline,
+//! Gregory, bilinear...), each with its control vertices, its
+//! [`PatchParam`] and its single-crease sharpness — and the options of
+//! `Far::PatchTableFactory` ([`PatchOptions`]).
+//!
+//! The types here are plain data shared by the engines. Today the `osd`
+//! engine builds them (`osd::TopologyRefiner::patch_table`), locates
+//! (ptex face, u, v) in them and evaluates their basis; the native engine
+//! does not build patch tables yet.
+
+mod param;
+
+pub use param::PatchParam;
+
+/// `Far::PatchDescriptor::Type`, with OpenSubdiv's numbering.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PatchType {
+    /// `NON_PATCH`: undefined.
+    NonPatch = 0,
+    /// `POINTS`.
+    Points = 1,
+    /// `LINES`.
+    Lines = 2,
+    /// `QUADS`: bilinear quads (uniform tables, bilinear end caps).
+    Quads = 3,
+    /// `TRIANGLES`: linear triangles.
+    Triangles = 4,
+    /// `LOOP`: regular Loop box-spline triangle (12 control vertices).
+    Loop = 5,
+    /// `REGULAR`: regular bicubic B-spline (16 control vertices).
+    Regular = 6,
+    /// `GREGORY`: legacy Gregory patch (4 control vertices and the quad
+    /// offset and valence tables).
+    Gregory = 7,
+    /// `GREGORY_BOUNDARY`: legacy Gregory boundary patch.
+    GregoryBoundary = 8,
+    /// `GREGORY_BASIS`: Gregory patch of 20 local points.
+    GregoryBasis = 9,
+    /// `GREGORY_TRIANGLE`: triangular Gregory patch of 18 local points.
+    GregoryTriangle = 10,
+}
+
+impl PatchType {
+    /// Every type, in OpenSubdiv's order.
+    pub const ALL: [PatchType; 11] = [
+        PatchType::NonPatch,
+        PatchType::Points,
+        PatchType::Lines,
+        PatchType::Quads,
+        PatchType::Triangles,
+        PatchType::Loop,
+        PatchType::Regular,
+        PatchType::Gregory,
+        PatchType::GregoryBoundary,
+        PatchType::GregoryBasis,
+        PatchType::GregoryTriangle,
+    ];
+
+    /// The type of OpenSubdiv's code `code`, if there is one.
+    pub fn from_code(code: i32) -> Option<PatchType> {
+        usize::try_from(code)
+            .ok()
+            .and_then(|i| Self::ALL.get(i).copied())
+    }
+
+    /// OpenSubdiv's code.
+    pub fn code(self) -> i32 {
+        self as i32
+    }
+
+    /// OpenSubdiv's name of the type (`"REGULAR"`, `"GREGORY_BASIS"`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            PatchType::NonPatch => "NON_PATCH",
+            PatchType::Points => "POINTS",
+            PatchType::Lines => "LINES",
+            PatchType::Quads => "QUADS",
+            PatchType::Triangles => "TRIANGLES",
+            PatchType::Loop => "LOOP",
+            PatchType::Regular => "REGULAR",
+            PatchType::Gregory => "GREGORY",
+            PatchType::GregoryBoundary => "GREGORY_BOUNDARY",
+            PatchType::GregoryBasis => "GREGORY_BASIS",
+            PatchType::GregoryTriangle => "GREGORY_TRIANGLE",
+        }
+    }
+
+    /// Control vertices of a patch of this type
+    /// (`PatchDescriptor::GetNumControlVertices`).
+    pub fn control_vertices(self) -> usize {
+        match self {
+            PatchType::NonPatch => 0,
+            PatchType::Points => 1,
+            PatchType::Lines => 2,
+            PatchType::Quads | PatchType::Gregory | PatchType::GregoryBoundary => 4,
+            PatchType::Triangles => 3,
+            PatchType::Loop => 12,
+            PatchType::Regular => 16,
+            PatchType::GregoryBasis => 20,
+            PatchType::GregoryTriangle => 18,
+        }
+    }
+
+    /// Whether `PatchTable::EvaluateBasis` has a basis for the type (not
+    /// for the legacy Gregory patches, points or lines).
+    pub fn is_evaluable(self) -> bool {
+        matches!(
+            self,
+            PatchType::Quads
+                | PatchType::Triangles
+                | PatchType::Loop
+                | PatchType::Regular
+                | PatchType::GregoryBasis
+                | PatchType::GregoryTriangle
+        )
+    }
+}
+
+/// `PatchTableFactory::Options::EndCapType`: how patches around
+/// extraordinary features are approximated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum EndCapType {
+    /// `ENDCAP_NONE` ("unspecified": OpenSubdiv then builds B-spline end
+    /// caps).
+    None = 0,
+    /// `ENDCAP_BILINEAR_BASIS`: linear patches.
+    BilinearBasis = 1,
+    /// `ENDCAP_BSPLINE_BASIS`: B-spline patches approximating the surface.
+    BSplineBasis = 2,
+    /// `ENDCAP_GREGORY_BASIS`: Gregory patches (OpenSubdiv's default).
+    #[default]
+    GregoryBasis = 3,
+    /// `ENDCAP_LEGACY_GREGORY`: OpenSubdiv 2's Gregory patches
+    /// (Catmull-Clark only; not evaluable by `EvaluateBasis`).
+    LegacyGregory = 4,
+}
+
+/// `Far::PatchTableFactory::Options`, every field, with OpenSubdiv 3.5's
+/// defaults ([`PatchOptions::new`]), and the face-varying channels to build
+/// tables for.
+///
+/// ```
+/// use subdiv::patches::{EndCapType, PatchOptions};
+/// let o = PatchOptions::new().end_caps(EndCapType::BSplineBasis).single_crease_patch(true);
+/// assert_eq!(o.max_isolation_level, 10);
+/// assert!(o.legacy_sharp_corner_patches && o.include_base_level_indices);
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PatchOptions {
+    /// `endCapType` (Gregory basis).
+    pub end_cap_type: EndCapType,
+    /// `shareEndCapPatchPoints` (true).
+    pub share_end_cap_points: bool,
+    /// `generateAllLevels` (false; uniform tables only).
+    pub generate_all_levels: bool,
+    /// `includeBaseLevelIndices` (true; uniform tables only).
+    pub include_base_level_indices: bool,
+    /// `includeFVarBaseLevelIndices` (false; uniform tables only).
+    pub include_fvar_base_level_indices: bool,
+    /// `triangulateQuads` (false; uniform tables only).
+    pub triangulate_quads: bool,
+    /// `useSingleCreasePatch` (false).
+    pub single_crease_patch: bool,
+    /// `useInfSharpPatch` (false).
+    pub inf_sharp_patch: bool,
+    /// `maxIsolationLevel` (10).
+    pub max_isolation_level: u32,
+    /// `generateVaryingTables` (true).
+    pub varying_tables: bool,
+    /// `generateVaryingLocalPoints` (true).
+    pub varying_local_points: bool,
+    /// `generateFVarTables` (false).
+    pub fvar_tables: bool,
+    /// `patchPrecisionDouble` (false: local-point stencils in `f32`).
+    pub patch_precision_double: bool,
+    /// `fvarPatchPrecisionDouble` (false).
+    pub fvar_patch_precision_double: bool,
+    /// `generateFVarLegacyLinearPatches` (true).
+    pub fvar_legacy_linear_patches: bool,
+    /// `generateLegacySharpCornerPatches` (true).
+    pub legacy_sharp_corner_patches: bool,
+    /// `fvarChannelIndices`: the face-varying channels with tables (none).
+    pub fvar_channels: Vec<usize>,
+}
+
+impl Default for PatchOptions {
+    fn default() -> Self {
+        PatchOptions {
+            end_cap_type: EndCapType::GregoryBasis,
+            share_end_cap_points: true,
+            generate_all_levels: false,
+            include_base_level_indices: true,
+            include_fvar_base_level_indices: false,
+            triangulate_quads: false,
+            single_crease_patch: false,
+            inf_sharp_patch: false,
+            max_isolation_level: 10,
+            varying_tables: true,
+            varying_local_points: true,
+            fvar_tables: false,
+            patch_precision_double: false,
+            fvar_patch_precision_double: false,
+            fvar_legacy_linear_patches: true,
+            legacy_sharp_corner_patches: true,
+            fvar_channels: Vec::new(),
+        }
+    }
+}
+
+impl PatchOptions {
+    /// OpenSubdiv 3.5's defaults (`PatchTableFactory::Options()`).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets `endCapType`.
+    pub fn end_caps(mut self, end_caps: EndCapType) -> Self {
+        self.end_cap_type = end_caps;
+        self
+    }
+
+    /// Sets `useSingleCreasePatch`.
+    pub fn single_crease_patch(mut self, yes: bool) -> Self {
+        self.single_crease_patch = yes;
+        self
+    }
+
+    /// Sets `useInfSharpPatch`.
+    pub fn inf_sharp_patch(mut self, yes: bool) -> Self {
+        self.inf_sharp_patch = yes;
+        self
+    }
+
+    /// Sets `maxIsolationLevel`.
+    pub fn max_isolation(mut self, level: u32) -> Self {
+        self.max_isolation_level = level;
+        self
+    }
+
+    /// Sets `patchPrecisionDouble` (and `fvarPatchPrecisionDouble`).
+    pub fn double_precision(mut self, yes: bool) -> Self {
+        self.patch_precision_double = yes;
+        self.fvar_patch_precision_double = yes;
+        self
+    }
+
+    /// The adaptive refinement these options call for
+    /// (`GetRefineAdaptiveOptions`): isolation level, single-crease and
+    /// infinitely-sharp patches, face-varying channels considered when
+    /// non-linear face-varying tables are asked for.
+    pub fn refine_adaptive_options(&self) -> crate::AdaptiveOptions {
+        crate::AdaptiveOptions::new(self.max_isolation_level)
+            .single_crease_patch(self.single_crease_patch)
+            .inf_sharp_patch(self.inf_sharp_patch)
+            .consider_fvar(self.fvar_tables && !self.fvar_legacy_linear_patches)
+    }
+}
+
+/// One array of patches of one type.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchArray {
+    /// The type of every patch of the array.
+    pub patch_type: PatchType,
+    /// Control vertices of each patch, patch after patch
+    /// ([`PatchType::control_vertices`] each): indices into the vertices of
+    /// every level one after the other (base level first), then the local
+    /// points.
+    pub control_vertices: Vec<u32>,
+    /// The [`PatchParam`] of each patch.
+    pub params: Vec<PatchParam>,
+    /// Each patch's single-crease sharpness (0 where none).
+    pub sharpness: Vec<f32>,
+}
+
+impl PatchArray {
+    /// Number of patches.
+    pub fn len(&self) -> usize {
+        self.params.len()
+    }
+
+    /// Whether the array has no patch.
+    pub fn is_empty(&self) -> bool {
+        self.params.is_empty()
+    }
+
+    /// The control vertices of patch `patch`.
+    pub fn patch_vertices(&self, patch: usize) -> &[u32] {
+        let n = self.patch_type.control_vertices();
+        &self.control_vertices[patch * n..(patch + 1) * n]
+    }
+}
+
+/// A patch table (`Far::PatchTable`): its arrays and the tables beside them.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PatchTable {
+    /// The patch arrays, in OpenSubdiv's order.
+    pub arrays: Vec<PatchArray>,
+    /// Local points (end-cap points) after the refined vertices
+    /// (`GetNumLocalPoints`).
+    pub local_points: usize,
+    /// Varying local points (`GetNumLocalPointsVarying`).
+    pub local_points_varying: usize,
+    /// Largest valence of the base level (`GetMaxValence`).
+    pub max_valence: usize,
+    /// Ptex faces of the base level (`GetNumPtexFaces`).
+    pub ptex_faces: usize,
+    /// Legacy Gregory quad offsets (`GetQuadOffsetsTable`; empty otherwise).
+    pub quad_offsets: Vec<u32>,
+    /// Legacy Gregory vertex valence table (`GetVertexValenceTable`; empty
+    /// otherwise).
+    pub vertex_valences: Vec<i32>,
+    /// Whether the table comes from adaptive refinement
+    /// (`IsFeatureAdaptive`).
+    pub feature_adaptive: bool,
+}
+
+impl PatchTable {
+    /// Number of patches in all arrays (`GetNumPatchesTotal`).
+    pub fn patch_count(&self) -> usize {
+        self.arrays.iter().map(PatchArray::len).sum()
+    }
+}
+
+/// A patch: its array and its index in the array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PatchHandle {
+    /// The array.
+    pub array: usize,
+    /// The patch's index in its array.
+    pub patch: usize,
+}
+
+/// Which derivatives to evaluate besides the position.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Derivatives {
+    /// Positions only.
+    #[default]
+    None,
+    /// Positions and first derivatives.
+    First,
+    /// Positions, first and second derivatives.
+    Second,
+}
+
+/// Values with their partial derivatives with respect to a ptex face's u
+/// and v, each list empty when not asked for: the weights of a patch's
+/// control vertices at one location (`EvaluateBasis`), or the limit
+/// surface's values at a list of locations ([`SurfaceSamples`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Partials {
+    /// The values themselves.
+    pub point: Vec<f64>,
+    /// ∂/∂u.
+    pub du: Vec<f64>,
+    /// ∂/∂v.
+    pub dv: Vec<f64>,
+    /// ∂²/∂u².
+    pub duu: Vec<f64>,
+    /// ∂²/∂u∂v.
+    pub duv: Vec<f64>,
+    /// ∂²/∂v².
+    pub dvv: Vec<f64>,
+}
+
+/// Values of the limit surface at a list of locations, `width` components
+/// each, location after location, with the derivatives asked for.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SurfaceSamples {
+    /// Components per value.
+    pub width: usize,
+    /// The values and derivatives.
+    pub values: Partials,
+}

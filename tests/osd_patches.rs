@@ -1,0 +1,447 @@
+//! Patch tables through the bridge (`Far::PatchTableFactory`,
+//! `Far::PatchMap`, `PatchTable::EvaluateBasis`): hand-derived counts and
+//! bicubic B-spline weights, the patches tiling every ptex face, the basis a
+//! partition of unity, the limit surface at a face's corners equal to the
+//! native engine's limit positions, uniform tables over the last level, and
+//! every refusal before OpenSubdiv sees the input.
+#![cfg(feature = "osd")]
+
+use subdiv::patches::{Derivatives, EndCapType, PatchHandle, PatchOptions, PatchType};
+use subdiv::refiner::Refiner;
+use subdiv::{Error, Mesh, Options, Scheme, UniformOptions, osd, shapes};
+
+fn adaptive(mesh: &Mesh, options: &PatchOptions) -> (osd::TopologyRefiner, osd::OsdPatchTable) {
+    let mut r = osd::TopologyRefiner::new(mesh, &Options::default()).unwrap();
+    r.refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    let t = r.patch_table(options, &[]).unwrap();
+    (r, t)
+}
+
+fn total_vertices(r: &osd::TopologyRefiner) -> usize {
+    (0..=r.max_level())
+        .map(|l| r.level_counts(l).unwrap().vertices)
+        .sum()
+}
+
+/// The cube isolated to depth 2: each face splits into 16 patches; the
+/// four touching a corner (valence 3, extraordinary) are Gregory basis end
+/// caps of 20 points, the other twelve regular B-spline patches.
+#[test]
+fn cube_patches_by_hand() {
+    let cube = shapes::cube();
+    let unshared = PatchOptions {
+        share_end_cap_points: false,
+        ..PatchOptions::new().max_isolation(2)
+    };
+    for options in [PatchOptions::new().max_isolation(2), unshared] {
+        let (r, patches) = adaptive(&cube, &options);
+        let t = patches.table();
+        assert_eq!(r.max_level(), 2);
+        assert!(t.feature_adaptive);
+        assert_eq!(t.ptex_faces, 6);
+        assert_eq!(t.arrays.len(), 2);
+        assert_eq!(t.arrays[0].patch_type, PatchType::Regular);
+        assert_eq!(t.arrays[0].len(), 6 * 12);
+        assert_eq!(t.arrays[1].patch_type, PatchType::GregoryBasis);
+        assert_eq!(t.arrays[1].len(), 6 * 4);
+        if options.share_end_cap_points {
+            // Neighbouring end caps share points.
+            assert!(t.local_points < 24 * 20);
+        } else {
+            assert_eq!(t.local_points, 24 * 20);
+        }
+        let points = total_vertices(&r) + t.local_points;
+        for a in &t.arrays {
+            assert_eq!(
+                a.control_vertices.len(),
+                a.len() * a.patch_type.control_vertices()
+            );
+            assert!(a.control_vertices.iter().all(|&v| (v as usize) < points));
+            for p in &a.params {
+                assert_eq!(p.depth(), 2);
+                assert!(!p.non_quad_root());
+                assert_eq!(p.boundary(), 0);
+                assert_eq!(p.is_regular(), a.patch_type == PatchType::Regular);
+            }
+            // No single-crease patches asked for.
+            assert!(a.sharpness.iter().all(|&s| s == 0.0));
+        }
+        // Gregory basis points are local points, after the refined vertices.
+        assert!(
+            t.arrays[1]
+                .control_vertices
+                .iter()
+                .all(|&v| v as usize >= total_vertices(&r))
+        );
+        // The local points' stencils: one per local point, weights summing
+        // to 1 (affine combinations of refined vertices).
+        let s = patches.local_point_stencils().unwrap();
+        assert_eq!(s.len(), t.local_points);
+        for i in 0..s.len() {
+            let (idx, w) = s.row(i);
+            assert!(idx.iter().all(|&v| (v as usize) < total_vertices(&r)));
+            assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-5);
+        }
+    }
+}
+
+/// The patches of every ptex face tile its unit square exactly once: the
+/// areas (4^-depth, or 4^-(depth-1) under a non-quad root whose sub-faces
+/// are the ptex faces) sum to 1 and no two patches overlap.
+#[test]
+fn patches_tile_every_ptex_face() {
+    let mut creased = shapes::cube();
+    creased.add_crease(0, 1, 2.5);
+    creased.add_corner(6, 10.0);
+    for (name, mesh) in [
+        ("cube", shapes::cube()),
+        ("creased", creased),
+        ("pole-5", shapes::pole(5)),
+        ("prism-6", shapes::prism(6)),
+        ("torus-mixed", shapes::torus_mixed(6, 4)),
+    ] {
+        for options in [
+            PatchOptions::new().max_isolation(3),
+            PatchOptions::new()
+                .max_isolation(2)
+                .single_crease_patch(true)
+                .end_caps(EndCapType::BSplineBasis),
+        ] {
+            let (_, patches) = adaptive(&mesh, &options);
+            let t = patches.table();
+            let mut cells: Vec<std::collections::HashSet<(u32, u32, u32)>> =
+                vec![Default::default(); t.ptex_faces];
+            let mut area = vec![0.0f64; t.ptex_faces];
+            for a in &t.arrays {
+                for p in &a.params {
+                    let d = p.depth() - p.non_quad_root() as u32;
+                    area[p.face_id() as usize] += 0.25f64.powi(d as i32);
+                    assert!(
+                        cells[p.face_id() as usize].insert((d, p.u(), p.v())),
+                        "{name}: two patches at {p:?}"
+                    );
+                    assert!(p.u() < 1 << d && p.v() < 1 << d, "{name}: {p:?}");
+                }
+            }
+            for (f, a) in area.iter().enumerate() {
+                assert_eq!(*a, 1.0, "{name}: ptex face {f} covered {a}");
+            }
+        }
+    }
+}
+
+/// The uniform cubic B-spline basis at `s`, and its derivative.
+fn bspline(s: f64) -> ([f64; 4], [f64; 4]) {
+    let t = 1.0 - s;
+    (
+        [
+            t * t * t / 6.0,
+            (3.0 * s * s * s - 6.0 * s * s + 4.0) / 6.0,
+            (-3.0 * s * s * s + 3.0 * s * s + 3.0 * s + 1.0) / 6.0,
+            s * s * s / 6.0,
+        ],
+        [
+            -t * t / 2.0,
+            (3.0 * s * s - 4.0 * s) / 2.0,
+            (-3.0 * s * s + 2.0 * s + 1.0) / 2.0,
+            s * s / 2.0,
+        ],
+    )
+}
+
+/// A regular interior patch's weights are the tensor product of the cubic
+/// B-spline basis (weight `4 j + i` for basis `i` in u and `j` in v), its
+/// derivatives scaled by 2^depth from the patch's square to the ptex face's.
+#[test]
+fn regular_weights_are_the_bicubic_bspline_basis() {
+    let (_, patches) = adaptive(&shapes::cube(), &PatchOptions::new().max_isolation(2));
+    let t = patches.table();
+    let regular = &t.arrays[0];
+    let mut checked = 0;
+    for (k, p) in regular.params.iter().enumerate() {
+        let scale = (1u32 << p.depth()) as f64;
+        for (s, tt) in [(0.0, 0.0), (0.5, 0.5), (0.25, 0.75), (1.0, 0.3)] {
+            // The location in the ptex face.
+            let u = (p.u() as f64 + s) / scale;
+            let v = (p.v() as f64 + tt) / scale;
+            let w = patches
+                .evaluate_basis(PatchHandle { array: 0, patch: k }, u, v, Derivatives::First)
+                .unwrap();
+            let ((bu, du), (bv, dv)) = (bspline(s), bspline(tt));
+            for j in 0..4 {
+                for i in 0..4 {
+                    let n = 4 * j + i;
+                    assert!((w.point[n] - bu[i] * bv[j]).abs() < 1e-15, "{p:?} {s} {tt}");
+                    assert!((w.du[n] - scale * du[i] * bv[j]).abs() < 1e-14);
+                    assert!((w.dv[n] - scale * bu[i] * dv[j]).abs() < 1e-14);
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 72 * 4);
+}
+
+/// At any location, the position weights sum to 1 and every derivative's
+/// to 0, for every patch type the tables hold (regular, Gregory basis,
+/// Loop, Gregory triangle, bilinear end caps).
+#[test]
+fn basis_is_a_partition_of_unity() {
+    let cases = [
+        (shapes::cube(), Scheme::Catmark, EndCapType::GregoryBasis),
+        (shapes::pole(5), Scheme::Catmark, EndCapType::BilinearBasis),
+        (
+            shapes::icosahedron(),
+            Scheme::Loop,
+            EndCapType::GregoryBasis,
+        ),
+        (
+            shapes::icosahedron(),
+            Scheme::Loop,
+            EndCapType::BSplineBasis,
+        ),
+    ];
+    let mut types = std::collections::HashSet::new();
+    for (mesh, scheme, caps) in cases {
+        let options = PatchOptions::new().max_isolation(2).end_caps(caps);
+        let mut r =
+            osd::TopologyRefiner::new(&mesh, &Options::default().with_scheme(scheme)).unwrap();
+        r.refine_adaptive(options.refine_adaptive_options(), &[])
+            .unwrap();
+        let patches = r.patch_table(&options, &[]).unwrap();
+        for (a, array) in patches.table().arrays.iter().enumerate() {
+            types.insert(array.patch_type);
+            for (k, p) in array.params.iter().enumerate() {
+                let scale = (1u32 << (p.depth() - p.non_quad_root() as u32)) as f64;
+                let (u, v) = ((p.u() as f64 + 0.3) / scale, (p.v() as f64 + 0.2) / scale);
+                let w = patches
+                    .evaluate_basis(
+                        PatchHandle { array: a, patch: k },
+                        u,
+                        v,
+                        Derivatives::Second,
+                    )
+                    .unwrap();
+                let sum = |x: &[f64]| x.iter().sum::<f64>();
+                assert!(
+                    (sum(&w.point) - 1.0).abs() < 1e-12,
+                    "{:?}",
+                    array.patch_type
+                );
+                for d in [&w.du, &w.dv, &w.duu, &w.duv, &w.dvv] {
+                    assert!(sum(d).abs() < 1e-9, "{:?}: {}", array.patch_type, sum(d));
+                }
+            }
+        }
+    }
+    for ty in [
+        PatchType::Regular,
+        PatchType::GregoryBasis,
+        PatchType::Loop,
+        PatchType::GregoryTriangle,
+        PatchType::Quads,
+    ] {
+        assert!(types.contains(&ty), "{ty:?} not exercised");
+    }
+}
+
+/// The limit surface at the corners of every base face is the limit
+/// position of that base vertex: OpenSubdiv's patches (double-precision
+/// local points) against the native engine's limit masks, on smooth closed
+/// meshes with extraordinary vertices and n-gons (whose corner `k` is the
+/// origin of ptex sub-face `k`). The native limit is taken after one
+/// uniform level (at the vertex's child): `PrimvarRefiner::Limit`'s masks,
+/// which the native engine reproduces, assume quads around the vertex, so
+/// at level 0 they are off next to n-gons and triangles. Not on infinitely
+/// sharp creases: Gregory end caps approximate the surface there (the dart
+/// of a creased cube is 1.7% of its size off), as OpenSubdiv documents.
+#[test]
+fn face_corners_are_native_limit_positions() {
+    for (name, mesh) in [
+        ("cube", shapes::cube()),
+        ("torus", shapes::torus(6, 4)),
+        ("prism-5", shapes::prism(5)),
+        ("pole-6", shapes::pole(6)),
+    ] {
+        let options = PatchOptions::new().max_isolation(4).double_precision(true);
+        let (r, patches) = adaptive(&mesh, &options);
+        let mut native = Refiner::new(&mesh, &Options::default()).unwrap();
+        let ptex = subdiv::PtexIndices::new(&native).unwrap();
+        native
+            .refine_uniform(UniformOptions::new(1).full_topology(true))
+            .unwrap();
+        let base = mesh.flat_positions::<f64>();
+        let mut locations = Vec::new();
+        let mut expected_vertex = Vec::new();
+        for (f, face) in mesh.faces().enumerate() {
+            let first = ptex.face_id(f).unwrap();
+            for (k, &v) in face.iter().enumerate() {
+                locations.push(if face.len() == 4 {
+                    let (u, v) = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)][k];
+                    (first, u, v)
+                } else {
+                    (first + k as u32, 0.0, 0.0)
+                });
+                expected_vertex.push(v as usize);
+            }
+        }
+        let samples = patches
+            .evaluate(&r, 3, &base, &locations, Derivatives::None)
+            .unwrap();
+        let level1 = native.interpolate_all(3, &base).unwrap().pop().unwrap();
+        let limit = native.limit_positions(3, &level1).unwrap();
+        let child = native.child_maps(0).unwrap().vertex_child_vertex;
+        for (i, &v) in expected_vertex.iter().enumerate() {
+            let c1 = child[v] as usize;
+            for c in 0..3 {
+                let (a, b) = (samples.values.point[3 * i + c], limit[3 * c1 + c]);
+                assert!((a - b).abs() < 1e-12, "{name}: vertex {v}: {a} vs {b}");
+            }
+        }
+    }
+}
+
+/// Uniform tables: the last level's faces as bilinear quads over the base
+/// vertices followed by the last level's (`includeBaseLevelIndices`, the
+/// default: intermediate levels are not counted), or as triangles, two per
+/// quad.
+#[test]
+fn uniform_tables_hold_the_last_level() {
+    let cube = shapes::cube();
+    let mut r = osd::TopologyRefiner::new(&cube, &Options::default()).unwrap();
+    r.refine_uniform(UniformOptions::new(2)).unwrap();
+    let patches = r.patch_table(&PatchOptions::new(), &[]).unwrap();
+    let t = patches.table();
+    assert!(!t.feature_adaptive);
+    assert_eq!(t.arrays.len(), 1);
+    assert_eq!(t.arrays[0].patch_type, PatchType::Quads);
+    let level2 = r.level(2).unwrap();
+    let offset = 8;
+    let expected: Vec<u32> = level2.face_vertices.iter().map(|&v| v + offset).collect();
+    assert_eq!(t.arrays[0].control_vertices, expected);
+    let tri = PatchOptions {
+        triangulate_quads: true,
+        ..PatchOptions::new()
+    };
+    let t = r.patch_table(&tri, &[]).unwrap();
+    assert_eq!(t.table().arrays[0].patch_type, PatchType::Triangles);
+    assert_eq!(t.table().arrays[0].len(), 2 * 96);
+}
+
+/// Everything the bridge refuses, with the error that names it.
+#[test]
+fn refusals() {
+    let mut cube = shapes::cube();
+    cube.holes.push(5);
+    let options = PatchOptions::new().max_isolation(2);
+    let (r, patches) = adaptive(&cube, &options);
+    assert!(matches!(
+        r.patch_table(&PatchOptions::new().max_isolation(11), &[]),
+        Err(Error::Level { level: 11, .. })
+    ));
+    let fvar = PatchOptions {
+        fvar_tables: true,
+        fvar_channels: vec![0],
+        ..options.clone()
+    };
+    assert!(matches!(
+        r.patch_table(&fvar, &[]),
+        Err(Error::NoSuchChannel {
+            channel: 0,
+            count: 0
+        })
+    ));
+    assert!(matches!(
+        r.patch_table(&options, &[6]),
+        Err(Error::NoSuchElement { index: 6, .. })
+    ));
+    assert!(matches!(
+        patches.find_patch(6, 0.5, 0.5),
+        Err(Error::NoSuchPtexFace { face: 6, count: 6 })
+    ));
+    for bad in [-0.1, 1.5, f64::NAN] {
+        assert!(matches!(
+            patches.find_patch(0, bad, 0.5),
+            Err(Error::Location {
+                coordinate: "u",
+                ..
+            })
+        ));
+    }
+    // The hole has no patch.
+    assert_eq!(patches.find_patch(5, 0.5, 0.5).unwrap(), None);
+    let base = cube.flat_positions::<f64>();
+    assert!(matches!(
+        patches.evaluate(&r, 3, &base, &[(5, 0.5, 0.5)], Derivatives::None),
+        Err(Error::NoPatchAt { face: 5, .. })
+    ));
+    assert!(
+        patches
+            .evaluate(&r, 3, &base[..21], &[(0, 0.5, 0.5)], Derivatives::None)
+            .is_err()
+    );
+    let arrays = patches.table().arrays.len();
+    assert!(matches!(
+        patches.evaluate_basis(
+            PatchHandle {
+                array: arrays,
+                patch: 0
+            },
+            0.5,
+            0.5,
+            Derivatives::None
+        ),
+        Err(Error::NoSuchPatch { .. })
+    ));
+    assert!(matches!(
+        patches.evaluate_basis(
+            PatchHandle {
+                array: 0,
+                patch: 10_000
+            },
+            0.5,
+            0.5,
+            Derivatives::None
+        ),
+        Err(Error::NoSuchPatch { patch: 10_000, .. })
+    ));
+
+    // Legacy Gregory patches: Catmull-Clark only, and no basis.
+    let legacy = PatchOptions::new()
+        .max_isolation(2)
+        .end_caps(EndCapType::LegacyGregory);
+    let (r, patches) = adaptive(&shapes::cube(), &legacy);
+    let t = patches.table();
+    let g = t
+        .arrays
+        .iter()
+        .position(|a| a.patch_type == PatchType::Gregory)
+        .expect("legacy Gregory patches");
+    assert!(!t.quad_offsets.is_empty() && !t.vertex_valences.is_empty());
+    assert!(matches!(
+        patches.evaluate_basis(
+            PatchHandle { array: g, patch: 0 },
+            0.1,
+            0.1,
+            Derivatives::None
+        ),
+        Err(Error::Osd(_))
+    ));
+    drop(r);
+    let mut r = osd::TopologyRefiner::new(
+        &shapes::icosahedron(),
+        &Options::default().with_scheme(Scheme::Loop),
+    )
+    .unwrap();
+    r.refine_adaptive(legacy.refine_adaptive_options(), &[])
+        .unwrap();
+    assert!(matches!(r.patch_table(&legacy, &[]), Err(Error::Osd(_))));
+
+    // Patches of a face adaptive refinement was not given are undefined.
+    let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
+    r.refine_adaptive(options.refine_adaptive_options(), &[0, 1])
+        .unwrap();
+    assert!(r.patch_table(&options, &[0]).is_ok());
+    assert!(matches!(r.patch_table(&options, &[2]), Err(Error::Osd(_))));
+}
