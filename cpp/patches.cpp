@@ -11,6 +11,7 @@
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/stencilTable.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -84,6 +85,35 @@ sdv_stencils *copy_stencils(Far::StencilTableReal<REAL> const *t) {
     return out.release();
 }
 
+// OpenSubdiv's patch builders assume faces without repeated vertices: on a
+// face that uses a vertex twice, the B-spline end-cap converter writes out
+// of bounds and the legacy Gregory tables read and write past their
+// vectors (found by fuzzing under Valgrind).
+void check_no_repeated_vertices(Far::TopologyLevel const &base) {
+    std::vector<Far::Index> verts;
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = base.GetFaceVertices(f);
+        verts.assign(fv.begin(), fv.end());
+        std::sort(verts.begin(), verts.end());
+        auto dup = std::adjacent_find(verts.begin(), verts.end());
+        if (dup != verts.end())
+            fail_unsafe("face " + str(f) + " uses vertex " + str(*dup) +
+                        " more than once: OpenSubdiv's patch tables read and write out of bounds on such faces");
+    }
+}
+
+// The legacy Gregory tables gather a quad ring around every vertex of the
+// last level: a face there that is not a quad (a base level left unrefined)
+// makes them read past it.
+void check_legacy_gregory(Far::TopologyRefiner const &tr) {
+    Far::TopologyLevel const &last = tr.GetLevel(tr.GetMaxLevel());
+    for (int f = 0; f < last.GetNumFaces(); ++f)
+        if (last.GetFaceVertices(f).size() != 4)
+            fail_unsafe("legacy Gregory end caps need quads in the last level; face " + str(f) + " of level " +
+                        str(tr.GetMaxLevel()) + " has " + str(last.GetFaceVertices(f).size()) +
+                        " vertices (OpenSubdiv would read out of bounds)");
+}
+
 bool evaluable(Far::PatchDescriptor::Type t) {
     switch (t) {
         case Far::PatchDescriptor::REGULAR:
@@ -115,9 +145,11 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         const sdv_refiner &rr = need(r);
         Far::TopologyRefiner const &tr = *rr.refiner;
         Far::PatchTableFactory::Options f = factory_options(*o);
-        if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_LEGACY_GREGORY &&
-            tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
+        bool legacy = f.endCapType == Far::PatchTableFactory::Options::ENDCAP_LEGACY_GREGORY;
+        if (legacy && tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
             fail("legacy Gregory end caps exist for Catmull-Clark only");
+        check_no_repeated_vertices(tr.GetLevel(0));
+        if (legacy) check_legacy_gregory(tr);
         int channels = tr.GetNumFVarChannels();
         if (num_fvar_channels > 0 && !fvar_channels) fail("null face-varying channel list");
         if (num_fvar_channels > (size_t)channels)

@@ -438,6 +438,36 @@ fn refusals() {
         .unwrap();
     assert!(matches!(r.patch_table(&legacy, &[]), Err(Error::Osd(_))));
 
+    // A face that uses a vertex twice: OpenSubdiv's patch builders overrun.
+    let mut degenerate = shapes::cube();
+    degenerate.add_face(&[0, 1, 1, 2]);
+    let mut r = osd::TopologyRefiner::new(&degenerate, &Options::default()).unwrap();
+    r.refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    assert!(matches!(
+        r.patch_table(&options, &[]),
+        Err(Error::Osd(subdiv::OsdError {
+            kind: subdiv::OsdErrorKind::Unsafe,
+            ..
+        }))
+    ));
+    // Legacy Gregory end caps over a level that is not all quads (nothing
+    // refined at isolation 0).
+    let mut r = osd::TopologyRefiner::new(&shapes::pyramid(4), &Options::default()).unwrap();
+    r.refine_adaptive(
+        legacy.clone().max_isolation(0).refine_adaptive_options(),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(r.max_level(), 0);
+    assert!(matches!(
+        r.patch_table(&legacy.clone().max_isolation(0), &[]),
+        Err(Error::Osd(subdiv::OsdError {
+            kind: subdiv::OsdErrorKind::Unsafe,
+            ..
+        }))
+    ));
+
     // Patches of a face adaptive refinement was not given are undefined.
     let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     r.refine_adaptive(options.refine_adaptive_options(), &[0, 1])

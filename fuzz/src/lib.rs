@@ -966,8 +966,9 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
 /// options derived from the case (every end-cap type, single-crease and
 /// infinitely sharp patches as refined, the refinement's selected faces),
 /// then a patch found and its basis evaluated at the centre of each of the
-/// first ptex faces. The table is refused (legacy Gregory end caps off
-/// Catmull-Clark) or consistent, and every basis is a partition of unity.
+/// first ptex faces. The table is refused (a face repeating a vertex,
+/// legacy Gregory end caps off Catmull-Clark or over non-quads) or
+/// consistent, and every basis is a partition of unity.
 #[cfg(feature = "osd")]
 fn check_osd_patches(
     theirs: &subdiv::osd::TopologyRefiner,
@@ -992,17 +993,25 @@ fn check_osd_patches(
             .single_crease_patch(ao.use_single_crease_patch)
             .inf_sharp_patch(ao.use_inf_sharp_patch)
     };
+    // Faces that use a vertex twice are refused (OpenSubdiv's patch
+    // builders overrun on them), and so are legacy Gregory end caps off
+    // Catmull-Clark or over a last level that is not all quads.
+    let repeats = case.mesh.faces().any(|f| {
+        let mut v = f.to_vec();
+        v.sort_unstable();
+        v.windows(2).any(|w| w[0] == w[1])
+    });
     let patches = match theirs.patch_table(&options, &adaptive.faces) {
         Ok(p) => p,
         Err(e) => {
             assert!(
-                end_caps == EndCapType::LegacyGregory
-                    && case.options.scheme != subdiv::Scheme::Catmark,
+                repeats || end_caps == EndCapType::LegacyGregory,
                 "patch table refused: {e}"
             );
             return;
         }
     };
+    assert!(!repeats, "a face repeating a vertex was not refused");
     let t = patches.table();
     let points = (0..=theirs.max_level())
         .map(|l| theirs.level_counts(l).map_or(0, |c| c.vertices))

@@ -1,5 +1,5 @@
 //! The `subdiv` binary, run as a user runs it: one module per subcommand
-//! (`refine`, `compare`, `curve`, `report`; `adaptive` for `--adaptive`), B-spline and NURBS curves
+//! (`refine`, `compare`, `curve`, `report`, `patches` and `eval`; `adaptive` for `--adaptive`), B-spline and NURBS curves
 //! through `curve --knots` (and against an independent implementation from
 //! the definitions: `curve_reference.rs`), Doo-Sabin through `refine`, every file of the
 //! malformed corpus through `refine` and `curve`, exhausted memory under
@@ -27,6 +27,9 @@ mod malformed;
 #[cfg(unix)]
 mod memory_limits;
 mod outputs;
+// Patch tables come from OpenSubdiv today.
+#[cfg(feature = "osd")]
+mod patches;
 mod refine;
 #[cfg(feature = "osd")]
 mod report;

@@ -35,6 +35,7 @@ mod curve;
 #[cfg(feature = "osd")]
 mod date;
 mod output;
+mod patches;
 mod refine;
 mod report;
 
@@ -62,6 +63,12 @@ pub(crate) enum Command {
     Refine(RefineArgs),
     /// Refine with both engines and compare them level by level, vertex by vertex.
     Compare(CompareArgs),
+    /// Build the patch table of a mesh (PatchTableFactory after RefineAdaptive) and print
+    /// its arrays, or write them as JSON (--json).
+    Patches(patches::PatchesArgs),
+    /// Evaluate the limit surface at (ptex face, u, v) locations (PatchMap::FindPatch and
+    /// EvaluateBasis), with first derivatives on request.
+    Eval(patches::EvalArgs),
     /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme,
     /// or insert knots into a B-spline or NURBS curve and sample it (--knots).
     Curve(CurveArgs),
@@ -157,6 +164,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Refine(args) => refine::refine(&args),
         Command::Compare(args) => compare::compare(&args),
+        Command::Patches(args) => patches::patches(&args),
+        Command::Eval(args) => patches::eval(&args),
         Command::Curve(args) => curve::curve(&args),
         Command::Bench(args) => bench::bench(&args),
         Command::Report(args) => report::report(&args),

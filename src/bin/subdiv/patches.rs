@@ -1,0 +1,345 @@
+//! `subdiv patches` and `subdiv eval`: OpenSubdiv's patch table of a mesh
+//! (`Far::PatchTableFactory`) as a summary or JSON, and the limit surface at
+//! (ptex face, u, v) locations (`Far::PatchMap` and `EvaluateBasis`). Only
+//! the osd engine builds patch tables today; `--engine native` says so.
+
+use clap::Args;
+#[cfg(feature = "osd")]
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use subdiv::patches::{EndCapType, PatchOptions};
+use subdiv::{Engine, Precision};
+
+use crate::Failure;
+use crate::args::{MeshArgs, parse, parse_level};
+#[cfg(feature = "osd")]
+use crate::output::write_output;
+
+/// A location: ptex face, u, v.
+type Location = (u32, f64, f64);
+
+/// The mesh, the options of the patch table and the engine, shared by
+/// `patches` and `eval`.
+#[derive(Args)]
+pub(crate) struct PatchArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshArgs,
+    /// Adaptive isolation level (0..=10; PatchTableFactory's maxIsolationLevel).
+    #[arg(long, value_name = "N", default_value = "4", value_parser = parse_level,
+          allow_negative_numbers = true)]
+    pub(crate) isolation: u32,
+    /// End caps around extraordinary features: none, bilinear, bspline, gregory-basis
+    /// (OpenSubdiv's default) or legacy-gregory.
+    #[arg(long, value_name = "TYPE", default_value = "gregory-basis", value_parser = parse_end_caps)]
+    pub(crate) end_caps: EndCapType,
+    /// Single-crease patches (useSingleCreasePatch).
+    #[arg(long)]
+    pub(crate) single_crease: bool,
+    /// Infinitely sharp patches (useInfSharpPatch).
+    #[arg(long)]
+    pub(crate) inf_sharp: bool,
+    /// The engine that builds the table: osd (the default while the native engine
+    /// has no patch tables) or native (refused until it has).
+    #[arg(long, default_value = "osd", value_parser = parse::<Engine>)]
+    pub(crate) engine: Engine,
+}
+
+/// `subdiv patches`: the patch table's summary, and its arrays as JSON.
+#[derive(Args)]
+pub(crate) struct PatchesArgs {
+    #[command(flatten)]
+    pub(crate) patch: PatchArgs,
+    /// Write the arrays as JSON: {"arrays": [{"type", "num_patches", "cvs", "params",
+    /// "sharpness"}, ...], "num_local_points"}.
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) json: Option<PathBuf>,
+}
+
+/// `subdiv eval`: the limit surface at locations.
+#[derive(Args)]
+pub(crate) struct EvalArgs {
+    #[command(flatten)]
+    pub(crate) patch: PatchArgs,
+    /// Locations, one per line: PTEX_FACE U V (ptex faces as Far::PtexIndices numbers
+    /// them; U and V in [0, 1]); `#` starts a comment.
+    #[arg(long, value_name = "LOCATIONS.txt")]
+    pub(crate) at: PathBuf,
+    /// Also print the first derivatives: x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv.
+    #[arg(long)]
+    pub(crate) derivatives: bool,
+    /// Output file (`-` or absent: standard output).
+    #[arg(short, long, value_name = "OUT.txt")]
+    pub(crate) output: Option<PathBuf>,
+}
+
+fn parse_end_caps(s: &str) -> Result<EndCapType, String> {
+    Ok(match s {
+        "none" => EndCapType::None,
+        "bilinear" => EndCapType::BilinearBasis,
+        "bspline" => EndCapType::BSplineBasis,
+        "gregory-basis" => EndCapType::GregoryBasis,
+        "legacy-gregory" => EndCapType::LegacyGregory,
+        _ => {
+            return Err(format!(
+                "'{s}' is not an end-cap type (none, bilinear, bspline, gregory-basis, legacy-gregory)"
+            ));
+        }
+    })
+}
+
+impl PatchArgs {
+    fn options(&self) -> Result<PatchOptions, Failure> {
+        if self.isolation > 10 {
+            return Err(Failure::Usage(format!(
+                "--isolation {}: OpenSubdiv isolates 10 levels at most",
+                self.isolation
+            )));
+        }
+        if self.mesh.precision != Precision::F64 {
+            return Err(Failure::Usage(
+                "--precision: patch tables are evaluated in f64".into(),
+            ));
+        }
+        Ok(PatchOptions::new()
+            .max_isolation(self.isolation)
+            .end_caps(self.end_caps)
+            .single_crease_patch(self.single_crease)
+            .inf_sharp_patch(self.inf_sharp))
+    }
+
+    #[cfg(feature = "osd")]
+    fn end_cap_name(&self) -> &'static str {
+        match self.end_caps {
+            EndCapType::None => "no",
+            EndCapType::BilinearBasis => "bilinear",
+            EndCapType::BSplineBasis => "B-spline",
+            EndCapType::GregoryBasis => "Gregory basis",
+            EndCapType::LegacyGregory => "legacy Gregory",
+        }
+    }
+}
+
+/// The input, refined adaptively by OpenSubdiv, and its patch table.
+#[cfg(feature = "osd")]
+struct Built {
+    name: String,
+    scheme: subdiv::Scheme,
+    mesh: subdiv::Mesh,
+    refiner: subdiv::osd::TopologyRefiner,
+    table: subdiv::osd::OsdPatchTable,
+}
+
+#[cfg(feature = "osd")]
+fn build(args: &PatchArgs) -> Result<Built, Failure> {
+    let options = args.options()?;
+    if args.engine == Engine::Native {
+        return Err(Failure::Unavailable(
+            "the native engine has no patch tables yet: use --engine osd".into(),
+        ));
+    }
+    let (name, mesh, mesh_options) = crate::args::load(&args.mesh)?;
+    let in_input = |e: subdiv::Error| Failure::from(e).in_input(&name);
+    let mut refiner = subdiv::osd::TopologyRefiner::new(&mesh, &mesh_options).map_err(in_input)?;
+    refiner
+        .refine_adaptive(
+            options
+                .refine_adaptive_options()
+                .faces_first(args.mesh.faces_first),
+            &[],
+        )
+        .map_err(in_input)?;
+    let table = refiner.patch_table(&options, &[]).map_err(in_input)?;
+    Ok(Built {
+        name,
+        scheme: mesh_options.scheme,
+        mesh,
+        refiner,
+        table,
+    })
+}
+
+#[cfg(not(feature = "osd"))]
+fn unavailable() -> Failure {
+    Failure::Unavailable(
+        "patch tables come from the osd engine, which this build does not have (feature osd)"
+            .into(),
+    )
+}
+
+/// `subdiv patches`.
+pub(crate) fn patches(args: &PatchesArgs) -> Result<(), Failure> {
+    #[cfg(not(feature = "osd"))]
+    {
+        args.patch.options()?;
+        Err(unavailable())
+    }
+    #[cfg(feature = "osd")]
+    {
+        let b = build(&args.patch)?;
+        let t = b.table.table();
+        let arrays: Vec<String> = t
+            .arrays
+            .iter()
+            .map(|a| format!("{} {}", a.patch_type.name(), a.len()))
+            .collect();
+        println!(
+            "{}: {} patches (osd, isolation {}, {} end caps): {} patches in {} arrays: {}; {} local points",
+            b.name,
+            b.scheme,
+            args.patch.isolation,
+            args.patch.end_cap_name(),
+            t.patch_count(),
+            t.arrays.len(),
+            arrays.join(", "),
+            t.local_points
+        );
+        if let Some(path) = &args.json {
+            write_json(path, args.patch.mesh.input.as_deref(), t)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(feature = "osd")]
+fn write_json(
+    path: &Path,
+    input: Option<&Path>,
+    t: &subdiv::patches::PatchTable,
+) -> Result<(), Failure> {
+    #[derive(serde::Serialize)]
+    struct ArrayJson<'a> {
+        #[serde(rename = "type")]
+        ty: &'static str,
+        num_patches: usize,
+        cvs: Vec<&'a [u32]>,
+        params: Vec<[u32; 2]>,
+        sharpness: &'a [f32],
+    }
+    #[derive(serde::Serialize)]
+    struct File<'a> {
+        arrays: Vec<ArrayJson<'a>>,
+        num_local_points: usize,
+    }
+    let file = File {
+        arrays: t
+            .arrays
+            .iter()
+            .map(|a| ArrayJson {
+                ty: a.patch_type.name(),
+                num_patches: a.len(),
+                cvs: (0..a.len()).map(|p| a.patch_vertices(p)).collect(),
+                params: a.params.iter().map(|p| [p.field0, p.field1]).collect(),
+                sharpness: &a.sharpness,
+            })
+            .collect(),
+        num_local_points: t.local_points,
+    };
+    write_output(path, input, |w| {
+        let mut w = std::io::BufWriter::new(w);
+        serde_json::to_writer(&mut w, &file).map_err(std::io::Error::other)?;
+        w.write_all(b"\n")?;
+        w.flush()
+    })
+}
+
+/// The locations of a file: `PTEX_FACE U V` per line, `#` comments; errors
+/// name the file and line.
+pub(crate) fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        Failure::Message(format!(
+            "{}: cannot read the locations: {e}",
+            path.display()
+        ))
+    })?;
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line_no = i + 1;
+        let content = line.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let bad = |what: String| Failure::Message(format!("{}:{line_no}: {what}", path.display()));
+        let fields: Vec<&str> = content.split_whitespace().collect();
+        let [face, u, v] = fields[..] else {
+            return Err(bad(format!(
+                "expected PTEX_FACE U V, found {} fields",
+                fields.len()
+            )));
+        };
+        let face: u32 = face
+            .parse()
+            .map_err(|_| bad(format!("'{face}' is not a ptex face index")))?;
+        let coord = |s: &str, name: &str| -> Result<f64, Failure> {
+            match s.parse::<f64>() {
+                Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
+                Ok(x) => Err(bad(format!("{name} = {x} is not in [0, 1]"))),
+                Err(_) => Err(bad(format!("'{s}' is not a number ({name})"))),
+            }
+        };
+        out.push((line_no, (face, coord(u, "u")?, coord(v, "v")?)));
+    }
+    Ok(out)
+}
+
+/// `subdiv eval`.
+pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
+    let locations = read_locations(&args.at)?;
+    #[cfg(not(feature = "osd"))]
+    {
+        let _ = locations;
+        args.patch.options()?;
+        Err(unavailable())
+    }
+    #[cfg(feature = "osd")]
+    {
+        use subdiv::patches::Derivatives;
+        let b = build(&args.patch)?;
+        let ptex_faces = b.table.table().ptex_faces;
+        // Check each location first, so that an error names its line.
+        for &(line, (face, u, v)) in &locations {
+            let at =
+                |what: String| Failure::Message(format!("{}:{line}: {what}", args.at.display()));
+            if face as usize >= ptex_faces {
+                return Err(at(format!(
+                    "ptex face {face} does not exist ({} has {ptex_faces})",
+                    b.name
+                )));
+            }
+            if b.table
+                .find_patch(face, u, v)
+                .map_err(Failure::from)?
+                .is_none()
+            {
+                return Err(at(format!(
+                    "ptex face {face} at ({u}, {v}) is in a hole: no surface there"
+                )));
+            }
+        }
+        let points: Vec<Location> = locations.iter().map(|&(_, l)| l).collect();
+        let derivatives = if args.derivatives {
+            Derivatives::First
+        } else {
+            Derivatives::None
+        };
+        let base = b.mesh.flat_positions::<f64>();
+        let s = b
+            .table
+            .evaluate(&b.refiner, 3, &base, &points, derivatives)
+            .map_err(|e| Failure::from(e).in_input(&b.name))?;
+        let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
+        write_output(&path, args.patch.mesh.input.as_deref(), |w| {
+            let mut w = std::io::BufWriter::new(w);
+            let v = &s.values;
+            for i in 0..points.len() {
+                let mut row: Vec<f64> = v.point[3 * i..3 * i + 3].to_vec();
+                if args.derivatives {
+                    row.extend_from_slice(&v.du[3 * i..3 * i + 3]);
+                    row.extend_from_slice(&v.dv[3 * i..3 * i + 3]);
+                }
+                let text: Vec<String> = row.iter().map(|x| format!("{x:.16e}")).collect();
+                writeln!(w, "{}", text.join(" "))?;
+            }
+            w.flush()
+        })
+    }
+}

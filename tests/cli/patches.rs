@@ -1,0 +1,167 @@
+//! `subdiv patches` and `subdiv eval` (osd engine): the summary and JSON
+//! against the library's patch table, evaluated points against the
+//! library's evaluation and, at face corners, against the native limit
+//! positions; every refusal names its line or option.
+
+use crate::support::{obj_text, scratch, stderr, stdout, subdiv, write};
+use subdiv::patches::{Derivatives, PatchOptions};
+use subdiv::{Options, osd, shapes};
+
+fn cube_table(isolation: u32) -> (osd::TopologyRefiner, osd::OsdPatchTable) {
+    let options = PatchOptions::new().max_isolation(isolation);
+    let mut r =
+        osd::TopologyRefiner::new(&shapes::cube(), &Options::shape_file_defaults()).unwrap();
+    r.refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    let t = r.patch_table(&options, &[]).unwrap();
+    (r, t)
+}
+
+#[test]
+fn patches_summary_and_json_are_the_librarys_table() {
+    let dir = scratch("cli-patches-json");
+    let input = write(&dir, "cube.obj", &obj_text(&shapes::cube()));
+    let json = dir.join("cube.json");
+    let out = subdiv(&[
+        "patches",
+        input.to_str().unwrap(),
+        "--isolation",
+        "2",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // Isolation 2: 16 patches per face, the 4 at the corners Gregory end caps.
+    assert!(
+        stdout(&out).contains("96 patches in 2 arrays: REGULAR 72, GREGORY_BASIS 24"),
+        "{}",
+        stdout(&out)
+    );
+    let (_, table) = cube_table(2);
+    let t = table.table();
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["num_local_points"], t.local_points);
+    let arrays = v["arrays"].as_array().unwrap();
+    assert_eq!(arrays.len(), t.arrays.len());
+    for (j, a) in arrays.iter().zip(&t.arrays) {
+        assert_eq!(j["type"], a.patch_type.name());
+        assert_eq!(j["num_patches"], a.len());
+        for (p, cvs) in j["cvs"].as_array().unwrap().iter().enumerate() {
+            let cvs: Vec<u32> = serde_json::from_value(cvs.clone()).unwrap();
+            assert_eq!(cvs, a.patch_vertices(p));
+        }
+        for (p, param) in j["params"].as_array().unwrap().iter().enumerate() {
+            let [f0, f1]: [u32; 2] = serde_json::from_value(param.clone()).unwrap();
+            assert_eq!((f0, f1), (a.params[p].field0, a.params[p].field1));
+        }
+        assert_eq!(j["sharpness"].as_array().unwrap().len(), a.len());
+    }
+}
+
+#[test]
+fn eval_prints_the_librarys_points_and_derivatives() {
+    let dir = scratch("cli-eval");
+    let input = write(&dir, "cube.obj", &obj_text(&shapes::cube()));
+    let at = write(
+        &dir,
+        "at.txt",
+        "# ptex face, u, v\n0 0.5 0.5\n\n3 0.25 1 # on an edge\n5 0 0\n",
+    );
+    let out_path = dir.join("out.txt");
+    let out = subdiv(&[
+        "eval",
+        input.to_str().unwrap(),
+        "--at",
+        at.to_str().unwrap(),
+        "--derivatives",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&out_path).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .map(|l| l.split(' ').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 3);
+    let (r, table) = cube_table(4);
+    let base = shapes::cube().flat_positions::<f64>();
+    let s = table
+        .evaluate(
+            &r,
+            3,
+            &base,
+            &[(0, 0.5, 0.5), (3, 0.25, 1.0), (5, 0.0, 0.0)],
+            Derivatives::First,
+        )
+        .unwrap();
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), 9);
+        let expected: Vec<f64> = [&s.values.point, &s.values.du, &s.values.dv]
+            .iter()
+            .flat_map(|v| v[3 * i..3 * i + 3].to_vec())
+            .collect();
+        // 17 significant digits: the same f64s.
+        assert_eq!(row, &expected);
+    }
+    // The centre of a cube face lies on the face's axis, by symmetry,
+    // inside the cube (the limit surface shrinks from the cage).
+    let centre = &rows[0][..3];
+    let axis = (0..3)
+        .max_by(|&a, &b| centre[a].abs().total_cmp(&centre[b].abs()))
+        .unwrap();
+    for (c, x) in centre.iter().enumerate() {
+        if c == axis {
+            assert!(x.abs() > 0.35 && x.abs() < 0.5, "{centre:?}");
+        } else {
+            assert!(x.abs() < 1e-9, "{centre:?}");
+        }
+    }
+}
+
+#[test]
+fn eval_refusals_name_the_line() {
+    let dir = scratch("cli-eval-refusals");
+    let mut cube = shapes::cube();
+    cube.holes.push(2);
+    let input = write(&dir, "cube.obj", &obj_text(&cube));
+    for (text, message) in [
+        (
+            "0 0.5\n",
+            "at.txt:1: expected PTEX_FACE U V, found 2 fields",
+        ),
+        ("\n# c\n0 0.5 1.5\n", "at.txt:3: v = 1.5 is not in [0, 1]"),
+        ("6 0.5 0.5\n", "at.txt:1: ptex face 6 does not exist"),
+        (
+            "0 0 0\n2 0.5 0.5\n",
+            "at.txt:2: ptex face 2 at (0.5, 0.5) is in a hole",
+        ),
+        ("x 0 0\n", "at.txt:1: 'x' is not a ptex face index"),
+    ] {
+        let at = write(&dir, "at.txt", text);
+        let out = subdiv(&[
+            "eval",
+            input.to_str().unwrap(),
+            "--at",
+            at.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(1), "{text:?}");
+        assert!(stderr(&out).contains(message), "{text:?}: {}", stderr(&out));
+    }
+    let at = write(&dir, "at.txt", "0 0.5 0.5\n");
+    let out = subdiv(&[
+        "eval",
+        input.to_str().unwrap(),
+        "--at",
+        at.to_str().unwrap(),
+        "--engine",
+        "native",
+    ]);
+    assert_eq!(out.status.code(), Some(4));
+    assert!(stderr(&out).contains("no patch tables yet"));
+    let out = subdiv(&["patches", input.to_str().unwrap(), "--end-caps", "round"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = subdiv(&["patches", input.to_str().unwrap(), "--precision", "f32"]);
+    assert_eq!(out.status.code(), Some(2));
+}
