@@ -5,12 +5,15 @@
 //! `Far::PatchTableFactory` ([`PatchOptions`]).
 //!
 //! The types here are plain data shared by the engines. Today the `osd`
-//! engine builds them (`osd::TopologyRefiner::patch_table`), locates
-//! (ptex face, u, v) in them and evaluates their basis; the native engine
-//! does not build patch tables yet.
+//! engine builds them (`osd::TopologyRefiner::patch_table`) and locates
+//! (ptex face, u, v) in them; the native engine evaluates the basis of their
+//! patches ([`evaluate_basis`]: B-spline, Gregory, bilinear and linear
+//! patches) but does not build patch tables yet.
 
+mod basis;
 mod param;
 
+pub use basis::evaluate_basis;
 pub use param::PatchParam;
 
 /// `Far::PatchDescriptor::Type`, with OpenSubdiv's numbering.

@@ -1,0 +1,305 @@
+//! Native basis functions of patches (`Far::PatchTable::EvaluateBasis`):
+//! the weights of a patch's control points at a location of its ptex face,
+//! with first and second derivatives, for bicubic B-spline patches (with
+//! the phantom points of boundary edges), 20-point Gregory patches and
+//! bilinear and linear patches. Loop box-spline and Gregory triangle patches
+//! are not native yet ([`Error::NotYetSupported`]).
+//!
+//! Parameterization, as OpenSubdiv's: a patch of depth `d` covers the square
+//! `[u, u + 1] × [v, v + 1] / 2^(d - n)` of its ptex face (`n` 1 under a
+//! non-quad root, whose sub-faces are the ptex faces); the basis is
+//! evaluated at the location mapped to `[0, 1]²` and its derivatives are
+//! scaled by `2^d` per order (for non-quad roots that is twice the
+//! derivative in the ptex square, as OpenSubdiv does). Triangles in the
+//! upper half of their parent's square are rotated by 180°: their
+//! coordinates are reflected and their odd-order derivatives negated.
+
+use super::{Derivatives, Partials, PatchParam, PatchType};
+use crate::error::{Error, Result};
+
+/// The uniform cubic B-spline basis at `t` and its first and second
+/// derivatives, each of the four functions `N_i` written as the polynomial
+/// in `t` that the knot intervals give it.
+fn bspline(t: f64) -> [[f64; 4]; 3] {
+    let (t2, t3) = (t * t, t * t * t);
+    let c = 1.0 - t;
+    [
+        [
+            c * c * c / 6.0,
+            (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0,
+            (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0,
+            t3 / 6.0,
+        ],
+        [
+            -0.5 * c * c,
+            1.5 * t2 - 2.0 * t,
+            -1.5 * t2 + t + 0.5,
+            0.5 * t2,
+        ],
+        [c, 3.0 * t - 2.0, 1.0 - 3.0 * t, t],
+    ]
+}
+
+/// The cubic Bernstein polynomials at `t` and their first and second
+/// derivatives.
+fn bezier(t: f64) -> [[f64; 4]; 3] {
+    let c = 1.0 - t;
+    [
+        [c * c * c, 3.0 * t * c * c, 3.0 * t * t * c, t * t * t],
+        [
+            -3.0 * c * c,
+            3.0 * c * (c - 2.0 * t),
+            3.0 * t * (2.0 * c - t),
+            3.0 * t * t,
+        ],
+        [
+            6.0 * c,
+            6.0 * (3.0 * t - 2.0),
+            6.0 * (1.0 - 3.0 * t),
+            6.0 * t,
+        ],
+    ]
+}
+
+/// Weights of the six tables (position, ∂s, ∂t, ∂ss, ∂st, ∂tt) of `n`
+/// points.
+type Tables = [Vec<f64>; 6];
+
+/// Folds the weights of the phantom points beyond the boundary edges of a
+/// B-spline patch into the points they are extrapolated from: a phantom
+/// point is `2 p - q` for `p` the point next to it and `q` the one after,
+/// so `p` gains twice its weight, `q` loses it, and the phantom keeps none.
+/// Edge 0 is the row `t = 0` (points 0-3), 1 the column `s = 1` (3, 7, 11,
+/// 15), 2 the row `t = 1` (12-15), 3 the column `s = 0` (0, 4, 8, 12).
+fn fold_phantoms(boundary: u32, w: &mut [f64]) {
+    // For each edge: the phantom, its neighbour and the next point, as
+    // (first index, step along the edge).
+    let edges: [([usize; 3], usize); 4] = [
+        ([0, 4, 8], 1),
+        ([3, 2, 1], 4),
+        ([12, 8, 4], 1),
+        ([0, 1, 2], 4),
+    ];
+    for (k, ([phantom, near, far], step)) in edges.into_iter().enumerate() {
+        if boundary & (1 << k) == 0 {
+            continue;
+        }
+        for i in 0..4 {
+            let (p, n, f) = (phantom + i * step, near + i * step, far + i * step);
+            let x = w[p];
+            w[f] -= x;
+            w[n] += 2.0 * x;
+            w[p] = 0.0;
+        }
+    }
+}
+
+/// A bicubic B-spline patch (16 points, row by row from `t = 0`).
+fn regular(s: f64, t: f64, boundary: u32, out: &mut Tables) {
+    let (bs, bt) = (bspline(s), bspline(t));
+    // (order in s, order in t) of each table.
+    let orders = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+    for (table, (os, ot)) in out.iter_mut().zip(orders) {
+        if table.is_empty() {
+            continue;
+        }
+        for row in 0..4 {
+            for col in 0..4 {
+                table[4 * row + col] = bs[os][col] * bt[ot][row];
+            }
+        }
+        if boundary != 0 {
+            fold_phantoms(boundary, table);
+        }
+    }
+}
+
+/// A bilinear quad (corners counter-clockwise from `(0, 0)`).
+fn bilinear(s: f64, t: f64, out: &mut Tables) {
+    let (sc, tc) = (1.0 - s, 1.0 - t);
+    let tables: [[f64; 4]; 6] = [
+        [sc * tc, s * tc, s * t, sc * t],
+        [-tc, tc, t, -t],
+        [-sc, -s, s, sc],
+        [0.0; 4],
+        [1.0, -1.0, 1.0, -1.0],
+        [0.0; 4],
+    ];
+    for (table, w) in out.iter_mut().zip(tables) {
+        if !table.is_empty() {
+            table.copy_from_slice(&w);
+        }
+    }
+}
+
+/// A linear triangle (corners at `(0, 0)`, `(1, 0)`, `(0, 1)`).
+fn linear_triangle(s: f64, t: f64, out: &mut Tables) {
+    let tables: [[f64; 3]; 6] = [
+        [1.0 - s - t, s, t],
+        [-1.0, 1.0, 0.0],
+        [-1.0, 0.0, 1.0],
+        [0.0; 3],
+        [0.0; 3],
+        [0.0; 3],
+    ];
+    for (table, w) in out.iter_mut().zip(tables) {
+        if !table.is_empty() {
+            table.copy_from_slice(&w);
+        }
+    }
+}
+
+/// A 20-point Gregory patch. Its points come in groups of five per corner
+/// (corners counter-clockwise from `(0, 0)`): the corner point, the edge
+/// points after and before it (`e+`, `e-`), and the two face points (`f+`,
+/// `f-`). It is the bicubic Bézier patch whose twelve boundary points are
+/// the corner and edge points and whose four interior points blend each
+/// corner's two face points rationally: near corner `i`, the face point
+/// across the edge the parameter runs along counts in proportion to the
+/// distance from the other edge. Derivatives are those of the Bézier patch
+/// with the blend held at the location's values, as OpenSubdiv (and its GPU
+/// shaders) compute them.
+fn gregory(s: f64, t: f64, out: &mut Tables) {
+    // Bézier (column, row) of each boundary point, by Gregory index.
+    const BOUNDARY: [(usize, (usize, usize)); 12] = [
+        (0, (0, 0)),
+        (1, (1, 0)),
+        (2, (0, 1)),
+        (5, (3, 0)),
+        (6, (3, 1)),
+        (7, (2, 0)),
+        (10, (3, 3)),
+        (11, (2, 3)),
+        (12, (3, 2)),
+        (15, (0, 3)),
+        (16, (0, 2)),
+        (17, (1, 3)),
+    ];
+    // Interior Bézier point of each corner, its face points, and the
+    // numerator and denominator of the `f+` blend.
+    let (sc, tc) = (1.0 - s, 1.0 - t);
+    // At a corner both terms vanish: the blend is then the numerator itself
+    // (0), as OpenSubdiv takes it.
+    let blend = |num: f64, den: f64| if den <= 0.0 { num } else { num / den };
+    let interior: [((usize, usize), [usize; 2], f64); 4] = [
+        ((1, 1), [3, 4], blend(s, s + t)),
+        ((2, 1), [8, 9], blend(t, sc + t)),
+        ((2, 2), [13, 14], blend(sc, sc + tc)),
+        ((1, 2), [18, 19], blend(tc, s + tc)),
+    ];
+    let (bs, bt) = (bezier(s), bezier(t));
+    let orders = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+    for (table, (os, ot)) in out.iter_mut().zip(orders) {
+        if table.is_empty() {
+            continue;
+        }
+        for (i, (col, row)) in BOUNDARY {
+            table[i] = bs[os][col] * bt[ot][row];
+        }
+        for ((col, row), [plus, minus], g) in interior {
+            let b = bs[os][col] * bt[ot][row];
+            table[plus] = b * g;
+            table[minus] = b * (1.0 - g);
+        }
+    }
+}
+
+/// The weights of the control points of a patch of type `patch_type` with
+/// parameterization `param` at (`u`, `v`) of its ptex face — the
+/// native `Far::PatchTable::EvaluateBasis` — with the derivatives asked
+/// for (with respect to the ptex face's u and v, scaled as OpenSubdiv
+/// scales them; see the module documentation).
+///
+/// Refused: u or v outside [0, 1] ([`Error::Location`]); a type without a
+/// native basis yet (Loop, Gregory triangle: [`Error::NotYetSupported`]) or
+/// without any (legacy Gregory, points, lines: [`Error::NotYetSupported`]
+/// too, naming it).
+///
+/// ```
+/// use subdiv::patches::{evaluate_basis, Derivatives, PatchParam, PatchType};
+/// // A regular interior patch covering a whole ptex face, at its centre:
+/// // the tensor product of the cubic B-spline basis at 1/2.
+/// let w = evaluate_basis(PatchType::Regular, PatchParam::default(), 0.5, 0.5, Derivatives::None)?;
+/// let b = [1.0 / 48.0, 23.0 / 48.0, 23.0 / 48.0, 1.0 / 48.0];
+/// assert!((w.point[5] - b[1] * b[1]).abs() < 1e-15);
+/// assert!((w.point.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn evaluate_basis(
+    patch_type: PatchType,
+    param: PatchParam,
+    u: f64,
+    v: f64,
+    derivatives: Derivatives,
+) -> Result<Partials> {
+    for (coordinate, value) in [("u", u), ("v", v)] {
+        if !(0.0..=1.0).contains(&value) {
+            return Err(Error::Location {
+                face: param.face_id(),
+                coordinate,
+                value,
+            });
+        }
+    }
+    let triangular = matches!(
+        patch_type,
+        PatchType::Triangles | PatchType::Loop | PatchType::GregoryTriangle
+    );
+    let depth = param.depth();
+    // The patch's share of the ptex face, as a power of two.
+    let scale = f64::from(1u32 << (depth - u32::from(param.non_quad_root())).min(31));
+    let (pu, pv) = (f64::from(param.u()), f64::from(param.v()));
+    let rotated = triangular && param.u() + param.v() >= 1 << depth;
+    let (s, t) = if rotated {
+        let corner = f64::from(1u32 << depth);
+        (corner - pu - u * scale, corner - pv - v * scale)
+    } else {
+        (u * scale - pu, v * scale - pv)
+    };
+    let n = patch_type.control_vertices();
+    let first = derivatives != Derivatives::None;
+    let second = derivatives == Derivatives::Second;
+    let sized = |on: bool| if on { vec![0.0; n] } else { Vec::new() };
+    let mut tables: Tables = [
+        vec![0.0; n],
+        sized(first),
+        sized(first),
+        sized(second),
+        sized(second),
+        sized(second),
+    ];
+    match patch_type {
+        PatchType::Regular => regular(s, t, param.boundary(), &mut tables),
+        PatchType::GregoryBasis => gregory(s, t, &mut tables),
+        PatchType::Quads => bilinear(s, t, &mut tables),
+        PatchType::Triangles => linear_triangle(s, t, &mut tables),
+        PatchType::Loop | PatchType::GregoryTriangle => {
+            return Err(Error::NotYetSupported(
+                "the basis of Loop and Gregory triangle patches (use the osd engine's evaluate_basis)",
+            ));
+        }
+        _ => {
+            return Err(Error::NotYetSupported(
+                "a basis for legacy Gregory patches, points or lines (OpenSubdiv has none either)",
+            ));
+        }
+    }
+    // Derivatives with respect to the ptex face: 2^depth per order (the
+    // sign of a rotated triangle's odd orders flipped).
+    let sign = if rotated { -1.0 } else { 1.0 };
+    let d1 = sign * f64::from(1u32 << depth.min(31));
+    let d2 = sign * d1 * d1;
+    let [point, du, dv, duu, duv, dvv] = tables;
+    let scaled = |mut w: Vec<f64>, k: f64| {
+        w.iter_mut().for_each(|x| *x *= k);
+        w
+    };
+    Ok(Partials {
+        point,
+        du: scaled(du, d1),
+        dv: scaled(dv, d1),
+        duu: scaled(duu, d2),
+        duv: scaled(duv, d2),
+        dvv: scaled(dvv, d2),
+    })
+}
