@@ -102,16 +102,45 @@ void check_no_repeated_vertices(Far::TopologyLevel const &base) {
     }
 }
 
-// The legacy Gregory tables gather a quad ring around every vertex of the
-// last level: a face there that is not a quad (a base level left unrefined)
-// makes them read past it.
-void check_legacy_gregory(Far::TopologyRefiner const &tr) {
-    Far::TopologyLevel const &last = tr.GetLevel(tr.GetMaxLevel());
-    for (int f = 0; f < last.GetNumFaces(); ++f)
-        if (last.GetFaceVertices(f).size() != 4)
-            fail_unsafe("legacy Gregory end caps need quads in the last level; face " + str(f) + " of level " +
-                        str(tr.GetMaxLevel()) + " has " + str(last.GetFaceVertices(f).size()) +
+// The legacy Gregory tables (quad offsets, vertex valences) are built from
+// the last level alone: OpenSubdiv takes every irregular patch's face as a
+// face of that level and gathers a quad ring around each of its vertices.
+// An irregular patch of an earlier level (a secondary level below the
+// isolation level, a maximum isolation below the refinement's) makes it
+// read and write out of bounds, and so do a face of the last level that is
+// not a quad (a base level left unrefined) and a non-manifold vertex there
+// (more faces than its ring has room for). The irregular patches are those
+// of the same table with Gregory basis end caps (the end-cap type changes
+// how they are represented, not which they are): built first, checked.
+void check_legacy_gregory(Far::TopologyRefiner const &tr, Far::PatchTableFactory::Options f,
+                          Far::ConstIndexArray selected) {
+    int max = tr.GetMaxLevel();
+    Far::TopologyLevel const &last = tr.GetLevel(max);
+    for (int face = 0; face < last.GetNumFaces(); ++face)
+        if (last.GetFaceVertices(face).size() != 4)
+            fail_unsafe("legacy Gregory end caps need quads in the last level; face " + str(face) + " of level " +
+                        str(max) + " has " + str(last.GetFaceVertices(face).size()) +
                         " vertices (OpenSubdiv would read out of bounds)");
+    for (int v = 0; v < last.GetNumVertices(); ++v)
+        if (last.IsVertexNonManifold(v))
+            fail_unsafe("legacy Gregory end caps need a manifold last level; vertex " + str(v) + " of level " +
+                        str(max) + " is non-manifold (OpenSubdiv would write out of bounds)");
+    f.endCapType = Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS;
+    f.numFVarChannels = 0;
+    f.fvarChannelIndices = nullptr;
+    f.generateFVarTables = false;
+    std::unique_ptr<Far::PatchTable> probe(Far::PatchTableFactory::Create(tr, f, selected));
+    if (!probe) throw ShimError(SDV_ERR_OSD, "PatchTableFactory::Create returned no table");
+    for (int a = 0; a < probe->GetNumPatchArrays(); ++a) {
+        if (probe->GetPatchArrayDescriptor(a).GetType() != Far::PatchDescriptor::GREGORY_BASIS) continue;
+        for (int p = 0; p < probe->GetNumPatches(a); ++p) {
+            int depth = probe->GetPatchParam(a, p).GetDepth();
+            if (depth != max)
+                fail_unsafe("legacy Gregory end caps need every irregular patch in the last level (" + str(max) +
+                            "); one is at level " + str(depth) +
+                            " (secondary or maximum isolation level below it: OpenSubdiv would read out of bounds)");
+        }
+    }
 }
 
 bool evaluable(Far::PatchDescriptor::Type t) {
@@ -149,7 +178,6 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         if (legacy && tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
             fail("legacy Gregory end caps exist for Catmull-Clark only");
         check_no_repeated_vertices(tr.GetLevel(0));
-        if (legacy) check_legacy_gregory(tr);
         int channels = tr.GetNumFVarChannels();
         if (num_fvar_channels > 0 && !fvar_channels) fail("null face-varying channel list");
         if (num_fvar_channels > (size_t)channels)
@@ -175,6 +203,7 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
                          " was not among the faces refined adaptively: its patches are undefined");
         }
         Far::ConstIndexArray selected(faces, (int)num_faces);
+        if (legacy) check_legacy_gregory(tr, f, selected);
         std::unique_ptr<sdv_patches> p(new sdv_patches());
         osd_errors().clear();
         p->table.reset(Far::PatchTableFactory::Create(tr, f, selected));
@@ -202,6 +231,7 @@ int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, s
         out->num_quad_offsets = (int32_t)t.GetQuadOffsetsTable().size();
         out->num_valence_entries = (int32_t)t.GetVertexValenceTable().size();
         out->feature_adaptive = t.IsFeatureAdaptive() ? 1 : 0;
+        out->varying_type = (int32_t)t.GetVaryingPatchDescriptor().GetType();
     });
 }
 

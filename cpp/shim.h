@@ -367,6 +367,7 @@ typedef struct sdv_patch_counts {
     int32_t num_quad_offsets; /* entries of the legacy Gregory quad-offset table */
     int32_t num_valence_entries; /* entries of the legacy Gregory vertex valence table */
     int32_t feature_adaptive;
+    int32_t varying_type; /* GetVaryingPatchDescriptor().GetType() */
 } sdv_patch_counts;
 int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, size_t err_len);
 

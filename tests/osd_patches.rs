@@ -7,7 +7,7 @@
 #![cfg(feature = "osd")]
 
 use subdiv::patches::{
-    Derivatives, EndCapType, PatchHandle, PatchOptions, PatchType, evaluate_basis,
+    Derivatives, EndCapType, PatchHandle, PatchMap, PatchOptions, PatchType, evaluate_basis,
 };
 use subdiv::refiner::Refiner;
 use subdiv::{Error, Mesh, Options, Scheme, UniformOptions, osd, shapes};
@@ -470,6 +470,36 @@ fn refusals() {
         }))
     ));
 
+    // Legacy Gregory patches below the last level (a secondary level under
+    // the isolation level leaves the crease's irregular patches at level 1).
+    let mut creased = shapes::cube();
+    creased.add_crease(0, 1, 10.0);
+    let mut r = osd::TopologyRefiner::new(&creased, &Options::default()).unwrap();
+    r.refine_adaptive(
+        legacy
+            .clone()
+            .max_isolation(3)
+            .refine_adaptive_options()
+            .secondary(1),
+        &[],
+    )
+    .unwrap();
+    assert!(matches!(
+        r.patch_table(&legacy.clone().max_isolation(3), &[]),
+        Err(Error::Osd(subdiv::OsdError {
+            kind: subdiv::OsdErrorKind::Unsafe,
+            ..
+        }))
+    ));
+    // The same options without the secondary level build the table.
+    let mut r = osd::TopologyRefiner::new(&creased, &Options::default()).unwrap();
+    r.refine_adaptive(
+        legacy.clone().max_isolation(3).refine_adaptive_options(),
+        &[],
+    )
+    .unwrap();
+    assert!(r.patch_table(&legacy.clone().max_isolation(3), &[]).is_ok());
+
     // Patches of a face adaptive refinement was not given are undefined.
     let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     r.refine_adaptive(options.refine_adaptive_options(), &[0, 1])
@@ -601,4 +631,80 @@ fn native_basis_matches_opensubdiv() {
             ..
         })
     ));
+}
+
+/// The native `PatchMap` finds the patch OpenSubdiv's `FindPatch` finds, on
+/// a grid of locations of every ptex face (multiples of 1/16, so 0, ½ and 1
+/// and the edges between patches of every depth up to 4 included, where the
+/// quadtree's ≥ decides), on quad and Loop tables, adaptive (non-quad roots,
+/// holes, selected faces) and uniform.
+#[test]
+fn native_patch_map_matches_find_patch() {
+    let mut holed = shapes::prism(5);
+    holed.holes.push(2);
+    let mut tables = Vec::new();
+    for (mesh, scheme, options, faces) in [
+        (
+            shapes::cube(),
+            Scheme::Catmark,
+            PatchOptions::new().max_isolation(3),
+            vec![],
+        ),
+        (
+            holed,
+            Scheme::Catmark,
+            PatchOptions::new().max_isolation(2),
+            vec![],
+        ),
+        (
+            shapes::pole(5),
+            Scheme::Catmark,
+            PatchOptions::new().max_isolation(3),
+            vec![0, 2],
+        ),
+        (
+            shapes::icosahedron(),
+            Scheme::Loop,
+            PatchOptions::new().max_isolation(3),
+            vec![],
+        ),
+        (
+            shapes::tetrahedron(),
+            Scheme::Loop,
+            PatchOptions::new().max_isolation(2),
+            vec![1],
+        ),
+    ] {
+        let mut r =
+            osd::TopologyRefiner::new(&mesh, &Options::default().with_scheme(scheme)).unwrap();
+        r.refine_adaptive(options.refine_adaptive_options(), &faces)
+            .unwrap();
+        tables.push(r.patch_table(&options, &faces).unwrap());
+    }
+    for scheme in [Scheme::Catmark, Scheme::Loop] {
+        let mesh = if scheme == Scheme::Loop {
+            shapes::icosahedron()
+        } else {
+            shapes::pole(5)
+        };
+        let mut r =
+            osd::TopologyRefiner::new(&mesh, &Options::default().with_scheme(scheme)).unwrap();
+        r.refine_uniform(UniformOptions::new(2)).unwrap();
+        tables.push(r.patch_table(&PatchOptions::new(), &[]).unwrap());
+    }
+    let mut found = 0;
+    for patches in &tables {
+        let map = PatchMap::new(patches.table());
+        for face in 0..patches.table().ptex_faces as u32 {
+            for i in 0..=16 {
+                for j in 0..=16 {
+                    let (u, v) = (i as f64 / 16.0, j as f64 / 16.0);
+                    let theirs = patches.find_patch(face, u, v).unwrap();
+                    assert_eq!(map.find_patch(face, u, v), theirs, "face {face} ({u}, {v})");
+                    found += theirs.is_some() as usize;
+                }
+            }
+        }
+    }
+    assert!(found > 10_000, "{found}");
 }

@@ -179,6 +179,7 @@ impl OsdPatchTable {
             num_quad_offsets: 0,
             num_valence_entries: 0,
             feature_adaptive: 0,
+            varying_type: 0,
         };
         // SAFETY: the table is live; `c` is written by the shim.
         err.run(|e| unsafe { ffi::sdv_patches_counts(self.raw.as_ptr(), &mut c, e, ERR_LEN) })?;
@@ -252,6 +253,8 @@ impl OsdPatchTable {
             quad_offsets: quad,
             vertex_valences: valence,
             feature_adaptive: c.feature_adaptive != 0,
+            varying_patch_type: PatchType::from_code(c.varying_type)
+                .ok_or_else(|| internal("unknown varying patch type"))?,
         })
     }
 

@@ -5,21 +5,24 @@
 //! `Far::PatchTableFactory` ([`PatchOptions`]).
 //!
 //! The types here are plain data shared by the engines. Today the `osd`
-//! engine builds them (`osd::TopologyRefiner::patch_table`) and locates
-//! (ptex face, u, v) in them; the native engine evaluates the basis of their
-//! patches ([`evaluate_basis`]: B-spline, Gregory, bilinear and linear
-//! patches) but does not build patch tables yet.
+//! engine builds them (`osd::TopologyRefiner::patch_table`); the native
+//! engine locates (ptex face, u, v) in them ([`PatchMap`]) and evaluates the
+//! basis of their patches ([`evaluate_basis`]: B-spline, Gregory, bilinear
+//! and linear patches) but does not build patch tables yet.
 
 mod basis;
+mod map;
 mod param;
 
 pub use basis::evaluate_basis;
+pub use map::PatchMap;
 pub use param::PatchParam;
 
 /// `Far::PatchDescriptor::Type`, with OpenSubdiv's numbering.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum PatchType {
     /// `NON_PATCH`: undefined.
+    #[default]
     NonPatch = 0,
     /// `POINTS`.
     Points = 1,
@@ -316,6 +319,10 @@ pub struct PatchTable {
     /// Whether the table comes from adaptive refinement
     /// (`IsFeatureAdaptive`).
     pub feature_adaptive: bool,
+    /// The type of the varying patches (`GetVaryingPatchDescriptor`):
+    /// `TRIANGLES` for Loop, whose ptex faces [`PatchMap`] divides into
+    /// triangles, `QUADS` otherwise.
+    pub varying_patch_type: PatchType,
 }
 
 impl PatchTable {

@@ -1,0 +1,190 @@
+//! `Far::PatchMap`: which patch of a table covers a location (ptex face, u,
+//! v), found the way OpenSubdiv's quadtree finds it, so that locations on
+//! the edges between patches go to the same patch.
+//!
+//! A ptex face is split into quadrants level by level, each level halving
+//! the square: the quadrant of a location is (u ≥ ½, v ≥ ½) of what is left
+//! of it, u and v moved into the quadrant. Under Loop the halves are
+//! triangles: the corners (u ≥ ½ first, then v ≥ ½) and the middle
+//! triangle, which is rotated by 180° and splits the other way round. A
+//! patch sits at the quadrant path its parameterization names; the search
+//! follows the location's path down until a patch sits there.
+
+use super::{PatchHandle, PatchParam, PatchTable};
+use std::collections::{HashMap, HashSet};
+
+/// Locates (ptex face, u, v) in a patch table (`Far::PatchMap`).
+///
+/// ```
+/// use subdiv::patches::{PatchArray, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType};
+/// // One ptex face split into four depth-1 patches, (u, v) = (col, row).
+/// let params = (0..4u32).map(|k| PatchParam { field0: 0, field1: ((k % 2) << 22) | ((k / 2) << 12) | 1 });
+/// let table = PatchTable {
+///     arrays: vec![PatchArray {
+///         patch_type: PatchType::Quads,
+///         control_vertices: vec![0; 16],
+///         params: params.collect(),
+///         sharpness: vec![0.0; 4],
+///     }],
+///     ptex_faces: 1,
+///     varying_patch_type: PatchType::Quads,
+///     ..PatchTable::default()
+/// };
+/// let map = PatchMap::new(&table);
+/// assert_eq!(map.find_patch(0, 0.7, 0.2), Some(PatchHandle { array: 0, patch: 1 }));
+/// // On an edge between patches: the upper one, as OpenSubdiv decides.
+/// assert_eq!(map.find_patch(0, 0.5, 0.5), Some(PatchHandle { array: 0, patch: 3 }));
+/// assert_eq!(map.find_patch(1, 0.5, 0.5), None); // no such ptex face
+/// ```
+#[derive(Debug, Clone)]
+pub struct PatchMap {
+    triangular: bool,
+    max_depth: u32,
+    /// The patch at each (ptex face, level, quadrant path: two bits per
+    /// level, the first level in the highest bits).
+    patches: HashMap<(u32, u32, u64), PatchHandle>,
+    /// Faces whose first quadrant is covered (OpenSubdiv's test for a
+    /// face with patches).
+    covered: HashSet<u32>,
+}
+
+/// The quadrant of (`u`, `v`) in a square halved at `median`, and (`u`,
+/// `v`) moved into it.
+fn quad_quadrant(median: f64, u: &mut f64, v: &mut f64) -> u64 {
+    let right = *u >= median;
+    if right {
+        *u -= median;
+    }
+    let top = *v >= median;
+    if top {
+        *v -= median;
+    }
+    (u64::from(top) << 1) | u64::from(right)
+}
+
+/// The quadrant of (`u`, `v`) in a triangle halved at `median` (`rotated`:
+/// the triangle is upside down), and (`u`, `v`) moved into it.
+fn tri_quadrant(median: f64, u: &mut f64, v: &mut f64, rotated: &mut bool) -> u64 {
+    if !*rotated {
+        if *u >= median {
+            *u -= median;
+            1
+        } else if *v >= median {
+            *v -= median;
+            2
+        } else if *u + *v >= median {
+            *rotated = true;
+            3
+        } else {
+            0
+        }
+    } else if *u < median {
+        *v -= median;
+        1
+    } else if *v < median {
+        *u -= median;
+        2
+    } else {
+        *u -= median;
+        *v -= median;
+        if *u + *v < median {
+            *rotated = false;
+            3
+        } else {
+            0
+        }
+    }
+}
+
+/// A point inside the triangular patch `p`, in its ptex face: its
+/// parameter point (¼, ¼) mapped out of the patch.
+fn triangle_interior(p: PatchParam) -> (f64, f64) {
+    let depth = p.depth();
+    let fraction = 1.0 / f64::from(1u32 << (depth - u32::from(p.non_quad_root())));
+    let (pu, pv) = (f64::from(p.u()), f64::from(p.v()));
+    if p.u() + p.v() >= 1 << depth {
+        let corner = f64::from(1u32 << depth);
+        (
+            (corner - pu - 0.25) * fraction,
+            (corner - pv - 0.25) * fraction,
+        )
+    } else {
+        ((0.25 + pu) * fraction, (0.25 + pv) * fraction)
+    }
+}
+
+impl PatchMap {
+    /// The map of `table`'s patches.
+    pub fn new(table: &PatchTable) -> PatchMap {
+        let triangular = table.varying_patch_type.control_vertices() == 3;
+        let mut map = PatchMap {
+            triangular,
+            max_depth: 0,
+            patches: HashMap::new(),
+            covered: HashSet::new(),
+        };
+        for (a, array) in table.arrays.iter().enumerate() {
+            for (k, &p) in array.params.iter().enumerate() {
+                let handle = PatchHandle { array: a, patch: k };
+                let (depth, root) = (p.depth(), u32::from(p.non_quad_root()));
+                map.max_depth = map.max_depth.max(depth);
+                let levels = depth.saturating_sub(root);
+                let mut path = 0u64;
+                if triangular {
+                    let (mut u, mut v) = triangle_interior(p);
+                    let (mut median, mut rotated) = (0.5, false);
+                    for _ in 0..levels {
+                        path = path << 2 | tri_quadrant(median, &mut u, &mut v, &mut rotated);
+                        median *= 0.5;
+                    }
+                } else {
+                    for j in root + 1..=depth {
+                        let u_bit = u64::from((p.u() >> (depth - j)) & 1);
+                        let v_bit = u64::from((p.v() >> (depth - j)) & 1);
+                        path = path << 2 | (v_bit << 1) | u_bit;
+                    }
+                }
+                // A root patch fills every quadrant; any other covers the
+                // first one when its path starts there.
+                if levels == 0 || path >> (2 * (levels - 1)) == 0 {
+                    map.covered.insert(p.face_id());
+                }
+                map.patches.insert((p.face_id(), levels, path), handle);
+            }
+        }
+        map
+    }
+
+    /// The patch covering (`u`, `v`) of ptex face `face`
+    /// (`PatchMap::FindPatch`), or `None` where there is none (a hole, a
+    /// face the table has no patches of). Locations on the edge between
+    /// two patches go to the one on the side of larger u (then v), as
+    /// OpenSubdiv's quadtree sends them; u and v outside [0, 1] find
+    /// nothing.
+    pub fn find_patch(&self, face: u32, u: f64, v: f64) -> Option<PatchHandle> {
+        if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
+            return None;
+        }
+        if !self.covered.contains(&face) {
+            return None;
+        }
+        if let Some(&h) = self.patches.get(&(face, 0, 0)) {
+            return Some(h);
+        }
+        let (mut u, mut v) = (u, v);
+        let (mut median, mut rotated, mut path) = (0.5, false, 0u64);
+        for level in 1..=self.max_depth + 1 {
+            let q = if self.triangular {
+                tri_quadrant(median, &mut u, &mut v, &mut rotated)
+            } else {
+                quad_quadrant(median, &mut u, &mut v)
+            };
+            path = path << 2 | q;
+            median *= 0.5;
+            if let Some(&h) = self.patches.get(&(face, level, path)) {
+                return Some(h);
+            }
+        }
+        None
+    }
+}
