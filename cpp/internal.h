@@ -84,7 +84,6 @@ int guarded(char *err, size_t err_len, F &&body) {
 
 inline std::string str(long long v) { return std::to_string(v); }
 
-
 inline const sdv_refiner &need(const sdv_refiner *r) {
     if (!r || !r->refiner) fail("null refiner");
     return *r;

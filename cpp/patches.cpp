@@ -22,7 +22,6 @@ using namespace sdv_internal;
 struct sdv_patches {
     std::unique_ptr<Far::PatchTable> table;
     std::unique_ptr<Far::PatchMap> map;
-    bool vertex_double = false;  // precision of the vertex local-point stencils
 };
 
 namespace {
@@ -210,7 +209,6 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         if (!osd_errors().empty()) throw ShimError(SDV_ERR_OSD, osd_errors());
         if (!p->table) throw ShimError(SDV_ERR_OSD, "PatchTableFactory::Create returned no table");
         p->map.reset(new Far::PatchMap(*p->table));
-        p->vertex_double = p->table->LocalPointStencilPrecisionMatchesType<double>();
         *out = p.release();
     });
 }

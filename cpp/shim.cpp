@@ -70,7 +70,6 @@ struct sdv_evaluator {
 
 namespace {
 
-
 Far::TopologyLevel const &level_of(const sdv_refiner *r, int32_t level) {
     const sdv_refiner &rr = need(r);
     int max = rr.refiner->GetMaxLevel();
@@ -90,7 +89,6 @@ void need_full_topology(const sdv_refiner *r, int32_t level, const char *what) {
         fail(std::string(what) + " of level " + str(level) +
              " are not available: the last level was refined without full topology");
 }
-
 
 void check_len(size_t len, long long need_n, const char *what) {
     if (len != (size_t)need_n)
@@ -633,7 +631,6 @@ sdv_stencils *stencils_with(const sdv_refiner &rr, const sdv_stencil_options &so
     o.fvarChannel = fvar ? (unsigned)so.fvar_channel : 0u;
     return take_table(Factory::Create(tr, o));
 }
-
 
 // Catmull-Clark's smooth masks assert that a vertex has as many edges as
 // faces. A vertex named twice by a face can break that and still be smooth

@@ -965,10 +965,12 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
 /// OpenSubdiv's patch table of an adaptive refinement, through the bridge:
 /// options derived from the case (every end-cap type, single-crease and
 /// infinitely sharp patches as refined, the refinement's selected faces),
-/// then a patch found and its basis evaluated at the centre of each of the
-/// first ptex faces. The table is refused (a face repeating a vertex,
-/// legacy Gregory end caps off Catmull-Clark or over non-quads) or
-/// consistent, and every basis is a partition of unity.
+/// then patches found and their bases evaluated at three locations of each
+/// of the first ptex faces. The table is refused (a face repeating a
+/// vertex; legacy Gregory end caps off Catmull-Clark, over non-quads or
+/// with irregular patches above the last level) or consistent; every basis
+/// is a partition of unity; the native `PatchMap` finds the same patches and
+/// the native basis gives the same weights (to 1e-12) where it exists.
 #[cfg(feature = "osd")]
 fn check_osd_patches(
     theirs: &subdiv::osd::TopologyRefiner,
@@ -1024,21 +1026,45 @@ fn check_osd_patches(
         );
         assert!(a.control_vertices.iter().all(|&v| (v as usize) < points));
     }
+    let map = subdiv::patches::PatchMap::new(t);
     for face in 0..t.ptex_faces.min(16) as u32 {
-        let Some(h) = patches
-            .find_patch(face, 0.5, 0.5)
-            .expect("a ptex face in range")
-        else {
-            continue;
-        };
-        if !t.arrays[h.array].patch_type.is_evaluable() {
-            continue;
+        for (u, v) in [(0.5, 0.5), (0.0, 1.0), (0.25, 0.75)] {
+            let found = patches
+                .find_patch(face, u, v)
+                .expect("a ptex face in range");
+            assert_eq!(
+                map.find_patch(face, u, v),
+                found,
+                "native PatchMap, face {face} ({u}, {v})"
+            );
+            let Some(h) = found else {
+                continue;
+            };
+            let ty = t.arrays[h.array].patch_type;
+            if !ty.is_evaluable() {
+                continue;
+            }
+            let w = patches
+                .evaluate_basis(h, u, v, Derivatives::Second)
+                .expect("an evaluable patch");
+            let sum: f64 = w.point.iter().sum();
+            assert!((sum - 1.0).abs() < 1e-9, "basis sums to {sum}");
+            // The native basis where it exists.
+            let param = t.arrays[h.array].params[h.patch];
+            if let Ok(mine) = subdiv::patches::evaluate_basis(ty, param, u, v, Derivatives::Second)
+            {
+                let scale = f64::from(1u32 << param.depth());
+                for (a, b) in mine.point.iter().zip(&w.point) {
+                    assert!((a - b).abs() <= 1e-12, "{ty:?} {param:?}: {a} vs {b}");
+                }
+                for (a, b) in mine.du.iter().zip(&w.du).chain(mine.dv.iter().zip(&w.dv)) {
+                    assert!(
+                        (a - b).abs() <= 1e-12 * scale,
+                        "{ty:?} {param:?}: {a} vs {b}"
+                    );
+                }
+            }
         }
-        let w = patches
-            .evaluate_basis(h, 0.5, 0.5, Derivatives::Second)
-            .expect("an evaluable patch");
-        let sum: f64 = w.point.iter().sum();
-        assert!((sum - 1.0).abs() < 1e-9, "basis sums to {sum}");
     }
 }
 

@@ -83,8 +83,14 @@ impl TopologyRefiner {
                 reason: LevelRefusal::TooDeep { max: 10 },
             });
         }
-        let channels = options
-            .fvar_channels
+        // No list: every channel, as OpenSubdiv's default (-1) asks.
+        let every: Vec<usize> = (0..self.fvar_channels).collect();
+        let listed = if options.fvar_tables && options.fvar_channels.is_empty() {
+            &every
+        } else {
+            &options.fvar_channels
+        };
+        let channels = listed
             .iter()
             .map(|&c| {
                 if c >= self.fvar_channels {

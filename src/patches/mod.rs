@@ -186,7 +186,9 @@ pub struct PatchOptions {
     pub fvar_legacy_linear_patches: bool,
     /// `generateLegacySharpCornerPatches` (true).
     pub legacy_sharp_corner_patches: bool,
-    /// `fvarChannelIndices`: the face-varying channels with tables (none).
+    /// `fvarChannelIndices`: the face-varying channels with tables when
+    /// `fvar_tables` is set; empty means every channel (OpenSubdiv's
+    /// `numFVarChannels = -1`, its default).
     pub fvar_channels: Vec<usize>,
 }
 
