@@ -101,6 +101,19 @@ void check_no_repeated_vertices(Far::TopologyLevel const &base) {
     }
 }
 
+// The B-spline end-cap converter (end caps B-spline or unspecified) writes
+// past its matrix on an irregular corner at an interior vertex of valence 2
+// (two faces folded onto each other: found by fuzzing, with infinitely
+// sharp and single-crease patches, under Valgrind). Such vertices only
+// exist where the base level has them.
+void check_bspline_end_caps(Far::TopologyLevel const &base) {
+    for (int v = 0; v < base.GetNumVertices(); ++v)
+        if (base.GetVertexEdges(v).size() == 2 && base.GetVertexFaces(v).size() == 2 && !base.IsVertexBoundary(v))
+            fail_unsafe("B-spline end caps are not available with interior vertex " + str(v) +
+                        " of valence 2 (OpenSubdiv's end-cap converter writes out of bounds there); use Gregory "
+                        "or bilinear end caps");
+}
+
 // The legacy Gregory tables (quad offsets, vertex valences) are built from
 // the last level alone: OpenSubdiv takes every irregular patch's face as a
 // face of that level and gathers a quad ring around each of its vertices.
@@ -177,6 +190,9 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         if (legacy && tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
             fail("legacy Gregory end caps exist for Catmull-Clark only");
         check_no_repeated_vertices(tr.GetLevel(0));
+        if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS ||
+            f.endCapType == Far::PatchTableFactory::Options::ENDCAP_NONE)
+            check_bspline_end_caps(tr.GetLevel(0));
         int channels = tr.GetNumFVarChannels();
         if (num_fvar_channels > 0 && !fvar_channels) fail("null face-varying channel list");
         if (num_fvar_channels > (size_t)channels)

@@ -500,6 +500,30 @@ fn refusals() {
     .unwrap();
     assert!(r.patch_table(&legacy.clone().max_isolation(3), &[]).is_ok());
 
+    // B-spline end caps around an interior vertex of valence 2 (two
+    // triangles folded onto each other): refused; Gregory end caps build.
+    let mut pillow = Mesh::default();
+    pillow.positions = shapes::tetrahedron().positions;
+    pillow.add_face(&[0, 1, 2]);
+    pillow.add_face(&[2, 1, 0]);
+    let bspline = PatchOptions::new()
+        .max_isolation(2)
+        .end_caps(EndCapType::BSplineBasis);
+    let mut r = osd::TopologyRefiner::new(&pillow, &Options::default()).unwrap();
+    r.refine_adaptive(bspline.refine_adaptive_options(), &[])
+        .unwrap();
+    assert!(matches!(
+        r.patch_table(&bspline, &[]),
+        Err(Error::Osd(subdiv::OsdError {
+            kind: subdiv::OsdErrorKind::Unsafe,
+            ..
+        }))
+    ));
+    assert!(
+        r.patch_table(&bspline.clone().end_caps(EndCapType::GregoryBasis), &[])
+            .is_ok()
+    );
+
     // Patches of a face adaptive refinement was not given are undefined.
     let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default()).unwrap();
     r.refine_adaptive(options.refine_adaptive_options(), &[0, 1])

@@ -968,7 +968,8 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
 /// then patches found and their bases evaluated at three locations of each
 /// of the first ptex faces. The table is refused (a face repeating a
 /// vertex; legacy Gregory end caps off Catmull-Clark, over non-quads or
-/// with irregular patches above the last level) or consistent; every basis
+/// with irregular patches above the last level; B-spline end caps at an
+/// interior vertex of valence 2) or consistent; every basis
 /// is a partition of unity; the native `PatchMap` finds the same patches and
 /// the native basis gives the same weights (to 1e-12) where it exists.
 #[cfg(feature = "osd")]
@@ -996,8 +997,9 @@ fn check_osd_patches(
             .inf_sharp_patch(ao.use_inf_sharp_patch)
     };
     // Faces that use a vertex twice are refused (OpenSubdiv's patch
-    // builders overrun on them), and so are legacy Gregory end caps off
-    // Catmull-Clark or over a last level that is not all quads.
+    // builders overrun on them), and so are legacy Gregory end caps where
+    // their tables do not fit and B-spline end caps around interior
+    // vertices of valence 2.
     let repeats = case.mesh.faces().any(|f| {
         let mut v = f.to_vec();
         v.sort_unstable();
@@ -1006,8 +1008,16 @@ fn check_osd_patches(
     let patches = match theirs.patch_table(&options, &adaptive.faces) {
         Ok(p) => p,
         Err(e) => {
+            // B-spline end caps (or unspecified ones) also refuse interior
+            // vertices of valence 2.
+            let bspline = matches!(end_caps, EndCapType::None | EndCapType::BSplineBasis);
             assert!(
-                repeats || end_caps == EndCapType::LegacyGregory,
+                repeats || end_caps == EndCapType::LegacyGregory || bspline,
+                "patch table refused: {e}"
+            );
+            assert!(
+                matches!(&e, subdiv::Error::Osd(o) if o.kind == subdiv::OsdErrorKind::Unsafe)
+                    || end_caps == EndCapType::LegacyGregory,
                 "patch table refused: {e}"
             );
             return;
