@@ -502,8 +502,10 @@ fn refusals() {
 
     // B-spline end caps around an interior vertex of valence 2 (two
     // triangles folded onto each other): refused; Gregory end caps build.
-    let mut pillow = Mesh::default();
-    pillow.positions = shapes::tetrahedron().positions;
+    let mut pillow = Mesh {
+        positions: shapes::tetrahedron().positions,
+        ..Mesh::default()
+    };
     pillow.add_face(&[0, 1, 2]);
     pillow.add_face(&[2, 1, 0]);
     let bspline = PatchOptions::new()
