@@ -55,10 +55,14 @@ impl TopologyRefiner {
     /// Refused before OpenSubdiv sees them: a maximum isolation level above
     /// 10 ([`Error::Level`]), a face-varying channel the mesh lacks
     /// ([`Error::NoSuchChannel`]), a selected face out of range
-    /// ([`Error::NoSuchElement`]); through the shim, legacy Gregory end caps
-    /// on a scheme other than Catmull-Clark and a selected face that
-    /// adaptive refinement was not given (OpenSubdiv leaves its patches
-    /// undefined).
+    /// ([`Error::NoSuchElement`]); through the shim ([`Error::Osd`]): legacy
+    /// Gregory end caps on a scheme other than Catmull-Clark, a selected face
+    /// that adaptive refinement was not given (OpenSubdiv leaves its patches
+    /// undefined), and the inputs OpenSubdiv 3.5 overruns its buffers on
+    /// (kind `Unsafe`; docs/CONFORMANCE.md): a face repeating a vertex,
+    /// B-spline end caps at an interior vertex of valence 2, legacy Gregory
+    /// end caps with an irregular patch above the last level, a non-quad or
+    /// a non-manifold vertex in it.
     ///
     /// ```
     /// use subdiv::{osd, patches::{PatchOptions, PatchType}, shapes, Options};
