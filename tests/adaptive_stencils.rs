@@ -457,7 +457,7 @@ fn face_varying_tables_match_opensubdiv() {
             &[Scheme::Catmark, Scheme::Bilinear]
         };
         for &scheme in schemes {
-            for fvar in F::ALL {
+            for &fvar in F::ALL {
                 let options = Options::shape_file_defaults()
                     .with_scheme(scheme)
                     .with_fvar(fvar);
