@@ -247,7 +247,9 @@ pub fn evaluate_basis(
     );
     let depth = param.depth();
     // The patch's share of the ptex face, as a power of two.
-    let scale = f64::from(1u32 << (depth - u32::from(param.non_quad_root())).min(31));
+    // (A non-quad root at depth 0 cannot come from OpenSubdiv; as the
+    // words are public, it is taken as depth 0 rather than underflowing.)
+    let scale = f64::from(1u32 << depth.saturating_sub(u32::from(param.non_quad_root())));
     let (pu, pv) = (f64::from(param.u()), f64::from(param.v()));
     let rotated = triangular && param.u() + param.v() >= 1 << depth;
     let (s, t) = if rotated {
@@ -287,7 +289,7 @@ pub fn evaluate_basis(
     // Derivatives with respect to the ptex face: 2^depth per order (the
     // sign of a rotated triangle's odd orders flipped).
     let sign = if rotated { -1.0 } else { 1.0 };
-    let d1 = sign * f64::from(1u32 << depth.min(31));
+    let d1 = sign * f64::from(1u32 << depth);
     let d2 = sign * d1 * d1;
     let [point, du, dv, duu, duv, dvv] = tables;
     let scaled = |mut w: Vec<f64>, k: f64| {
@@ -302,4 +304,44 @@ pub fn evaluate_basis(
         duv: scaled(duv, d2),
         dvv: scaled(dvv, d2),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::patches::{PatchArray, PatchMap, PatchTable};
+
+    /// Parameter words OpenSubdiv never writes (a non-quad root at depth
+    /// 0, the largest fields) are evaluated and located without a panic.
+    #[test]
+    fn any_param_words_are_safe() {
+        for field1 in [1 << 4, u32::MAX, 0] {
+            let p = PatchParam {
+                field0: u32::MAX,
+                field1,
+            };
+            for ty in [
+                PatchType::Regular,
+                PatchType::GregoryBasis,
+                PatchType::Triangles,
+            ] {
+                let w = evaluate_basis(ty, p, 1.0, 0.0, Derivatives::Second).unwrap();
+                assert_eq!(w.point.len(), ty.control_vertices());
+            }
+            for varying in [PatchType::Quads, PatchType::Triangles] {
+                let table = PatchTable {
+                    arrays: vec![PatchArray {
+                        patch_type: PatchType::Regular,
+                        control_vertices: vec![0; 16],
+                        params: vec![p],
+                        sharpness: vec![0.0],
+                    }],
+                    varying_patch_type: varying,
+                    ..PatchTable::default()
+                };
+                let map = PatchMap::new(&table);
+                let _ = map.find_patch(p.face_id(), 0.5, 1.0);
+            }
+        }
+    }
 }

@@ -100,7 +100,7 @@ fn tri_quadrant(median: f64, u: &mut f64, v: &mut f64, rotated: &mut bool) -> u6
 /// parameter point (¼, ¼) mapped out of the patch.
 fn triangle_interior(p: PatchParam) -> (f64, f64) {
     let depth = p.depth();
-    let fraction = 1.0 / f64::from(1u32 << (depth - u32::from(p.non_quad_root())));
+    let fraction = 1.0 / f64::from(1u32 << depth.saturating_sub(u32::from(p.non_quad_root())));
     let (pu, pv) = (f64::from(p.u()), f64::from(p.v()));
     if p.u() + p.v() >= 1 << depth {
         let corner = f64::from(1u32 << depth);
