@@ -244,7 +244,7 @@ fn write_json(
 
 /// The locations of a file: `PTEX_FACE U V` per line, `#` comments; errors
 /// name the file and line.
-pub(crate) fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
+fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         Failure::Message(format!(
             "{}: cannot read the locations: {e}",
@@ -295,25 +295,21 @@ pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
         use subdiv::patches::Derivatives;
         let b = build(&args.patch)?;
         let ptex_faces = b.table.table().ptex_faces;
-        // Check each location first, so that an error names its line.
-        for &(line, (face, u, v)) in &locations {
-            let at =
-                |what: String| Failure::Message(format!("{}:{line}: {what}", args.at.display()));
-            if face as usize >= ptex_faces {
-                return Err(at(format!(
+        // A location off the mesh or in a hole is an error naming its line.
+        let at = |line: usize, what: String| {
+            Failure::Message(format!("{}:{line}: {what}", args.at.display()))
+        };
+        if let Some(&(line, (face, ..))) = locations
+            .iter()
+            .find(|(_, (face, ..))| *face as usize >= ptex_faces)
+        {
+            return Err(at(
+                line,
+                format!(
                     "ptex face {face} does not exist ({} has {ptex_faces})",
                     b.name
-                )));
-            }
-            if b.table
-                .find_patch(face, u, v)
-                .map_err(Failure::from)?
-                .is_none()
-            {
-                return Err(at(format!(
-                    "ptex face {face} at ({u}, {v}) is in a hole: no surface there"
-                )));
-            }
+                ),
+            ));
         }
         let points: Vec<Location> = locations.iter().map(|&(_, l)| l).collect();
         let derivatives = if args.derivatives {
@@ -322,10 +318,20 @@ pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
             Derivatives::None
         };
         let base = b.mesh.flat_positions::<f64>();
-        let s = b
-            .table
-            .evaluate(&b.refiner, 3, &base, &points, derivatives)
-            .map_err(|e| Failure::from(e).in_input(&b.name))?;
+        let s = match b.table.evaluate(&b.refiner, 3, &base, &points, derivatives) {
+            Ok(s) => s,
+            Err(subdiv::Error::NoPatchAt { face, u, v }) => {
+                let line = locations
+                    .iter()
+                    .find(|(_, l)| *l == (face, u, v))
+                    .map_or(0, |&(line, _)| line);
+                return Err(at(
+                    line,
+                    format!("ptex face {face} at ({u}, {v}) is in a hole: no surface there"),
+                ));
+            }
+            Err(e) => return Err(Failure::from(e).in_input(&b.name)),
+        };
         let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
         write_output(&path, args.patch.mesh.input.as_deref(), |w| {
             let mut w = std::io::BufWriter::new(w);
