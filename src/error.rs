@@ -151,6 +151,14 @@ pub enum Error {
     /// Something OpenSubdiv does that the native engine does not do yet.
     #[error("not supported by the native engine yet: {0}")]
     NotYetSupported(&'static str),
+    /// Patch-table options this refinement cannot be given (legacy Gregory
+    /// end caps under another scheme than Catmull-Clark, or on a last level
+    /// they cannot describe), with the reason.
+    #[error("no patch table with these options: {reason}")]
+    PatchOptions {
+        /// Why, naming the level and element concerned.
+        reason: String,
+    },
     /// Limit evaluation without full topology in the last level.
     #[error(
         "limit evaluation needs full topology in the last level \

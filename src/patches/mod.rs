@@ -11,6 +11,7 @@
 //! and linear patches) but does not build patch tables yet.
 
 mod basis;
+mod build;
 mod map;
 mod param;
 

@@ -30,7 +30,43 @@ const fn bits(word: u32, width: u32, offset: u32) -> u32 {
     (word >> offset) & ((1 << width) - 1)
 }
 
+/// `value`'s low `width` bits, shifted to `offset`.
+const fn pack(value: u32, width: u32, offset: u32) -> u32 {
+    (value & ((1 << width) - 1)) << offset
+}
+
 impl PatchParam {
+    /// The two words of a patch (`PatchParam::Set`), each field cut to its
+    /// width as OpenSubdiv cuts it.
+    ///
+    /// ```
+    /// use subdiv::patches::PatchParam;
+    /// let p = PatchParam::new(7, 3, 1, 2, false, 0b0010, 0b0101, true);
+    /// assert_eq!((p.face_id(), p.u(), p.v(), p.depth()), (7, 3, 1, 2));
+    /// assert_eq!((p.transition(), p.boundary(), p.is_regular()), (0b0101, 0b0010, true));
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub const fn new(
+        face: u32,
+        u: u16,
+        v: u16,
+        depth: u16,
+        non_quad_root: bool,
+        boundary: u16,
+        transition: u16,
+        regular: bool,
+    ) -> PatchParam {
+        PatchParam {
+            field0: pack(face, 28, 0) | pack(transition as u32, 4, 28),
+            field1: pack(u as u32, 10, 22)
+                | pack(v as u32, 10, 12)
+                | pack(boundary as u32, 5, 7)
+                | pack(regular as u32, 1, 5)
+                | pack(non_quad_root as u32, 1, 4)
+                | pack(depth as u32, 4, 0),
+        }
+    }
+
     /// The ptex face the patch lies in (`GetFaceId`).
     pub const fn face_id(self) -> u32 {
         bits(self.field0, 28, 0)

@@ -55,7 +55,8 @@ use crate::rules::SchemeRules;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use crate::topology::refine::sparse::{Selection, SparseSplit, refine_sparse};
-use features::{Features, base_features, child_features, regular_face_size};
+pub(crate) use features::Features;
+use features::{base_features, child_features, regular_face_size};
 use glam::DVec3;
 use select::{FeatureMask, face_is_selected};
 
@@ -263,6 +264,12 @@ impl AdaptiveRefiner {
             super::check_unpaired_smooth_step(p, c, step, l)?;
         }
         Ok(())
+    }
+
+    /// The levels, the splits between them and the features of every
+    /// level's vertices (for the patch-table builder).
+    pub(crate) fn parts(&self) -> (&[Level], &[SparseSplit], &[Vec<Features>]) {
+        (&self.levels, &self.steps, &self.features)
     }
 
     /// The options the topology was built with.

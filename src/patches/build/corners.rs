@@ -1,0 +1,399 @@
+//! What a face's corners say about its patch: the combined vertex tags
+//! (OpenSubdiv's `Vtr::Level::VTag`, refinement's tags and the adaptive
+//! features together), whether the patch is regular, its boundary mask,
+//! whether it is a single-crease patch, and the spans of faces around a
+//! corner that a regular patch may use (`Far::PatchBuilder`'s topology
+//! inspections).
+
+use super::Builder;
+use crate::refiner::adaptive::Features;
+use crate::rules::Rule;
+use crate::topology::Level;
+
+/// The tag bits of one vertex, or of several or-ed together.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct Tag {
+    pub non_manifold: bool,
+    pub xordinary: bool,
+    pub boundary: bool,
+    pub corner: bool,
+    pub inf_sharp: bool,
+    pub inf_sharp_edges: bool,
+    pub inf_sharp_crease: bool,
+    pub inf_irregular: bool,
+    pub incomplete: bool,
+    /// One bit per rule present (smooth 1, dart 2, crease 4, corner 8).
+    pub rules: u8,
+}
+
+impl Tag {
+    fn of(level: &Level, features: &Features, v: usize) -> Tag {
+        let t = level.vertex_tag(v);
+        Tag {
+            non_manifold: t.non_manifold(),
+            xordinary: features.xordinary,
+            boundary: t.boundary(),
+            corner: t.corner(),
+            inf_sharp: t.inf_sharp(),
+            inf_sharp_edges: t.inf_sharp_edges(),
+            inf_sharp_crease: features.inf_sharp_crease,
+            inf_irregular: features.inf_irregular,
+            incomplete: features.incomplete,
+            rules: rule_bit(t.rule()),
+        }
+    }
+
+    fn or(self, o: Tag) -> Tag {
+        Tag {
+            non_manifold: self.non_manifold | o.non_manifold,
+            xordinary: self.xordinary | o.xordinary,
+            boundary: self.boundary | o.boundary,
+            corner: self.corner | o.corner,
+            inf_sharp: self.inf_sharp | o.inf_sharp,
+            inf_sharp_edges: self.inf_sharp_edges | o.inf_sharp_edges,
+            inf_sharp_crease: self.inf_sharp_crease | o.inf_sharp_crease,
+            inf_irregular: self.inf_irregular | o.inf_irregular,
+            incomplete: self.incomplete | o.incomplete,
+            rules: self.rules | o.rules,
+        }
+    }
+
+    /// Whether any bit of `mask` is set in this tag too.
+    fn any(self, mask: Tag) -> bool {
+        (self.non_manifold && mask.non_manifold)
+            || (self.xordinary && mask.xordinary)
+            || (self.inf_irregular && mask.inf_irregular)
+    }
+}
+
+fn rule_bit(rule: Rule) -> u8 {
+    match rule {
+        Rule::Smooth => 1,
+        Rule::Dart => 2,
+        Rule::Crease => 4,
+        Rule::Corner => 8,
+    }
+}
+
+/// The edges that end a span of faces around a corner: boundary and
+/// non-manifold edges, and infinitely sharp ones when asked.
+#[derive(Clone, Copy)]
+struct Singular {
+    inf_sharp: bool,
+}
+
+impl Singular {
+    fn test(self, level: &Level, e: u32) -> bool {
+        let t = level.edge_tag(e as usize);
+        t.boundary() || t.non_manifold() || (self.inf_sharp && t.inf_sharp())
+    }
+}
+
+impl Builder<'_> {
+    /// The tags of the corners of face `f` of `level`.
+    pub(super) fn corner_tags(&self, level: usize, f: usize) -> Vec<Tag> {
+        let l = &self.levels[level];
+        let features = &self.features[level];
+        l.face_verts(f)
+            .iter()
+            .map(|&v| Tag::of(l, &features[v as usize], v as usize))
+            .collect()
+    }
+
+    /// The tags of every corner of face `f` or-ed together
+    /// (`getFaceCompositeVTag`).
+    pub(super) fn composite(&self, level: usize, f: usize) -> Tag {
+        self.corner_tags(level, f)
+            .into_iter()
+            .fold(Tag::default(), Tag::or)
+    }
+
+    /// `PatchBuilder::IsPatchRegular` for the vertex topology.
+    pub(super) fn is_regular(&self, level: usize, f: usize) -> bool {
+        if self.linear {
+            return true;
+        }
+        let l = &self.levels[level];
+        let tags = self.corner_tags(level, f);
+        let all = tags.iter().copied().fold(Tag::default(), Tag::or);
+        if !all.inf_sharp && !all.inf_sharp_edges {
+            return !all.xordinary;
+        }
+        let test_inf = self.inf_sharp_patch;
+        let irregular = Tag {
+            non_manifold: true,
+            xordinary: true,
+            inf_irregular: test_inf,
+            ..Tag::default()
+        };
+        if !all.any(irregular) {
+            return true;
+        }
+        // An isolated feature (past the level where an irregular base face
+        // still touches extraordinary vertices) is judged from the
+        // combined tags unless it needs a closer look.
+        let needs_extra_level = (all.xordinary && self.irregular_base_faces) as usize;
+        if level > needs_extra_level {
+            let closer = all.non_manifold
+                || (self.sharp_corners && all.xordinary && all.boundary)
+                || (test_inf && all.inf_irregular && all.inf_sharp_edges);
+            if !closer {
+                return if test_inf {
+                    !all.inf_irregular
+                } else {
+                    !all.xordinary
+                };
+            }
+        }
+        let regular_boundary_faces = if self.reg == 4 { 2 } else { 3 };
+        for (i, tag) in tags.iter().enumerate() {
+            if !tag.any(irregular) {
+                continue;
+            }
+            if tag.non_manifold {
+                let n = self.non_manifold_span(
+                    level,
+                    f,
+                    i,
+                    Singular {
+                        inf_sharp: test_inf,
+                    },
+                );
+                let want = if tag.inf_sharp {
+                    1
+                } else {
+                    regular_boundary_faces
+                };
+                if n != Some(want) {
+                    return false;
+                }
+                continue;
+            }
+            if tag.xordinary {
+                if !tag.inf_sharp_edges {
+                    return false;
+                }
+                // A smooth corner may be taken as a sharp one.
+                if self.sharp_corners && tag.boundary && !tag.inf_sharp {
+                    let edges = l.face_edges_of(f);
+                    let prev = if i == 0 { self.reg - 1 } else { i - 1 };
+                    let boundary = |k: usize| l.edge_tag(edges[k] as usize).boundary();
+                    if boundary(i) && boundary(prev) {
+                        continue;
+                    }
+                }
+                if !test_inf {
+                    return false;
+                }
+            }
+            if tag.inf_irregular {
+                if !tag.inf_sharp_edges || (tag.inf_sharp_crease && tag.boundary) {
+                    return false;
+                }
+                let n = self.manifold_span(level, f, i, Singular { inf_sharp: true });
+                let want = if tag.inf_sharp_crease {
+                    regular_boundary_faces
+                } else {
+                    1
+                };
+                if n != want {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// `PatchBuilder::GetRegularPatchBoundaryMask` for the vertex topology:
+    /// one bit per boundary edge of a quad, OpenSubdiv's 5-bit encoding of
+    /// boundary edges and vertices for a triangle.
+    pub(super) fn boundary_mask(&self, level: usize, f: usize) -> u16 {
+        if self.linear {
+            return 0;
+        }
+        let l = &self.levels[level];
+        let tags = self.corner_tags(level, f);
+        let all = tags.iter().copied().fold(Tag::default(), Tag::or);
+        if !all.inf_sharp_edges {
+            return 0;
+        }
+        let test_inf = self.inf_sharp_patch;
+        let e_bits =
+            l.face_edges_of(f)
+                .iter()
+                .take(self.reg)
+                .enumerate()
+                .fold(0u16, |bits, (i, &e)| {
+                    let t = l.edge_tag(e as usize);
+                    let on = t.boundary() || t.non_manifold() || (test_inf && t.inf_sharp());
+                    bits | ((on as u16) << i)
+                });
+        if self.reg == 4 {
+            return e_bits;
+        }
+        let v_bits = tags.iter().take(3).enumerate().fold(0u16, |bits, (i, t)| {
+            let on = t.boundary || t.non_manifold || (test_inf && t.inf_sharp_edges);
+            bits | ((on as u16) << i)
+        });
+        if e_bits == 0 && v_bits == 0 {
+            0
+        } else {
+            encode_tri_boundary(e_bits, v_bits)
+        }
+    }
+
+    /// `Vtr::Level::isSingleCreasePatch`: a regular interior quad with two
+    /// adjacent crease vertices on one regular crease and two smooth ones;
+    /// the crease's sharpness and its edge in the face.
+    pub(super) fn single_crease(&self, level: usize, f: usize) -> Option<(f32, usize)> {
+        if self.reg != 4 {
+            return None;
+        }
+        let l = &self.levels[level];
+        let all = self.composite(level, f);
+        if all.rules & 4 == 0
+            || all.rules & (8 | 2) != 0
+            || all.boundary
+            || all.xordinary
+            || all.non_manifold
+        {
+            return None;
+        }
+        let verts = l.face_verts(f);
+        let mask = verts.iter().enumerate().fold(0usize, |m, (i, &v)| {
+            m | (((l.vertex_tag(v as usize).rule() == Rule::Crease) as usize) << i)
+        });
+        // Two adjacent crease corners name the edge between them.
+        const EDGE_OF_MASK: [i8; 16] = [-1, -1, -1, 0, -1, -1, 1, -1, -1, 3, -1, -1, 2, -1, -1, -1];
+        let edge = usize::try_from(EDGE_OF_MASK[mask]).ok()?;
+        for v in [verts[edge], verts[(edge + 1) % 4]] {
+            let e = l.vertex_edges_of(v as usize);
+            if e.len() < 4 {
+                return None;
+            }
+            let s = |k: usize| l.edge_sharpness_at(e[k] as usize);
+            if s(0) != s(2) || s(1) != s(3) {
+                return None;
+            }
+        }
+        Some((l.edge_sharpness_at(l.face_edges_of(f)[edge] as usize), edge))
+    }
+
+    /// The number of faces of the span around corner `corner` of face `f`
+    /// (a manifold vertex), bounded by singular edges
+    /// (`identifyManifoldCornerSpan`).
+    fn manifold_span(&self, level: usize, f: usize, corner: usize, singular: Singular) -> usize {
+        let l = &self.levels[level];
+        let face_edges = l.face_edges_of(f);
+        let v = l.face_verts(f)[corner];
+        let edges = l.vertex_edges_of(v as usize);
+        let n = edges.len();
+        let Some(leading_start) = edges.iter().position(|&e| e == face_edges[corner]) else {
+            return 1;
+        };
+        let trailing_start = (leading_start + 1) % n;
+        let mut faces = 1;
+        let mut leading = leading_start;
+        while !singular.test(l, edges[leading]) {
+            faces += 1;
+            leading = (leading + n - 1) % n;
+            if leading == trailing_start {
+                break;
+            }
+        }
+        let mut trailing = trailing_start;
+        if trailing != leading {
+            while !singular.test(l, edges[trailing]) {
+                faces += 1;
+                trailing = (trailing + 1) % n;
+                if trailing == leading_start {
+                    break;
+                }
+            }
+        }
+        faces
+    }
+
+    /// The number of faces of the span around corner `corner` of face `f`
+    /// at a non-manifold vertex, walking across manifold edges
+    /// (`identifyNonManifoldCornerSpan`); `None` where the walk meets an
+    /// edge without two faces (which the singular test excludes).
+    fn non_manifold_span(
+        &self,
+        level: usize,
+        f: usize,
+        corner: usize,
+        singular: Singular,
+    ) -> Option<usize> {
+        let l = &self.levels[level];
+        let fe = l.face_edges_of(f);
+        let leading_start = fe[corner];
+        let trailing_start = fe[(corner + fe.len() - 1) % fe.len()];
+        let other = |e: u32, face: usize| -> Option<usize> {
+            let faces = l.edge_faces_of(e as usize);
+            if faces.len() != 2 {
+                return None;
+            }
+            Some(if faces[0] as usize == face {
+                faces[1]
+            } else {
+                faces[0]
+            } as usize)
+        };
+        let position = |face: usize, e: u32| l.face_edges_of(face).iter().position(|&x| x == e);
+        let mut faces = 1;
+        let mut face = f;
+        let mut leading = leading_start;
+        while !singular.test(l, leading) {
+            faces += 1;
+            face = other(leading, face)?;
+            let edges = l.face_edges_of(face);
+            let start = (position(face, leading)? + 1) % edges.len();
+            leading = edges[start];
+            if leading == trailing_start {
+                break;
+            }
+        }
+        let mut face = f;
+        let mut trailing = trailing_start;
+        if trailing != leading {
+            while !singular.test(l, trailing) {
+                faces += 1;
+                face = other(trailing, face)?;
+                let edges = l.face_edges_of(face);
+                let k = position(face, trailing)?;
+                trailing = edges[(k + edges.len() - 1) % edges.len()];
+                if trailing == leading_start {
+                    break;
+                }
+            }
+        }
+        Some(faces)
+    }
+}
+
+/// OpenSubdiv's 5-bit boundary mask of a triangular patch: the upper two
+/// bits say how to read the lower three (0: boundary edges, their vertices
+/// implied; 1: boundary vertices only; 2: one boundary edge and the vertex
+/// opposite it).
+fn encode_tri_boundary(e_bits: u16, v_bits: u16) -> u16 {
+    let (upper, lower) = if v_bits != 0 && e_bits == 0 {
+        (1, v_bits)
+    } else if v_bits == 7 && matches!(e_bits, 1 | 2 | 4) {
+        (2, e_bits)
+    } else {
+        (0, e_bits)
+    };
+    (upper << 3) | lower
+}
+
+/// The boundary edges and boundary vertices of a triangular patch's mask.
+pub(super) fn decode_tri_boundary(mask: u16) -> (u16, u16) {
+    const VERTS_OF_EDGES: [u16; 8] = [0, 3, 6, 7, 5, 7, 7, 7];
+    let lower = mask & 7;
+    match (mask >> 3) & 3 {
+        1 => (0, lower),
+        2 => (lower, 7),
+        _ => (lower, VERTS_OF_EDGES[lower as usize]),
+    }
+}

@@ -1,0 +1,186 @@
+//! The control vertices of regular patches (`PatchBuilder::
+//! GetRegularPatchPoints`): the 16 points of a bicubic B-spline patch around
+//! a quad, the 12 of a Loop box-spline patch around a triangle, taken from
+//! the faces around each corner in OpenSubdiv's order. Points a boundary
+//! patch lacks are filled with the face's first vertex, as OpenSubdiv's
+//! patch tables do (`fillMissingBoundaryPoints`).
+
+use super::Builder;
+use super::corners::decode_tri_boundary;
+use crate::topology::Level;
+
+/// The faces around a vertex with the vertex's position in each.
+struct Ring<'a> {
+    faces: &'a [u32],
+    locals: &'a [u16],
+}
+
+impl<'a> Ring<'a> {
+    fn of(level: &'a Level, v: u32) -> Ring<'a> {
+        Ring {
+            faces: level.vertex_faces_of(v as usize),
+            locals: level.vertex_face_locals(v as usize),
+        }
+    }
+
+    fn at(&self, i: usize) -> (usize, usize) {
+        (self.faces[i] as usize, self.locals[i] as usize)
+    }
+
+    fn position(&self, f: usize) -> usize {
+        self.faces
+            .iter()
+            .position(|&x| x as usize == f)
+            .unwrap_or(0)
+    }
+}
+
+/// The face across edge `e` from `face` (an edge with two faces).
+fn across(level: &Level, e: u32, face: usize) -> usize {
+    let faces = level.edge_faces_of(e as usize);
+    match faces {
+        [a, b] if *a as usize == face => *b as usize,
+        [a, ..] => *a as usize,
+        [] => face,
+    }
+}
+
+/// The face after face `i` of a vertex's ring, counter-clockwise, and the
+/// vertex's position in it (`getNextFaceInVertFaces`).
+fn next_face(level: &Level, ring: &Ring, i: usize, manifold: bool) -> (usize, usize) {
+    if manifold {
+        return ring.at((i + 1) % ring.faces.len());
+    }
+    let (face, corner) = ring.at(i);
+    let edges = level.face_edges_of(face);
+    let e = edges[(corner + edges.len() - 1) % edges.len()];
+    let next = across(level, e, face);
+    let k = level
+        .face_edges_of(next)
+        .iter()
+        .position(|&x| x == e)
+        .unwrap_or(0);
+    (next, k)
+}
+
+/// The face before face `i` of a vertex's ring and the vertex's position in
+/// it (`getPrevFaceInVertFaces`).
+fn prev_face(level: &Level, ring: &Ring, i: usize, manifold: bool) -> (usize, usize) {
+    if manifold {
+        return ring.at((i + ring.faces.len() - 1) % ring.faces.len());
+    }
+    let (face, corner) = ring.at(i);
+    let e = level.face_edges_of(face)[corner];
+    let prev = across(level, e, face);
+    let edges = level.face_edges_of(prev);
+    let k = edges.iter().position(|&x| x == e).unwrap_or(0);
+    // OpenSubdiv takes the successor modulo the size of the first face.
+    let n = level.face_edges_of(face).len();
+    (prev, if k + 1 >= n { k + 1 - n } else { k + 1 })
+}
+
+impl Builder<'_> {
+    /// The control vertices of the regular patch of face `f` of `level`
+    /// (indices within the level), with its boundary mask `mask`.
+    pub(super) fn regular_points(&self, level: usize, f: usize, mask: u16) -> Vec<u32> {
+        let l = &self.levels[level];
+        if self.linear {
+            l.face_verts(f).to_vec()
+        } else if self.reg == 4 {
+            quad_points(l, f, mask)
+        } else {
+            tri_points(l, f, mask)
+        }
+    }
+}
+
+/// The 16 points of a B-spline patch: for each corner, the corner and the
+/// three points of the face diagonally opposite, or of the faces beside it
+/// along a boundary.
+fn quad_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
+    const PER_CORNER: [[usize; 4]; 4] =
+        [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
+    let verts = l.face_verts(f);
+    let interior = mask == 0;
+    let fill = if interior { u32::MAX } else { verts[0] };
+    let mut points = vec![0u32; 16];
+    for (i, slots) in PER_CORNER.iter().enumerate() {
+        let v = verts[i];
+        let ring = Ring::of(l, v);
+        let at = ring.position(f);
+        let leading = mask & (1 << i) != 0;
+        let trailing = mask & (1 << ((i + 3) % 4)) != 0;
+        let manifold = !l.vertex_tag(v as usize).non_manifold();
+        let outer: [u32; 3] = if interior || (!leading && !trailing) {
+            let (opp, k) = ring.at((at + 2) % ring.faces.len());
+            let p = l.face_verts(opp);
+            [p[(k + 1) % 4], p[(k + 2) % 4], p[(k + 3) % 4]]
+        } else if leading && trailing {
+            [fill; 3]
+        } else if leading {
+            let (next, k) = next_face(l, &ring, at, manifold);
+            [l.face_verts(next)[(k + 3) % 4], fill, fill]
+        } else {
+            let (prev, k) = prev_face(l, &ring, at, manifold);
+            [fill, fill, l.face_verts(prev)[(k + 1) % 4]]
+        };
+        points[slots[0]] = v;
+        points[slots[1]] = outer[0];
+        points[slots[2]] = outer[1];
+        points[slots[3]] = outer[2];
+    }
+    points
+}
+
+/// The 12 points of a Loop box-spline patch.
+fn tri_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
+    const PER_CORNER: [[usize; 4]; 3] = [[4, 7, 3, 0], [5, 1, 2, 6], [8, 9, 11, 10]];
+    let verts = l.face_verts(f);
+    let interior = mask == 0;
+    let (e_mask, v_mask) = if interior {
+        (0, 0)
+    } else {
+        decode_tri_boundary(mask)
+    };
+    let fill = if interior { u32::MAX } else { verts[0] };
+    let mut points = vec![0u32; 12];
+    for (i, slots) in PER_CORNER.iter().enumerate() {
+        let v = verts[i];
+        let ring = Ring::of(l, v);
+        let n = ring.faces.len();
+        let at = ring.position(f);
+        let manifold = !l.vertex_tag(v as usize).non_manifold();
+        let leading = e_mask & (1 << i) != 0;
+        let trailing = e_mask & (1 << ((i + 2) % 3)) != 0;
+        let corner = |face: usize, k: usize| l.face_verts(face)[k % 3];
+        let outer: [u32; 3] = if interior || v_mask & (1 << i) == 0 {
+            let (f2, k2) = ring.at((at + 2) % n);
+            let (f3, k3) = ring.at((at + 3) % n);
+            [corner(f2, k2 + 1), corner(f3, k3 + 1), corner(f3, k3 + 2)]
+        } else if leading && trailing {
+            [fill; 3]
+        } else if leading {
+            let (mut f2, mut k2) = ring.at((at + 2) % n);
+            if !manifold {
+                let (f1, _) = next_face(l, &ring, at, false);
+                (f2, k2) = next_face(l, &ring, ring.position(f1), false);
+            }
+            [corner(f2, k2 + 1), corner(f2, k2 + 2), fill]
+        } else if trailing {
+            let (mut f0, mut k0) = ring.at((at + n - 2) % n);
+            if !manifold {
+                let (f1, _) = prev_face(l, &ring, at, false);
+                (f0, k0) = prev_face(l, &ring, ring.position(f1), false);
+            }
+            [fill, fill, corner(f0, k0 + 1)]
+        } else {
+            let (f2, k2) = next_face(l, &ring, at, manifold);
+            [corner(f2, k2 + 2), fill, fill]
+        };
+        points[slots[0]] = v;
+        points[slots[1]] = outer[0];
+        points[slots[2]] = outer[1];
+        points[slots[3]] = outer[2];
+    }
+    points
+}

@@ -1,0 +1,189 @@
+//! Native patch tables (`AdaptiveRefiner::patch_table`) against
+//! OpenSubdiv's `Far::PatchTableFactory`, over the corpus: every scheme ×
+//! boundary interpolation × adaptive and patch options × isolation levels ×
+//! selected faces. Arrays, types, control vertices, `PatchParam` words,
+//! sharpness, and the legacy Gregory quad-offset and valence tables must be
+//! identical; tables the native engine does not build yet (end caps with
+//! local points around irregular patches) must say so, and only those.
+#![cfg(feature = "osd")]
+
+use subdiv::patches::{EndCapType, PatchOptions, PatchTable};
+use subdiv::refiner::Refiner;
+use subdiv::{BoundaryInterpolation, Error, Mesh, Options, Scheme, osd, shapes};
+
+/// What one comparison found.
+#[derive(Default, Debug)]
+struct Tally {
+    identical: usize,
+    patches: usize,
+    not_yet: usize,
+    legacy_irregular: usize,
+    single_crease: usize,
+    refused_both: usize,
+    osd_unsafe: usize,
+}
+
+fn compare(
+    name: &str,
+    mesh: &Mesh,
+    options: &Options,
+    po: &PatchOptions,
+    faces: &[u32],
+    t: &mut Tally,
+) {
+    let Ok(native) = Refiner::new(mesh, options) else {
+        return;
+    };
+    let ao = po.refine_adaptive_options();
+    let Ok(native) = native.refine_adaptive(ao, faces) else {
+        return;
+    };
+    let mut theirs = osd::TopologyRefiner::new(mesh, options).unwrap();
+    theirs.refine_adaptive(ao, faces).unwrap();
+    let case = format!("{name} {options:?} {po:?} faces {faces:?}");
+    let mine = native.patch_table(po, faces);
+    let osds = theirs.patch_table(po, faces);
+    match (mine, osds) {
+        (Ok(a), Ok(b)) => {
+            same_table(&a, b.table(), &case);
+            t.identical += 1;
+            t.patches += a.patch_count();
+            if !a.quad_offsets.is_empty() {
+                t.legacy_irregular += 1;
+            }
+            if a.arrays
+                .iter()
+                .any(|a| a.sharpness.iter().any(|&s| s > 0.0))
+            {
+                t.single_crease += 1;
+            }
+        }
+        (Err(Error::NotYetSupported(_)), Ok(b)) => {
+            // Only end caps with local points around irregular patches.
+            let b = b.table();
+            assert!(po.end_cap_type != EndCapType::LegacyGregory, "{case}");
+            assert!(
+                b.arrays
+                    .iter()
+                    .any(|a| a.params.iter().any(|p| !p.is_regular())),
+                "{case}: refused a table of regular patches only"
+            );
+            t.not_yet += 1;
+        }
+        (Err(Error::PatchOptions { .. }), Err(Error::Osd(_))) => t.refused_both += 1,
+        // Where OpenSubdiv would overrun its buffers (a face repeating a
+        // vertex) the bridge refuses; the native engine builds the table
+        // or says what it does not build yet.
+        (Ok(_) | Err(Error::NotYetSupported(_)), Err(Error::Osd(e)))
+            if e.kind == subdiv::OsdErrorKind::Unsafe =>
+        {
+            t.osd_unsafe += 1
+        }
+        (a, b) => panic!(
+            "{case}: native {a:?}, osd {:?}",
+            b.map(|b| b.table().clone())
+        ),
+    }
+}
+
+fn same_table(a: &PatchTable, b: &PatchTable, case: &str) {
+    assert_eq!(a.arrays.len(), b.arrays.len(), "{case}: arrays");
+    for (i, (x, y)) in a.arrays.iter().zip(&b.arrays).enumerate() {
+        assert_eq!(x.patch_type, y.patch_type, "{case}: type of array {i}");
+        assert_eq!(x.len(), y.len(), "{case}: patches of array {i}");
+        for p in 0..x.len() {
+            assert_eq!(
+                x.patch_vertices(p),
+                y.patch_vertices(p),
+                "{case}: control vertices of patch {p} of array {i}"
+            );
+            assert_eq!(
+                x.params[p], y.params[p],
+                "{case}: param of patch {p} of array {i}"
+            );
+            assert_eq!(
+                x.sharpness[p].to_bits(),
+                y.sharpness[p].to_bits(),
+                "{case}: sharpness of patch {p} of array {i}"
+            );
+        }
+    }
+    assert_eq!(a.quad_offsets, b.quad_offsets, "{case}: quad offsets");
+    assert_eq!(
+        a.vertex_valences, b.vertex_valences,
+        "{case}: vertex valences"
+    );
+    let rest = |t: &PatchTable| {
+        (
+            t.local_points,
+            t.local_points_varying,
+            t.max_valence,
+            t.ptex_faces,
+            t.feature_adaptive,
+            t.varying_patch_type,
+        )
+    };
+    assert_eq!(rest(a), rest(b), "{case}: the rest of the table");
+    assert_eq!(a, b, "{case}");
+}
+
+fn patch_option_sets(isolation: u32) -> Vec<PatchOptions> {
+    let o = PatchOptions::new().max_isolation(isolation);
+    let mut sets = Vec::new();
+    for end_caps in [EndCapType::LegacyGregory, EndCapType::GregoryBasis] {
+        let o = o.clone().end_caps(end_caps);
+        sets.push(o.clone());
+        sets.push(o.clone().single_crease_patch(true));
+        sets.push(o.clone().inf_sharp_patch(true));
+        sets.push(o.clone().inf_sharp_patch(true).single_crease_patch(true));
+        sets.push(PatchOptions {
+            legacy_sharp_corner_patches: false,
+            ..o.clone()
+        });
+    }
+    sets
+}
+
+#[test]
+fn corpus_tables_match_opensubdiv() {
+    let mut t = Tally::default();
+    for (name, mesh) in shapes::corpus() {
+        for scheme in [Scheme::Catmark, Scheme::Bilinear, Scheme::Loop] {
+            for boundary in [
+                BoundaryInterpolation::EdgeOnly,
+                BoundaryInterpolation::EdgeAndCorner,
+            ] {
+                let options = Options::shape_file_defaults()
+                    .with_scheme(scheme)
+                    .with_boundary(boundary);
+                for isolation in [1, 2, 4] {
+                    for po in patch_option_sets(isolation) {
+                        compare(&name, &mesh, &options, &po, &[], &mut t);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{t:?}");
+    // Every kind of table must really be compared.
+    assert!(t.identical > 500 && t.patches > 100_000, "{t:?}");
+    assert!(t.legacy_irregular > 50 && t.single_crease > 10, "{t:?}");
+}
+
+/// Tables of selected faces, depth first under each face.
+#[test]
+fn selected_face_tables_match_opensubdiv() {
+    let mut t = Tally::default();
+    let options = Options::shape_file_defaults();
+    for (name, mesh) in shapes::corpus() {
+        let n = mesh.face_count() as u32;
+        let sets = [(0..n).step_by(3).collect::<Vec<_>>(), vec![n - 1]];
+        for faces in &sets {
+            for po in patch_option_sets(3) {
+                compare(&name, &mesh, &options, &po, faces, &mut t);
+            }
+        }
+    }
+    eprintln!("{t:?}");
+    assert!(t.identical > 50, "{t:?}");
+}
