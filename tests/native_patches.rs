@@ -21,6 +21,7 @@ struct Tally {
     single_crease: usize,
     refused_both: usize,
     osd_unsafe: usize,
+    local_points: usize,
 }
 
 fn compare(
@@ -48,6 +49,7 @@ fn compare(
             same_table(&a, b.table(), &case);
             t.identical += 1;
             t.patches += a.patch_count();
+            t.local_points += a.local_points;
             if !a.quad_offsets.is_empty() {
                 t.legacy_irregular += 1;
             }
@@ -61,7 +63,11 @@ fn compare(
         (Err(Error::NotYetSupported(_)), Ok(b)) => {
             // Only end caps with local points around irregular patches.
             let b = b.table();
-            assert!(po.end_cap_type != EndCapType::LegacyGregory, "{case}");
+            assert!(
+                matches!(po.end_cap_type, EndCapType::BSplineBasis | EndCapType::None)
+                    || options.scheme == Scheme::Loop,
+                "{case}"
+            );
             assert!(
                 b.arrays
                     .iter()
@@ -108,6 +114,32 @@ fn same_table(a: &PatchTable, b: &PatchTable, case: &str) {
             );
         }
     }
+    for (name, x, y) in [
+        (
+            "local points",
+            &a.local_point_stencils,
+            &b.local_point_stencils,
+        ),
+        (
+            "varying local points",
+            &a.local_point_varying_stencils,
+            &b.local_point_varying_stencils,
+        ),
+    ] {
+        assert_eq!(x.sizes, y.sizes, "{case}: sizes of the {name}' stencils");
+        assert_eq!(
+            x.indices, y.indices,
+            "{case}: indices of the {name}' stencils"
+        );
+        if let Some(k) =
+            (0..x.weights.len()).find(|&k| x.weights[k].to_bits() != y.weights[k].to_bits())
+        {
+            panic!(
+                "{case}: weight {k} of the {name}' stencils: {} against {}",
+                x.weights[k], y.weights[k]
+            );
+        }
+    }
     assert_eq!(a.quad_offsets, b.quad_offsets, "{case}: quad offsets");
     assert_eq!(
         a.vertex_valences, b.vertex_valences,
@@ -130,7 +162,12 @@ fn same_table(a: &PatchTable, b: &PatchTable, case: &str) {
 fn patch_option_sets(isolation: u32) -> Vec<PatchOptions> {
     let o = PatchOptions::new().max_isolation(isolation);
     let mut sets = Vec::new();
-    for end_caps in [EndCapType::LegacyGregory, EndCapType::GregoryBasis] {
+    for end_caps in [
+        EndCapType::LegacyGregory,
+        EndCapType::GregoryBasis,
+        EndCapType::BilinearBasis,
+        EndCapType::BSplineBasis,
+    ] {
         let o = o.clone().end_caps(end_caps);
         sets.push(o.clone());
         sets.push(o.clone().single_crease_patch(true));
@@ -139,6 +176,11 @@ fn patch_option_sets(isolation: u32) -> Vec<PatchOptions> {
         sets.push(PatchOptions {
             legacy_sharp_corner_patches: false,
             ..o.clone()
+        });
+        sets.push(PatchOptions {
+            share_end_cap_points: false,
+            varying_local_points: false,
+            ..o.clone().double_precision(true)
         });
     }
     sets
@@ -168,6 +210,7 @@ fn corpus_tables_match_opensubdiv() {
     // Every kind of table must really be compared.
     assert!(t.identical > 500 && t.patches > 100_000, "{t:?}");
     assert!(t.legacy_irregular > 50 && t.single_crease > 10, "{t:?}");
+    assert!(t.local_points > 100_000, "{t:?}");
 }
 
 /// Tables of selected faces, depth first under each face.

@@ -258,6 +258,8 @@ impl OsdPatchTable {
             arrays,
             local_points: count(c.num_local_points)?,
             local_points_varying: count(c.num_local_points_varying)?,
+            local_point_stencils: self.local_stencils(0)?,
+            local_point_varying_stencils: self.local_stencils(1)?,
             max_valence: count(c.max_valence)?,
             ptex_faces: count(c.num_ptex_faces)?,
             quad_offsets: quad,

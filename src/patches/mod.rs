@@ -15,6 +15,8 @@ mod build;
 mod map;
 mod param;
 
+use crate::stencil::StencilTable;
+
 pub use basis::evaluate_basis;
 pub use map::PatchMap;
 pub use param::PatchParam;
@@ -310,6 +312,13 @@ pub struct PatchTable {
     pub local_points: usize,
     /// Varying local points (`GetNumLocalPointsVarying`).
     pub local_points_varying: usize,
+    /// The stencil of each local point over the refined vertices (every
+    /// level, base first; `GetLocalPointStencilTable`), weights widened to
+    /// `f64` from the table's precision; empty without local points.
+    pub local_point_stencils: StencilTable,
+    /// The varying local points' stencils (`GetLocalPointVaryingStencilTable`;
+    /// each the patch corner the point follows).
+    pub local_point_varying_stencils: StencilTable,
     /// Largest valence of the base level (`GetMaxValence`).
     pub max_valence: usize,
     /// Ptex faces of the base level (`GetNumPtexFaces`).

@@ -78,8 +78,8 @@ fn rule_bit(rule: Rule) -> u8 {
 /// The edges that end a span of faces around a corner: boundary and
 /// non-manifold edges, and infinitely sharp ones when asked.
 #[derive(Clone, Copy)]
-struct Singular {
-    inf_sharp: bool,
+pub(super) struct Singular {
+    pub inf_sharp: bool,
 }
 
 impl Singular {
@@ -164,7 +164,7 @@ impl Builder<'_> {
                 } else {
                     regular_boundary_faces
                 };
-                if n != Some(want) {
+                if n.map(|s| s.faces) != Some(want) {
                     return false;
                 }
                 continue;
@@ -190,7 +190,9 @@ impl Builder<'_> {
                 if !tag.inf_sharp_edges || (tag.inf_sharp_crease && tag.boundary) {
                     return false;
                 }
-                let n = self.manifold_span(level, f, i, Singular { inf_sharp: true });
+                let n = self
+                    .manifold_span(level, f, i, Singular { inf_sharp: true })
+                    .faces;
                 let want = if tag.inf_sharp_crease {
                     regular_boundary_faces
                 } else {
@@ -279,23 +281,32 @@ impl Builder<'_> {
         Some((l.edge_sharpness_at(l.face_edges_of(f)[edge] as usize), edge))
     }
 
-    /// The number of faces of the span around corner `corner` of face `f`
-    /// (a manifold vertex), bounded by singular edges
-    /// (`identifyManifoldCornerSpan`).
-    fn manifold_span(&self, level: usize, f: usize, corner: usize, singular: Singular) -> usize {
+    /// The span of faces around corner `corner` of face `f` (a manifold
+    /// vertex) bounded by singular edges (`identifyManifoldCornerSpan`).
+    pub(super) fn manifold_span(
+        &self,
+        level: usize,
+        f: usize,
+        corner: usize,
+        singular: Singular,
+    ) -> Span {
         let l = &self.levels[level];
         let face_edges = l.face_edges_of(f);
         let v = l.face_verts(f)[corner];
         let edges = l.vertex_edges_of(v as usize);
         let n = edges.len();
+        let mut span = Span {
+            faces: 1,
+            ..Span::default()
+        };
         let Some(leading_start) = edges.iter().position(|&e| e == face_edges[corner]) else {
-            return 1;
+            return span;
         };
         let trailing_start = (leading_start + 1) % n;
-        let mut faces = 1;
         let mut leading = leading_start;
         while !singular.test(l, edges[leading]) {
-            faces += 1;
+            span.faces += 1;
+            span.corner_in_span += 1;
             leading = (leading + n - 1) % n;
             if leading == trailing_start {
                 break;
@@ -304,27 +315,28 @@ impl Builder<'_> {
         let mut trailing = trailing_start;
         if trailing != leading {
             while !singular.test(l, edges[trailing]) {
-                faces += 1;
+                span.faces += 1;
                 trailing = (trailing + 1) % n;
                 if trailing == leading_start {
                     break;
                 }
             }
         }
-        faces
+        span.start_face = leading;
+        span
     }
 
-    /// The number of faces of the span around corner `corner` of face `f`
-    /// at a non-manifold vertex, walking across manifold edges
+    /// The span of faces around corner `corner` of face `f` at a
+    /// non-manifold vertex, walking across manifold edges
     /// (`identifyNonManifoldCornerSpan`); `None` where the walk meets an
     /// edge without two faces (which the singular test excludes).
-    fn non_manifold_span(
+    pub(super) fn non_manifold_span(
         &self,
         level: usize,
         f: usize,
         corner: usize,
         singular: Singular,
-    ) -> Option<usize> {
+    ) -> Option<Span> {
         let l = &self.levels[level];
         let fe = l.face_edges_of(f);
         let leading_start = fe[corner];
@@ -341,16 +353,23 @@ impl Builder<'_> {
             } as usize)
         };
         let position = |face: usize, e: u32| l.face_edges_of(face).iter().position(|&x| x == e);
-        let mut faces = 1;
+        let mut span = Span {
+            faces: 1,
+            ..Span::default()
+        };
+        let (mut start_face, mut start_corner) = (f, corner);
         let mut face = f;
         let mut leading = leading_start;
         while !singular.test(l, leading) {
-            faces += 1;
+            span.faces += 1;
+            span.corner_in_span += 1;
             face = other(leading, face)?;
             let edges = l.face_edges_of(face);
-            let start = (position(face, leading)? + 1) % edges.len();
-            leading = edges[start];
+            start_face = face;
+            start_corner = (position(face, leading)? + 1) % edges.len();
+            leading = edges[start_corner];
             if leading == trailing_start {
+                span.periodic = !singular.test(l, leading);
                 break;
             }
         }
@@ -358,17 +377,105 @@ impl Builder<'_> {
         let mut trailing = trailing_start;
         if trailing != leading {
             while !singular.test(l, trailing) {
-                faces += 1;
+                span.faces += 1;
                 face = other(trailing, face)?;
                 let edges = l.face_edges_of(face);
                 let k = position(face, trailing)?;
                 trailing = edges[(k + edges.len() - 1) % edges.len()];
                 if trailing == leading_start {
+                    span.periodic = !singular.test(l, trailing);
                     break;
                 }
             }
         }
-        Some(faces)
+        let v = l.face_verts(f)[corner] as usize;
+        let faces = l.vertex_faces_of(v);
+        let locals = l.vertex_face_locals(v);
+        span.start_face = faces
+            .iter()
+            .zip(locals)
+            .position(|(&x, &k)| x as usize == start_face && k as usize == start_corner)
+            .unwrap_or(faces.len());
+        Some(span)
+    }
+
+    /// `PatchBuilder::GetIrregularPatchCornerSpans` for the vertex topology:
+    /// for each corner, the span of its faces the patch uses where a
+    /// discontinuity cuts its ring (the whole ring, unassigned, elsewhere),
+    /// and whether the corner is sharp.
+    pub(super) fn corner_spans(&self, level: usize, f: usize) -> Vec<Span> {
+        let l = &self.levels[level];
+        let tags = self.corner_tags(level, f);
+        let test_inf = self.inf_sharp_patch;
+        let singular = Singular {
+            inf_sharp: test_inf,
+        };
+        let verts = l.face_verts(f);
+        tags.iter()
+            .enumerate()
+            .map(|(i, tag)| {
+                let rule = l.vertex_tag(verts[i] as usize).rule();
+                let test_inf_edges = test_inf && tag.inf_sharp_edges && rule != Rule::Dart;
+                let mut span = if tag.non_manifold {
+                    self.non_manifold_span(level, f, i, singular)
+                        .unwrap_or_default()
+                } else if test_inf_edges {
+                    self.manifold_span(level, f, i, singular)
+                } else {
+                    Span::default()
+                };
+                if tag.corner {
+                    span.sharp = true;
+                } else if tag.non_manifold {
+                    span.sharp = tag.inf_sharp;
+                } else if test_inf {
+                    span.sharp = if test_inf_edges {
+                        !tag.inf_sharp_crease
+                    } else {
+                        tag.inf_sharp
+                    };
+                }
+                // The legacy option: a smooth corner of one face is sharp.
+                if !span.sharp
+                    && self.sharp_corners
+                    && tag.xordinary
+                    && tag.boundary
+                    && !tag.inf_sharp
+                    && !tag.non_manifold
+                {
+                    let faces = if span.is_assigned() {
+                        span.faces
+                    } else {
+                        l.vertex_faces_of(verts[i] as usize).len()
+                    };
+                    span.sharp = faces == 1;
+                }
+                span
+            })
+            .collect()
+    }
+}
+
+/// The faces around a corner a patch uses (`Vtr::Level::VSpan`):
+/// unassigned (no faces) when it is the whole ring.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct Span {
+    /// Number of faces (0: unassigned).
+    pub faces: usize,
+    /// The first face of the span in the vertex's faces.
+    pub start_face: usize,
+    /// The patch's face within the span.
+    pub corner_in_span: usize,
+    /// Whether the span closes on itself.
+    pub periodic: bool,
+    /// Whether the corner is sharp.
+    pub sharp: bool,
+}
+
+impl Span {
+    /// Whether the span was identified (not the whole ring).
+    pub fn is_assigned(&self) -> bool {
+        self.faces > 0
     }
 }
 

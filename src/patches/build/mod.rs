@@ -19,16 +19,24 @@
 //! no local points, whatever its end-cap type.
 
 mod corners;
+mod gregory;
 mod legacy;
+mod limits;
+mod linear;
+mod local;
+mod matrix;
 mod points;
+mod source;
 
 use super::{EndCapType, PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
 use crate::error::{Element, Error, LevelRefusal, Result};
 use crate::options::Scheme;
+use crate::real::Real;
 use crate::refiner::AdaptiveRefiner;
 use crate::refiner::adaptive::Features;
 use crate::topology::Level;
 use crate::topology::refine::sparse::SparseSplit;
+use local::LocalPoints;
 
 /// The deepest isolation `PatchTableFactory::Options` holds (4 bits).
 const MAX_ISOLATION: u32 = 10;
@@ -243,6 +251,20 @@ impl Builder<'_> {
         selected: &[u32],
         scheme: Scheme,
     ) -> Result<PatchTable> {
+        if options.patch_precision_double {
+            self.build_in::<f64>(options, selected, scheme)
+        } else {
+            self.build_in::<f32>(options, selected, scheme)
+        }
+    }
+
+    /// The table with end-cap weights computed in `R`.
+    fn build_in<R: Real>(
+        &self,
+        options: &PatchOptions,
+        selected: &[u32],
+        scheme: Scheme,
+    ) -> Result<PatchTable> {
         let patches = self.identify(selected);
         let regular: Vec<bool> = patches
             .iter()
@@ -250,17 +272,27 @@ impl Builder<'_> {
             .collect();
         let irregular_count = regular.iter().filter(|&&r| !r).count();
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
-        if irregular_count > 0 && !legacy {
-            return Err(Error::NotYetSupported(
-                "end caps with local points (Gregory, B-spline or bilinear basis) around \
-                 irregular patches",
-            ));
-        }
         let (regular_type, linear_type) = match scheme {
             Scheme::Catmark => (PatchType::Regular, PatchType::Quads),
             Scheme::Loop => (PatchType::Loop, PatchType::Triangles),
             Scheme::Bilinear => (PatchType::Quads, PatchType::Quads),
         };
+        let irregular_type = match (options.end_cap_type, scheme) {
+            (EndCapType::BilinearBasis, _) => linear_type,
+            (EndCapType::GregoryBasis, Scheme::Loop) => PatchType::GregoryTriangle,
+            (EndCapType::GregoryBasis, _) => PatchType::GregoryBasis,
+            (EndCapType::LegacyGregory, _) => PatchType::Gregory,
+            (EndCapType::BSplineBasis | EndCapType::None, _) => regular_type,
+        };
+        if irregular_count > 0
+            && !legacy
+            && !(scheme == Scheme::Catmark
+                && matches!(irregular_type, PatchType::GregoryBasis | PatchType::Quads))
+        {
+            return Err(Error::NotYetSupported(
+                "B-spline end caps and Loop end caps around irregular patches",
+            ));
+        }
         let mut offsets = Vec::with_capacity(self.levels.len() + 1);
         offsets.push(0u32);
         for l in self.levels {
@@ -269,9 +301,17 @@ impl Builder<'_> {
         }
         let ptex = self.ptex_first();
         let mut reg_array = PatchArray::new(regular_type);
+        let mut irregular = PatchArray::new(irregular_type);
         let mut interior = PatchArray::new(PatchType::Gregory);
         let mut boundary = PatchArray::new(PatchType::GregoryBoundary);
         let mut legacy_faces = legacy::Faces::default();
+        let mut local = LocalPoints::<R>::new(
+            *offsets.last().expect("total"),
+            options.share_end_cap_points,
+            irregular_type == regular_type,
+            options.varying_tables && options.varying_local_points,
+            self.levels.len(),
+        );
         // OpenSubdiv keeps these from patch to patch: an irregular patch
         // takes the sharpness of the last regular one before it, and a
         // legacy Gregory patch its parameter boundary mask too.
@@ -297,7 +337,7 @@ impl Builder<'_> {
                     .control_vertices
                     .extend(cvs.iter().map(|&v| v + offset));
                 &mut reg_array
-            } else {
+            } else if legacy {
                 let corners = self.composite(p.level, p.face);
                 legacy_faces.add(p.face, corners.boundary);
                 let a = if corners.boundary {
@@ -308,6 +348,34 @@ impl Builder<'_> {
                 let verts = self.levels[p.level].face_verts(p.face);
                 a.control_vertices.extend(verts.iter().map(|&v| v + offset));
                 a
+            } else {
+                param_boundary = 0;
+                let spans = self.corner_spans(p.level, p.face);
+                let source = self.source_patch(p.level, p.face, &spans);
+                let matrix = if irregular_type == PatchType::Quads {
+                    linear::convert::<R>(&source)
+                } else {
+                    gregory::Gregory::<R>::new(&source).convert()
+                };
+                let sources = self.source_points(p.level, p.face, &spans, &source);
+                let cvs = local.append(
+                    self,
+                    p.level,
+                    p.face,
+                    &matrix,
+                    irregular_type,
+                    &sources,
+                    offset,
+                );
+                // Irregular patches share the regular array when their
+                // types agree.
+                if irregular_type == regular_type {
+                    reg_array.control_vertices.extend(cvs);
+                    &mut reg_array
+                } else {
+                    irregular.control_vertices.extend(cvs);
+                    &mut irregular
+                }
             };
             array.sharpness.push(if options.single_crease_patch {
                 sharpness
@@ -318,10 +386,14 @@ impl Builder<'_> {
                 .params
                 .push(self.param(p.level, p.face, &ptex, is_regular, param_boundary));
         }
+        let local_points = local.count();
+        let (stencils, varying) = local.finish();
         let mut table = PatchTable {
             arrays: Vec::new(),
-            local_points: 0,
-            local_points_varying: 0,
+            local_points,
+            local_points_varying: varying.len(),
+            local_point_stencils: stencils,
+            local_point_varying_stencils: varying,
             max_valence: self.max_valence(),
             ptex_faces: *ptex.last().unwrap_or(&0) as usize,
             quad_offsets: Vec::new(),
@@ -337,7 +409,7 @@ impl Builder<'_> {
             table.vertex_valences =
                 self.vertex_valences(table.max_valence, offsets[self.max_level()]);
         }
-        table.arrays = [reg_array, interior, boundary]
+        table.arrays = [reg_array, irregular, interior, boundary]
             .into_iter()
             .filter(|a| !a.is_empty())
             .collect();

@@ -1,0 +1,59 @@
+//! The four points of a bilinear end cap (`LinearConverter` in
+//! `far/catmarkPatchBuilder.cpp`): each corner's limit position, or the
+//! corner itself where it is sharp.
+
+use super::limits;
+use super::matrix::Matrix;
+use super::source::SourcePatch;
+use crate::real::Real;
+
+/// The change-of-basis matrix from `patch`'s points to its bilinear
+/// patch's four corners.
+pub(super) fn convert<R: Real>(patch: &SourcePatch) -> Matrix<R> {
+    let mut sizes = [0usize; 4];
+    for (c, size) in sizes.iter_mut().enumerate() {
+        let corner = &patch.corners[c];
+        *size = if corner.sharp {
+            1
+        } else if corner.boundary {
+            3
+        } else {
+            1 + patch.ring_size(c)
+        };
+    }
+    let mut m = Matrix::with_row_sizes(&sizes, patch.points);
+    let mut has_val2_interior = false;
+    for (c, row) in m.rows.iter_mut().enumerate() {
+        let corner = &patch.corners[c];
+        if corner.sharp {
+            row.set(0, c, R::ONE);
+            continue;
+        }
+        let ring = patch.ring(c);
+        let point = |i: usize| {
+            if i == 0 {
+                c
+            } else {
+                ring.get(i - 1).copied().unwrap_or(c)
+            }
+        };
+        if corner.boundary {
+            let [w, _, _] = limits::boundary::<R>(1 + corner.faces, corner.patch_face, false);
+            let n = ring.len();
+            let at = |i: usize| w.get(i).copied().unwrap_or(R::ZERO);
+            row.set(0, point(0), at(0));
+            row.set(1, point(1), at(1));
+            row.set(2, point(n), at(n));
+        } else {
+            let [w, _, _] = limits::interior::<R>(corner.faces, corner.patch_face, false);
+            for (i, &x) in w.iter().enumerate() {
+                row.set(i, point(i), x);
+            }
+        }
+        has_val2_interior |= corner.val2_interior;
+    }
+    if has_val2_interior {
+        m.merge_repeated_corners();
+    }
+    m
+}

@@ -1,0 +1,219 @@
+//! Local points (`PatchTableBuilder::LocalPointHelper`): the points of end
+//! caps, numbered after every level's vertices, each with a stencil over
+//! those vertices (a row of the patch's change-of-basis matrix) and a
+//! varying stencil (the patch corner it follows). Neighbouring Gregory and
+//! bilinear end caps share the points of a common corner or edge when
+//! asked (`shareEndCapPatchPoints`): the first patch to need one creates
+//! it.
+
+use super::Builder;
+use super::matrix::Matrix;
+use crate::patches::PatchType;
+use crate::real::Real;
+use crate::stencil::StencilTable;
+use crate::topology::Level;
+
+/// Which corner or edge a patch point may be shared through: the corner's
+/// or edge's index in the face (low 4 bits), and whether it is a corner,
+/// or the point at the beginning or the end of an edge.
+const CORNER: u8 = 0x10;
+const EDGE_BEGIN: u8 = 0x20;
+const EDGE_END: u8 = 0x40;
+
+/// The sharing of each point of a patch type, if it shares at all.
+fn share_bits(patch_type: PatchType) -> Option<&'static [u8]> {
+    const LINEAR: [u8; 4] = [0x10, 0x11, 0x12, 0x13];
+    const GREGORY: [u8; 20] = [
+        0x10, 0x20, 0x43, 0, 0, 0x11, 0x21, 0x40, 0, 0, 0x12, 0x22, 0x41, 0, 0, 0x13, 0x23, 0x42,
+        0, 0,
+    ];
+    match patch_type {
+        PatchType::Quads => Some(&LINEAR),
+        PatchType::GregoryBasis => Some(&GREGORY),
+        _ => None,
+    }
+}
+
+/// The patch corner whose point each patch point's varying value follows.
+fn varying_corners(patch_type: PatchType) -> &'static [usize] {
+    const LINEAR: [usize; 4] = [0, 1, 2, 3];
+    const BSPLINE: [usize; 16] = [0, 0, 1, 1, 0, 0, 1, 1, 3, 3, 2, 2, 3, 3, 2, 2];
+    const BOX_SPLINE: [usize; 12] = [0, 0, 1, 0, 0, 1, 1, 2, 2, 1, 2, 2];
+    const GREGORY: [usize; 20] = [0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3];
+    const GREGORY_TRIANGLE: [usize; 18] = [0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 0, 1, 2];
+    match patch_type {
+        PatchType::GregoryBasis => &GREGORY,
+        PatchType::GregoryTriangle => &GREGORY_TRIANGLE,
+        PatchType::Regular => &BSPLINE,
+        PatchType::Loop => &BOX_SPLINE,
+        _ => &LINEAR,
+    }
+}
+
+/// Stencils in the precision of the patch table's options.
+#[derive(Debug, Default)]
+struct Stencils<R> {
+    sizes: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<R>,
+}
+
+impl<R: Real> Stencils<R> {
+    fn push(&mut self, entries: impl Iterator<Item = (u32, R)>) {
+        let before = self.indices.len();
+        for (i, w) in entries {
+            self.indices.push(i);
+            self.weights.push(w);
+        }
+        self.sizes.push((self.indices.len() - before) as u32);
+    }
+
+    fn finish(self) -> StencilTable {
+        let mut offsets = Vec::with_capacity(self.sizes.len());
+        let mut at = 0u32;
+        for &n in &self.sizes {
+            offsets.push(at);
+            at += n;
+        }
+        StencilTable {
+            sizes: self.sizes,
+            offsets,
+            indices: self.indices,
+            weights: self.weights.into_iter().map(Real::to_f64).collect(),
+        }
+    }
+}
+
+/// The local points made so far.
+pub(super) struct LocalPoints<R> {
+    /// Index of the first local point: every level's vertices.
+    first: u32,
+    count: u32,
+    share: bool,
+    /// B-spline end caps keep source points their matrix copies.
+    reuse_sources: bool,
+    stencils: Stencils<R>,
+    varying: Option<Stencils<R>>,
+    shared_corners: Vec<Vec<u32>>,
+    shared_edges: Vec<Vec<u32>>,
+}
+
+impl<R: Real> LocalPoints<R> {
+    pub fn new(first: u32, share: bool, reuse_sources: bool, varying: bool, levels: usize) -> Self {
+        LocalPoints {
+            first,
+            count: 0,
+            share,
+            reuse_sources,
+            stencils: Stencils::default(),
+            varying: varying.then(Stencils::default),
+            shared_corners: vec![Vec::new(); levels],
+            shared_edges: vec![Vec::new(); levels],
+        }
+    }
+
+    /// Number of local points.
+    pub fn count(&self) -> usize {
+        self.count as usize
+    }
+
+    /// The vertex and varying stencil tables (the latter empty when not
+    /// asked for).
+    pub fn finish(self) -> (StencilTable, StencilTable) {
+        let varying = self.varying.map(Stencils::finish).unwrap_or_default();
+        (self.stencils.finish(), varying)
+    }
+
+    /// The points of one end cap (`AppendLocalPatchPoints`): a new local
+    /// point per matrix row unless shared with a neighbour's (or, when
+    /// reusing sources, a row that is one source point); `sources` are the
+    /// matrix's columns as vertices of `level`, `offset` that level's first
+    /// vertex.
+    #[allow(clippy::too_many_arguments)]
+    pub fn append(
+        &mut self,
+        builder: &Builder,
+        level: usize,
+        face: usize,
+        matrix: &Matrix<R>,
+        patch_type: PatchType,
+        sources: &[u32],
+        offset: u32,
+    ) -> Vec<u32> {
+        let l = &builder.levels[level];
+        let bits = if self.share {
+            share_bits(patch_type)
+        } else {
+            None
+        };
+        let corners = varying_corners(patch_type);
+        let source = |column: usize| sources.get(column).copied().unwrap_or(0) + offset;
+        let mut points = Vec::with_capacity(matrix.rows.len());
+        for (i, row) in matrix.rows.iter().enumerate() {
+            if self.reuse_sources && row.len() == 1 {
+                points.push(source(row.columns[0]));
+                continue;
+            }
+            let next = self.first + self.count;
+            let point = match bits.map(|b| b[i]) {
+                Some(b) if b != 0 => self.shared(l, level, face, b, next),
+                _ => next,
+            };
+            if point == next {
+                self.stencils.push(
+                    row.columns
+                        .iter()
+                        .zip(&row.weights)
+                        .map(|(&c, &w)| (source(c), w)),
+                );
+                if let Some(v) = &mut self.varying {
+                    let corner = corners.get(i).copied().unwrap_or(0);
+                    v.push(std::iter::once((source(corner), R::ONE)));
+                }
+                self.count += 1;
+            }
+            points.push(point);
+        }
+        points
+    }
+
+    /// The local point already made for the corner or edge `bits` names,
+    /// or `next` (recorded for the next patch) (`findSharedCornerPoint`,
+    /// `findSharedEdgePoint`). Boundary edges share nothing.
+    fn shared(&mut self, l: &Level, level: usize, face: usize, bits: u8, next: u32) -> u32 {
+        let k = (bits & 0x0f) as usize;
+        let invalid = u32::MAX;
+        let slot = if bits & CORNER != 0 {
+            let table = &mut self.shared_corners[level];
+            if table.is_empty() {
+                *table = vec![invalid; l.vertex_count];
+            }
+            l.face_verts(face)
+                .get(k)
+                .and_then(|&v| table.get_mut(v as usize))
+        } else {
+            let Some(&e) = l.face_edges_of(face).get(k) else {
+                return next;
+            };
+            if l.edge_tag(e as usize).boundary() {
+                return next;
+            }
+            let reversed = l.edge_vertices[e as usize][0] != l.face_verts(face)[k];
+            let end = ((bits & EDGE_END != 0) != reversed) as usize;
+            let _ = EDGE_BEGIN;
+            let table = &mut self.shared_edges[level];
+            if table.is_empty() {
+                *table = vec![invalid; 2 * l.edge_count()];
+            }
+            table.get_mut(2 * e as usize + end)
+        };
+        match slot {
+            Some(s) if *s == invalid => {
+                *s = next;
+                next
+            }
+            Some(s) => *s,
+            None => next,
+        }
+    }
+}
