@@ -117,6 +117,11 @@ impl<R: Real> Gregory<R> {
         }
     }
 
+    /// The corner of an isolated irregular interior patch, if it is one.
+    pub fn isolated_corner(&self) -> Option<usize> {
+        self.isolated.map(|(c, _)| c)
+    }
+
     /// The change-of-basis matrix (`GregoryConverter::Convert`).
     pub fn convert(&self) -> Matrix<R> {
         let sizes = match self.isolated {

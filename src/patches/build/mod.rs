@@ -18,6 +18,7 @@
 //! [`Error::NotYetSupported`]. A table whose patches are all regular needs
 //! no local points, whatever its end-cap type.
 
+mod bspline;
 mod corners;
 mod gregory;
 mod legacy;
@@ -287,10 +288,13 @@ impl Builder<'_> {
         if irregular_count > 0
             && !legacy
             && !(scheme == Scheme::Catmark
-                && matches!(irregular_type, PatchType::GregoryBasis | PatchType::Quads))
+                && matches!(
+                    irregular_type,
+                    PatchType::GregoryBasis | PatchType::Quads | PatchType::Regular
+                ))
         {
             return Err(Error::NotYetSupported(
-                "B-spline end caps and Loop end caps around irregular patches",
+                "Loop end caps (Gregory triangle, box-spline, linear) around irregular patches",
             ));
         }
         let mut offsets = Vec::with_capacity(self.levels.len() + 1);
@@ -352,10 +356,10 @@ impl Builder<'_> {
                 param_boundary = 0;
                 let spans = self.corner_spans(p.level, p.face);
                 let source = self.source_patch(p.level, p.face, &spans);
-                let matrix = if irregular_type == PatchType::Quads {
-                    linear::convert::<R>(&source)
-                } else {
-                    gregory::Gregory::<R>::new(&source).convert()
+                let matrix = match irregular_type {
+                    PatchType::Quads => linear::convert::<R>(&source),
+                    PatchType::Regular => bspline::convert::<R>(&source),
+                    _ => gregory::Gregory::<R>::new(&source).convert(),
                 };
                 let sources = self.source_points(p.level, p.face, &spans, &source);
                 let cvs = local.append(
