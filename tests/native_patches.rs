@@ -226,3 +226,86 @@ fn selected_face_tables_match_opensubdiv() {
     eprintln!("{t:?}");
     assert!(t.identical > 50, "{t:?}");
 }
+
+/// The limit surface from native tables (native refinement, local points,
+/// `PatchMap` and basis) against OpenSubdiv's `EvaluateBasis` on its own
+/// tables: positions and first and second derivatives within 1e-12 of the
+/// mesh's size, at u, v ∈ {0, 0.3, 0.5, 1} on every ptex face.
+#[test]
+fn native_evaluation_matches_opensubdiv() {
+    use subdiv::patches::{self, Derivatives};
+    let mut compared = 0usize;
+    for (name, mesh) in shapes::corpus() {
+        for scheme in [Scheme::Catmark, Scheme::Bilinear] {
+            let options = Options::shape_file_defaults().with_scheme(scheme);
+            for end_caps in [
+                EndCapType::GregoryBasis,
+                EndCapType::BSplineBasis,
+                EndCapType::BilinearBasis,
+            ] {
+                let po = PatchOptions::new()
+                    .max_isolation(3)
+                    .end_caps(end_caps)
+                    .double_precision(true);
+                let Ok(native) = Refiner::new(&mesh, &options) else {
+                    continue;
+                };
+                let native = native
+                    .refine_adaptive(po.refine_adaptive_options(), &[])
+                    .unwrap();
+                let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+                theirs
+                    .refine_adaptive(po.refine_adaptive_options(), &[])
+                    .unwrap();
+                let (Ok(mine), Ok(osds)) =
+                    (native.patch_table(&po, &[]), theirs.patch_table(&po, &[]))
+                else {
+                    continue;
+                };
+                let base = mesh.flat_positions::<f64>();
+                let points = native.patch_points(&mine, 3, &base).unwrap();
+                let mut locations = Vec::new();
+                for face in 0..mine.ptex_faces as u32 {
+                    for u in [0.0, 0.3, 0.5, 1.0] {
+                        for v in [0.0, 0.3, 0.5, 1.0] {
+                            locations.push((face, u, v));
+                        }
+                    }
+                }
+                let a = patches::evaluate(&mine, &points, 3, &locations, Derivatives::Second);
+                let b = osds.evaluate(&theirs, 3, &base, &locations, Derivatives::Second);
+                let case = format!("{name} {scheme:?} {end_caps:?}");
+                let (a, b) = match (a, b) {
+                    (Ok(a), Ok(b)) => (a, b),
+                    // Holes: both refuse the same location.
+                    (Err(Error::NoPatchAt { .. }), Err(Error::NoPatchAt { .. })) => continue,
+                    (a, b) => panic!("{case}: native {a:?}, osd {b:?}"),
+                };
+                let size = mesh
+                    .positions
+                    .iter()
+                    .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+                    .max(1.0);
+                for (what, x, y) in [
+                    ("point", &a.values.point, &b.values.point),
+                    ("du", &a.values.du, &b.values.du),
+                    ("dv", &a.values.dv, &b.values.dv),
+                    ("duu", &a.values.duu, &b.values.duu),
+                    ("duv", &a.values.duv, &b.values.duv),
+                    ("dvv", &a.values.dvv, &b.values.dvv),
+                ] {
+                    assert_eq!(x.len(), y.len(), "{case}: {what}");
+                    for (k, (p, q)) in x.iter().zip(y).enumerate() {
+                        assert!(
+                            (p - q).abs() <= 1e-12 * size,
+                            "{case}: {what} {k} of location {:?}: {p} against {q}",
+                            locations[k / 3]
+                        );
+                    }
+                }
+                compared += locations.len();
+            }
+        }
+    }
+    assert!(compared > 10_000, "{compared} locations compared");
+}

@@ -4,20 +4,34 @@
 //! [`PatchParam`] and its single-crease sharpness — and the options of
 //! `Far::PatchTableFactory` ([`PatchOptions`]).
 //!
-//! The types here are plain data shared by the engines. Today the `osd`
-//! engine builds them (`osd::TopologyRefiner::patch_table`); the native
-//! engine locates (ptex face, u, v) in them ([`PatchMap`]) and evaluates the
-//! basis of their patches ([`evaluate_basis`]: B-spline, Gregory, bilinear
-//! and linear patches) but does not build patch tables yet.
+//! The types here are plain data shared by the engines. Both build them
+//! from a feature-adaptive refinement — natively
+//! ([`AdaptiveRefiner::patch_table`](crate::refiner::AdaptiveRefiner::patch_table),
+//! identical to OpenSubdiv's tables for Catmull-Clark and bilinear meshes
+//! with every end-cap type, and for Loop meshes whose patches are all
+//! regular) and through the bridge (`osd::TopologyRefiner::patch_table`).
+//! The native engine locates (ptex face, u, v) in them ([`PatchMap`]),
+//! evaluates the basis of their patches ([`evaluate_basis`]: B-spline,
+//! Gregory, bilinear and linear patches) and the limit surface at
+//! locations ([`evaluate`], over
+//! [`AdaptiveRefiner::patch_points`](crate::refiner::AdaptiveRefiner::patch_points)).
+//!
+//! # Files
+//! * this file: the types and options;
+//! * `build/`: the native patch-table factory;
+//! * `param.rs`, `map.rs`, `basis.rs`, `eval.rs`: parameterization, patch
+//!   lookup, basis functions, evaluation at locations.
 
 mod basis;
 mod build;
+mod eval;
 mod map;
 mod param;
 
 use crate::stencil::StencilTable;
 
 pub use basis::evaluate_basis;
+pub use eval::evaluate;
 pub use map::PatchMap;
 pub use param::PatchParam;
 

@@ -1,18 +1,16 @@
 //! `subdiv patches` and `subdiv eval`: OpenSubdiv's patch table of a mesh
 //! (`Far::PatchTableFactory`) as a summary or JSON, and the limit surface at
-//! (ptex face, u, v) locations (`Far::PatchMap` and `EvaluateBasis`). Only
-//! the osd engine builds patch tables today; `--engine native` says so.
+//! (ptex face, u, v) locations (`Far::PatchMap` and `EvaluateBasis`), by
+//! the native engine (the default) or OpenSubdiv's (`--engine osd`).
 
 use clap::Args;
-#[cfg(feature = "osd")]
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use subdiv::patches::{EndCapType, PatchOptions};
+use subdiv::patches::{Derivatives, EndCapType, PatchOptions, PatchTable, SurfaceSamples};
 use subdiv::{Engine, Precision};
 
 use crate::Failure;
 use crate::args::{MeshArgs, parse, parse_level};
-#[cfg(feature = "osd")]
 use crate::output::write_output;
 
 /// A location: ptex face, u, v.
@@ -38,9 +36,9 @@ pub(crate) struct PatchArgs {
     /// Infinitely sharp patches (useInfSharpPatch).
     #[arg(long)]
     pub(crate) inf_sharp: bool,
-    /// The engine that builds the table: osd (the default while the native engine
-    /// has no patch tables) or native (refused until it has).
-    #[arg(long, default_value = "osd", value_parser = parse::<Engine>)]
+    /// The engine that builds and evaluates the table: native (identical tables to
+    /// OpenSubdiv's; Loop meshes with irregular patches not yet) or osd.
+    #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
     pub(crate) engine: Engine,
 }
 
@@ -107,7 +105,6 @@ impl PatchArgs {
             .inf_sharp_patch(self.inf_sharp))
     }
 
-    #[cfg(feature = "osd")]
     fn end_cap_name(&self) -> &'static str {
         match self.end_caps {
             EndCapType::None => "no",
@@ -119,88 +116,126 @@ impl PatchArgs {
     }
 }
 
-/// The input, refined adaptively by OpenSubdiv, and its patch table.
-#[cfg(feature = "osd")]
+/// The input refined adaptively, and its patch table, by either engine.
 struct Built {
     name: String,
     scheme: subdiv::Scheme,
     mesh: subdiv::Mesh,
-    refiner: subdiv::osd::TopologyRefiner,
-    table: subdiv::osd::OsdPatchTable,
+    tables: Tables,
 }
 
-#[cfg(feature = "osd")]
+/// The refinement and the table of the engine asked for.
+enum Tables {
+    Native {
+        refiner: subdiv::refiner::AdaptiveRefiner,
+        table: PatchTable,
+    },
+    #[cfg(feature = "osd")]
+    Osd {
+        refiner: subdiv::osd::TopologyRefiner,
+        table: subdiv::osd::OsdPatchTable,
+    },
+}
+
+impl Built {
+    fn table(&self) -> &PatchTable {
+        match &self.tables {
+            Tables::Native { table, .. } => table,
+            #[cfg(feature = "osd")]
+            Tables::Osd { table, .. } => table.table(),
+        }
+    }
+
+    fn engine(&self) -> &'static str {
+        match &self.tables {
+            Tables::Native { .. } => "native",
+            #[cfg(feature = "osd")]
+            Tables::Osd { .. } => "osd",
+        }
+    }
+
+    /// The limit surface at `locations` (positions, and derivatives when
+    /// asked).
+    fn evaluate(
+        &self,
+        locations: &[Location],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples, subdiv::Error> {
+        let base = self.mesh.flat_positions::<f64>();
+        match &self.tables {
+            Tables::Native { refiner, table } => {
+                let points = refiner.patch_points(table, 3, &base)?;
+                subdiv::patches::evaluate(table, &points, 3, locations, derivatives)
+            }
+            #[cfg(feature = "osd")]
+            Tables::Osd { refiner, table } => {
+                table.evaluate(refiner, 3, &base, locations, derivatives)
+            }
+        }
+    }
+}
+
 fn build(args: &PatchArgs) -> Result<Built, Failure> {
     let options = args.options()?;
-    if args.engine == Engine::Native {
-        return Err(Failure::Unavailable(
-            "the native engine has no patch tables yet: use --engine osd".into(),
-        ));
-    }
     let (name, mesh, mesh_options) = crate::args::load(&args.mesh)?;
     let in_input = |e: subdiv::Error| Failure::from(e).in_input(&name);
-    let mut refiner = subdiv::osd::TopologyRefiner::new(&mesh, &mesh_options).map_err(in_input)?;
-    refiner
-        .refine_adaptive(
-            options
-                .refine_adaptive_options()
-                .faces_first(args.mesh.faces_first),
-            &[],
-        )
-        .map_err(in_input)?;
-    let table = refiner.patch_table(&options, &[]).map_err(in_input)?;
+    let adaptive = options
+        .refine_adaptive_options()
+        .faces_first(args.mesh.faces_first);
+    let tables = match args.engine {
+        Engine::Native => {
+            let refiner = subdiv::refiner::Refiner::new(&mesh, &mesh_options)
+                .and_then(|r| r.refine_adaptive(adaptive, &[]))
+                .map_err(in_input)?;
+            let table = refiner.patch_table(&options, &[]).map_err(in_input)?;
+            Tables::Native { refiner, table }
+        }
+        #[cfg(feature = "osd")]
+        Engine::Osd => {
+            let mut refiner =
+                subdiv::osd::TopologyRefiner::new(&mesh, &mesh_options).map_err(in_input)?;
+            refiner.refine_adaptive(adaptive, &[]).map_err(in_input)?;
+            let table = refiner.patch_table(&options, &[]).map_err(in_input)?;
+            Tables::Osd { refiner, table }
+        }
+        #[cfg(not(feature = "osd"))]
+        Engine::Osd => return Err(Failure::from(subdiv::Error::OsdUnavailable)),
+    };
     Ok(Built {
         name,
         scheme: mesh_options.scheme,
         mesh,
-        refiner,
-        table,
+        tables,
     })
-}
-
-#[cfg(not(feature = "osd"))]
-fn unavailable() -> Failure {
-    Failure::Unavailable(
-        "patch tables come from the osd engine, which this build does not have (feature osd)"
-            .into(),
-    )
 }
 
 /// `subdiv patches`.
 pub(crate) fn patches(args: &PatchesArgs) -> Result<(), Failure> {
-    #[cfg(not(feature = "osd"))]
-    {
-        args.patch.options()?;
-        Err(unavailable())
+    let b = build(&args.patch)?;
+    let t = b.table();
+    let arrays: Vec<String> = t
+        .arrays
+        .iter()
+        .map(|a| format!("{} {}", a.patch_type.name(), a.len()))
+        .collect();
+    println!(
+        "{}: {} patches ({}, isolation {}, {} end caps): {} patches in {} arrays: {}; {} local points",
+        b.name,
+        b.scheme,
+        b.engine(),
+        args.patch.isolation,
+        args.patch.end_cap_name(),
+        t.patch_count(),
+        t.arrays.len(),
+        arrays.join(", "),
+        t.local_points
+    );
+    if let Some(path) = &args.json {
+        write_json(path, args.patch.mesh.input.as_deref(), t)?;
     }
-    #[cfg(feature = "osd")]
-    {
-        let b = build(&args.patch)?;
-        let t = b.table.table();
-        let arrays: Vec<String> = t
-            .arrays
-            .iter()
-            .map(|a| format!("{} {}", a.patch_type.name(), a.len()))
-            .collect();
-        println!(
-            "{}: {} patches (osd, isolation {}, {} end caps): {} patches in {} arrays: {}; {} local points",
-            b.name,
-            b.scheme,
-            args.patch.isolation,
-            args.patch.end_cap_name(),
-            t.patch_count(),
-            t.arrays.len(),
-            arrays.join(", "),
-            t.local_points
-        );
-        if let Some(path) = &args.json {
-            write_json(path, args.patch.mesh.input.as_deref(), t)?;
-        }
-        Ok(())
-    }
+    Ok(())
 }
 
-#[cfg(feature = "osd")]
 fn write_json(
     path: &Path,
     input: Option<&Path>,
@@ -284,68 +319,57 @@ fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
 /// `subdiv eval`.
 pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
     let locations = read_locations(&args.at)?;
-    #[cfg(not(feature = "osd"))]
+    let b = build(&args.patch)?;
+    let ptex_faces = b.table().ptex_faces;
+    // A location off the mesh or in a hole is an error naming its line.
+    let at = |line: usize, what: String| {
+        Failure::Message(format!("{}:{line}: {what}", args.at.display()))
+    };
+    if let Some(&(line, (face, ..))) = locations
+        .iter()
+        .find(|(_, (face, ..))| *face as usize >= ptex_faces)
     {
-        let _ = locations;
-        args.patch.options()?;
-        Err(unavailable())
+        return Err(at(
+            line,
+            format!(
+                "ptex face {face} does not exist ({} has {ptex_faces})",
+                b.name
+            ),
+        ));
     }
-    #[cfg(feature = "osd")]
-    {
-        use subdiv::patches::Derivatives;
-        let b = build(&args.patch)?;
-        let ptex_faces = b.table.table().ptex_faces;
-        // A location off the mesh or in a hole is an error naming its line.
-        let at = |line: usize, what: String| {
-            Failure::Message(format!("{}:{line}: {what}", args.at.display()))
-        };
-        if let Some(&(line, (face, ..))) = locations
-            .iter()
-            .find(|(_, (face, ..))| *face as usize >= ptex_faces)
-        {
+    let points: Vec<Location> = locations.iter().map(|&(_, l)| l).collect();
+    let derivatives = if args.derivatives {
+        Derivatives::First
+    } else {
+        Derivatives::None
+    };
+    let s = match b.evaluate(&points, derivatives) {
+        Ok(s) => s,
+        Err(subdiv::Error::NoPatchAt { face, u, v }) => {
+            let line = locations
+                .iter()
+                .find(|(_, l)| *l == (face, u, v))
+                .map_or(0, |&(line, _)| line);
             return Err(at(
                 line,
-                format!(
-                    "ptex face {face} does not exist ({} has {ptex_faces})",
-                    b.name
-                ),
+                format!("ptex face {face} at ({u}, {v}) is in a hole: no surface there"),
             ));
         }
-        let points: Vec<Location> = locations.iter().map(|&(_, l)| l).collect();
-        let derivatives = if args.derivatives {
-            Derivatives::First
-        } else {
-            Derivatives::None
-        };
-        let base = b.mesh.flat_positions::<f64>();
-        let s = match b.table.evaluate(&b.refiner, 3, &base, &points, derivatives) {
-            Ok(s) => s,
-            Err(subdiv::Error::NoPatchAt { face, u, v }) => {
-                let line = locations
-                    .iter()
-                    .find(|(_, l)| *l == (face, u, v))
-                    .map_or(0, |&(line, _)| line);
-                return Err(at(
-                    line,
-                    format!("ptex face {face} at ({u}, {v}) is in a hole: no surface there"),
-                ));
+        Err(e) => return Err(Failure::from(e).in_input(&b.name)),
+    };
+    let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
+    write_output(&path, args.patch.mesh.input.as_deref(), |w| {
+        let mut w = std::io::BufWriter::new(w);
+        let v = &s.values;
+        for i in 0..points.len() {
+            let mut row: Vec<f64> = v.point[3 * i..3 * i + 3].to_vec();
+            if args.derivatives {
+                row.extend_from_slice(&v.du[3 * i..3 * i + 3]);
+                row.extend_from_slice(&v.dv[3 * i..3 * i + 3]);
             }
-            Err(e) => return Err(Failure::from(e).in_input(&b.name)),
-        };
-        let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
-        write_output(&path, args.patch.mesh.input.as_deref(), |w| {
-            let mut w = std::io::BufWriter::new(w);
-            let v = &s.values;
-            for i in 0..points.len() {
-                let mut row: Vec<f64> = v.point[3 * i..3 * i + 3].to_vec();
-                if args.derivatives {
-                    row.extend_from_slice(&v.du[3 * i..3 * i + 3]);
-                    row.extend_from_slice(&v.dv[3 * i..3 * i + 3]);
-                }
-                let text: Vec<String> = row.iter().map(|x| format!("{x:.16e}")).collect();
-                writeln!(w, "{}", text.join(" "))?;
-            }
-            w.flush()
-        })
-    }
+            let text: Vec<String> = row.iter().map(|x| format!("{x:.16e}")).collect();
+            writeln!(w, "{}", text.join(" "))?;
+        }
+        w.flush()
+    })
 }
