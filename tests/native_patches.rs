@@ -9,7 +9,7 @@
 
 use subdiv::patches::{EndCapType, PatchOptions, PatchTable};
 use subdiv::refiner::Refiner;
-use subdiv::{BoundaryInterpolation, Error, Mesh, Options, Scheme, osd, shapes};
+use subdiv::{AdaptiveOptions, BoundaryInterpolation, Error, Mesh, Options, Scheme, osd, shapes};
 
 /// What one comparison found.
 #[derive(Default, Debug)]
@@ -22,6 +22,8 @@ struct Tally {
     refused_both: usize,
     osd_unsafe: usize,
     local_points: usize,
+    carried_sharpness: usize,
+    carried_boundary: usize,
 }
 
 fn compare(
@@ -32,10 +34,31 @@ fn compare(
     faces: &[u32],
     t: &mut Tally,
 ) {
+    compare_refined(
+        name,
+        mesh,
+        options,
+        po.refine_adaptive_options(),
+        po,
+        faces,
+        t,
+    );
+}
+
+/// As [`compare`], with the refinement's own adaptive options (which
+/// OpenSubdiv does not require to match the table's).
+fn compare_refined(
+    name: &str,
+    mesh: &Mesh,
+    options: &Options,
+    ao: AdaptiveOptions,
+    po: &PatchOptions,
+    faces: &[u32],
+    t: &mut Tally,
+) {
     let Ok(native) = Refiner::new(mesh, options) else {
         return;
     };
-    let ao = po.refine_adaptive_options();
     let Ok(native) = native.refine_adaptive(ao, faces) else {
         return;
     };
@@ -58,6 +81,15 @@ fn compare(
                 .any(|a| a.sharpness.iter().any(|&s| s > 0.0))
             {
                 t.single_crease += 1;
+            }
+            // OpenSubdiv's values carried over from the previous patch: the
+            // sharpness of an irregular patch, the boundary bits of a legacy
+            // Gregory patch.
+            for arr in &a.arrays {
+                for (p, &s) in arr.params.iter().zip(&arr.sharpness) {
+                    t.carried_sharpness += usize::from(!p.is_regular() && s > 0.0);
+                    t.carried_boundary += usize::from(!p.is_regular() && p.boundary() != 0);
+                }
             }
         }
         (Err(Error::NotYetSupported(_)), Ok(b)) => {
@@ -202,11 +234,28 @@ fn corpus_tables_match_opensubdiv() {
             }
         }
     }
+    // Tables whose options differ from the refinement's: a deeper maximum
+    // isolation lets last-level patches be single-crease ones, whose
+    // sharpness OpenSubdiv carries over to the irregular patch after them.
+    for (name, mesh) in shapes::corpus() {
+        let options = Options::shape_file_defaults();
+        for end_caps in [EndCapType::GregoryBasis, EndCapType::LegacyGregory] {
+            for isolation in [1, 2] {
+                let ao = AdaptiveOptions::new(isolation).single_crease_patch(true);
+                let po = PatchOptions::new()
+                    .max_isolation(isolation + 2)
+                    .end_caps(end_caps)
+                    .single_crease_patch(true);
+                compare_refined(&name, &mesh, &options, ao, &po, &[], &mut t);
+            }
+        }
+    }
     eprintln!("{t:?}");
     // Every kind of table must really be compared.
     assert!(t.identical > 500 && t.patches > 100_000, "{t:?}");
     assert!(t.legacy_irregular > 50 && t.single_crease > 10, "{t:?}");
     assert!(t.local_points > 100_000, "{t:?}");
+    assert!(t.carried_sharpness > 0 && t.carried_boundary > 0, "{t:?}");
 }
 
 /// Tables of selected faces, depth first under each face.

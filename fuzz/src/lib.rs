@@ -959,7 +959,7 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
             ),
         }
     }
-    check_osd_patches(&theirs, case, adaptive);
+    check_osd_patches(&native, &theirs, case, adaptive);
 }
 
 /// OpenSubdiv's patch table of an adaptive refinement, through the bridge:
@@ -972,8 +972,13 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
 /// interior vertex of valence 2) or consistent; every basis
 /// is a partition of unity; the native `PatchMap` finds the same patches and
 /// the native basis gives the same weights (to 1e-12) where it exists.
+/// The native table is built first, whatever OpenSubdiv makes of the case,
+/// without panicking; where both build one they are identical (local-point
+/// stencils bit for bit), and the native limit surface is finite at the
+/// same locations.
 #[cfg(feature = "osd")]
 fn check_osd_patches(
+    native: &subdiv::refiner::AdaptiveRefiner,
     theirs: &subdiv::osd::TopologyRefiner,
     case: &MeshCase,
     adaptive: &AdaptiveCase,
@@ -1005,6 +1010,24 @@ fn check_osd_patches(
         v.sort_unstable();
         v.windows(2).any(|w| w[0] == w[1])
     });
+    let mine = native.patch_table(&options, &adaptive.faces);
+    let base = case.mesh.flat_positions::<f64>();
+    if let Ok((t, points)) = mine.as_ref().map_err(|_| ()).and_then(|t| {
+        native
+            .patch_points(t, 3, &base)
+            .map(|p| (t, p))
+            .map_err(|_| ())
+    }) {
+        let locations: Vec<(u32, f64, f64)> = (0..t.ptex_faces.min(8) as u32)
+            .map(|f| (f, 0.25, 0.75))
+            .collect();
+        if let Ok(s) = subdiv::patches::evaluate(t, &points, 3, &locations, Derivatives::First) {
+            assert!(
+                s.values.point.iter().all(|x| x.is_finite()),
+                "native limit surface not finite"
+            );
+        }
+    }
     let patches = match theirs.patch_table(&options, &adaptive.faces) {
         Ok(p) => p,
         Err(e) => {
@@ -1025,6 +1048,15 @@ fn check_osd_patches(
     };
     assert!(!repeats, "a face repeating a vertex was not refused");
     let t = patches.table();
+    match mine {
+        Ok(m) => assert!(m == *t, "native patch table differs from OpenSubdiv's"),
+        Err(subdiv::Error::NotYetSupported(_)) => assert_eq!(
+            case.options.scheme,
+            subdiv::Scheme::Loop,
+            "native patch table not built"
+        ),
+        Err(e) => panic!("native patch table refused: {e}"),
+    }
     let points = (0..=theirs.max_level())
         .map(|l| theirs.level_counts(l).map_or(0, |c| c.vertices))
         .sum::<usize>()
