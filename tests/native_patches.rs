@@ -358,3 +358,65 @@ fn native_evaluation_matches_opensubdiv() {
     }
     assert!(compared > 10_000, "{compared} locations compared");
 }
+
+/// Found by fuzzing: two triangles folded onto each other (interior
+/// vertices of valence 2, one of them a dart once creased), bilinear end
+/// caps. The source patch of an end cap next to such corners names a point
+/// past its own count; OpenSubdiv writes that point into its buffer and its
+/// matrix reads it back, and the native table must do the same to be
+/// identical.
+#[test]
+fn folded_triangles_with_bilinear_end_caps_match_opensubdiv() {
+    use glam::DVec3;
+    use subdiv::{Corner, Crease, CreasingMethod, FVarLinearInterpolation};
+    let positions = (0..5)
+        .map(|i| DVec3::new(i as f64, (i * i) as f64 * 0.5, 1.0 - i as f64))
+        .collect();
+    let mut mesh = Mesh::from_faces(positions, &[&[0, 3, 1], &[1, 3, 0]]);
+    for (vertices, sharpness) in [
+        ([3, 1], 1.5),
+        ([3, 1], 3.25),
+        ([0, 0], 0.5),
+        ([3, 1], 11.0),
+        ([1, 0], 1e-7),
+    ] {
+        mesh.creases.push(Crease {
+            vertices,
+            sharpness,
+        });
+    }
+    for (vertex, sharpness) in [(2, 0.5), (0, 0.0), (4, 0.0)] {
+        mesh.corners.push(Corner { vertex, sharpness });
+    }
+    mesh.holes.push(0);
+    let options = Options::shape_file_defaults()
+        .with_boundary(BoundaryInterpolation::None)
+        .with_fvar(FVarLinearInterpolation::Boundaries)
+        .with_creasing(CreasingMethod::Chaikin);
+    let ao = AdaptiveOptions::new(4)
+        .secondary(2)
+        .single_crease_patch(true)
+        .inf_sharp_patch(true)
+        .consider_fvar(true)
+        .faces_first(true);
+    let po = PatchOptions {
+        legacy_sharp_corner_patches: false,
+        ..PatchOptions::new()
+            .max_isolation(4)
+            .end_caps(EndCapType::BilinearBasis)
+            .single_crease_patch(true)
+            .inf_sharp_patch(true)
+    };
+    let mut t = Tally::default();
+    compare_refined(
+        "folded triangles",
+        &mesh,
+        &options,
+        ao,
+        &po,
+        &[1, 0],
+        &mut t,
+    );
+    assert_eq!(t.identical, 1, "{t:?}");
+    assert!(t.local_points > 0, "{t:?}");
+}

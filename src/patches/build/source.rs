@@ -196,7 +196,17 @@ impl Builder<'_> {
         patch: &SourcePatch,
     ) -> Vec<u32> {
         let l = &self.levels[level];
-        let mut points = vec![0u32; patch.points];
+        // Next to interior corners of valence 2 (a dart among them), a
+        // ring can name a point past the patch's count; OpenSubdiv writes it
+        // into its buffer all the same and its matrix reads it back: so
+        // does this.
+        let rings: Vec<Vec<usize>> = (0..patch.size).map(|c| patch.ring(c)).collect();
+        let len = rings
+            .iter()
+            .flatten()
+            .map(|&i| i + 1)
+            .fold(patch.points, usize::max);
+        let mut points = vec![0u32; len];
         for (c, &v) in l.face_verts(f).iter().enumerate().take(patch.size) {
             let from_level = if spans[c].is_assigned() {
                 self.partial_ring(level, v, &spans[c])
@@ -205,10 +215,8 @@ impl Builder<'_> {
             } else {
                 self.tri_ring(level, v)
             };
-            for (&local, &vertex) in patch.ring(c).iter().zip(&from_level) {
-                if let Some(p) = points.get_mut(local) {
-                    *p = vertex;
-                }
+            for (&local, &vertex) in rings[c].iter().zip(&from_level) {
+                points[local] = vertex;
             }
         }
         points
