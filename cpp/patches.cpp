@@ -383,4 +383,54 @@ int sdv_patches_evaluate_basis(const sdv_patches *p, int32_t array, int32_t patc
     });
 }
 
+int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size_t num_points, int32_t width,
+                                const int32_t *faces, const double *us, const double *vs, size_t n,
+                                double *out, double *du, double *dv, double *duu, double *duv, double *dvv,
+                                char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        sdv_patches const &pp = need_patches(p);
+        Far::PatchTable const &t = *pp.table;
+        if (width <= 0) fail("width " + str(width) + " is not positive");
+        if (n > 0 && (!faces || !us || !vs || !out)) fail("null argument");
+        if ((du == nullptr) != (dv == nullptr)) fail("first derivatives come in pairs");
+        if ((duu == nullptr) != (duv == nullptr) || (duu == nullptr) != (dvv == nullptr))
+            fail("second derivatives come in threes");
+        if (duu && !du) fail("second derivatives need the first");
+        if (num_points > 0 && !points) fail("null points");
+        for (int a = 0; a < t.GetNumPatchArrays(); ++a)
+            if (t.GetNumPatches(a) > 0 && !evaluable(t.GetPatchArrayDescriptor(a).GetType()))
+                fail("patches of type " + str((int)t.GetPatchArrayDescriptor(a).GetType()) +
+                     " cannot be evaluated (EvaluateBasis has no basis for them)");
+        for (Far::Index cv : t.GetPatchControlVerticesTable())
+            if (cv < 0 || (size_t)cv >= num_points)
+                fail("a patch names point " + str(cv) + ", beyond the " + str((long long)num_points) + " given");
+        int ptex = t.GetNumPtexFaces();
+        size_t w = (size_t)width;
+        double bw[6][20];
+        double *outs[6] = {out, du, dv, duu, duv, dvv};
+        int kinds = duu ? 6 : du ? 3 : 1;
+        for (size_t i = 0; i < n; ++i) {
+            if (faces[i] < 0 || faces[i] >= ptex)
+                fail("location " + str((long long)i) + ": ptex face " + str(faces[i]) + " does not exist (" +
+                     str(ptex) + " ptex faces)");
+            check_unit(us[i], "u");
+            check_unit(vs[i], "v");
+            Far::PatchTable::PatchHandle const *h = pp.map->FindPatch(faces[i], us[i], vs[i]);
+            if (!h) fail("location " + str((long long)i) + " is in a hole");
+            t.EvaluateBasis<double>(*h, us[i], vs[i], bw[0], du ? bw[1] : nullptr, du ? bw[2] : nullptr,
+                                    duu ? bw[3] : nullptr, duu ? bw[4] : nullptr, duu ? bw[5] : nullptr);
+            Far::ConstIndexArray cvs = t.GetPatchVertices(*h);
+            for (int k = 0; k < kinds; ++k) {
+                double *o = outs[k] + i * w;
+                for (size_t j = 0; j < w; ++j) o[j] = 0.0;
+                for (int c = 0; c < cvs.size(); ++c) {
+                    double const *src = points + (size_t)cvs[c] * w;
+                    double wt = bw[k][c];
+                    for (size_t j = 0; j < w; ++j) o[j] += wt * src[j];
+                }
+            }
+        }
+    });
+}
+
 }  // extern "C"

@@ -415,6 +415,23 @@ int sdv_patches_evaluate_basis(const sdv_patches *p, int32_t array, int32_t patc
                                double *w, double *du, double *dv, double *duu, double *duv,
                                double *dvv, size_t cap, char *err, size_t err_len);
 
+/*
+ * The limit surface at n locations (faces[i], us[i], vs[i]), as far
+ * tutorial 5_1 computes it: for each, PatchMap::FindPatch,
+ * PatchTable::EvaluateBasis<double> and the weighted sum of the patch's
+ * control points, read from `points` (num_points points of `width` values:
+ * every level's vertices, then the local points). Outputs hold n * width
+ * values each; du and dv may be NULL (together), duu, duv and dvv too (and
+ * need du and dv). Refused before anything is
+ * evaluated: a control vertex beyond num_points, a patch type without a
+ * basis; while evaluating: a location off the ptex faces or the unit
+ * square, or in a hole (the error names the location's index).
+ */
+int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size_t num_points, int32_t width,
+                                const int32_t *faces, const double *us, const double *vs, size_t n,
+                                double *out, double *du, double *dv, double *duu, double *duv, double *dvv,
+                                char *err, size_t err_len);
+
 #ifdef __cplusplus
 }
 #endif

@@ -26,7 +26,10 @@ printed by the product:
 - issue #23, adaptive refinement: every adaptive row ("adaptive topology
   (isolation N)", "adaptive positions (f32, isolation N)") at least 3x
   OpenSubdiv (the target is set for one thread; runs on more threads are
-  judged against the same 3x).
+  judged against the same 3x);
+- issue #24, the limit surface: the rows of the same section "patch table +
+  PatchMap (isolation 3)" and "limit evaluation (N locations, ...)" at least
+  3x OpenSubdiv likewise.
 
 Prints one line per target and exits 1 when any is not met (2 on bad input).
 """

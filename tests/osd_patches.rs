@@ -734,3 +734,73 @@ fn native_patch_map_matches_find_patch() {
     }
     assert!(found > 10_000, "{found}");
 }
+
+/// `OsdPatchTable::evaluate_points` (one call, far tutorial 5_1's loop) over
+/// the native engine's points gives OpenSubdiv's own evaluation bit for bit
+/// (the refined points and local points are identical), the native
+/// evaluation to 1e-12, and refuses what it cannot evaluate.
+#[test]
+fn evaluate_points_is_the_tutorial_loop() {
+    use subdiv::patches;
+    let mut mesh = shapes::cube();
+    mesh.holes.push(4);
+    let options = PatchOptions::new().max_isolation(3).double_precision(true);
+    let native = Refiner::new(&mesh, &Options::default())
+        .unwrap()
+        .refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    let (r, t) = {
+        let mut r = osd::TopologyRefiner::new(&mesh, &Options::default()).unwrap();
+        r.refine_adaptive(options.refine_adaptive_options(), &[])
+            .unwrap();
+        let t = r.patch_table(&options, &[]).unwrap();
+        (r, t)
+    };
+    let table = native.patch_table(&options, &[]).unwrap();
+    let base = mesh.flat_positions::<f64>();
+    let points = native.patch_points(&table, 3, &base).unwrap();
+    let locations: Vec<(u32, f64, f64)> = [0u32, 1, 2, 3, 5]
+        .iter()
+        .flat_map(|&f| [(f, 0.1, 0.9), (f, 0.5, 0.5), (f, 1.0, 0.0), (f, 0.75, 0.3)])
+        .collect();
+    for d in [Derivatives::None, Derivatives::First, Derivatives::Second] {
+        let one_call = t.evaluate_points(&points, 3, &locations, d).unwrap();
+        let per_location = t.evaluate(&r, 3, &base, &locations, d).unwrap();
+        assert_eq!(one_call, per_location, "{d:?}");
+        let mine = patches::evaluate(&table, &points, 3, &locations, d).unwrap();
+        for (a, b) in [
+            (&mine.values.point, &one_call.values.point),
+            (&mine.values.du, &one_call.values.du),
+            (&mine.values.dvv, &one_call.values.dvv),
+        ] {
+            assert_eq!(a.len(), b.len());
+            assert!(a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12));
+        }
+    }
+    // Face 4 is a hole: the error names the location.
+    let e = t
+        .evaluate_points(
+            &points,
+            3,
+            &[(0, 0.5, 0.5), (4, 0.5, 0.5)],
+            Derivatives::None,
+        )
+        .unwrap_err();
+    assert!(e.to_string().contains("location 1 is in a hole"), "{e}");
+    assert!(
+        t.evaluate_points(&points, 3, &[(6, 0.5, 0.5)], Derivatives::None)
+            .is_err()
+    );
+    assert!(
+        t.evaluate_points(&points, 3, &[(0, 1.5, 0.5)], Derivatives::None)
+            .is_err()
+    );
+    assert!(
+        t.evaluate_points(&points[..30], 3, &locations, Derivatives::None)
+            .is_err()
+    );
+    assert!(
+        t.evaluate_points(&points, 0, &locations, Derivatives::None)
+            .is_err()
+    );
+}

@@ -81,6 +81,25 @@ impl TopologyRefiner {
         options: &PatchOptions,
         selected_faces: &[u32],
     ) -> Result<OsdPatchTable> {
+        let mut out = self.create_patch_table(options, selected_faces)?;
+        out.table = out.read()?;
+        Ok(out)
+    }
+
+    /// Builds OpenSubdiv's patch table (`PatchTableFactory::Create`) and
+    /// its `PatchMap`, and drops them without reading them back: what the
+    /// two cost, the benchmark's reference for the native factory. Refused
+    /// as [`TopologyRefiner::patch_table`].
+    pub fn build_patch_table(&self, options: &PatchOptions, selected_faces: &[u32]) -> Result<()> {
+        self.create_patch_table(options, selected_faces).map(drop)
+    }
+
+    /// The table built by OpenSubdiv, not read yet.
+    fn create_patch_table(
+        &self,
+        options: &PatchOptions,
+        selected_faces: &[u32],
+    ) -> Result<OsdPatchTable> {
         if options.max_isolation_level > 10 {
             return Err(Error::Level {
                 level: options.max_isolation_level,
@@ -158,13 +177,11 @@ impl TopologyRefiner {
             )
         })?;
         let raw = NonNull::new(raw).ok_or_else(|| internal("the shim returned no patch table"))?;
-        let mut out = OsdPatchTable {
+        Ok(OsdPatchTable {
             raw,
             table: PatchTable::default(),
             options: options.clone(),
-        };
-        out.table = out.read()?;
-        Ok(out)
+        })
     }
 }
 
@@ -415,6 +432,108 @@ impl OsdPatchTable {
             duv: take(&w[4], second),
             dvv: take(&w[5], second),
         })
+    }
+
+    /// The limit surface at `locations` (ptex face, u, v) for data of
+    /// `width` components at the points this table's control vertices
+    /// index (`points`: every level's vertices, base first, then the local
+    /// points — `AdaptiveRefiner::patch_points` gives them natively), in
+    /// one call into OpenSubdiv: for each location `PatchMap::FindPatch`,
+    /// `PatchTable::EvaluateBasis<double>` and the weighted sum of the
+    /// patch's control points, far tutorial 5_1's loop. The benchmark's
+    /// reference for native evaluation.
+    ///
+    /// Refused: `width` 0, `points` not a whole number of points or too few
+    /// for the table, a location outside the mesh or its unit square or on
+    /// a hole (an error naming the location's index), a table with patches
+    /// without a basis (legacy Gregory).
+    pub fn evaluate_points(
+        &self,
+        points: &[f64],
+        width: usize,
+        locations: &[(u32, f64, f64)],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        if points.len() % width != 0 {
+            return Err(Error::NotWholeElements {
+                buffer: Buffer::Source,
+                len: points.len(),
+                width,
+            });
+        }
+        let w32 = to_i32(width, "width")?;
+        let n = locations.len();
+        let len = n.checked_mul(width).ok_or(Error::TooLarge {
+            what: "evaluated values",
+            count: usize::MAX,
+            bits: usize::BITS,
+        })?;
+        let faces: Vec<i32> = locations
+            .iter()
+            .map(|&(f, ..)| i32::try_from(f).unwrap_or(i32::MAX))
+            .collect();
+        let us: Vec<f64> = locations.iter().map(|&(_, u, _)| u).collect();
+        let vs: Vec<f64> = locations.iter().map(|&(.., v)| v).collect();
+        let first = derivatives != Derivatives::None;
+        let second = derivatives == Derivatives::Second;
+        let mut out = Partials {
+            point: try_vec(0.0, len)?,
+            ..Partials::default()
+        };
+        for (on, v) in [
+            (first, &mut out.du),
+            (first, &mut out.dv),
+            (second, &mut out.duu),
+            (second, &mut out.duv),
+            (second, &mut out.dvv),
+        ] {
+            if on {
+                *v = try_vec(0.0, len)?;
+            }
+        }
+        let ptr = |v: &mut Vec<f64>| {
+            if v.is_empty() {
+                std::ptr::null_mut()
+            } else {
+                v.as_mut_ptr()
+            }
+        };
+        let ptrs = [
+            out.point.as_mut_ptr(),
+            ptr(&mut out.du),
+            ptr(&mut out.dv),
+            ptr(&mut out.duu),
+            ptr(&mut out.duv),
+            ptr(&mut out.dvv),
+        ];
+        let mut err = ErrBuf::new();
+        // SAFETY: the table is live; `points` holds `points.len() / width`
+        // points of `width` values; the location arrays hold `n` entries and
+        // every non-null output `n * width` values, as passed.
+        err.run(|e| unsafe {
+            ffi::sdv_patches_evaluate_points(
+                self.raw.as_ptr(),
+                points.as_ptr(),
+                points.len() / width,
+                w32,
+                faces.as_ptr(),
+                us.as_ptr(),
+                vs.as_ptr(),
+                n,
+                ptrs[0],
+                ptrs[1],
+                ptrs[2],
+                ptrs[3],
+                ptrs[4],
+                ptrs[5],
+                e,
+                ERR_LEN,
+            )
+        })?;
+        Ok(SurfaceSamples { width, values: out })
     }
 
     /// The limit surface at `locations` (ptex face, u, v) for vertex data of

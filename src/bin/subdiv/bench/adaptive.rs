@@ -1,18 +1,30 @@
 //! The adaptive section of `subdiv bench`: feature-adaptive refinement
 //! (`Refiner::refine_adaptive` against OpenSubdiv's `RefineAdaptive`) at
-//! isolation levels 3 and 6.
+//! isolation levels 3 and 6, and at isolation 3 the limit surface: patch
+//! tables (`AdaptiveRefiner::patch_table` against
+//! `PatchTableFactory::Create`) and evaluation at many locations
+//! (`patches::evaluate` against far tutorial 5_1's `FindPatch` +
+//! `EvaluateBasis` loop).
 
 use super::results::{AdaptiveRow, Row};
 use super::timing::interleaved;
 use crate::Failure;
 use std::hint::black_box;
 use subdiv::options::{AdaptiveOptions, BoundaryInterpolation, FVarLinearInterpolation, Options};
+use subdiv::patches::{self, Derivatives, PatchMap, PatchOptions};
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
 use subdiv::shapes::BenchShape;
 use subdiv::{Result, osd, shapes};
 
 /// The isolation levels of the adaptive rows.
 pub const ISOLATION_LEVELS: [u32; 2] = [3, 6];
+
+/// The isolation level of the patch-table and evaluation rows.
+const PATCH_ISOLATION: u32 = 3;
+
+/// Locations evaluated per repetition of the evaluation row (the bench
+/// passes one tenth with `--quick`).
+pub const LOCATIONS: usize = 1_000_000;
 
 /// The inputs of the adaptive rows: every input refined more than two
 /// levels (the tori of the standard inputs: the quad torus and Loop's
@@ -52,7 +64,9 @@ fn native_levels(r: &AdaptiveRefiner, base: &[f32]) -> Result<Vec<Vec<f32>>> {
     Ok(out)
 }
 
-/// Rows of `input` at each of [`ISOLATION_LEVELS`]: "adaptive topology
+/// Rows of `input` at each of [`ISOLATION_LEVELS`] (and at
+/// [`PATCH_ISOLATION`] the limit-surface rows of `limit_rows`, evaluating
+/// `locations` locations): "adaptive topology
 /// (isolation N)" (`Refiner::new` and `refine_adaptive` against
 /// `TopologyRefinerFactory::Create` and `RefineAdaptive`, as the topology
 /// refinement rows include the base level) and "adaptive positions (f32,
@@ -66,6 +80,7 @@ pub fn adaptive_rows(
     pool: &rayon::ThreadPool,
     input: &BenchShape,
     reps: usize,
+    locations: usize,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<AdaptiveRow>, Failure> {
     let options = input.options;
@@ -142,6 +157,116 @@ pub fn adaptive_rows(
                 }),
             ));
         }
+        if isolation == PATCH_ISOLATION {
+            let limit = limit_rows(pool, input, (&n, &o), reps, locations, &mut progress, &row)?;
+            rows.extend(limit);
+        }
     }
+    Ok(rows)
+}
+
+/// The limit-surface rows of `input` refined to [`PATCH_ISOLATION`] by both
+/// engines (`n`, `o`), with OpenSubdiv's default patch options (Gregory
+/// basis end caps): "patch table + PatchMap" (`AdaptiveRefiner::patch_table`
+/// and `PatchMap::new` against `PatchTableFactory::Create` and `PatchMap`'s
+/// constructor) and "limit evaluation (N locations, positions + first
+/// derivatives)" at pseudo-random (ptex face, u, v) off the holes, both
+/// engines reading the same points (every level's vertices and the local
+/// points, computed once, not timed). The tables must be identical and the
+/// values agree to 1e-9 of the mesh's size before timing, or the rows are
+/// refused; a table the native engine does not build yet (Loop end caps)
+/// leaves them out.
+fn limit_rows(
+    pool: &rayon::ThreadPool,
+    input: &BenchShape,
+    (n, o): (&AdaptiveRefiner, &osd::TopologyRefiner),
+    reps: usize,
+    count: usize,
+    progress: &mut impl FnMut(&str),
+    row: &dyn Fn(String, (f64, f64)) -> AdaptiveRow,
+) -> Result<Vec<AdaptiveRow>, Failure> {
+    let po = PatchOptions::new().max_isolation(PATCH_ISOLATION);
+    let table = match n.patch_table(&po, &[]) {
+        Ok(t) => t,
+        Err(subdiv::Error::NotYetSupported(_)) => return Ok(Vec::new()),
+        Err(e) => return Err(e.into()),
+    };
+    let theirs = o.patch_table(&po, &[])?;
+    let refused = |what: &str| {
+        Failure::Message(format!(
+            "limit benchmark refused on {}: {what}, so their times would not measure the same work",
+            input.name
+        ))
+    };
+    if table != *theirs.table() {
+        return Err(refused("the patch tables differ"));
+    }
+    let mut rows = Vec::new();
+    let task = format!("patch table + PatchMap (isolation {PATCH_ISOLATION})");
+    progress(&format!("{} {}: {task}", input.name, input.options.scheme));
+    rows.push(row(
+        task,
+        pool.install(|| {
+            interleaved(
+                reps,
+                || {
+                    let t = n.patch_table(&po, &[]).expect("native");
+                    drop(black_box(PatchMap::new(&t)));
+                },
+                || o.build_patch_table(&po, &[]).expect("osd"),
+            )
+        }),
+    ));
+    let base = input.mesh.flat_positions::<f64>();
+    let points = n.patch_points(&table, 3, &base)?;
+    let map = PatchMap::new(&table);
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let faces = table.ptex_faces.max(1) as f64;
+    let mut locations = Vec::with_capacity(count);
+    while locations.len() < count && table.ptex_faces > 0 {
+        let location = ((next() * faces) as u32, next(), next());
+        if map.find_patch(location.0, location.1, location.2).is_some() {
+            locations.push(location);
+        }
+    }
+    let mine = patches::evaluate(&table, &points, 3, &locations, Derivatives::First)?;
+    let osds = theirs.evaluate_points(&points, 3, &locations, Derivatives::First)?;
+    let size = 1.0 + base.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in [
+        (&mine.values.point, &osds.values.point),
+        (&mine.values.du, &osds.values.du),
+        (&mine.values.dv, &osds.values.dv),
+    ] {
+        if a.len() != b.len() || a.iter().zip(b).any(|(x, y)| (x - y).abs() > 1e-9 * size) {
+            return Err(refused("the evaluated limit surfaces differ"));
+        }
+    }
+    let task = format!(
+        "limit evaluation ({} locations, positions + first derivatives, isolation {PATCH_ISOLATION})",
+        locations.len()
+    );
+    progress(&format!("{} {}: {task}", input.name, input.options.scheme));
+    rows.push(row(
+        task,
+        pool.install(|| {
+            interleaved(
+                reps,
+                || {
+                    let s = patches::evaluate(&table, &points, 3, &locations, Derivatives::First);
+                    drop(black_box(s.expect("native")));
+                },
+                || {
+                    let s = theirs.evaluate_points(&points, 3, &locations, Derivatives::First);
+                    drop(black_box(s.expect("osd")));
+                },
+            )
+        }),
+    ));
     Ok(rows)
 }

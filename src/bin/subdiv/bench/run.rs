@@ -255,7 +255,8 @@ pub fn run(
     // adaptive rows existed.
     let mut adaptive = Vec::new();
     for input in adaptive_inputs {
-        adaptive.extend(adaptive_rows(&pool, input, reps, &mut progress)?);
+        let locations = super::adaptive::LOCATIONS / if quick { 10 } else { 1 };
+        adaptive.extend(adaptive_rows(&pool, input, reps, locations, &mut progress)?);
     }
     let mut parallel = Vec::new();
     if let Some(first) = inputs.first() {
