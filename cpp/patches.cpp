@@ -26,6 +26,14 @@ struct sdv_patches {
 
 namespace {
 
+// The table's PatchMap, which a uniform table of every level does not have.
+Far::PatchMap const &need_map(sdv_patches const &p) {
+    if (!p.map)
+        fail_unsafe("this table holds every refined level, whose patches overlap: OpenSubdiv's PatchMap "
+                    "writes out of bounds on it, so it has none (build the table of the last level)");
+    return *p.map;
+}
+
 const sdv_patches &need_patches(const sdv_patches *p) {
     if (!p || !p->table) fail("null patch table");
     return *p;
@@ -189,7 +197,9 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         bool legacy = f.endCapType == Far::PatchTableFactory::Options::ENDCAP_LEGACY_GREGORY;
         if (legacy && tr.GetSchemeType() != Sdc::SCHEME_CATMARK)
             fail("legacy Gregory end caps exist for Catmull-Clark only");
-        check_no_repeated_vertices(tr.GetLevel(0));
+        // Uniform tables list faces; only adaptive ones run the patch
+        // builders that overrun on repeated vertices.
+        if (!tr.IsUniform()) check_no_repeated_vertices(tr.GetLevel(0));
         if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS ||
             f.endCapType == Far::PatchTableFactory::Options::ENDCAP_NONE)
             check_bspline_end_caps(tr.GetLevel(0));
@@ -224,7 +234,11 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         p->table.reset(Far::PatchTableFactory::Create(tr, f, selected));
         if (!osd_errors().empty()) throw ShimError(SDV_ERR_OSD, osd_errors());
         if (!p->table) throw ShimError(SDV_ERR_OSD, "PatchTableFactory::Create returned no table");
-        p->map.reset(new Far::PatchMap(*p->table));
+        // A uniform table of every refined level holds overlapping patches
+        // (each face and its children): PatchMap's quadtree writes past its
+        // nodes on them (found under Valgrind), so such a table has no map.
+        bool overlapping = tr.IsUniform() && p->table->GetNumPatchArrays() > 1;
+        if (!overlapping) p->map.reset(new Far::PatchMap(*p->table));
         *out = p.release();
     });
 }
@@ -336,7 +350,7 @@ int sdv_patches_find(const sdv_patches *p, int32_t face, double u, double v, int
         if (face < 0 || face >= faces) fail("ptex face " + str(face) + " does not exist (" + str(faces) + " ptex faces)");
         check_unit(u, "u");
         check_unit(v, "v");
-        Far::PatchTable::PatchHandle const *h = pp.map->FindPatch(face, u, v);
+        Far::PatchTable::PatchHandle const *h = need_map(pp).FindPatch(face, u, v);
         *found = h ? 1 : 0;
         *array = h ? h->arrayIndex : -1;
         if (h) {
@@ -415,7 +429,7 @@ int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size
                      str(ptex) + " ptex faces)");
             check_unit(us[i], "u");
             check_unit(vs[i], "v");
-            Far::PatchTable::PatchHandle const *h = pp.map->FindPatch(faces[i], us[i], vs[i]);
+            Far::PatchTable::PatchHandle const *h = need_map(pp).FindPatch(faces[i], us[i], vs[i]);
             if (!h) fail("location " + str((long long)i) + " is in a hole");
             t.EvaluateBasis<double>(*h, us[i], vs[i], bw[0], du ? bw[1] : nullptr, du ? bw[2] : nullptr,
                                     duu ? bw[3] : nullptr, duu ? bw[4] : nullptr, duu ? bw[5] : nullptr);

@@ -420,3 +420,68 @@ fn folded_triangles_with_bilinear_end_caps_match_opensubdiv() {
     assert_eq!(t.identical, 1, "{t:?}");
     assert!(t.local_points > 0, "{t:?}");
 }
+
+/// Uniform patch tables (`BuildUniformPolygons`): every scheme, levels 0-3,
+/// last or all levels, with or without the base level's indices, quads or
+/// triangulated — identical to OpenSubdiv's.
+#[test]
+fn uniform_tables_match_opensubdiv() {
+    use subdiv::UniformOptions;
+    let mut compared = 0;
+    for (name, mesh) in shapes::corpus() {
+        for scheme in [Scheme::Catmark, Scheme::Bilinear, Scheme::Loop] {
+            let options = Options::shape_file_defaults().with_scheme(scheme);
+            for level in 0..=3 {
+                let Ok(mut native) = Refiner::new(&mesh, &options) else {
+                    continue;
+                };
+                let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+                if level > 0 {
+                    native.refine_uniform(UniformOptions::new(level)).unwrap();
+                    theirs.refine_uniform(UniformOptions::new(level)).unwrap();
+                }
+                for (all, base, triangulate) in [
+                    (false, true, false),
+                    (true, true, false),
+                    (true, false, true),
+                    (false, false, true),
+                ] {
+                    let po = PatchOptions {
+                        generate_all_levels: all,
+                        include_base_level_indices: base,
+                        triangulate_quads: triangulate,
+                        ..PatchOptions::new()
+                    };
+                    let case = format!("{name} {scheme:?} level {level} {po:?}");
+                    match (native.patch_table(&po), theirs.patch_table(&po, &[])) {
+                        (Ok(a), Ok(b)) => {
+                            same_table(&a, b.table(), &case);
+                            compared += 1;
+                            // Every level's patches overlap: OpenSubdiv's
+                            // PatchMap would overrun, the bridge has none;
+                            // the native one stays within its nodes.
+                            let map = subdiv::patches::PatchMap::new(&a);
+                            for face in 0..a.ptex_faces as u32 {
+                                let _ = map.find_patch(face, 0.3, 0.6);
+                            }
+                            let found = b.find_patch(0, 0.3, 0.6);
+                            if a.arrays.len() > 1 {
+                                assert!(
+                                    matches!(&found, Err(Error::Osd(e)) if e.kind == subdiv::OsdErrorKind::Unsafe),
+                                    "{case}: {found:?}"
+                                );
+                            } else if level > 0 {
+                                assert_eq!(found.unwrap(), map.find_patch(0, 0.3, 0.6), "{case}");
+                            }
+                        }
+                        (a, b) => panic!(
+                            "{case}: native {a:?}, osd {:?}",
+                            b.map(|b| b.table().clone())
+                        ),
+                    }
+                }
+            }
+        }
+    }
+    assert!(compared > 1000, "{compared}");
+}

@@ -2,21 +2,24 @@
 //! adaptive refinement): which faces of which levels are patches, in
 //! OpenSubdiv's order; regular patches with their control vertices,
 //! boundary masks and single-crease sharpness; the [`PatchParam`] words;
-//! and the legacy Gregory end caps with their quad-offset and valence
-//! tables — each as OpenSubdiv 3.5 builds it.
+//! end caps (Gregory, B-spline and bilinear basis) with their local points
+//! and stencils, and the legacy Gregory end caps with their quad-offset and
+//! valence tables — each as OpenSubdiv 3.5 builds it.
 //!
 //! # Files
 //! * this file: options, the patches in order, the arrays and parameters;
 //! * `corners.rs`: the corner tags and what they make of a patch (regular,
 //!   boundary mask, single crease);
 //! * `points.rs`: the control vertices of regular patches;
-//! * `legacy.rs`: the legacy Gregory tables.
+//! * `legacy.rs`: the legacy Gregory tables;
+//! * `source.rs`, `limits.rs`, `gregory.rs`, `bspline.rs`, `linear.rs`,
+//!   `matrix.rs`, `local.rs`: end caps and their local points;
+//! * `uniform.rs`: tables of uniformly refined topologies.
 //!
-//! Not yet native: end caps that need local points (Gregory basis,
-//! B-spline basis, bilinear basis: their change-of-basis stencils) and
-//! face-varying patch tables; a table that would need them is refused with
-//! [`Error::NotYetSupported`]. A table whose patches are all regular needs
-//! no local points, whatever its end-cap type.
+//! Not yet native: Loop end caps (Gregory triangles, box-spline and linear
+//! triangles around irregular patches) and face-varying patch tables; a
+//! table that would need them is refused with [`Error::NotYetSupported`].
+//! A Loop table whose patches are all regular needs no end caps.
 
 mod bspline;
 mod corners;
@@ -28,6 +31,7 @@ mod local;
 mod matrix;
 mod points;
 mod source;
+mod uniform;
 
 use super::{EndCapType, PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
 use crate::error::{Element, Error, LevelRefusal, Result};
@@ -74,10 +78,10 @@ impl AdaptiveRefiner {
     /// OpenSubdiv 3.5's, for the patches of `selected_faces` (every face
     /// when empty).
     ///
-    /// The native engine builds regular patches for every scheme and every
-    /// end-cap type, and the irregular ones as legacy Gregory patches
-    /// (Catmull-Clark); end caps whose points are local points (Gregory,
-    /// B-spline and bilinear basis, with irregular patches present) and
+    /// The native engine builds every table of Catmull-Clark and bilinear
+    /// topologies (every end-cap type, with the local points' vertex and
+    /// varying stencils in `f32` or `f64`) and of Loop topologies whose
+    /// patches are all regular; Loop end caps around irregular patches and
     /// face-varying tables are [`Error::NotYetSupported`] — the `osd`
     /// engine builds them.
     ///

@@ -1,0 +1,233 @@
+//! Patch tables of a uniformly refined topology
+//! (`PatchTableBuilder::BuildUniformPolygons`): one array per level kept
+//! (the last, or every refined level with `generate_all_levels`), one
+//! linear patch per face that is not a hole — its vertices, numbered after
+//! the base level's when `include_base_level_indices` — or two triangles
+//! per quad with `triangulate_quads`, and the [`PatchParam`] that places
+//! the face in its ptex face.
+
+use super::{PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
+use crate::error::{Error, Result};
+use crate::options::Scheme;
+use crate::refiner::Refiner;
+use crate::topology::Level;
+
+impl Refiner {
+    /// The patch table of this uniformly refined topology
+    /// (`Far::PatchTableFactory::Create` on a `RefineUniform`ed refiner):
+    /// bilinear quads (`QUADS`) or triangles (`TRIANGLES`: Loop, or
+    /// `triangulate_quads`) of the last level, or of every refined level
+    /// with `generate_all_levels`, as OpenSubdiv 3.5 builds them — the same
+    /// arrays, control vertices and [`PatchParam`] words. The options read
+    /// are `generate_all_levels`, `include_base_level_indices` and
+    /// `triangulate_quads`; face-varying tables are
+    /// [`Error::NotYetSupported`].
+    ///
+    /// ```
+    /// use subdiv::{patches::{PatchOptions, PatchType}, refiner::Refiner, shapes, Options, UniformOptions};
+    /// let mut refiner = Refiner::new(&shapes::cube(), &Options::default())?;
+    /// refiner.refine_uniform(UniformOptions::new(2))?;
+    /// let table = refiner.patch_table(&PatchOptions::new())?;
+    /// assert_eq!(table.arrays.len(), 1);
+    /// assert_eq!(table.arrays[0].patch_type, PatchType::Quads);
+    /// assert_eq!(table.arrays[0].len(), 6 * 16);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn patch_table(&self, options: &PatchOptions) -> Result<PatchTable> {
+        if options.fvar_tables && (!self.fvar.is_empty() || !options.fvar_channels.is_empty()) {
+            return Err(Error::NotYetSupported("face-varying patch tables"));
+        }
+        crate::alloc::guard(None, || Ok(uniform_table(self, options)))
+    }
+}
+
+/// [`Refiner::patch_table`]'s table.
+fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
+    let levels = &r.levels;
+    let scheme = r.options.scheme;
+    let reg = if scheme == Scheme::Loop { 3 } else { 4 };
+    let triangulate = options.triangulate_quads && reg == 4;
+    let linear = if scheme == Scheme::Loop {
+        PatchType::Triangles
+    } else {
+        PatchType::Quads
+    };
+    let patch_type = if triangulate {
+        PatchType::Triangles
+    } else {
+        linear
+    };
+    let max = levels.len() - 1;
+    let first = if options.generate_all_levels { 1 } else { max };
+    let ptex = ptex_first(&levels[0], reg);
+    let mut arrays = Vec::new();
+    let mut offset = if options.include_base_level_indices {
+        levels[0].vertex_count as u32
+    } else {
+        0
+    };
+    // An unrefined topology: one array of the base faces that OpenSubdiv
+    // sizes but never fills (vertices 0, parameters 0); none when every
+    // refined level is asked for.
+    if max == 0 && first == 0 {
+        let l = &levels[0];
+        let n = (0..l.face_count()).filter(|&f| !l.is_hole(f)).count() * (1 + triangulate as usize);
+        arrays.push(PatchArray {
+            patch_type,
+            control_vertices: vec![0; n * patch_type.control_vertices()],
+            params: vec![PatchParam::default(); n],
+            sharpness: vec![0.0; n],
+        });
+    }
+    for level in 1..=max {
+        let l = &levels[level];
+        if level >= first {
+            let mut a = PatchArray {
+                patch_type,
+                control_vertices: Vec::new(),
+                params: Vec::new(),
+                sharpness: Vec::new(),
+            };
+            for f in (0..l.face_count()).filter(|&f| !l.is_hole(f)) {
+                let verts = l.face_verts(f);
+                a.control_vertices.extend(verts.iter().map(|&v| v + offset));
+                let param = param(levels, level, f, reg, &ptex);
+                a.params.push(param);
+                if triangulate {
+                    let n = a.control_vertices.len();
+                    let (v0, v2) = (a.control_vertices[n - 4], a.control_vertices[n - 2]);
+                    a.control_vertices.extend([v0, v2]);
+                    a.params.push(param);
+                }
+            }
+            a.sharpness = vec![0.0; a.params.len()];
+            arrays.push(a);
+        }
+        if options.generate_all_levels {
+            offset += l.vertex_count as u32;
+        }
+    }
+    PatchTable {
+        arrays,
+        max_valence: max_valence(levels, reg),
+        ptex_faces: *ptex.last().unwrap_or(&0) as usize,
+        feature_adaptive: false,
+        varying_patch_type: linear,
+        ..PatchTable::default()
+    }
+}
+
+/// The first ptex face of each base face, and the total last.
+fn ptex_first(base: &Level, reg: usize) -> Vec<u32> {
+    let mut first = Vec::with_capacity(base.face_count() + 1);
+    let mut id = 0u32;
+    for f in 0..base.face_count() {
+        first.push(id);
+        let n = base.face_vertices.count(f);
+        id += if n == reg { 1 } else { n as u32 };
+    }
+    first.push(id);
+    first
+}
+
+/// OpenSubdiv's bound on the valence of every level (see the adaptive
+/// builder's): the base level's, then the regular valence and two more than
+/// the most faces at a parent's edge (doubled for triangles).
+fn max_valence(levels: &[Level], reg: usize) -> usize {
+    let tri = reg == 3;
+    levels[..levels.len() - 1]
+        .iter()
+        .fold(levels[0].max_valence, |bound, parent| {
+            let edge = if tri {
+                2 * parent.max_edge_faces
+            } else {
+                parent.max_edge_faces
+            };
+            bound.max(if tri { 6 } else { 4 }).max(2 + edge)
+        })
+}
+
+/// The parameterization of face `f` of a uniform `level`
+/// (`ComputePatchParam` with a regular patch, no boundary, no transition):
+/// children follow their parents, a quad's `k`-th child in its `k`-th
+/// quadrant, a triangle's middle child turned over, a non-quad base face's
+/// children its ptex faces.
+fn param(levels: &[Level], level: usize, f: usize, reg: usize, ptex: &[u32]) -> PatchParam {
+    let (mut u, mut v, mut ofs) = (0i32, 0i32, 1i32);
+    let mut rotated = false;
+    let mut child = f;
+    let mut child_in_parent = 0usize;
+    let mut irregular_base = levels[level].face_vertices.count(f) != reg;
+    for i in (1..=level).rev() {
+        let parent_level = &levels[i - 1];
+        let (parent, k) = parent_of(parent_level, child, reg);
+        child_in_parent = k;
+        irregular_base = parent_level.face_vertices.count(parent) != reg;
+        if reg == 3 {
+            match (k, rotated) {
+                (1, false) => u += ofs,
+                (2, false) => v += ofs,
+                (3, false) => {
+                    u -= ofs;
+                    v -= ofs;
+                    rotated = true;
+                }
+                (1, true) => u -= ofs,
+                (2, true) => v -= ofs,
+                (3, true) => {
+                    u += ofs;
+                    v += ofs;
+                    rotated = false;
+                }
+                _ => {}
+            }
+            ofs <<= 1;
+        } else if !irregular_base {
+            match k {
+                1 => u += ofs,
+                2 => {
+                    u += ofs;
+                    v += ofs;
+                }
+                3 => v += ofs,
+                _ => {}
+            }
+            ofs <<= 1;
+        }
+        child = parent;
+    }
+    if rotated {
+        u += ofs;
+        v += ofs;
+    }
+    let mut face = ptex[child];
+    if irregular_base {
+        face += child_in_parent as u32;
+    }
+    PatchParam::new(
+        face,
+        u as u16,
+        v as u16,
+        level as u16,
+        irregular_base,
+        0,
+        0,
+        true,
+    )
+}
+
+/// The parent of child face `child` and its place among the parent's
+/// children: uniform refinement numbers every face's children together, a
+/// face of `n` corners having `n` (quads) or every triangle 4 (Loop).
+fn parent_of(parent_level: &Level, child: usize, reg: usize) -> (usize, usize) {
+    if reg == 3 {
+        return (child / 4, child % 4);
+    }
+    let offsets = parent_level.face_vertices.offsets_slice();
+    // The children of face p start at offsets[p]: find the last start at
+    // or before the child.
+    let p = offsets
+        .partition_point(|&o| o as usize <= child)
+        .saturating_sub(1);
+    (p, child - offsets[p] as usize)
+}
