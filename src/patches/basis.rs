@@ -62,8 +62,11 @@ fn bezier(t: f64) -> [[f64; 4]; 3] {
 }
 
 /// Weights of the six tables (position, ∂s, ∂t, ∂ss, ∂st, ∂tt) of `n`
-/// points.
-type Tables = [Vec<f64>; 6];
+/// points; a table not asked for is empty.
+type Tables<'a> = [&'a mut [f64]; 6];
+
+/// Room for the weights of any patch (20 points at most) in each table.
+pub(crate) type BasisBuffer = [[f64; 20]; 6];
 
 /// Folds the weights of the phantom points beyond the boundary edges of a
 /// B-spline patch into the points they are extrapolated from: a phantom
@@ -232,6 +235,32 @@ pub fn evaluate_basis(
     v: f64,
     derivatives: Derivatives,
 ) -> Result<Partials> {
+    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    let n = evaluate_basis_into(patch_type, param, u, v, derivatives, &mut buf)?;
+    let first = derivatives != Derivatives::None;
+    let second = derivatives == Derivatives::Second;
+    let take = |k: usize, on: bool| if on { buf[k][..n].to_vec() } else { Vec::new() };
+    Ok(Partials {
+        point: take(0, true),
+        du: take(1, first),
+        dv: take(2, first),
+        duu: take(3, second),
+        duv: take(4, second),
+        dvv: take(5, second),
+    })
+}
+
+/// [`evaluate_basis`] into `buf` (position, ∂u, ∂v, ∂uu, ∂uv, ∂vv: the
+/// first 1, 3 or 6 tables as `derivatives` asks), without allocating;
+/// returns the patch's number of control points.
+pub(crate) fn evaluate_basis_into(
+    patch_type: PatchType,
+    param: PatchParam,
+    u: f64,
+    v: f64,
+    derivatives: Derivatives,
+    buf: &mut BasisBuffer,
+) -> Result<usize> {
     for (coordinate, value) in [("u", u), ("v", v)] {
         if !(0.0..=1.0).contains(&value) {
             return Err(Error::Location {
@@ -258,32 +287,33 @@ pub fn evaluate_basis(
     } else {
         (u * scale - pu, v * scale - pv)
     };
-    let n = patch_type.control_vertices();
-    let first = derivatives != Derivatives::None;
-    let second = derivatives == Derivatives::Second;
-    let sized = |on: bool| if on { vec![0.0; n] } else { Vec::new() };
-    let mut tables: Tables = [
-        vec![0.0; n],
-        sized(first),
-        sized(first),
-        sized(second),
-        sized(second),
-        sized(second),
-    ];
-    match patch_type {
-        PatchType::Regular => regular(s, t, param.boundary(), &mut tables),
-        PatchType::GregoryBasis => gregory(s, t, &mut tables),
-        PatchType::Quads => bilinear(s, t, &mut tables),
-        PatchType::Triangles => linear_triangle(s, t, &mut tables),
-        PatchType::Loop | PatchType::GregoryTriangle => {
-            return Err(Error::NotYetSupported(
-                "the basis of Loop and Gregory triangle patches (use the osd engine's evaluate_basis)",
-            ));
-        }
-        _ => {
-            return Err(Error::NotYetSupported(
-                "a basis for legacy Gregory patches, points or lines (OpenSubdiv has none either)",
-            ));
+    let n = patch_type.control_vertices().min(20);
+    let kinds = match derivatives {
+        Derivatives::None => 1,
+        Derivatives::First => 3,
+        Derivatives::Second => 6,
+    };
+    {
+        let mut k = 0;
+        let mut tables: Tables = buf.each_mut().map(|b| {
+            k += 1;
+            if k <= kinds { &mut b[..n] } else { &mut b[..0] }
+        });
+        match patch_type {
+            PatchType::Regular => regular(s, t, param.boundary(), &mut tables),
+            PatchType::GregoryBasis => gregory(s, t, &mut tables),
+            PatchType::Quads => bilinear(s, t, &mut tables),
+            PatchType::Triangles => linear_triangle(s, t, &mut tables),
+            PatchType::Loop | PatchType::GregoryTriangle => {
+                return Err(Error::NotYetSupported(
+                    "the basis of Loop and Gregory triangle patches (use the osd engine's evaluate_basis)",
+                ));
+            }
+            _ => {
+                return Err(Error::NotYetSupported(
+                    "a basis for legacy Gregory patches, points or lines (OpenSubdiv has none either)",
+                ));
+            }
         }
     }
     // Derivatives with respect to the ptex face: 2^depth per order (the
@@ -291,19 +321,11 @@ pub fn evaluate_basis(
     let sign = if rotated { -1.0 } else { 1.0 };
     let d1 = sign * f64::from(1u32 << depth);
     let d2 = sign * d1 * d1;
-    let [point, du, dv, duu, duv, dvv] = tables;
-    let scaled = |mut w: Vec<f64>, k: f64| {
-        w.iter_mut().for_each(|x| *x *= k);
-        w
-    };
-    Ok(Partials {
-        point,
-        du: scaled(du, d1),
-        dv: scaled(dv, d1),
-        duu: scaled(duu, d2),
-        duv: scaled(duv, d2),
-        dvv: scaled(dvv, d2),
-    })
+    for (k, table) in buf.iter_mut().enumerate().take(kinds).skip(1) {
+        let factor = if k < 3 { d1 } else { d2 };
+        table[..n].iter_mut().for_each(|x| *x *= factor);
+    }
+    Ok(n)
 }
 
 #[cfg(test)]

@@ -5,7 +5,8 @@
 //! that covers it ([`PatchMap`]), its basis ([`evaluate_basis`]) and the
 //! weighted sum of its control points ([`evaluate`]).
 
-use super::{Derivatives, Partials, PatchMap, PatchTable, SurfaceSamples, evaluate_basis};
+use super::basis::{BasisBuffer, evaluate_basis_into};
+use super::{Derivatives, Partials, PatchMap, PatchTable, SurfaceSamples};
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
 
@@ -79,10 +80,22 @@ pub fn evaluate(
         return Err(Error::ZeroWidth);
     }
     let map = PatchMap::new(table);
-    let mut out = Partials::default();
-    let first = derivatives != Derivatives::None;
-    let second = derivatives == Derivatives::Second;
-    for &(face, u, v) in locations {
+    let kinds = match derivatives {
+        Derivatives::None => 1,
+        Derivatives::First => 3,
+        Derivatives::Second => 6,
+    };
+    let len = locations.len().checked_mul(width).ok_or(Error::TooLarge {
+        what: "evaluated values",
+        count: usize::MAX,
+        bits: usize::BITS,
+    })?;
+    let mut outs: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::new());
+    for out in outs.iter_mut().take(kinds) {
+        *out = crate::alloc::try_vec(0.0, len)?;
+    }
+    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    for (i, &(face, u, v)) in locations.iter().enumerate() {
         if face as usize >= table.ptex_faces {
             return Err(Error::NoSuchPtexFace {
                 face: face as usize,
@@ -102,40 +115,35 @@ pub fn evaluate(
             .find_patch(face, u, v)
             .ok_or(Error::NoPatchAt { face, u, v })?;
         let array = &table.arrays[handle.array];
-        let w = evaluate_basis(
-            array.patch_type,
-            array.params[handle.patch],
-            u,
-            v,
-            derivatives,
-        )?;
+        let param = array.params[handle.patch];
+        let n = evaluate_basis_into(array.patch_type, param, u, v, derivatives, &mut buf)?;
         let cvs = array.patch_vertices(handle.patch);
-        let sum = |weights: &[f64], into: &mut Vec<f64>| -> Result<()> {
-            let start = into.len();
-            into.resize(start + width, 0.0);
-            for (&cv, &wt) in cvs.iter().zip(weights) {
+        // Every control point's values, once per table asked for.
+        for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
+            let dst = &mut out[i * width..(i + 1) * width];
+            for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
                 let at = cv as usize * width;
-                let row = points.get(at..at + width).ok_or(Error::BufferLength {
-                    buffer: Buffer::Source,
-                    expected: at + width,
-                    got: points.len(),
-                })?;
-                for (o, &x) in into[start..].iter_mut().zip(row) {
-                    *o += wt * x;
+                let row = points
+                    .get(at..at + width)
+                    .ok_or_else(|| Error::BufferLength {
+                        buffer: Buffer::Source,
+                        expected: at + width,
+                        got: points.len(),
+                    })?;
+                for (o, &x) in dst.iter_mut().zip(row) {
+                    *o += w * x;
                 }
             }
-            Ok(())
-        };
-        sum(&w.point, &mut out.point)?;
-        if first {
-            sum(&w.du, &mut out.du)?;
-            sum(&w.dv, &mut out.dv)?;
-        }
-        if second {
-            sum(&w.duu, &mut out.duu)?;
-            sum(&w.duv, &mut out.duv)?;
-            sum(&w.dvv, &mut out.dvv)?;
         }
     }
+    let [point, du, dv, duu, duv, dvv] = outs;
+    let out = Partials {
+        point,
+        du,
+        dv,
+        duu,
+        duv,
+        dvv,
+    };
     Ok(SurfaceSamples { width, values: out })
 }

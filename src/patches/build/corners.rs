@@ -10,6 +10,19 @@ use crate::refiner::adaptive::Features;
 use crate::rules::Rule;
 use crate::topology::Level;
 
+/// The tags of a patch's corners, without allocating.
+pub(super) struct Corners {
+    tags: [Tag; 4],
+    len: usize,
+}
+
+impl std::ops::Deref for Corners {
+    type Target = [Tag];
+    fn deref(&self) -> &[Tag] {
+        &self.tags[..self.len]
+    }
+}
+
 /// The tag bits of one vertex, or of several or-ed together.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(super) struct Tag {
@@ -90,21 +103,30 @@ impl Singular {
 }
 
 impl Builder<'_> {
-    /// The tags of the corners of face `f` of `level`.
-    pub(super) fn corner_tags(&self, level: usize, f: usize) -> Vec<Tag> {
+    /// The tags of the corners of face `f` of `level` (a patch's face: its
+    /// first four corners at most).
+    pub(super) fn corner_tags(&self, level: usize, f: usize) -> Corners {
         let l = &self.levels[level];
         let features = &self.features[level];
-        l.face_verts(f)
-            .iter()
-            .map(|&v| Tag::of(l, &features[v as usize], v as usize))
-            .collect()
+        let mut c = Corners {
+            tags: [Tag::default(); 4],
+            len: 0,
+        };
+        for (slot, &v) in c.tags.iter_mut().zip(l.face_verts(f)) {
+            *slot = Tag::of(l, &features[v as usize], v as usize);
+            c.len += 1;
+        }
+        c
     }
 
     /// The tags of every corner of face `f` or-ed together
     /// (`getFaceCompositeVTag`).
     pub(super) fn composite(&self, level: usize, f: usize) -> Tag {
-        self.corner_tags(level, f)
-            .into_iter()
+        let l = &self.levels[level];
+        let features = &self.features[level];
+        l.face_verts(f)
+            .iter()
+            .map(|&v| Tag::of(l, &features[v as usize], v as usize))
             .fold(Tag::default(), Tag::or)
     }
 

@@ -82,28 +82,54 @@ fn prev_face(level: &Level, ring: &Ring, i: usize, manifold: bool) -> (usize, us
 impl Builder<'_> {
     /// The control vertices of the regular patch of face `f` of `level`
     /// (indices within the level), with its boundary mask `mask`.
-    pub(super) fn regular_points(&self, level: usize, f: usize, mask: u16) -> Vec<u32> {
+    pub(super) fn regular_points(&self, level: usize, f: usize, mask: u16) -> PatchPoints {
         let l = &self.levels[level];
         if self.linear {
-            l.face_verts(f).to_vec()
+            let mut p = PatchPoints {
+                points: [0; 16],
+                len: 0,
+            };
+            for (slot, &v) in p.points.iter_mut().zip(l.face_verts(f)) {
+                *slot = v;
+                p.len += 1;
+            }
+            p
         } else if self.reg == 4 {
-            quad_points(l, f, mask)
+            PatchPoints {
+                points: quad_points(l, f, mask),
+                len: 16,
+            }
         } else {
-            tri_points(l, f, mask)
+            let mut points = [0; 16];
+            points[..12].copy_from_slice(&tri_points(l, f, mask));
+            PatchPoints { points, len: 12 }
         }
+    }
+}
+
+/// A regular patch's control vertices, without allocating.
+pub(super) struct PatchPoints {
+    points: [u32; 16],
+    len: usize,
+}
+
+impl std::ops::Deref for PatchPoints {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        &self.points[..self.len]
     }
 }
 
 /// The 16 points of a B-spline patch: for each corner, the corner and the
 /// three points of the face diagonally opposite, or of the faces beside it
 /// along a boundary.
-fn quad_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
+fn quad_points(l: &Level, f: usize, mask: u16) -> [u32; 16] {
     const PER_CORNER: [[usize; 4]; 4] =
         [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
     let verts = l.face_verts(f);
     let interior = mask == 0;
     let fill = if interior { u32::MAX } else { verts[0] };
-    let mut points = vec![0u32; 16];
+    let mut points = [0u32; 16];
     for (i, slots) in PER_CORNER.iter().enumerate() {
         let v = verts[i];
         let ring = Ring::of(l, v);
@@ -133,7 +159,7 @@ fn quad_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
 }
 
 /// The 12 points of a Loop box-spline patch.
-fn tri_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
+fn tri_points(l: &Level, f: usize, mask: u16) -> [u32; 12] {
     const PER_CORNER: [[usize; 4]; 3] = [[4, 7, 3, 0], [5, 1, 2, 6], [8, 9, 11, 10]];
     let verts = l.face_verts(f);
     let interior = mask == 0;
@@ -143,7 +169,7 @@ fn tri_points(l: &Level, f: usize, mask: u16) -> Vec<u32> {
         decode_tri_boundary(mask)
     };
     let fill = if interior { u32::MAX } else { verts[0] };
-    let mut points = vec![0u32; 12];
+    let mut points = [0u32; 12];
     for (i, slots) in PER_CORNER.iter().enumerate() {
         let v = verts[i];
         let ring = Ring::of(l, v);
