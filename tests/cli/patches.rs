@@ -183,3 +183,67 @@ fn eval_refusals_name_the_line() {
     let out = subdiv(&["patches", input.to_str().unwrap(), "--precision", "f32"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `subdiv compare --patches`: identical tables and the same limit surface
+/// on a creased mesh with every end-cap type (text and JSON), its options
+/// passed through (`--adaptive N` the isolation, `--single-crease`), and
+/// a Loop mesh the native engine cannot build yet exits 4.
+#[test]
+fn compare_patches_reports_identical_tables() {
+    let dir = scratch("cli-compare-patches");
+    let mut mesh = shapes::cube();
+    mesh.creases.push(subdiv::Crease {
+        vertices: [0, 1],
+        sharpness: 2.5,
+    });
+    let input = write(&dir, "creased.obj", &obj_text(&mesh));
+    for end_caps in ["gregory-basis", "bspline", "bilinear", "legacy-gregory"] {
+        let out = subdiv(&[
+            "compare",
+            input.to_str().unwrap(),
+            "--patches",
+            "--adaptive",
+            "3",
+            "--single-crease",
+            "--end-caps",
+            end_caps,
+        ]);
+        assert!(out.status.success(), "{end_caps}: {}", stderr(&out));
+        let text = stdout(&out);
+        assert!(text.contains("patches (isolation 3,"), "{text}");
+        assert!(text.contains("patch tables: identical ("), "{text}");
+        assert!(text.contains("the engines agree"), "{text}");
+        if end_caps != "legacy-gregory" {
+            assert!(text.contains("limit surface at 150 locations"), "{text}");
+        }
+    }
+    let out = subdiv(&["compare", input.to_str().unwrap(), "--patches", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["isolation"], 4);
+    assert_eq!(v["end_caps"], "Gregory basis");
+    assert_eq!(v["tables_identical"], true);
+    assert_eq!(v["first_difference"], serde_json::Value::Null);
+    assert!(v["relative_position_deviation"].as_f64().unwrap() <= 1e-12);
+    assert_eq!(v["local_points"][0], v["local_points"][1]);
+    let tet = write(&dir, "tet.obj", &obj_text(&shapes::tetrahedron()));
+    let out = subdiv(&[
+        "compare",
+        tet.to_str().unwrap(),
+        "--patches",
+        "--scheme",
+        "loop",
+    ]);
+    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+    // --end-caps needs --patches; --patches does not take --levels.
+    let out = subdiv(&["compare", input.to_str().unwrap(), "--end-caps", "bspline"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = subdiv(&[
+        "compare",
+        input.to_str().unwrap(),
+        "--patches",
+        "--levels",
+        "1..2",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}

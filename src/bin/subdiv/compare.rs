@@ -22,6 +22,16 @@ pub(crate) struct CompareArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub(crate) json: bool,
+    /// Compare the engines' patch tables (patch by patch) and the limit surface
+    /// each evaluates at a grid of locations on every ptex face; isolation from
+    /// --adaptive N (4 without).
+    #[arg(long, conflicts_with = "levels")]
+    pub(crate) patches: bool,
+    /// End caps of the compared patch tables (with --patches): none, bilinear,
+    /// bspline, gregory-basis (OpenSubdiv's default) or legacy-gregory.
+    #[arg(long, value_name = "TYPE", default_value = "gregory-basis", requires = "patches",
+          value_parser = crate::patches::parse_end_caps)]
+    pub(crate) end_caps: subdiv::patches::EndCapType,
 }
 
 /// One level of `subdiv compare`, as printed and as JSON.
@@ -54,6 +64,12 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
         return Err(Failure::Unavailable(
             "compare needs both engines and OpenSubdiv has no Doo-Sabin scheme; use `subdiv refine --scheme doo-sabin`".into(),
         ));
+    }
+    if args.patches {
+        #[cfg(feature = "osd")]
+        return crate::compare_patches::compare_patches(args);
+        #[cfg(not(feature = "osd"))]
+        return Err(Failure::from(Error::OsdUnavailable));
     }
     if let Some(level) = args.adaptive.adaptive {
         return crate::adaptive::compare_adaptive(args, level);

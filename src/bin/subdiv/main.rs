@@ -31,6 +31,8 @@ mod adaptive;
 mod args;
 mod bench;
 mod compare;
+#[cfg(feature = "osd")]
+mod compare_patches;
 mod curve;
 #[cfg(feature = "osd")]
 mod date;

@@ -70,7 +70,7 @@ pub(crate) struct EvalArgs {
     pub(crate) output: Option<PathBuf>,
 }
 
-fn parse_end_caps(s: &str) -> Result<EndCapType, String> {
+pub(crate) fn parse_end_caps(s: &str) -> Result<EndCapType, String> {
     Ok(match s {
         "none" => EndCapType::None,
         "bilinear" => EndCapType::BilinearBasis,
@@ -106,13 +106,18 @@ impl PatchArgs {
     }
 
     fn end_cap_name(&self) -> &'static str {
-        match self.end_caps {
-            EndCapType::None => "no",
-            EndCapType::BilinearBasis => "bilinear",
-            EndCapType::BSplineBasis => "B-spline",
-            EndCapType::GregoryBasis => "Gregory basis",
-            EndCapType::LegacyGregory => "legacy Gregory",
-        }
+        end_cap_name(self.end_caps)
+    }
+}
+
+/// How the summaries name an end-cap type.
+pub(crate) fn end_cap_name(end_caps: EndCapType) -> &'static str {
+    match end_caps {
+        EndCapType::None => "no",
+        EndCapType::BilinearBasis => "bilinear",
+        EndCapType::BSplineBasis => "B-spline",
+        EndCapType::GregoryBasis => "Gregory basis",
+        EndCapType::LegacyGregory => "legacy Gregory",
     }
 }
 
