@@ -247,3 +247,48 @@ fn compare_patches_reports_identical_tables() {
     ]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// `--double`: local points in double precision (patchPrecisionDouble), as
+/// the library computes them; near an extraordinary corner the limit moves
+/// by the `f32` stencils' rounding.
+#[test]
+fn eval_double_uses_double_precision_local_points() {
+    use subdiv::patches;
+    use subdiv::refiner::Refiner;
+    let dir = scratch("cli-eval-double");
+    let input = write(&dir, "cube.obj", &obj_text(&shapes::cube()));
+    let at = write(&dir, "at.txt", "3 0.01 0.99\n");
+    let run = |extra: &[&str]| -> Vec<f64> {
+        let mut args = vec![
+            "eval",
+            input.to_str().unwrap(),
+            "--at",
+            at.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = subdiv(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        stdout(&out)
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let (single, double) = (run(&[]), run(&["--double"]));
+    let mesh = shapes::cube();
+    let po = PatchOptions::new().max_isolation(4).double_precision(true);
+    let r = Refiner::new(&mesh, &Options::shape_file_defaults())
+        .unwrap()
+        .refine_adaptive(po.refine_adaptive_options(), &[])
+        .unwrap();
+    let t = r.patch_table(&po, &[]).unwrap();
+    let points = r.patch_points(&t, 3, &mesh.flat_positions()).unwrap();
+    let s = patches::evaluate(&t, &points, 3, &[(3, 0.01, 0.99)], Derivatives::None).unwrap();
+    assert_eq!(double, s.values.point);
+    assert!(single.iter().zip(&double).any(|(a, b)| a != b));
+    assert!(
+        single
+            .iter()
+            .zip(&double)
+            .all(|(a, b)| (a - b).abs() < 1e-6)
+    );
+}

@@ -36,6 +36,10 @@ pub(crate) struct PatchArgs {
     /// Infinitely sharp patches (useInfSharpPatch).
     #[arg(long)]
     pub(crate) inf_sharp: bool,
+    /// Local points (end-cap stencils) in double precision (patchPrecisionDouble;
+    /// f32 by default, as OpenSubdiv's).
+    #[arg(long)]
+    pub(crate) double: bool,
     /// The engine that builds and evaluates the table: native (identical tables to
     /// OpenSubdiv's; Loop meshes with irregular patches not yet) or osd.
     #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
@@ -102,7 +106,8 @@ impl PatchArgs {
             .max_isolation(self.isolation)
             .end_caps(self.end_caps)
             .single_crease_patch(self.single_crease)
-            .inf_sharp_patch(self.inf_sharp))
+            .inf_sharp_patch(self.inf_sharp)
+            .double_precision(self.double))
     }
 
     fn end_cap_name(&self) -> &'static str {
