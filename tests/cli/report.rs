@@ -82,7 +82,8 @@ fn report_on_an_obj_file() {
         let prefix = format!("subdiv report: [{}/{total}] ", k + 1);
         assert!(line.starts_with(&prefix), "{line:?} in\n{err}");
     }
-    assert!(steps[total - 1].contains("timing level 2"), "{err}");
+    assert!(steps[total - 2].contains("timing level 2"), "{err}");
+    assert!(steps[total - 1].contains("limit surface"), "{err}");
     // The small shape gets the quick run's sets, and the report says so.
     assert!(md.contains("one option varied at a time"), "{md}");
     let summary = stdout(&o);
@@ -91,6 +92,8 @@ fn report_on_an_obj_file() {
     for doc in [&md, &html] {
         assert!(doc.contains("seam-crease.obj"));
         assert!(doc.contains("CONFORMS"));
+        assert!(doc.contains("Limit surface (patch tables at isolation 3"), "{doc}");
+        assert!(doc.contains("tables identical"), "{doc}");
         assert!(doc.contains("0 (bit-identical)"));
         assert!(!doc.contains("http"), "an external resource or link");
     }

@@ -6,9 +6,9 @@
 
 use crate::Failure;
 use crate::compare::{CompareArgs, describe_options};
-use subdiv::patches::{self, Derivatives, PatchOptions, PatchTable, SurfaceSamples};
+use subdiv::patches::{self, Derivatives, PatchOptions, PatchTable};
 use subdiv::refiner::Refiner;
-use subdiv::{Error, osd};
+use subdiv::{AdaptiveOptions, Error, Mesh, Options, osd};
 
 /// The locations on each ptex face: u and v in {0, 1/4, 1/2, 3/4, 1}.
 const STEPS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
@@ -36,6 +36,104 @@ struct PatchReport<'a> {
     agrees: bool,
 }
 
+/// Both engines' patch tables of one mesh and the limit surfaces they
+/// evaluate (each from its own refinement and table).
+pub(crate) struct LimitComparison {
+    /// Per array: type name and patch count of each engine.
+    pub arrays: Vec<(String, usize, String, usize)>,
+    pub local_points: [usize; 2],
+    pub patches: usize,
+    pub first_difference: Option<String>,
+    pub locations: usize,
+    /// Locations on patches without a basis (legacy Gregory).
+    pub unevaluable: usize,
+    pub max_position_deviation: f64,
+    pub relative_position_deviation: f64,
+    pub worst_location: Option<(u32, f64, f64)>,
+    pub relative_derivative_deviation: f64,
+}
+
+impl LimitComparison {
+    /// Tables identical and the surfaces within `tolerance` (positions of
+    /// the diagonal, derivatives of their largest).
+    pub fn agrees(&self, tolerance: f64) -> bool {
+        self.first_difference.is_none()
+            && self.relative_position_deviation <= tolerance
+            && self.relative_derivative_deviation <= tolerance
+    }
+}
+
+/// Builds both engines' tables of `mesh` refined with `ao` and compares
+/// them, then their limit surfaces at u, v ∈ {0, ¼, ½, ¾, 1} on every ptex
+/// face (off the holes).
+pub(crate) fn limit_comparison(
+    mesh: &Mesh,
+    options: &Options,
+    po: &PatchOptions,
+    ao: AdaptiveOptions,
+    faces: &[u32],
+) -> Result<LimitComparison, Error> {
+    let base = mesh.flat_positions::<f64>();
+    let native = Refiner::new(mesh, options)?.refine_adaptive(ao, faces)?;
+    let mine = native.patch_table(po, faces)?;
+    let mut theirs = osd::TopologyRefiner::new(mesh, options)?;
+    theirs.refine_adaptive(ao, faces)?;
+    let osds = theirs.patch_table(po, faces)?;
+    let t = osds.table();
+    let first_difference = first_difference(&mine, t);
+    let map = patches::PatchMap::new(&mine);
+    let on_patches: Vec<((u32, f64, f64), bool)> = (0..mine.ptex_faces as u32)
+        .flat_map(|f| {
+            STEPS
+                .iter()
+                .flat_map(move |&u| STEPS.iter().map(move |&v| (f, u, v)))
+        })
+        .filter_map(|(f, u, v)| {
+            let h = map.find_patch(f, u, v)?;
+            Some(((f, u, v), mine.arrays[h.array].patch_type.is_evaluable()))
+        })
+        .collect();
+    // Legacy Gregory patches have no basis (in OpenSubdiv either).
+    let locations: Vec<(u32, f64, f64)> = on_patches.iter().filter(|l| l.1).map(|l| l.0).collect();
+    let points = native.patch_points(&mine, 3, &base)?;
+    let a = patches::evaluate(&mine, &points, 3, &locations, Derivatives::First)?;
+    let b = osds.evaluate(&theirs, 3, &base, &locations, Derivatives::First)?;
+    let diagonal = subdiv::compare::bbox_diagonal(&mesh.positions).max(f64::MIN_POSITIVE);
+    let (max_dev, worst) = largest_deviation(&a.values.point, &b.values.point);
+    let derivative_scale = b
+        .values
+        .du
+        .iter()
+        .chain(&b.values.dv)
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    let (du_dev, _) = largest_deviation(&a.values.du, &b.values.du);
+    let (dv_dev, _) = largest_deviation(&a.values.dv, &b.values.dv);
+    let arrays = (0..mine.arrays.len().max(t.arrays.len()))
+        .map(|i| {
+            let side = |table: &PatchTable| {
+                table.arrays.get(i).map_or(("-".to_string(), 0), |a| {
+                    (a.patch_type.name().to_string(), a.len())
+                })
+            };
+            let ((ta, na), (tb, nb)) = (side(&mine), side(t));
+            (ta, na, tb, nb)
+        })
+        .collect();
+    Ok(LimitComparison {
+        arrays,
+        local_points: [mine.local_points, t.local_points],
+        patches: mine.patch_count(),
+        first_difference,
+        locations: locations.len(),
+        unevaluable: on_patches.len() - locations.len(),
+        max_position_deviation: max_dev,
+        relative_position_deviation: max_dev / diagonal,
+        worst_location: worst.map(|k| locations[k]),
+        relative_derivative_deviation: du_dev.max(dv_dev) / derivative_scale,
+    })
+}
+
 pub(crate) fn compare_patches(args: &CompareArgs) -> Result<(), Failure> {
     let (name, mesh, options) = crate::args::load(&args.mesh)?;
     let isolation = args.adaptive.adaptive.unwrap_or(4);
@@ -51,86 +149,25 @@ pub(crate) fn compare_patches(args: &CompareArgs) -> Result<(), Failure> {
     if let Some(s) = args.adaptive.secondary {
         ao = ao.secondary(s);
     }
-    let faces = &args.adaptive.select_faces;
-    let base = mesh.flat_positions::<f64>();
-    let both = || -> Result<_, Error> {
-        let native = Refiner::new(&mesh, &options)?.refine_adaptive(ao, faces)?;
-        let mine = native.patch_table(&po, faces)?;
-        let mut theirs = osd::TopologyRefiner::new(&mesh, &options)?;
-        theirs.refine_adaptive(ao, faces)?;
-        let osds = theirs.patch_table(&po, faces)?;
-        Ok((native, mine, theirs, osds))
-    };
-    let (native, mine, theirs, osds) = both().map_err(|e| Failure::from(e).in_input(&name))?;
-    let first_difference = first_difference(&mine, osds.table());
-    // The limit surface, each engine from its own refinement and table, at
-    // the grid of locations off the holes (both must find the same holes).
-    let map = patches::PatchMap::new(&mine);
-    let on_patches: Vec<((u32, f64, f64), bool)> = (0..mine.ptex_faces as u32)
-        .flat_map(|f| {
-            STEPS
-                .iter()
-                .flat_map(move |&u| STEPS.iter().map(move |&v| (f, u, v)))
-        })
-        .filter_map(|(f, u, v)| {
-            let h = map.find_patch(f, u, v)?;
-            Some(((f, u, v), mine.arrays[h.array].patch_type.is_evaluable()))
-        })
-        .collect();
-    // Legacy Gregory patches have no basis (in OpenSubdiv either).
-    let locations: Vec<(u32, f64, f64)> = on_patches.iter().filter(|l| l.1).map(|l| l.0).collect();
-    let unevaluable = on_patches.len() - locations.len();
-    let evaluate = || -> Result<(SurfaceSamples, SurfaceSamples), Error> {
-        let points = native.patch_points(&mine, 3, &base)?;
-        let a = patches::evaluate(&mine, &points, 3, &locations, Derivatives::First)?;
-        let b = osds.evaluate(&theirs, 3, &base, &locations, Derivatives::First)?;
-        Ok((a, b))
-    };
-    let (a, b) = evaluate().map_err(|e| Failure::from(e).in_input(&name))?;
-    let diagonal = subdiv::compare::bbox_diagonal(&mesh.positions).max(f64::MIN_POSITIVE);
-    let (max_dev, worst) = largest_deviation(&a.values.point, &b.values.point);
-    let derivative_scale = b
-        .values
-        .du
-        .iter()
-        .chain(&b.values.dv)
-        .fold(0.0f64, |m, x| m.max(x.abs()))
-        .max(f64::MIN_POSITIVE);
-    let (du_dev, _) = largest_deviation(&a.values.du, &b.values.du);
-    let (dv_dev, _) = largest_deviation(&a.values.dv, &b.values.dv);
-    let relative_derivative = du_dev.max(dv_dev) / derivative_scale;
-    let relative = max_dev / diagonal;
-    let tables_identical = first_difference.is_none();
-    let agrees =
-        tables_identical && relative <= args.tolerance && relative_derivative <= args.tolerance;
-    let t = osds.table();
-    let arrays = (0..mine.arrays.len().max(t.arrays.len()))
-        .map(|i| {
-            let side = |table: &PatchTable| {
-                table.arrays.get(i).map_or(("-".to_string(), 0), |a| {
-                    (a.patch_type.name().to_string(), a.len())
-                })
-            };
-            let ((ta, na), (tb, nb)) = (side(&mine), side(t));
-            (ta, na, tb, nb)
-        })
-        .collect();
+    let c = limit_comparison(&mesh, &options, &po, ao, &args.adaptive.select_faces)
+        .map_err(|e| Failure::from(e).in_input(&name))?;
+    let agrees = c.agrees(args.tolerance);
     let report = PatchReport {
         input: &name,
         options: describe_options(&options, args.mesh.faces_first),
         isolation,
         end_caps: crate::patches::end_cap_name(args.end_caps),
         tolerance: args.tolerance,
-        arrays,
-        local_points: [mine.local_points, t.local_points],
-        tables_identical,
-        first_difference,
-        locations: locations.len(),
-        unevaluable_locations: unevaluable,
-        max_position_deviation: max_dev,
-        relative_position_deviation: relative,
-        worst_location: worst.map(|k| locations[k]),
-        relative_derivative_deviation: relative_derivative,
+        arrays: c.arrays,
+        local_points: c.local_points,
+        tables_identical: c.first_difference.is_none(),
+        first_difference: c.first_difference,
+        locations: c.locations,
+        unevaluable_locations: c.unevaluable,
+        max_position_deviation: c.max_position_deviation,
+        relative_position_deviation: c.relative_position_deviation,
+        worst_location: c.worst_location,
+        relative_derivative_deviation: c.relative_derivative_deviation,
         agrees,
     };
     print_report(args.json, &report)?;

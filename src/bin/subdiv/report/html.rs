@@ -137,6 +137,7 @@ impl Report {
                 escape(&cap)
             );
             h.push_str("</div>\n");
+            let _ = writeln!(h, "<p>{}</p>", escape(&i.limit_surface.sentence()));
             let _ = writeln!(
                 h,
                 "<details{}><summary>{} option sets × {} — every case</summary>",

@@ -153,6 +153,7 @@ impl Report {
                 "![deviation per level](figures/{sl}-deviation.svg) ![time per level](figures/{sl}-time.svg) ![refined shape](figures/{sl}-shape.svg)\n"
             );
             s.push_str(&sets_markdown(i, &self.settings));
+            let _ = writeln!(s, "\n{}", i.limit_surface.sentence());
             s.push_str("\n| level | faces | native ms | OpenSubdiv ms | speed-up | repetitions |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
             for t in &i.timings {
                 let _ = writeln!(

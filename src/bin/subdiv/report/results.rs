@@ -165,6 +165,67 @@ pub struct InputReport {
     pub timings: Vec<Timing>,
     /// The refined shape.
     pub picture: Picture,
+    /// The limit surface through both engines' patch tables.
+    pub limit_surface: LimitSurface,
+}
+
+/// Both engines' patch tables of an input (its default options, isolation
+/// [`LIMIT_ISOLATION`], Gregory basis end caps) and the limit surfaces they
+/// evaluate.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LimitSurface {
+    /// Compared.
+    Compared {
+        /// Patches in the native table.
+        patches: usize,
+        /// Local points (native, OpenSubdiv).
+        local_points: [usize; 2],
+        /// Where the tables first differ (none: identical).
+        first_difference: Option<String>,
+        /// Locations evaluated.
+        locations: usize,
+        /// Largest position deviation, relative to the diagonal.
+        deviation: f64,
+        /// Largest derivative deviation, relative to the largest derivative.
+        derivative_deviation: f64,
+        /// Whether it all agrees within the report's tolerance.
+        agrees: bool,
+    },
+    /// Not compared, and why (a table the native engine does not build
+    /// yet, an input OpenSubdiv refuses).
+    NotCompared(String),
+}
+
+/// The isolation level of the report's patch tables.
+pub const LIMIT_ISOLATION: u32 = 3;
+
+impl LimitSurface {
+    /// One sentence for the report.
+    pub fn sentence(&self) -> String {
+        match self {
+            LimitSurface::Compared {
+                patches,
+                local_points,
+                first_difference,
+                locations,
+                deviation,
+                derivative_deviation,
+                agrees,
+            } => format!(
+                "Limit surface (patch tables at isolation {LIMIT_ISOLATION}, Gregory basis end caps): tables {} ({patches} patches, {}/{} local points); the surface at {locations} locations (u, v in {{0, 1/4, 1/2, 3/4, 1}} on every ptex face) deviates by at most {deviation:.2e} of the diagonal, derivatives {derivative_deviation:.2e} of their largest: {}.",
+                match first_difference {
+                    None => "identical".to_string(),
+                    Some(d) => format!("DIFFERENT (first at {d})"),
+                },
+                local_points[0],
+                local_points[1],
+                if *agrees { "agrees" } else { "DIFFERS" }
+            ),
+            LimitSurface::NotCompared(why) => {
+                format!("Limit surface: not compared ({why}).")
+            }
+        }
+    }
 }
 
 impl InputReport {
@@ -195,9 +256,14 @@ impl InputReport {
         self.sets.iter().map(SetResult::agreeing).sum()
     }
 
-    /// Whether every check passed.
+    /// Whether every check passed (the limit surface's too, where it was
+    /// compared).
     pub fn conforms(&self) -> bool {
         self.agreeing() == self.cases()
+            && !matches!(
+                self.limit_surface,
+                LimitSurface::Compared { agrees: false, .. }
+            )
     }
 
     /// The largest deviation of any check.

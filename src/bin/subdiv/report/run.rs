@@ -18,7 +18,7 @@ use subdiv::{Engine, Error, OsdErrorKind, Refinement, Request, Result, check_lev
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs
         .iter()
-        .map(|i| choose(i, settings).1.len() as u64 + settings.timed_levels().count() as u64)
+        .map(|i| choose(i, settings).1.len() as u64 + settings.timed_levels().count() as u64 + 1)
         .sum()
 }
 
@@ -144,6 +144,8 @@ pub(crate) fn run_input(
             svg: String::new(),
         },
     };
+    progress(&format!("{}: limit surface", input.name));
+    let limit_surface = limit_surface(input, settings.tolerance);
     Ok(InputReport {
         name: input.name.clone(),
         description: input.description.clone(),
@@ -155,7 +157,28 @@ pub(crate) fn run_input(
         sets: results,
         timings,
         picture,
+        limit_surface,
     })
+}
+
+/// Both engines' patch tables of `input` with its default options and the
+/// limit surfaces they evaluate (`subdiv compare --patches`' comparison).
+fn limit_surface(input: &Input, tolerance: f64) -> super::results::LimitSurface {
+    use super::results::{LIMIT_ISOLATION, LimitSurface};
+    let po = subdiv::patches::PatchOptions::new().max_isolation(LIMIT_ISOLATION);
+    let ao = po.refine_adaptive_options();
+    match crate::compare_patches::limit_comparison(&input.mesh, &input.options, &po, ao, &[]) {
+        Ok(c) => LimitSurface::Compared {
+            patches: c.patches,
+            local_points: c.local_points,
+            agrees: c.agrees(tolerance),
+            first_difference: c.first_difference,
+            locations: c.locations,
+            deviation: c.relative_position_deviation,
+            derivative_deviation: c.relative_derivative_deviation,
+        },
+        Err(e) => LimitSurface::NotCompared(e.to_string()),
+    }
 }
 
 /// Compares one option set; returns the refinements too (for the picture).
