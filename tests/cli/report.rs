@@ -92,7 +92,10 @@ fn report_on_an_obj_file() {
     for doc in [&md, &html] {
         assert!(doc.contains("seam-crease.obj"));
         assert!(doc.contains("CONFORMS"));
-        assert!(doc.contains("Limit surface (patch tables at isolation 3"), "{doc}");
+        assert!(
+            doc.contains("Limit surface (patch tables at isolation 3"),
+            "{doc}"
+        );
         assert!(doc.contains("tables identical"), "{doc}");
         assert!(doc.contains("0 (bit-identical)"));
         assert!(!doc.contains("http"), "an external resource or link");
