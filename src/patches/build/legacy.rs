@@ -94,22 +94,9 @@ impl Builder<'_> {
         let width = 2 * max_valence + 1;
         let total: usize = self.levels.iter().map(|l| l.vertex_count).sum();
         let mut table = crate::alloc::vec_or_unwind(0i32, total * width);
-        let last = &self.levels[self.max_level()];
-        let mut ring = Vec::with_capacity(width);
-        for v in 0..last.vertex_count {
-            ring.clear();
-            let faces = last.vertex_faces_of(v);
-            let locals = last.vertex_face_locals(v);
-            let boundary = last.vertex_edges_of(v).len() > faces.len();
-            for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
-                let p = last.face_verts(f as usize);
-                let k = k as usize;
-                ring.push(p[(k + 1) % 4]);
-                ring.push(p[(k + 2) % 4]);
-                if boundary && i + 1 == faces.len() {
-                    ring.push(p[(k + 3) % 4]);
-                }
-            }
+        let max = self.max_level();
+        for v in 0..self.levels[max].vertex_count {
+            let ring = self.quad_ring(max, v as u32);
             let entry = &mut table[(last_offset as usize + v) * width..][..width];
             for (slot, &r) in entry[1..].iter_mut().zip(&ring) {
                 *slot = (r + last_offset) as i32;

@@ -466,23 +466,71 @@ impl Builder<'_> {
         regular: bool,
         boundary: u16,
     ) -> PatchParam {
+        let parent_of = |l: usize, child: usize| {
+            let parent = self.steps[l - 1].child_face_parent[child] as usize;
+            let k = self
+                .child_faces(l - 1, parent)
+                .iter()
+                .position(|&c| c as usize == child)
+                .unwrap_or(0);
+            (parent, k)
+        };
+        let transition = if level < self.max_level() {
+            self.steps[level].face_transitional[f]
+        } else {
+            0
+        };
+        let place = Placement {
+            levels: self.levels,
+            reg: self.reg,
+            ptex,
+        };
+        place.param(
+            level,
+            f,
+            parent_of,
+            regular,
+            boundary,
+            u16::from(transition),
+        )
+    }
+}
+
+/// What locating a face in its ptex face needs: every level's faces, the
+/// scheme's regular face size and the first ptex face of each base face.
+pub(super) struct Placement<'a> {
+    pub levels: &'a [Level],
+    pub reg: usize,
+    pub ptex: &'a [u32],
+}
+
+impl Placement<'_> {
+    /// The [`PatchParam`] of face `f` of `level`, walking up through
+    /// `parent_of(level, face)` (the parent in the level above and the
+    /// face's place among its children): a quad's `k`-th child in its
+    /// `k`-th quadrant, a triangle's middle child turned over, a non-quad
+    /// base face's children its ptex faces.
+    pub fn param(
+        &self,
+        level: usize,
+        f: usize,
+        parent_of: impl Fn(usize, usize) -> (usize, usize),
+        regular: bool,
+        boundary: u16,
+        transition: u16,
+    ) -> PatchParam {
         let (mut u, mut v, mut ofs) = (0i32, 0i32, 1i32);
         let mut irregular_base = self.levels[level].face_vertices.count(f) != self.reg;
         let mut rotated = false;
         let mut child_in_parent = 0usize;
         let mut child = f;
         for i in (1..=level).rev() {
-            let step = &self.steps[i - 1];
-            let parent = step.child_face_parent[child] as usize;
+            let (parent, k) = parent_of(i, child);
+            child_in_parent = k;
             irregular_base = self.levels[i - 1].face_vertices.count(parent) != self.reg;
-            child_in_parent = self
-                .child_faces(i - 1, parent)
-                .iter()
-                .position(|&c| c as usize == child)
-                .unwrap_or(0);
             if self.reg == 3 {
                 // The middle triangle turns the parameterization over.
-                match (child_in_parent, rotated) {
+                match (k, rotated) {
                     (1, false) => u += ofs,
                     (2, false) => v += ofs,
                     (3, false) => {
@@ -501,7 +549,7 @@ impl Builder<'_> {
                 }
                 ofs <<= 1;
             } else if !irregular_base {
-                match child_in_parent {
+                match k {
                     1 => u += ofs,
                     2 => {
                         u += ofs;
@@ -518,15 +566,10 @@ impl Builder<'_> {
             u += ofs;
             v += ofs;
         }
-        let mut ptex_face = ptex[child];
+        let mut ptex_face = self.ptex[child];
         if irregular_base {
             ptex_face += child_in_parent as u32;
         }
-        let transition = if level < self.max_level() {
-            self.steps[level].face_transitional[f]
-        } else {
-            0
-        };
         PatchParam::new(
             ptex_face,
             u as u16,
@@ -534,7 +577,7 @@ impl Builder<'_> {
             level as u16,
             irregular_base,
             boundary,
-            transition as u16,
+            transition,
             regular,
         )
     }

@@ -60,6 +60,11 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
     let max = levels.len() - 1;
     let first = if options.generate_all_levels { 1 } else { max };
     let ptex = ptex_first(&levels[0], reg);
+    let place = super::Placement {
+        levels,
+        reg,
+        ptex: &ptex,
+    };
     let mut arrays = Vec::new();
     let mut offset = if options.include_base_level_indices {
         levels[0].vertex_count as u32
@@ -91,7 +96,14 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
             for f in (0..l.face_count()).filter(|&f| !l.is_hole(f)) {
                 let verts = l.face_verts(f);
                 a.control_vertices.extend(verts.iter().map(|&v| v + offset));
-                let param = param(levels, level, f, reg, &ptex);
+                let param = place.param(
+                    level,
+                    f,
+                    |l, c| parent_of(&levels[l - 1], c, reg),
+                    true,
+                    0,
+                    0,
+                );
                 a.params.push(param);
                 if triangulate {
                     let n = a.control_vertices.len();
@@ -145,75 +157,6 @@ fn max_valence(levels: &[Level], reg: usize) -> usize {
             };
             bound.max(if tri { 6 } else { 4 }).max(2 + edge)
         })
-}
-
-/// The parameterization of face `f` of a uniform `level`
-/// (`ComputePatchParam` with a regular patch, no boundary, no transition):
-/// children follow their parents, a quad's `k`-th child in its `k`-th
-/// quadrant, a triangle's middle child turned over, a non-quad base face's
-/// children its ptex faces.
-fn param(levels: &[Level], level: usize, f: usize, reg: usize, ptex: &[u32]) -> PatchParam {
-    let (mut u, mut v, mut ofs) = (0i32, 0i32, 1i32);
-    let mut rotated = false;
-    let mut child = f;
-    let mut child_in_parent = 0usize;
-    let mut irregular_base = levels[level].face_vertices.count(f) != reg;
-    for i in (1..=level).rev() {
-        let parent_level = &levels[i - 1];
-        let (parent, k) = parent_of(parent_level, child, reg);
-        child_in_parent = k;
-        irregular_base = parent_level.face_vertices.count(parent) != reg;
-        if reg == 3 {
-            match (k, rotated) {
-                (1, false) => u += ofs,
-                (2, false) => v += ofs,
-                (3, false) => {
-                    u -= ofs;
-                    v -= ofs;
-                    rotated = true;
-                }
-                (1, true) => u -= ofs,
-                (2, true) => v -= ofs,
-                (3, true) => {
-                    u += ofs;
-                    v += ofs;
-                    rotated = false;
-                }
-                _ => {}
-            }
-            ofs <<= 1;
-        } else if !irregular_base {
-            match k {
-                1 => u += ofs,
-                2 => {
-                    u += ofs;
-                    v += ofs;
-                }
-                3 => v += ofs,
-                _ => {}
-            }
-            ofs <<= 1;
-        }
-        child = parent;
-    }
-    if rotated {
-        u += ofs;
-        v += ofs;
-    }
-    let mut face = ptex[child];
-    if irregular_base {
-        face += child_in_parent as u32;
-    }
-    PatchParam::new(
-        face,
-        u as u16,
-        v as u16,
-        level as u16,
-        irregular_base,
-        0,
-        0,
-        true,
-    )
 }
 
 /// The parent of child face `child` and its place among the parent's
