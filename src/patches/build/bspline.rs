@@ -7,23 +7,31 @@
 
 use super::gregory::Gregory;
 use super::limits;
-use super::matrix::{Matrix, Row};
+use super::matrix::Matrix;
 use super::source::SourcePatch;
 use crate::real::Real;
 
-/// The change-of-basis matrix from `patch`'s points to a B-spline patch.
-pub(super) fn convert<R: Real>(patch: &SourcePatch) -> Matrix<R> {
-    let gregory = Gregory::<R>::new(patch);
-    match gregory.isolated_corner() {
-        Some(corner) => irregular_corner(patch, corner),
-        None => from_gregory(&gregory.convert()),
+/// The change-of-basis matrix from `patch`'s points to a B-spline patch,
+/// into `m` (`gregory` holds the Gregory points it is made from).
+pub(super) fn convert_into<R: Real>(
+    patch: &SourcePatch,
+    m: &mut Matrix<R>,
+    gregory: &mut Matrix<R>,
+) {
+    let converter = Gregory::<R>::new(patch);
+    match converter.isolated_corner() {
+        Some(corner) => irregular_corner(patch, corner, m),
+        None => {
+            converter.convert_into(gregory);
+            from_gregory(gregory, m);
+        }
     }
 }
 
 /// From Gregory (Bézier) points to B-spline ones: each B-spline point a
 /// fixed combination of a corner's, an edge's or the interior's Gregory
 /// points (`convertFromGregory`).
-fn from_gregory<R: Real>(g: &Matrix<R>) -> Matrix<R> {
+fn from_gregory<R: Real>(g: &Matrix<R>, b: &mut Matrix<R>) {
     const CORNER: [f32; 9] = [49.0, -42.0, -42.0, 36.0, -14.0, -14.0, 12.0, 12.0, 4.0];
     const EDGE: [f32; 6] = [-14.0, 12.0, 7.0, -6.0, 4.0, -2.0];
     const INTERIOR: [f32; 4] = [4.0, -2.0, -2.0, 1.0];
@@ -70,34 +78,26 @@ fn from_gregory<R: Real>(g: &Matrix<R>) -> Matrix<R> {
         (&P[2], &CORNER),
     ];
     let n = g.columns;
-    let mut b = Matrix {
-        rows: Vec::with_capacity(16),
-        columns: n,
-    };
-    for (sources, coefficients) in rows {
-        let mut weights = vec![R::ZERO; n];
+    b.reset(&[n; 16], n);
+    for (out, (sources, coefficients)) in b.rows.iter_mut().zip(rows) {
+        out.columns.iter_mut().enumerate().for_each(|(i, c)| *c = i);
         for (&s, &c) in sources.iter().zip(coefficients) {
             let c = R::from_f32(c);
             let Some(row) = g.rows.get(s) else { continue };
             for (&i, &w) in row.columns.iter().zip(&row.weights) {
-                if let Some(x) = weights.get_mut(i) {
+                if let Some(x) = out.weights.get_mut(i) {
                     *x += c * w;
                 }
             }
         }
-        b.rows.push(Row {
-            columns: (0..n).collect(),
-            weights,
-        });
     }
-    b
 }
 
 /// The B-spline patch around an isolated irregular interior corner
 /// (`convertIrregularCorner`): seven points `X` computed from the corner's
 /// ring and its limit point and edge points, the other nine the source
 /// points themselves.
-fn irregular_corner<R: Real>(patch: &SourcePatch, corner: usize) -> Matrix<R> {
+fn irregular_corner<R: Real>(patch: &SourcePatch, corner: usize, m: &mut Matrix<R>) {
     const X_ROWS: [[usize; 7]; 4] = [
         [0, 1, 4, 2, 8, 3, 12],
         [3, 7, 2, 11, 1, 15, 0],
@@ -120,7 +120,7 @@ fn irregular_corner<R: Real>(patch: &SourcePatch, corner: usize) -> Matrix<R> {
     for (k, &r) in x_rows.iter().enumerate() {
         sizes[r] = if k >= 5 { width + 1 } else { width };
     }
-    let mut m = Matrix::with_row_sizes(&sizes, patch.points);
+    m.reset(&sizes, patch.points);
     for row in &mut m.rows {
         if row.len() == 1 {
             row.weights[0] = R::ONE;
@@ -236,5 +236,4 @@ fn irregular_corner<R: Real>(patch: &SourcePatch, corner: usize) -> Matrix<R> {
     for (r, b) in EXTERIOR_ROWS[corner].iter().zip(9..14) {
         m.rows[*r].columns[0] = beyond[b];
     }
-    m
 }

@@ -122,33 +122,33 @@ impl<R: Real> Gregory<R> {
         self.isolated.map(|(c, _)| c)
     }
 
-    /// The change-of-basis matrix (`GregoryConverter::Convert`).
-    pub fn convert(&self) -> Matrix<R> {
+    /// The change-of-basis matrix (`GregoryConverter::Convert`), into `m`.
+    pub fn convert_into(&self, m: &mut Matrix<R>) {
         let sizes = match self.isolated {
             Some((c, valence)) => isolated_sizes(c, valence),
             None => self.unisolated_sizes(),
         };
-        let mut m = Matrix::with_row_sizes(&sizes, self.points);
+        m.reset(&sizes, self.points);
         for c in 0..4 {
             if self.corners[c].regular {
-                self.regular_edge_points(c, &mut m);
+                self.regular_edge_points(c, m);
             } else {
-                self.irregular_edge_points(c, &mut m);
+                self.irregular_edge_points(c, m);
             }
         }
+        let mut scratch = (vec![R::ZERO; self.points], vec![false; self.points]);
         for c in 0..4 {
             let corner = &self.corners[c];
             if corner.fp_regular || corner.fm_regular {
-                self.regular_face_points(c, &mut m);
+                self.regular_face_points(c, m);
             }
             if !corner.fp_regular || !corner.fm_regular {
-                self.irregular_face_points(c, &mut m);
+                self.irregular_face_points(c, m, &mut scratch);
             }
         }
         if self.has_val2_interior {
             m.merge_repeated_corners();
         }
-        m
     }
 
     /// Row sizes when no corner is isolated (`resizeMatrixUnisolated`).
@@ -372,30 +372,35 @@ impl<R: Real> Gregory<R> {
 
     /// Irregular `Fp` and/or `Fm`, then the copies
     /// (`computeIrregularFacePoints`).
-    fn irregular_face_points(&self, c: usize, m: &mut Matrix<R>) {
+    fn irregular_face_points(
+        &self,
+        c: usize,
+        m: &mut Matrix<R>,
+        scratch: &mut (Vec<R>, Vec<bool>),
+    ) {
         let corner = &self.corners[c];
         let (next, prev) = ((c + 1) % 4, (c + 3) % 4);
         if !corner.fp_regular && !corner.fp_copied {
-            let row = self.irregular_face_point(
+            self.irregular_face_point(
                 c,
                 corner.face_in_ring,
                 next,
-                [&m.rows[5 * c], &m.rows[5 * c + 1], &m.rows[5 * next + 2]],
+                [5 * c, 5 * c + 1, 5 * next + 2, 5 * c + 3],
                 R::ONE,
-                m.rows[5 * c + 3].len(),
+                m,
+                scratch,
             );
-            m.rows[5 * c + 3] = row;
         }
         if !corner.fm_regular && !corner.fm_copied {
-            let row = self.irregular_face_point(
+            self.irregular_face_point(
                 c,
                 (corner.face_in_ring + 1) % corner.valence.max(1),
                 prev,
-                [&m.rows[5 * c], &m.rows[5 * c + 2], &m.rows[5 * prev + 1]],
+                [5 * c, 5 * c + 2, 5 * prev + 1, 5 * c + 4],
                 -R::ONE,
-                m.rows[5 * c + 4].len(),
+                m,
+                scratch,
             );
-            m.rows[5 * c + 4] = row;
         }
         if corner.fp_copied {
             let from = m.rows[5 * c + 4].clone();
@@ -409,25 +414,29 @@ impl<R: Real> Gregory<R> {
 
     /// A face point next to an irregular corner from the corner's `P`, its
     /// edge point towards the far corner and the far corner's edge point
-    /// back, plus the ring across the edge (`computeIrregularFacePoint`).
+    /// back (rows `p`, `e_near`, `e_far` of `m`), plus the ring across the
+    /// edge, written into row `out` (`computeIrregularFacePoint`).
+    #[allow(clippy::too_many_arguments)]
     fn irregular_face_point(
         &self,
         near: usize,
         edge_in_ring: usize,
         far: usize,
-        [p, e_near, e_far]: [&Row<R>; 3],
+        [p, e_near, e_far, out]: [usize; 4],
         sign: R,
-        size: usize,
-    ) -> Row<R> {
+        m: &mut Matrix<R>,
+        (weights, used): &mut (Vec<R>, Vec<bool>),
+    ) {
         let (cn, cf) = (&self.corners[near], &self.corners[far]);
         let three = R::from_f64(3.0);
         let two = R::from_f64(2.0);
         let p_coeff = cf.cos_angle / three;
         let e_near_coeff = (three - two * cn.cos_angle - cf.cos_angle) / three;
         let e_far_coeff = two * cn.cos_angle / three;
-        let mut weights = vec![R::ZERO; self.points];
-        let mut used = vec![false; self.points];
+        weights.iter_mut().for_each(|w| *w = R::ZERO);
+        used.iter_mut().for_each(|u| *u = false);
         for (row, s) in [(p, p_coeff), (e_near, e_near_coeff), (e_far, e_far_coeff)] {
+            let row = &m.rows[row];
             for (&i, &w) in row.columns.iter().zip(&row.weights) {
                 if let Some(x) = weights.get_mut(i) {
                     *x += s * w;
@@ -452,11 +461,11 @@ impl<R: Real> Gregory<R> {
                 *x += w;
             }
         }
-        let mut row = Row {
-            columns: Vec::with_capacity(size),
-            weights: Vec::with_capacity(size),
-        };
-        for (i, (&u, &w)) in used.iter().zip(&weights).enumerate() {
+        let row = &mut m.rows[out];
+        let size = row.len();
+        row.columns.clear();
+        row.weights.clear();
+        for (i, (&u, &w)) in used.iter().zip(weights.iter()).enumerate() {
             if u && row.columns.len() < size {
                 row.columns.push(i);
                 row.weights.push(w);
@@ -469,7 +478,6 @@ impl<R: Real> Gregory<R> {
                 row.weights.push(R::ZERO);
             }
         }
-        row
     }
 }
 

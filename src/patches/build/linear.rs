@@ -8,8 +8,8 @@ use super::source::SourcePatch;
 use crate::real::Real;
 
 /// The change-of-basis matrix from `patch`'s points to its bilinear
-/// patch's four corners.
-pub(super) fn convert<R: Real>(patch: &SourcePatch) -> Matrix<R> {
+/// patch's four corners, into `m`.
+pub(super) fn convert_into<R: Real>(patch: &SourcePatch, m: &mut Matrix<R>) {
     let mut sizes = [0usize; 4];
     for (c, size) in sizes.iter_mut().enumerate() {
         let corner = &patch.corners[c];
@@ -21,7 +21,7 @@ pub(super) fn convert<R: Real>(patch: &SourcePatch) -> Matrix<R> {
             1 + patch.ring_size(c)
         };
     }
-    let mut m = Matrix::with_row_sizes(&sizes, patch.points);
+    m.reset(&sizes, patch.points);
     let mut has_val2_interior = false;
     for (c, row) in m.rows.iter_mut().enumerate() {
         let corner = &patch.corners[c];
@@ -55,5 +55,4 @@ pub(super) fn convert<R: Real>(patch: &SourcePatch) -> Matrix<R> {
     if has_val2_interior {
         m.merge_repeated_corners();
     }
-    m
 }

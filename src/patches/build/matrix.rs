@@ -12,13 +12,6 @@ pub(super) struct Row<R> {
 }
 
 impl<R: Real> Row<R> {
-    fn sized(n: usize) -> Row<R> {
-        Row {
-            columns: vec![0; n],
-            weights: vec![R::ZERO; n],
-        }
-    }
-
     /// Number of entries.
     pub fn len(&self) -> usize {
         self.columns.len()
@@ -43,11 +36,17 @@ pub(super) struct Matrix<R> {
 }
 
 impl<R: Real> Matrix<R> {
-    /// Rows of the given sizes over `columns` source points.
-    pub fn with_row_sizes(sizes: &[usize], columns: usize) -> Matrix<R> {
-        Matrix {
-            rows: sizes.iter().map(|&n| Row::sized(n)).collect(),
-            columns,
+    /// Makes this rows of the given sizes (entries zeroed) over `columns`
+    /// source points, reusing the rows' storage: one matrix serves every
+    /// end cap of a table.
+    pub fn reset(&mut self, sizes: &[usize], columns: usize) {
+        self.columns = columns;
+        self.rows.resize_with(sizes.len(), Row::default);
+        for (row, &n) in self.rows.iter_mut().zip(sizes) {
+            row.columns.clear();
+            row.columns.resize(n, 0);
+            row.weights.clear();
+            row.weights.resize(n, R::ZERO);
         }
     }
 

@@ -325,6 +325,11 @@ impl Builder<'_> {
         // legacy Gregory patch its parameter boundary mask too.
         let mut param_boundary = 0u16;
         let mut sharpness = 0f32;
+        // The end caps' matrices, their storage reused from patch to patch.
+        let (mut matrix, mut spare) = (
+            matrix::Matrix::<R>::default(),
+            matrix::Matrix::<R>::default(),
+        );
         for (p, &is_regular) in patches.iter().zip(&regular) {
             let offset = offsets[p.level];
             let array = if is_regular {
@@ -360,11 +365,11 @@ impl Builder<'_> {
                 param_boundary = 0;
                 let spans = self.corner_spans(p.level, p.face);
                 let source = self.source_patch(p.level, p.face, &spans);
-                let matrix = match irregular_type {
-                    PatchType::Quads => linear::convert::<R>(&source),
-                    PatchType::Regular => bspline::convert::<R>(&source),
-                    _ => gregory::Gregory::<R>::new(&source).convert(),
-                };
+                match irregular_type {
+                    PatchType::Quads => linear::convert_into(&source, &mut matrix),
+                    PatchType::Regular => bspline::convert_into(&source, &mut matrix, &mut spare),
+                    _ => gregory::Gregory::<R>::new(&source).convert_into(&mut matrix),
+                }
                 let sources = self.source_points(p.level, p.face, &spans, &source);
                 let cvs = local.append(
                     self,
