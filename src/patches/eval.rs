@@ -22,7 +22,7 @@ impl AdaptiveRefiner {
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
-        let expected = self.level_counts(0)?.vertices * width;
+        let expected = self.level_counts(0)?.vertices.saturating_mul(width);
         if base.len() != expected {
             return Err(Error::BufferLength {
                 buffer: Buffer::Base,
@@ -122,12 +122,12 @@ pub fn evaluate(
         for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
             let dst = &mut out[i * width..(i + 1) * width];
             for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
-                let at = cv as usize * width;
+                let end = (cv as usize + 1).saturating_mul(width);
                 let row = points
-                    .get(at..at + width)
+                    .get(end - width..end)
                     .ok_or_else(|| Error::BufferLength {
                         buffer: Buffer::Source,
-                        expected: at + width,
+                        expected: end,
                         got: points.len(),
                     })?;
                 for (o, &x) in dst.iter_mut().zip(row) {
