@@ -123,13 +123,11 @@ pub fn evaluate(
             let dst = &mut out[i * width..(i + 1) * width];
             for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
                 let end = (cv as usize + 1).saturating_mul(width);
-                let row = points
-                    .get(end - width..end)
-                    .ok_or_else(|| Error::BufferLength {
-                        buffer: Buffer::Source,
-                        expected: end,
-                        got: points.len(),
-                    })?;
+                let row = points.get(end - width..end).ok_or(Error::BufferLength {
+                    buffer: Buffer::Source,
+                    expected: end,
+                    got: points.len(),
+                })?;
                 for (o, &x) in dst.iter_mut().zip(row) {
                     *o += w * x;
                 }
