@@ -10,7 +10,7 @@ use super::limits;
 use super::matrix::{Matrix, Row};
 use super::source::SourcePatch;
 use crate::real::Real;
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::PI;
 
 /// What the converter keeps of each corner.
 #[derive(Debug, Clone, Default)]
@@ -50,6 +50,7 @@ impl<R: Real> Gregory<R> {
                 let s = &patch.corners[c];
                 let valence = s.faces + s.boundary as usize;
                 let regular = (s.faces << s.boundary as usize) == 4 && !s.sharp;
+                // A regular corner's face angle is π/2: cosine 0.
                 let cos_angle = if regular {
                     R::ZERO
                 } else {
@@ -74,7 +75,6 @@ impl<R: Real> Gregory<R> {
                 }
             })
             .collect();
-        let _ = FRAC_PI_2; // regular corners: angle π/2, cosine 0
         let irregular: Vec<usize> = (0..4).filter(|&c| !corners[c].regular).collect();
         let boundaries = corners.iter().filter(|c| c.boundary).count();
         let sharps = corners.iter().filter(|c| c.sharp).count();

@@ -183,6 +183,9 @@ impl<R: Real> LocalPoints<R> {
     fn shared(&mut self, l: &Level, level: usize, face: usize, bits: u8, next: u32) -> u32 {
         let k = (bits & 0x0f) as usize;
         let invalid = u32::MAX;
+        if bits & (CORNER | EDGE_BEGIN | EDGE_END) == 0 {
+            return next;
+        }
         let slot = if bits & CORNER != 0 {
             let table = &mut self.shared_corners[level];
             if table.is_empty() {
@@ -200,7 +203,6 @@ impl<R: Real> LocalPoints<R> {
             }
             let reversed = l.edge_vertices[e as usize][0] != l.face_verts(face)[k];
             let end = ((bits & EDGE_END != 0) != reversed) as usize;
-            let _ = EDGE_BEGIN;
             let table = &mut self.shared_edges[level];
             if table.is_empty() {
                 *table = vec![invalid; 2 * l.edge_count()];
