@@ -6,7 +6,7 @@
 //! inspections).
 
 use super::Builder;
-use crate::refiner::adaptive::Features;
+use crate::refiner::adaptive::{CORNER, CREASE, DART, Tag};
 use crate::rules::Rule;
 use crate::topology::Level;
 
@@ -20,71 +20,6 @@ impl std::ops::Deref for Corners {
     type Target = [Tag];
     fn deref(&self) -> &[Tag] {
         &self.tags[..self.len]
-    }
-}
-
-/// The tag bits of one vertex, or of several or-ed together.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub(super) struct Tag {
-    pub non_manifold: bool,
-    pub xordinary: bool,
-    pub boundary: bool,
-    pub corner: bool,
-    pub inf_sharp: bool,
-    pub inf_sharp_edges: bool,
-    pub inf_sharp_crease: bool,
-    pub inf_irregular: bool,
-    pub incomplete: bool,
-    /// One bit per rule present (smooth 1, dart 2, crease 4, corner 8).
-    pub rules: u8,
-}
-
-impl Tag {
-    fn of(level: &Level, features: &Features, v: usize) -> Tag {
-        let t = level.vertex_tag(v);
-        Tag {
-            non_manifold: t.non_manifold(),
-            xordinary: features.xordinary,
-            boundary: t.boundary(),
-            corner: t.corner(),
-            inf_sharp: t.inf_sharp(),
-            inf_sharp_edges: t.inf_sharp_edges(),
-            inf_sharp_crease: features.inf_sharp_crease,
-            inf_irregular: features.inf_irregular,
-            incomplete: features.incomplete,
-            rules: rule_bit(t.rule()),
-        }
-    }
-
-    fn or(self, o: Tag) -> Tag {
-        Tag {
-            non_manifold: self.non_manifold | o.non_manifold,
-            xordinary: self.xordinary | o.xordinary,
-            boundary: self.boundary | o.boundary,
-            corner: self.corner | o.corner,
-            inf_sharp: self.inf_sharp | o.inf_sharp,
-            inf_sharp_edges: self.inf_sharp_edges | o.inf_sharp_edges,
-            inf_sharp_crease: self.inf_sharp_crease | o.inf_sharp_crease,
-            inf_irregular: self.inf_irregular | o.inf_irregular,
-            incomplete: self.incomplete | o.incomplete,
-            rules: self.rules | o.rules,
-        }
-    }
-
-    /// Whether any bit of `mask` is set in this tag too.
-    fn any(self, mask: Tag) -> bool {
-        (self.non_manifold && mask.non_manifold)
-            || (self.xordinary && mask.xordinary)
-            || (self.inf_irregular && mask.inf_irregular)
-    }
-}
-
-fn rule_bit(rule: Rule) -> u8 {
-    match rule {
-        Rule::Smooth => 1,
-        Rule::Dart => 2,
-        Rule::Crease => 4,
-        Rule::Corner => 8,
     }
 }
 
@@ -113,7 +48,7 @@ impl Builder<'_> {
             len: 0,
         };
         for (slot, &v) in c.tags.iter_mut().zip(l.face_verts(f)) {
-            *slot = Tag::of(l, &features[v as usize], v as usize);
+            *slot = Tag::of(l, features, v as usize);
             c.len += 1;
         }
         c
@@ -126,7 +61,7 @@ impl Builder<'_> {
         let features = &self.features[level];
         l.face_verts(f)
             .iter()
-            .map(|&v| Tag::of(l, &features[v as usize], v as usize))
+            .map(|&v| Tag::of(l, features, v as usize))
             .fold(Tag::default(), Tag::or)
     }
 
@@ -139,37 +74,35 @@ impl Builder<'_> {
         let tags = self.corner_tags(level, f);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp && !all.inf_sharp_edges {
-            return !all.xordinary;
+            return !all.features.xordinary;
         }
         let test_inf = self.inf_sharp_patch;
-        let irregular = Tag {
-            non_manifold: true,
-            xordinary: true,
-            inf_irregular: test_inf,
-            ..Tag::default()
+        // The features that can make a corner irregular.
+        let irregular = |t: &Tag| {
+            t.non_manifold || t.features.xordinary || (test_inf && t.features.inf_irregular)
         };
-        if !all.any(irregular) {
+        if !irregular(&all) {
             return true;
         }
         // An isolated feature (past the level where an irregular base face
         // still touches extraordinary vertices) is judged from the
         // combined tags unless it needs a closer look.
-        let needs_extra_level = (all.xordinary && self.irregular_base_faces) as usize;
+        let needs_extra_level = (all.features.xordinary && self.irregular_base_faces) as usize;
         if level > needs_extra_level {
             let closer = all.non_manifold
-                || (self.sharp_corners && all.xordinary && all.boundary)
-                || (test_inf && all.inf_irregular && all.inf_sharp_edges);
+                || (self.sharp_corners && all.features.xordinary && all.boundary)
+                || (test_inf && all.features.inf_irregular && all.inf_sharp_edges);
             if !closer {
                 return if test_inf {
-                    !all.inf_irregular
+                    !all.features.inf_irregular
                 } else {
-                    !all.xordinary
+                    !all.features.xordinary
                 };
             }
         }
         let regular_boundary_faces = if self.reg == 4 { 2 } else { 3 };
         for (i, tag) in tags.iter().enumerate() {
-            if !tag.any(irregular) {
+            if !irregular(tag) {
                 continue;
             }
             if tag.non_manifold {
@@ -191,7 +124,7 @@ impl Builder<'_> {
                 }
                 continue;
             }
-            if tag.xordinary {
+            if tag.features.xordinary {
                 if !tag.inf_sharp_edges {
                     return false;
                 }
@@ -208,14 +141,14 @@ impl Builder<'_> {
                     return false;
                 }
             }
-            if tag.inf_irregular {
-                if !tag.inf_sharp_edges || (tag.inf_sharp_crease && tag.boundary) {
+            if tag.features.inf_irregular {
+                if !tag.inf_sharp_edges || (tag.features.inf_sharp_crease && tag.boundary) {
                     return false;
                 }
                 let n = self
                     .manifold_span(level, f, i, Singular { inf_sharp: true })
                     .faces;
-                let want = if tag.inf_sharp_crease {
+                let want = if tag.features.inf_sharp_crease {
                     regular_boundary_faces
                 } else {
                     1
@@ -275,10 +208,10 @@ impl Builder<'_> {
         }
         let l = &self.levels[level];
         let all = self.composite(level, f);
-        if all.rules & 4 == 0
-            || all.rules & (8 | 2) != 0
+        if all.rule & CREASE == 0
+            || all.rule & (CORNER | DART) != 0
             || all.boundary
-            || all.xordinary
+            || all.features.xordinary
             || all.non_manifold
         {
             return None;
@@ -452,7 +385,7 @@ impl Builder<'_> {
                     span.sharp = tag.inf_sharp;
                 } else if test_inf {
                     span.sharp = if test_inf_edges {
-                        !tag.inf_sharp_crease
+                        !tag.features.inf_sharp_crease
                     } else {
                         tag.inf_sharp
                     };
@@ -460,7 +393,7 @@ impl Builder<'_> {
                 // The legacy option: a smooth corner of one face is sharp.
                 if !span.sharp
                     && self.sharp_corners
-                    && tag.xordinary
+                    && tag.features.xordinary
                     && tag.boundary
                     && !tag.inf_sharp
                     && !tag.non_manifold

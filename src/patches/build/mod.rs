@@ -185,7 +185,7 @@ impl Builder<'_> {
             };
         }
         if self.reg == 4 {
-            !self.composite(level, f).incomplete
+            !self.composite(level, f).features.incomplete
         } else {
             let step = &self.steps[level - 1];
             step.selection.face(step.child_face_parent[f] as usize)

@@ -45,6 +45,7 @@ mod interpolate;
 mod kernel;
 mod select;
 mod stencils;
+mod vtag;
 
 use super::Refiner;
 use crate::compare::AdaptiveLevel;
@@ -59,6 +60,7 @@ pub(crate) use features::Features;
 use features::{base_features, child_features, regular_face_size};
 use glam::DVec3;
 use select::{FeatureMask, face_is_selected};
+pub(crate) use vtag::{CORNER, CREASE, DART, Tag};
 
 /// The deepest secondary level OpenSubdiv's 4-bit field holds (15: none).
 const MAX_SECONDARY_LEVEL: u32 = 15;
