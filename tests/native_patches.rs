@@ -485,3 +485,41 @@ fn uniform_tables_match_opensubdiv() {
     }
     assert!(compared > 1000, "{compared}");
 }
+
+/// `evaluate_with` a map built once gives `evaluate`'s values; a map of
+/// another table is refused or answers, never panics.
+#[test]
+fn evaluation_with_a_prebuilt_map() {
+    use subdiv::patches::{self, Derivatives, PatchMap};
+    let po = PatchOptions::new().max_isolation(2);
+    let build = |mesh: &Mesh| {
+        let r = Refiner::new(mesh, &Options::default())
+            .unwrap()
+            .refine_adaptive(po.refine_adaptive_options(), &[])
+            .unwrap();
+        let t = r.patch_table(&po, &[]).unwrap();
+        let p = r.patch_points(&t, 3, &mesh.flat_positions()).unwrap();
+        (t, p)
+    };
+    let (cube, cube_points) = build(&shapes::cube());
+    let map = PatchMap::new(&cube);
+    let at = [(0, 0.2, 0.7), (5, 1.0, 0.0)];
+    let once = patches::evaluate(&cube, &cube_points, 3, &at, Derivatives::First).unwrap();
+    let with =
+        patches::evaluate_with(&map, &cube, &cube_points, 3, &at, Derivatives::First).unwrap();
+    assert_eq!(once, with);
+    // The map of a bigger table over a smaller one.
+    let (torus, _) = build(&shapes::torus_mixed(6, 4));
+    let big = PatchMap::new(&torus);
+    for face in 0..6 {
+        let r = patches::evaluate_with(
+            &big,
+            &cube,
+            &cube_points,
+            3,
+            &[(face, 0.9, 0.9)],
+            Derivatives::None,
+        );
+        assert!(matches!(r, Ok(_) | Err(Error::NoSuchPatch { .. })), "{r:?}");
+    }
+}

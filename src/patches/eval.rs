@@ -76,10 +76,31 @@ pub fn evaluate(
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
 ) -> Result<SurfaceSamples> {
+    evaluate_with(
+        &PatchMap::new(table),
+        table,
+        points,
+        width,
+        locations,
+        derivatives,
+    )
+}
+
+/// [`evaluate`] with `table`'s [`PatchMap`] built once by the caller, for
+/// evaluating the same table again and again (each frame's points, say)
+/// without rebuilding it. A map of another table gives wrong patches or
+/// [`Error::NoSuchPatch`], never a panic.
+pub fn evaluate_with(
+    map: &PatchMap,
+    table: &PatchTable,
+    points: &[f64],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    derivatives: Derivatives,
+) -> Result<SurfaceSamples> {
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
-    let map = PatchMap::new(table);
     let kinds = match derivatives {
         Derivatives::None => 1,
         Derivatives::First => 3,
@@ -114,10 +135,21 @@ pub fn evaluate(
         let handle = map
             .find_patch(face, u, v)
             .ok_or(Error::NoPatchAt { face, u, v })?;
-        let array = &table.arrays[handle.array];
-        let param = array.params[handle.patch];
+        // A map of another table names patches this one may not have.
+        let missing = |patches| Error::NoSuchPatch {
+            array: handle.array,
+            patch: handle.patch,
+            arrays: table.arrays.len(),
+            patches,
+        };
+        let array = table.arrays.get(handle.array).ok_or(missing(0))?;
+        let param = *array.params.get(handle.patch).ok_or(missing(array.len()))?;
         let n = evaluate_basis_into(array.patch_type, param, u, v, derivatives, &mut buf)?;
-        let cvs = array.patch_vertices(handle.patch);
+        let size = array.patch_type.control_vertices();
+        let cvs = array
+            .control_vertices
+            .get(handle.patch * size..(handle.patch + 1) * size)
+            .ok_or(missing(array.len()))?;
         // Every control point's values, once per table asked for.
         for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
             let dst = &mut out[i * width..(i + 1) * width];

@@ -31,7 +31,7 @@ mod param;
 use crate::stencil::StencilTable;
 
 pub use basis::evaluate_basis;
-pub use eval::evaluate;
+pub use eval::{evaluate, evaluate_with};
 pub use map::PatchMap;
 pub use param::PatchParam;
 

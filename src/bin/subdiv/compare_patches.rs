@@ -96,7 +96,7 @@ pub(crate) fn limit_comparison(
     // Legacy Gregory patches have no basis (in OpenSubdiv either).
     let locations: Vec<(u32, f64, f64)> = on_patches.iter().filter(|l| l.1).map(|l| l.0).collect();
     let points = native.patch_points(&mine, 3, &base)?;
-    let a = patches::evaluate(&mine, &points, 3, &locations, Derivatives::First)?;
+    let a = patches::evaluate_with(&map, &mine, &points, 3, &locations, Derivatives::First)?;
     let b = osds.evaluate(&theirs, 3, &base, &locations, Derivatives::First)?;
     let diagonal = subdiv::compare::bbox_diagonal(&mesh.positions).max(f64::MIN_POSITIVE);
     let (max_dev, worst) = largest_deviation(&a.values.point, &b.values.point);

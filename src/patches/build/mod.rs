@@ -34,7 +34,7 @@ mod source;
 mod uniform;
 
 use super::{EndCapType, PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
-use crate::error::{Element, Error, LevelRefusal, Result};
+use crate::error::{Error, LevelRefusal, Result};
 use crate::options::Scheme;
 use crate::real::Real;
 use crate::refiner::AdaptiveRefiner;
@@ -125,17 +125,7 @@ impl AdaptiveRefiner {
             });
         }
         let base = &levels[0];
-        if let Some(&f) = selected_faces
-            .iter()
-            .find(|&&f| f as usize >= base.face_count())
-        {
-            return Err(Error::NoSuchElement {
-                element: Element::Face,
-                index: f as usize,
-                level: 0,
-                count: base.face_count(),
-            });
-        }
+        crate::refiner::adaptive::check_selected_faces(base, selected_faces)?;
         if options.fvar_tables && (channels > 0 || !options.fvar_channels.is_empty()) {
             return Err(Error::NotYetSupported("face-varying patch tables"));
         }

@@ -125,17 +125,7 @@ impl Refiner {
             self.options.scheme,
             1,
         )?;
-        if let Some(&f) = selected_faces
-            .iter()
-            .find(|&&f| f as usize >= base.face_count())
-        {
-            return Err(Error::NoSuchElement {
-                element: Element::Face,
-                index: f as usize,
-                level: 0,
-                count: base.face_count(),
-            });
-        }
+        check_selected_faces(base, selected_faces)?;
         crate::alloc::guard(Some(adaptive.isolation_level), || {
             self.refine_sparse_levels(adaptive, selected_faces)
         })
@@ -248,6 +238,20 @@ impl Refiner {
         };
         refined.check_unpaired_smooth()?;
         Ok(refined)
+    }
+}
+
+/// Refuses a selected base face that does not exist
+/// ([`Error::NoSuchElement`]).
+pub(crate) fn check_selected_faces(base: &Level, selected: &[u32]) -> Result<()> {
+    match selected.iter().find(|&&f| f as usize >= base.face_count()) {
+        Some(&f) => Err(Error::NoSuchElement {
+            element: Element::Face,
+            index: f as usize,
+            level: 0,
+            count: base.face_count(),
+        }),
+        None => Ok(()),
     }
 }
 

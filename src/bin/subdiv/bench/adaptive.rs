@@ -263,7 +263,15 @@ fn limit_rows(
             interleaved(
                 reps,
                 || {
-                    let s = patches::evaluate(&table, &points, 3, &locations, Derivatives::First);
+                    // The map built once, as OpenSubdiv's is with its table.
+                    let s = patches::evaluate_with(
+                        &map,
+                        &table,
+                        &points,
+                        3,
+                        &locations,
+                        Derivatives::First,
+                    );
                     drop(black_box(s.expect("native")));
                 },
                 || {
