@@ -1,6 +1,7 @@
 //! Builds the C++ shim over OpenSubdiv (feature `osd`, on by default).
 //!
-//! * `cc` compiles `cpp/shim.cpp` and `cpp/patches.cpp` (their shared
+//! * `cc` compiles `cpp/shim.cpp`, `cpp/patches.cpp` and
+//!   `cpp/limit_stencils.cpp` (their shared
 //!   internals in `cpp/internal.h`); `bindgen` binds `cpp/shim.h` only.
 //! * OpenSubdiv is found in `SUBDIV_OSD_DIR` (with `include/` and `lib/`) when
 //!   set, else in the system paths where Debian's `libosd-dev` installs it.
@@ -20,6 +21,7 @@ mod osd {
         println!("cargo:rerun-if-changed=cpp/shim.h");
         println!("cargo:rerun-if-changed=cpp/shim.cpp");
         println!("cargo:rerun-if-changed=cpp/patches.cpp");
+        println!("cargo:rerun-if-changed=cpp/limit_stencils.cpp");
         println!("cargo:rerun-if-changed=cpp/internal.h");
         println!("cargo:rerun-if-env-changed=SUBDIV_OSD_DIR");
 
@@ -47,6 +49,7 @@ mod osd {
             .std("c++14")
             .file("cpp/shim.cpp")
             .file("cpp/patches.cpp")
+            .file("cpp/limit_stencils.cpp")
             .include("cpp")
             .include(&include_dir)
             .warnings(true)

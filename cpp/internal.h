@@ -34,6 +34,12 @@ struct sdv_refiner {
 struct sdv_stencils {
     std::vector<int32_t> sizes, offsets, indices;
     std::vector<double> weights;
+    // Limit stencils at locations: the derivative weights asked for
+    // (du, dv, duu, duv, dvv; empty when not generated), and for each
+    // location whether it has a stencil (0 in a hole).
+    std::vector<double> derivatives[5];
+    std::vector<int32_t> found;
+    int32_t controls = 0;
 };
 
 namespace sdv_internal {
@@ -94,6 +100,18 @@ inline void check_cap(size_t cap, long long need_n, const char *what) {
         throw ShimError(SDV_ERR_CAPACITY, std::string(what) + ": buffer holds " + str((long long)cap) +
                                               " elements but " + str(need_n) + " are needed");
 }
+
+// Checks shared by the shim's files (each fails with a message naming what
+// is refused). shim.cpp: a face-varying channel that exists; Sdc's
+// Catmull-Clark smooth vertex mask, whose valence * valence overflows an
+// int beyond 46,340 faces, not used from level `parent` (`channel` -1 for
+// vertex data). patches.cpp: no face of the base level repeating a vertex
+// (OpenSubdiv's adaptive patch builders overrun on them); a parametric
+// coordinate in [0, 1].
+void check_channel(const sdv_refiner *r, int32_t channel);
+void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel);
+void check_no_repeated_vertices(Far::TopologyLevel const &base);
+void check_unit(double x, const char *name);
 
 }  // namespace sdv_internal
 

@@ -19,6 +19,31 @@
 using namespace OpenSubdiv;
 using namespace sdv_internal;
 
+namespace sdv_internal {
+
+// OpenSubdiv's patch builders assume faces without repeated vertices: on a
+// face that uses a vertex twice, the B-spline end-cap converter writes out
+// of bounds and the legacy Gregory tables read and write past their
+// vectors (found by fuzzing under Valgrind).
+void check_no_repeated_vertices(Far::TopologyLevel const &base) {
+    std::vector<Far::Index> verts;
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = base.GetFaceVertices(f);
+        verts.assign(fv.begin(), fv.end());
+        std::sort(verts.begin(), verts.end());
+        auto dup = std::adjacent_find(verts.begin(), verts.end());
+        if (dup != verts.end())
+            fail_unsafe("face " + str(f) + " uses vertex " + str(*dup) +
+                        " more than once: OpenSubdiv's patch tables read and write out of bounds on such faces");
+    }
+}
+
+void check_unit(double x, const char *name) {
+    if (!std::isfinite(x) || x < 0.0 || x > 1.0) fail(std::string(name) + " " + std::to_string(x) + " is not in [0, 1]");
+}
+
+}  // namespace sdv_internal
+
 struct sdv_patches {
     std::unique_ptr<Far::PatchTable> table;
     std::unique_ptr<Far::PatchMap> map;
@@ -92,23 +117,6 @@ sdv_stencils *copy_stencils(Far::StencilTableReal<REAL> const *t) {
     return out.release();
 }
 
-// OpenSubdiv's patch builders assume faces without repeated vertices: on a
-// face that uses a vertex twice, the B-spline end-cap converter writes out
-// of bounds and the legacy Gregory tables read and write past their
-// vectors (found by fuzzing under Valgrind).
-void check_no_repeated_vertices(Far::TopologyLevel const &base) {
-    std::vector<Far::Index> verts;
-    for (int f = 0; f < base.GetNumFaces(); ++f) {
-        Far::ConstIndexArray fv = base.GetFaceVertices(f);
-        verts.assign(fv.begin(), fv.end());
-        std::sort(verts.begin(), verts.end());
-        auto dup = std::adjacent_find(verts.begin(), verts.end());
-        if (dup != verts.end())
-            fail_unsafe("face " + str(f) + " uses vertex " + str(*dup) +
-                        " more than once: OpenSubdiv's patch tables read and write out of bounds on such faces");
-    }
-}
-
 // The B-spline end-cap converter (end caps B-spline or unspecified) writes
 // past its matrix on an irregular corner at an interior vertex of valence 2
 // (two faces folded onto each other: found by fuzzing, with infinitely
@@ -175,10 +183,6 @@ bool evaluable(Far::PatchDescriptor::Type t) {
         default:
             return false;
     }
-}
-
-void check_unit(double x, const char *name) {
-    if (!std::isfinite(x) || x < 0.0 || x > 1.0) fail(std::string(name) + " " + std::to_string(x) + " is not in [0, 1]");
 }
 
 }  // namespace

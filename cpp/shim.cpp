@@ -32,6 +32,49 @@
 using namespace OpenSubdiv;
 using namespace sdv_internal;
 
+namespace sdv_internal {
+
+void check_channel(const sdv_refiner *r, int32_t channel) {
+    int n = need(r).refiner->GetNumFVarChannels();
+    if (channel < 0 || channel >= n)
+        fail("face-varying channel " + str(channel) + " does not exist (the refiner has " + str(n) + ")");
+}
+
+// Sdc's Catmull-Clark smooth vertex mask (sdc/catmarkScheme.h,
+// assignSmoothMaskForVertex) weighs each edge and face by 1 / (valence *
+// valence) with the product computed in int: from valence 46341 it overflows
+// (undefined behaviour; in practice a negative weight and a vertex point far
+// from its place). Scheme::ComputeVertexVertexMask uses that mask wherever the
+// vertex's rule or its child's is smooth or dart; PrimvarRefiner applies it to
+// vertex primvars, and to a face-varying channel where the channel is not
+// linear and its topology matches the vertex's at the child. Refuse
+// interpolating from `parent` (to parent + 1) where that would happen;
+// `channel` -1 for vertex primvars.
+const int SMOOTH_MASK_MAX_VALENCE = 46340;  // 46340² < 2³¹ <= 46341²
+
+void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel) {
+    if (tr.GetSchemeType() != Sdc::SCHEME_CATMARK) return;
+    if (channel >= 0 && tr.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
+    const Far::TopologyLevel &p = tr.GetLevel(parent);
+    const Far::TopologyLevel &c = tr.GetLevel(parent + 1);
+    for (int v = 0; v < p.GetNumVertices(); ++v) {
+        int valence = p.GetVertexFaces(v).size();
+        if (valence <= SMOOTH_MASK_MAX_VALENCE) continue;
+        Far::Index child = p.GetVertexChildVertex(v);
+        if (child < 0) continue;
+        auto smooth = [](Sdc::Crease::Rule r) {
+            return r == Sdc::Crease::RULE_SMOOTH || r == Sdc::Crease::RULE_DART;
+        };
+        if (!smooth(p.GetVertexRule(v)) && !smooth(c.GetVertexRule(child))) continue;
+        if (channel >= 0 && !c.DoesVertexFVarTopologyMatch(child, channel)) continue;
+        fail_unsafe("vertex " + str(v) + " of level " + str(parent) + " has " + str(valence) +
+                    " faces; OpenSubdiv 3.5's Catmull-Clark vertex rule computes valence * valence in a 32-bit int, "
+                    "which overflows beyond " + str(SMOOTH_MASK_MAX_VALENCE) + " faces (wrong weights)");
+    }
+}
+
+}  // namespace sdv_internal
+
 namespace {
 
 // Messages OpenSubdiv reports through Far::Error / Far::Warning on this thread.
@@ -93,12 +136,6 @@ void need_full_topology(const sdv_refiner *r, int32_t level, const char *what) {
 void check_len(size_t len, long long need_n, const char *what) {
     if (len != (size_t)need_n)
         fail(std::string(what) + " has " + str((long long)len) + " elements, expected " + str(need_n));
-}
-
-void check_channel(const sdv_refiner *r, int32_t channel) {
-    int n = need(r).refiner->GetNumFVarChannels();
-    if (channel < 0 || channel >= n)
-        fail("face-varying channel " + str(channel) + " does not exist (the refiner has " + str(n) + ")");
 }
 
 void validate(const sdv_mesh_desc &d, const sdv_options &o) {
@@ -188,39 +225,6 @@ struct Buf {
     int w;
     Elem<T> operator[](int i) const { return Elem<T>{base + (size_t)i * (size_t)w, w}; }
 };
-
-// Sdc's Catmull-Clark smooth vertex mask (sdc/catmarkScheme.h,
-// assignSmoothMaskForVertex) weighs each edge and face by 1 / (valence *
-// valence) with the product computed in int: from valence 46341 it overflows
-// (undefined behaviour; in practice a negative weight and a vertex point far
-// from its place). Scheme::ComputeVertexVertexMask uses that mask wherever the
-// vertex's rule or its child's is smooth or dart; PrimvarRefiner applies it to
-// vertex primvars, and to a face-varying channel where the channel is not
-// linear and its topology matches the vertex's at the child. Refuse
-// interpolating from `parent` (to parent + 1) where that would happen;
-// `channel` -1 for vertex primvars.
-const int SMOOTH_MASK_MAX_VALENCE = 46340;  // 46340² < 2³¹ <= 46341²
-
-void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel) {
-    if (tr.GetSchemeType() != Sdc::SCHEME_CATMARK) return;
-    if (channel >= 0 && tr.GetFVarLinearInterpolation(channel) == Sdc::Options::FVAR_LINEAR_ALL) return;
-    const Far::TopologyLevel &p = tr.GetLevel(parent);
-    const Far::TopologyLevel &c = tr.GetLevel(parent + 1);
-    for (int v = 0; v < p.GetNumVertices(); ++v) {
-        int valence = p.GetVertexFaces(v).size();
-        if (valence <= SMOOTH_MASK_MAX_VALENCE) continue;
-        Far::Index child = p.GetVertexChildVertex(v);
-        if (child < 0) continue;
-        auto smooth = [](Sdc::Crease::Rule r) {
-            return r == Sdc::Crease::RULE_SMOOTH || r == Sdc::Crease::RULE_DART;
-        };
-        if (!smooth(p.GetVertexRule(v)) && !smooth(c.GetVertexRule(child))) continue;
-        if (channel >= 0 && !c.DoesVertexFVarTopologyMatch(child, channel)) continue;
-        fail_unsafe("vertex " + str(v) + " of level " + str(parent) + " has " + str(valence) +
-                    " faces; OpenSubdiv 3.5's Catmull-Clark vertex rule computes valence * valence in a 32-bit int, "
-                    "which overflows beyond " + str(SMOOTH_MASK_MAX_VALENCE) + " faces (wrong weights)");
-    }
-}
 
 // The same for every level up to the last (stencil tables).
 void check_smooth_vertex_masks_all_levels(const Far::TopologyRefiner &tr) {

@@ -432,6 +432,44 @@ int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size
                                 double *out, double *du, double *dv, double *duu, double *duv, double *dvv,
                                 char *err, size_t err_len);
 
+/*
+ * Far::LimitStencilTableFactoryReal<double>::Create(refiner, locations) with
+ * its own stencil and patch tables (as OpenSubdiv builds them when given
+ * none) and Options (interpolation 0 vertex, 1 varying, 2 face-varying of
+ * fvar_channel; first and second derivatives 0 or 1): one stencil for each
+ * of the n locations (faces[i] a ptex face, us[i] and vs[i] in [0, 1]) that
+ * is not in a hole, in order. `found` (n entries) says which have one.
+ * Refused first: a uniform refiner without refined levels (OpenSubdiv's
+ * table of level 0 leaves its patches unset), a location off the ptex
+ * faces or the unit square, an
+ * unknown mode or channel, an adaptive refinement of selected faces (the
+ * patches of the others are undefined), faces repeating a vertex after
+ * adaptive refinement (the patch builders overrun), and the Catmull-Clark
+ * vertex masks that overflow (as for every stencil table). The result's
+ * derivative weights are read with sdv_stencils_derivative.
+ */
+typedef struct sdv_limit_stencil_options {
+    int32_t interpolation;
+    int32_t fvar_channel;
+    int32_t first_derivatives;
+    int32_t second_derivatives;
+} sdv_limit_stencil_options;
+int sdv_limit_stencils_create(const sdv_refiner *r, const sdv_limit_stencil_options *o, const int32_t *faces,
+                              const double *us, const double *vs, size_t n, int32_t *found, sdv_stencils **out,
+                              char *err, size_t err_len);
+/*
+ * The control vertices (or face-varying values) a limit stencil table's
+ * indices refer to (0 for other tables).
+ */
+int32_t sdv_stencils_controls(const sdv_stencils *s);
+/*
+ * Derivative weights of a limit stencil table (kind 0..4: du, dv, duu, duv,
+ * dvv): `len` receives their count (0 when not generated); with `out`
+ * non-NULL they are copied into it (cap at least len).
+ */
+int sdv_stencils_derivative(const sdv_stencils *s, int32_t kind, double *out, size_t cap, size_t *len, char *err,
+                            size_t err_len);
+
 #ifdef __cplusplus
 }
 #endif

@@ -7,6 +7,7 @@ use super::shim::{ErrBuf, internal, to_i32};
 use super::{ERR_LEN, SDV_STENCIL_LIMIT, SDV_STENCIL_REFINED};
 use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, Result};
+use crate::patches::{LimitStencilOptions, LocationStencils, Partials};
 use crate::stencil::{LimitStencilTable, StencilOptions, StencilTable};
 use std::ptr::NonNull;
 
@@ -195,45 +196,178 @@ impl StencilEvaluator {
     }
 }
 
+/// A stencil table the shim created, freed on drop.
+struct Owned(NonNull<ffi::sdv_stencils>);
+
+impl Drop for Owned {
+    fn drop(&mut self) {
+        // SAFETY: created by the shim, freed once.
+        unsafe { ffi::sdv_stencils_destroy(self.0.as_ptr()) }
+    }
+}
+
+impl Owned {
+    fn new(raw: *mut ffi::sdv_stencils) -> Result<Owned> {
+        NonNull::new(raw)
+            .map(Owned)
+            .ok_or_else(|| internal("the shim returned no stencil table"))
+    }
+
+    /// Its rows, indices and weights.
+    fn export(&self) -> Result<StencilTable> {
+        let mut err = ErrBuf::new();
+        let (mut rows, mut nnz) = (0usize, 0usize);
+        // SAFETY: the table is live.
+        unsafe { ffi::sdv_stencils_size(self.0.as_ptr(), &mut rows, &mut nnz) };
+        let mut sizes = try_vec(0i32, rows)?;
+        let mut offsets = try_vec(0i32, rows)?;
+        let mut indices = try_vec(0i32, nnz)?;
+        let mut weights = try_vec(0f64, nnz)?;
+        // SAFETY: the buffers have the capacities passed, which the shim checks.
+        err.run(|e| unsafe {
+            ffi::sdv_stencils_export(
+                self.0.as_ptr(),
+                sizes.as_mut_ptr(),
+                offsets.as_mut_ptr(),
+                indices.as_mut_ptr(),
+                weights.as_mut_ptr(),
+                rows,
+                nnz,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        Ok(StencilTable {
+            sizes: sizes.into_iter().map(|v| v as u32).collect(),
+            offsets: offsets.into_iter().map(|v| v as u32).collect(),
+            indices: indices.into_iter().map(|v| v as u32).collect(),
+            weights,
+        })
+    }
+
+    /// The derivative weights of kind `kind` (0..4: du, dv, duu, duv, dvv)
+    /// of a limit stencil table; empty when not generated.
+    fn derivative(&self, kind: i32) -> Result<Vec<f64>> {
+        let mut err = ErrBuf::new();
+        let mut len = 0usize;
+        // SAFETY: the table is live; a null output only asks for the length.
+        err.run(|e| unsafe {
+            ffi::sdv_stencils_derivative(
+                self.0.as_ptr(),
+                kind,
+                std::ptr::null_mut(),
+                0,
+                &mut len,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        let mut out = try_vec(0f64, len)?;
+        // SAFETY: `out` holds `len` values, the capacity passed and checked.
+        err.run(|e| unsafe {
+            ffi::sdv_stencils_derivative(
+                self.0.as_ptr(),
+                kind,
+                out.as_mut_ptr(),
+                out.len(),
+                &mut len,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        Ok(out)
+    }
+}
+
 /// The stencil table the shim created at `raw` (freed here whatever
 /// happens), read into a [`StencilTable`].
 pub(super) fn take_stencils(raw: *mut ffi::sdv_stencils) -> Result<StencilTable> {
-    let mut err = ErrBuf::new();
-    let table = NonNull::new(raw).ok_or_else(|| internal("the shim returned no stencil table"))?;
-    // Free the C++ table whatever happens below.
-    struct Owned(NonNull<ffi::sdv_stencils>);
-    impl Drop for Owned {
-        fn drop(&mut self) {
-            // SAFETY: created by sdv_stencils_create, freed once.
-            unsafe { ffi::sdv_stencils_destroy(self.0.as_ptr()) }
+    Owned::new(raw)?.export()
+}
+
+impl TopologyRefiner {
+    /// OpenSubdiv's limit stencils at `locations` (ptex face, u, v):
+    /// `Far::LimitStencilTableFactoryReal<double>::Create(refiner,
+    /// locations, nullptr, nullptr, options)` — the factory building its own
+    /// refined-vertex stencils and Gregory-end-capped patch table — after
+    /// uniform or adaptive refinement, in every interpolation mode. One
+    /// stencil per location outside holes, in order
+    /// ([`LocationStencils::locations`]).
+    ///
+    /// Refused before OpenSubdiv sees anything: a ptex face out of range, a
+    /// coordinate outside [0, 1], a face-varying channel the mesh lacks, a
+    /// refiner adaptively refined around selected faces only (the other
+    /// faces' patches are undefined), faces repeating a vertex after
+    /// adaptive refinement, and the Catmull-Clark vertex masks that
+    /// overflow (as for every stencil table).
+    ///
+    /// ```
+    /// use subdiv::patches::LimitStencilOptions;
+    /// use subdiv::{osd, shapes, AdaptiveOptions, Options};
+    /// let mut r = osd::TopologyRefiner::new(&shapes::cube(), &Options::default())?;
+    /// r.refine_adaptive(AdaptiveOptions::new(3), &[])?;
+    /// let s = r.location_stencils(&[(0, 0.5, 0.5)], &LimitStencilOptions::new())?;
+    /// assert_eq!((s.sizes.clone(), s.locations.clone()), (vec![8], vec![0]));
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn location_stencils(
+        &self,
+        locations: &[(u32, f64, f64)],
+        options: &LimitStencilOptions,
+    ) -> Result<LocationStencils> {
+        let n = locations.len();
+        let mut faces = try_vec(0i32, n)?;
+        let mut us = try_vec(0f64, n)?;
+        let mut vs = try_vec(0f64, n)?;
+        for (i, &(f, u, v)) in locations.iter().enumerate() {
+            faces[i] = to_i32(f as usize, "ptex face")?;
+            us[i] = u;
+            vs[i] = v;
         }
+        let mut found = try_vec(0i32, n)?;
+        let o = ffi::sdv_limit_stencil_options {
+            interpolation: options.interpolation.code(),
+            fvar_channel: to_i32(options.fvar_channel, "face-varying channel")?,
+            first_derivatives: options.first_derivatives.into(),
+            second_derivatives: options.second_derivatives.into(),
+        };
+        let mut raw: *mut ffi::sdv_stencils = std::ptr::null_mut();
+        let mut err = ErrBuf::new();
+        // SAFETY: the refiner is live; the four location arrays hold `n`
+        // entries each; `raw` receives a new table.
+        err.run(|e| unsafe {
+            ffi::sdv_limit_stencils_create(
+                self.raw.as_ptr(),
+                &o,
+                faces.as_ptr(),
+                us.as_ptr(),
+                vs.as_ptr(),
+                n,
+                found.as_mut_ptr(),
+                &mut raw,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        let owned = Owned::new(raw)?;
+        let table = owned.export()?;
+        let [du, dv, duu, duv, dvv] = [0, 1, 2, 3, 4].map(|k| owned.derivative(k));
+        // SAFETY: the table is live.
+        let controls = unsafe { ffi::sdv_stencils_controls(owned.0.as_ptr()) };
+        Ok(LocationStencils {
+            control_vertices: controls.max(0) as usize,
+            locations: (0..n).filter(|&i| found[i] != 0).collect(),
+            sizes: table.sizes,
+            offsets: table.offsets,
+            indices: table.indices,
+            weights: Partials {
+                point: table.weights,
+                du: du?,
+                dv: dv?,
+                duu: duu?,
+                duv: duv?,
+                dvv: dvv?,
+            },
+        })
     }
-    let table = Owned(table);
-    let (mut rows, mut nnz) = (0usize, 0usize);
-    // SAFETY: the table is live.
-    unsafe { ffi::sdv_stencils_size(table.0.as_ptr(), &mut rows, &mut nnz) };
-    let mut sizes = try_vec(0i32, rows)?;
-    let mut offsets = try_vec(0i32, rows)?;
-    let mut indices = try_vec(0i32, nnz)?;
-    let mut weights = try_vec(0f64, nnz)?;
-    // SAFETY: the buffers have the capacities passed, which the shim checks.
-    err.run(|e| unsafe {
-        ffi::sdv_stencils_export(
-            table.0.as_ptr(),
-            sizes.as_mut_ptr(),
-            offsets.as_mut_ptr(),
-            indices.as_mut_ptr(),
-            weights.as_mut_ptr(),
-            rows,
-            nnz,
-            e,
-            ERR_LEN,
-        )
-    })?;
-    Ok(StencilTable {
-        sizes: sizes.into_iter().map(|v| v as u32).collect(),
-        offsets: offsets.into_iter().map(|v| v as u32).collect(),
-        indices: indices.into_iter().map(|v| v as u32).collect(),
-        weights,
-    })
 }

@@ -20,11 +20,14 @@
 //! * this file: the types and options;
 //! * `build/`: the native patch-table factory;
 //! * `param.rs`, `map.rs`, `basis.rs`, `eval.rs`: parameterization, patch
-//!   lookup, basis functions, evaluation at locations.
+//!   lookup, basis functions, evaluation at locations;
+//! * `limit_stencils.rs`: limit stencils at locations
+//!   ([`LocationStencils`], `LimitStencilTableFactory`).
 
 mod basis;
 mod build;
 mod eval;
+mod limit_stencils;
 mod map;
 mod param;
 
@@ -32,6 +35,7 @@ use crate::stencil::StencilTable;
 
 pub use basis::evaluate_basis;
 pub use eval::{evaluate, evaluate_with};
+pub use limit_stencils::{LimitStencilOptions, LocationStencils};
 pub use map::PatchMap;
 pub use param::PatchParam;
 

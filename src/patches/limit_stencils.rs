@@ -1,0 +1,533 @@
+//! Limit stencils at arbitrary locations (`Far::LimitStencilTableFactory`
+//! with `LocationArray`s): for each (ptex face, u, v), the limit surface's
+//! position — and first, optionally second, derivatives — as weights of the
+//! base vertices, built as OpenSubdiv builds them.
+//!
+//! OpenSubdiv's recipe, followed step by step: a stencil table of every
+//! refined vertex over the base vertices (control vertices included; every
+//! level after adaptive refinement, the last after uniform refinement), the
+//! local points of a Gregory-end-capped patch table in double precision
+//! appended to it, factorized over the base vertices; then for each
+//! location the patch `PatchMap` finds, the basis weights `EvaluateBasis`
+//! gives, and the sum of the patch's control points' stencils by those
+//! weights. Terms merge by base vertex in order of first contribution, and
+//! zero weights are skipped exactly where OpenSubdiv's `StencilBuilder`
+//! skips them, so the stencils have OpenSubdiv's sizes and indices, term by
+//! term; the weights agree to the basis functions' rounding (about 1e-15).
+//! A location in a hole has no stencil, as in OpenSubdiv:
+//! [`LocationStencils::locations`] says which location each stencil is for.
+
+use super::basis::{BasisBuffer, evaluate_basis_into};
+use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable};
+use crate::error::{Buffer, Error, Result, StencilFault};
+use crate::refiner::{AdaptiveRefiner, Refiner};
+use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
+
+/// `LimitStencilTableFactory::Options`, with OpenSubdiv 3.5's defaults
+/// ([`LimitStencilOptions::new`]: vertex data, first derivatives, no second
+/// derivatives, face-varying channel 0).
+///
+/// ```
+/// use subdiv::patches::LimitStencilOptions;
+/// let o = LimitStencilOptions::new().second_derivatives(true);
+/// assert!(o.first_derivatives && o.second_derivatives);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LimitStencilOptions {
+    /// `interpolationMode` (vertex).
+    pub interpolation: StencilInterpolation,
+    /// `generate1stDerivatives` (true).
+    pub first_derivatives: bool,
+    /// `generate2ndDerivatives` (false; implies the first derivatives'
+    /// weights too, as in OpenSubdiv).
+    pub second_derivatives: bool,
+    /// `fvarChannel` (0): the channel of face-varying stencils.
+    pub fvar_channel: usize,
+}
+
+impl Default for LimitStencilOptions {
+    fn default() -> Self {
+        LimitStencilOptions {
+            interpolation: StencilInterpolation::Vertex,
+            first_derivatives: true,
+            second_derivatives: false,
+            fvar_channel: 0,
+        }
+    }
+}
+
+impl LimitStencilOptions {
+    /// OpenSubdiv 3.5's defaults.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets `interpolationMode`.
+    pub fn interpolation(mut self, interpolation: StencilInterpolation) -> Self {
+        self.interpolation = interpolation;
+        self
+    }
+
+    /// Sets `generate1stDerivatives`.
+    pub fn first_derivatives(mut self, yes: bool) -> Self {
+        self.first_derivatives = yes;
+        self
+    }
+
+    /// Sets `generate2ndDerivatives`.
+    pub fn second_derivatives(mut self, yes: bool) -> Self {
+        self.second_derivatives = yes;
+        self
+    }
+
+    /// Sets `fvarChannel`.
+    pub fn fvar_channel(mut self, channel: usize) -> Self {
+        self.fvar_channel = channel;
+        self
+    }
+
+    /// The derivatives whose weights the stencils carry.
+    pub fn derivatives(&self) -> Derivatives {
+        if self.second_derivatives {
+            Derivatives::Second
+        } else if self.first_derivatives {
+            Derivatives::First
+        } else {
+            Derivatives::None
+        }
+    }
+}
+
+/// Limit stencils at locations (`Far::LimitStencilTable`): stencil `i` is
+/// terms `offsets[i]..offsets[i] + sizes[i]` of `indices` (base vertices)
+/// with the position weights `weights.point` and, when asked for, the
+/// derivative weights `weights.du`, `weights.dv` (and `duu`, `duv`, `dvv`)
+/// of the same terms.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LocationStencils {
+    /// Base vertices (or base face-varying values) the indices refer to.
+    pub control_vertices: usize,
+    /// For each stencil, the index of its location in the list given
+    /// (locations in holes have none).
+    pub locations: Vec<usize>,
+    /// Number of terms of each stencil.
+    pub sizes: Vec<u32>,
+    /// First term of each stencil.
+    pub offsets: Vec<u32>,
+    /// Base vertex of each term.
+    pub indices: Vec<u32>,
+    /// The weights of each term: positions in `point`, derivatives in the
+    /// other fields (empty when not generated).
+    pub weights: Partials,
+}
+
+impl LocationStencils {
+    /// Number of stencils.
+    pub fn len(&self) -> usize {
+        self.sizes.len()
+    }
+
+    /// Whether there is no stencil.
+    pub fn is_empty(&self) -> bool {
+        self.sizes.is_empty()
+    }
+
+    /// The stencils applied to `base` (`width` values per base vertex): the
+    /// limit values at the locations with a stencil, and the derivatives
+    /// whose weights the stencils have, stencil after stencil.
+    pub fn apply(&self, width: usize, base: &[f64]) -> Result<Partials> {
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let expected = self.control_vertices.saturating_mul(width);
+        if base.len() != expected {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Base,
+                expected,
+                got: base.len(),
+            });
+        }
+        let w = &self.weights;
+        let kinds = [&w.point, &w.du, &w.dv, &w.duu, &w.duv, &w.dvv];
+        let mut out: [Vec<f64>; 6] = Default::default();
+        for (o, k) in out.iter_mut().zip(kinds) {
+            if k.is_empty() {
+                continue;
+            }
+            *o = crate::alloc::try_vec(0.0, self.len().saturating_mul(width))?;
+            for (s, dst) in o.chunks_exact_mut(width).enumerate() {
+                let terms = self.offsets[s] as usize..(self.offsets[s] + self.sizes[s]) as usize;
+                for (&i, &wt) in self.indices[terms.clone()].iter().zip(&k[terms]) {
+                    let src = base
+                        .get(i as usize * width..(i as usize + 1) * width)
+                        .ok_or(Error::BufferLength {
+                            buffer: Buffer::Base,
+                            expected: (i as usize + 1) * width,
+                            got: base.len(),
+                        })?;
+                    for (d, &x) in dst.iter_mut().zip(src) {
+                        *d += wt * x;
+                    }
+                }
+            }
+        }
+        let [point, du, dv, duu, duv, dvv] = out;
+        Ok(Partials {
+            point,
+            du,
+            dv,
+            duu,
+            duv,
+            dvv,
+        })
+    }
+}
+
+impl AdaptiveRefiner {
+    /// Limit stencils at `locations` (ptex face, u, v) over the base
+    /// vertices, as `LimitStencilTableFactory::Create(refiner, locations)`
+    /// builds them when given no tables of its own: see the
+    /// [module](crate::patches) and [`LocationStencils`]. Locations in holes
+    /// get no stencil.
+    ///
+    /// Errors: a ptex face out of range ([`Error::NoSuchPtexFace`]), a
+    /// coordinate outside [0, 1] ([`Error::Location`]), and what building
+    /// the patch table refuses. Not yet native
+    /// ([`Error::NotYetSupported`]): varying and face-varying stencils, and
+    /// Loop meshes with irregular patches (the bridge has them).
+    ///
+    /// ```
+    /// use subdiv::patches::LimitStencilOptions;
+    /// use subdiv::{refiner::Refiner, shapes, AdaptiveOptions, Options};
+    /// let cube = shapes::cube();
+    /// let r = Refiner::new(&cube, &Options::default())?
+    ///     .refine_adaptive(AdaptiveOptions::new(3), &[])?;
+    /// let s = r.location_stencils(&[(0, 0.5, 0.5)], &LimitStencilOptions::new())?;
+    /// // The centre of a face: a weighted sum of the cube's 8 corners.
+    /// assert_eq!(s.sizes, [8]);
+    /// let sum: f64 = s.weights.point.iter().sum();
+    /// assert!((sum - 1.0).abs() < 1e-12);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn location_stencils(
+        &self,
+        locations: &[(u32, f64, f64)],
+        options: &LimitStencilOptions,
+    ) -> Result<LocationStencils> {
+        check_native(options, "varying limit stencils after adaptive refinement")?;
+        let patch_options = patch_options(options, self.adaptive_options().use_inf_sharp_patch);
+        let table = self.patch_table(&patch_options, &[])?;
+        check_locations(&table, locations)?;
+        let base = self.level_counts(0)?.vertices;
+        crate::alloc::guard(None, || {
+            let refined = self.stencil_table_with(&refined_options(options, true))?;
+            build(&refined, &table, base, locations, options)
+        })
+    }
+}
+
+impl Refiner {
+    /// Limit stencils at `locations` after uniform refinement, as
+    /// `LimitStencilTableFactory::Create` builds them: over the uniform
+    /// patch table of the last level (bilinear quads or linear triangles),
+    /// so the "limit" is the last level's piecewise-linear surface, as in
+    /// OpenSubdiv. Errors as for
+    /// [`AdaptiveRefiner::location_stencils`], and [`Error::PatchOptions`]
+    /// before any level is refined (OpenSubdiv's uniform table of level 0
+    /// leaves its patches unset); varying stencils are native here (they
+    /// use the same linear patches), face-varying ones not yet.
+    pub fn location_stencils(
+        &self,
+        locations: &[(u32, f64, f64)],
+        options: &LimitStencilOptions,
+    ) -> Result<LocationStencils> {
+        check_native(options, "")?;
+        if self.max_level() == 0 {
+            return Err(unrefined());
+        }
+        let table = self.patch_table(&patch_options(options, false))?;
+        check_locations(&table, locations)?;
+        let base = self.level_counts(0)?.vertices;
+        crate::alloc::guard(None, || {
+            let refined = self.stencil_table_with(&refined_options(options, false))?;
+            build(&refined, &table, base, locations, options)
+        })
+    }
+}
+
+/// The refusal of limit stencils on an unrefined uniform refiner.
+pub(crate) fn unrefined() -> Error {
+    Error::PatchOptions {
+        reason: "limit stencils after uniform refinement need at least one level: \
+                 OpenSubdiv 3.5's uniform patch table of level 0 leaves its patches unset"
+            .into(),
+    }
+}
+
+/// Refuses what the native engine does not build yet: face-varying
+/// stencils always, varying ones where `varying` names the case (empty:
+/// supported).
+fn check_native(options: &LimitStencilOptions, varying: &'static str) -> Result<()> {
+    match options.interpolation {
+        StencilInterpolation::Vertex => Ok(()),
+        StencilInterpolation::Varying if varying.is_empty() => Ok(()),
+        StencilInterpolation::Varying => Err(Error::NotYetSupported(varying)),
+        StencilInterpolation::FaceVarying => {
+            Err(Error::NotYetSupported("face-varying limit stencils"))
+        }
+    }
+}
+
+/// The patch table `LimitStencilTableFactory` builds: the factory's
+/// defaults with double-precision local points, base-level indices,
+/// Gregory end caps, varying tables only for varying stencils and the
+/// refinement's infinitely-sharp patches.
+fn patch_options(options: &LimitStencilOptions, inf_sharp: bool) -> PatchOptions {
+    let mut o = PatchOptions::new()
+        .end_caps(EndCapType::GregoryBasis)
+        .inf_sharp_patch(inf_sharp);
+    o.patch_precision_double = true;
+    o.include_base_level_indices = true;
+    o.varying_tables = options.interpolation == StencilInterpolation::Varying;
+    o
+}
+
+/// The refined vertices' stencils `LimitStencilTableFactory` builds: control
+/// vertices and offsets, every level after adaptive refinement, the last
+/// after uniform refinement.
+fn refined_options(options: &LimitStencilOptions, adaptive: bool) -> StencilOptions {
+    StencilOptions {
+        interpolation: options.interpolation,
+        generate_offsets: true,
+        generate_control_vertices: true,
+        generate_intermediate_levels: adaptive,
+        fvar_channel: options.fvar_channel,
+        ..StencilOptions::new()
+    }
+}
+
+/// Every location on a ptex face of `table`, its coordinates in [0, 1].
+fn check_locations(table: &PatchTable, locations: &[(u32, f64, f64)]) -> Result<()> {
+    for &(face, u, v) in locations {
+        if face as usize >= table.ptex_faces {
+            return Err(Error::NoSuchPtexFace {
+                face: face as usize,
+                count: table.ptex_faces,
+            });
+        }
+        for (coordinate, value) in [("u", u), ("v", v)] {
+            if !(0.0..=1.0).contains(&value) {
+                return Err(Error::Location {
+                    face,
+                    coordinate,
+                    value,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Stencils over the base vertices merged term by term as OpenSubdiv's
+/// `StencilBuilder` merges them (`compactWeights`): a base vertex's first
+/// term is stored as it is, later ones are added to it, and a stencil's
+/// terms keep the order of their vertices' first contributions. `K` weights
+/// per term (position and derivatives).
+struct Builder<const K: usize> {
+    /// Position in the current stencil of each base vertex, or `u32::MAX`.
+    slot: Vec<u32>,
+    /// First term of the current stencil.
+    start: usize,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: [Vec<f64>; K],
+}
+
+impl<const K: usize> Builder<K> {
+    fn new(base: usize) -> Self {
+        Builder {
+            slot: crate::alloc::vec_or_unwind(u32::MAX, base),
+            start: 0,
+            offsets: Vec::new(),
+            indices: Vec::new(),
+            weights: std::array::from_fn(|_| Vec::new()),
+        }
+    }
+
+    /// Adds each term of stencil row (`indices`, `weights`) times `w`
+    /// (`StencilBuilder::Index::AddWithWeight(StencilReal, ...)`): nothing
+    /// when every `w` is zero, no term whose own weight is zero.
+    fn add_row(&mut self, indices: &[u32], weights: &[f64], w: [f64; K]) {
+        if w.iter().all(|&x| x == 0.0) {
+            return;
+        }
+        for (&i, &x) in indices.iter().zip(weights) {
+            if x == 0.0 {
+                continue;
+            }
+            let slot = &mut self.slot[i as usize];
+            if *slot == u32::MAX {
+                *slot = (self.indices.len() - self.start) as u32;
+                self.indices.push(i);
+                for (column, &wk) in self.weights.iter_mut().zip(&w) {
+                    column.push(wk * x);
+                }
+            } else {
+                let at = self.start + *slot as usize;
+                for (column, &wk) in self.weights.iter_mut().zip(&w) {
+                    column[at] += wk * x;
+                }
+            }
+        }
+    }
+
+    /// Closes the current stencil.
+    fn end(&mut self) {
+        for &i in &self.indices[self.start..] {
+            self.slot[i as usize] = u32::MAX;
+        }
+        self.offsets.push(self.start as u32);
+        self.start = self.indices.len();
+    }
+
+    /// The stencil `s` closed so far.
+    fn row(&self, s: usize) -> (&[u32], &[f64]) {
+        let start = self.offsets[s] as usize;
+        let end = self
+            .offsets
+            .get(s + 1)
+            .map_or(self.indices.len(), |&o| o as usize);
+        (&self.indices[start..end], &self.weights[0][start..end])
+    }
+}
+
+/// The stencils of every location of `locations` not in a hole, over the
+/// `base` base vertices, from the refined vertices' stencils `refined` and
+/// `table` (whose local points are appended to them, factorized, as
+/// `AppendLocalPointStencilTable` does).
+fn build(
+    refined: &StencilTable,
+    table: &PatchTable,
+    base: usize,
+    locations: &[(u32, f64, f64)],
+    options: &LimitStencilOptions,
+) -> Result<LocationStencils> {
+    // The local points over the base vertices.
+    let mut local = Builder::<1>::new(base);
+    let lp = &table.local_point_stencils;
+    for s in 0..lp.len() {
+        let (indices, weights) = row(lp, s)?;
+        for (&i, &w) in indices.iter().zip(weights) {
+            if w != 0.0 {
+                let (ri, rw) = row(refined, i as usize)?;
+                local.add_row(ri, rw, [w]);
+            }
+        }
+        local.end();
+    }
+    let source = |cv: u32| {
+        let cv = cv as usize;
+        if cv < refined.len() {
+            row(refined, cv)
+        } else {
+            Ok(local.row(cv - refined.len()))
+        }
+    };
+    let at = Locator {
+        table,
+        map: PatchMap::new(table),
+        derivatives: options.derivatives(),
+    };
+    let (found, offsets, indices, weights) = match options.derivatives() {
+        Derivatives::None => at.stencils::<1>(base, locations, &source)?,
+        Derivatives::First => at.stencils::<3>(base, locations, &source)?,
+        Derivatives::Second => at.stencils::<6>(base, locations, &source)?,
+    };
+    let ends = offsets
+        .iter()
+        .skip(1)
+        .copied()
+        .chain([indices.len() as u32]);
+    let sizes = offsets.iter().zip(ends).map(|(&a, b)| b - a).collect();
+    let [point, du, dv, duu, duv, dvv] = weights;
+    Ok(LocationStencils {
+        control_vertices: base,
+        locations: found,
+        sizes,
+        offsets,
+        indices,
+        weights: Partials {
+            point,
+            du,
+            dv,
+            duu,
+            duv,
+            dvv,
+        },
+    })
+}
+
+/// Finds the patch of each location and evaluates its basis.
+struct Locator<'a> {
+    table: &'a PatchTable,
+    map: PatchMap,
+    derivatives: Derivatives,
+}
+
+/// Which locations have a stencil, and the stencils' offsets, indices and
+/// six weight columns (those not generated empty).
+type Built = (Vec<usize>, Vec<u32>, Vec<u32>, [Vec<f64>; 6]);
+
+impl Locator<'_> {
+    /// The stencils with `K` weights per term (position, then derivatives in
+    /// `EvaluateBasis`' order), each control point's stencil given by
+    /// `source`.
+    fn stencils<'s, const K: usize>(
+        &self,
+        base: usize,
+        locations: &[(u32, f64, f64)],
+        source: &impl Fn(u32) -> Result<(&'s [u32], &'s [f64])>,
+    ) -> Result<Built> {
+        let mut b = Builder::<K>::new(base);
+        let mut found = Vec::new();
+        let mut basis: BasisBuffer = [[0.0; 20]; 6];
+        for (n, &(face, u, v)) in locations.iter().enumerate() {
+            // No patch: a hole, which OpenSubdiv leaves without a stencil.
+            let Some(h) = self.map.find_patch(face, u, v) else {
+                continue;
+            };
+            let array = &self.table.arrays[h.array];
+            let param = array.params[h.patch];
+            let count =
+                evaluate_basis_into(array.patch_type, param, u, v, self.derivatives, &mut basis)?;
+            for (k, &cv) in array.patch_vertices(h.patch).iter().enumerate().take(count) {
+                let (indices, weights) = source(cv)?;
+                b.add_row(indices, weights, std::array::from_fn(|j| basis[j][k]));
+            }
+            b.end();
+            found.push(n);
+        }
+        let mut columns = b.weights.into_iter();
+        let weights = std::array::from_fn(|_| columns.next().unwrap_or_default());
+        Ok((found, b.offsets, b.indices, weights))
+    }
+}
+
+/// Row `i` of a stencil table, or the error naming the point without one
+/// (a patch naming a point its tables lack).
+fn row(table: &StencilTable, i: usize) -> Result<(&[u32], &[f64])> {
+    let (Some(&offset), Some(&size)) = (table.offsets.get(i), table.sizes.get(i)) else {
+        return Err(Error::StencilOutOfRange {
+            index: i,
+            count: table.len(),
+        });
+    };
+    let terms = offset as usize..offset as usize + size as usize;
+    match (table.indices.get(terms.clone()), table.weights.get(terms)) {
+        (Some(indices), Some(weights)) => Ok((indices, weights)),
+        _ => Err(Error::MalformedStencils(StencilFault::RowOutOfRange {
+            row: i,
+        })),
+    }
+}

@@ -1,0 +1,347 @@
+//! Limit stencils at locations (`LocationStencils`, OpenSubdiv's
+//! `LimitStencilTableFactory` with `LocationArray`s): the native engine
+//! against OpenSubdiv over the corpus — same locations with stencils, same
+//! sizes, same base vertices term by term, weights within 1e-12 — and the
+//! stencils against what they stand for: applied to the base positions they
+//! give the limit surface `patches::evaluate` computes, and on a regular
+//! grid the bicubic B-spline's weights by formula.
+#![cfg(feature = "osd")]
+
+use subdiv::patches::{self, Derivatives, LimitStencilOptions, LocationStencils, PatchOptions};
+use subdiv::refiner::Refiner;
+use subdiv::stencil::StencilInterpolation;
+use subdiv::{
+    AdaptiveOptions, BoundaryInterpolation, Error, Mesh, Options, Scheme, UniformOptions, osd,
+    shapes,
+};
+
+/// Locations on every ptex face: corners, edges, inside.
+fn locations(ptex_faces: usize) -> Vec<(u32, f64, f64)> {
+    let at = [0.0, 0.3, 0.5, 1.0];
+    let mut out = Vec::new();
+    for f in 0..ptex_faces as u32 {
+        for &u in &at {
+            for &v in &at {
+                out.push((f, u, v));
+            }
+        }
+    }
+    out
+}
+
+/// Two tables equal in everything but rounding: same locations, sizes,
+/// offsets and indices, weights within `tol`.
+fn same(a: &LocationStencils, b: &LocationStencils, case: &str) {
+    assert_eq!(a.control_vertices, b.control_vertices, "{case}");
+    assert_eq!(a.locations, b.locations, "{case}");
+    assert_eq!(a.sizes, b.sizes, "{case}");
+    assert_eq!(a.offsets, b.offsets, "{case}");
+    assert_eq!(a.indices, b.indices, "{case}");
+    let (wa, wb) = (&a.weights, &b.weights);
+    for (name, x, y) in [
+        ("point", &wa.point, &wb.point),
+        ("du", &wa.du, &wb.du),
+        ("dv", &wa.dv, &wb.dv),
+        ("duu", &wa.duu, &wb.duu),
+        ("duv", &wa.duv, &wb.duv),
+        ("dvv", &wa.dvv, &wb.dvv),
+    ] {
+        assert_eq!(x.len(), y.len(), "{case}: {name}");
+        for (i, (p, q)) in x.iter().zip(y).enumerate() {
+            assert!(
+                (p - q).abs() <= 1e-12,
+                "{case}: {name} weight {i}: {p} vs {q}"
+            );
+        }
+    }
+}
+
+fn ptex_faces(mesh: &Mesh, options: &Options) -> usize {
+    let r = Refiner::new(mesh, options).unwrap();
+    subdiv::PtexIndices::new(&r).unwrap().num_faces()
+}
+
+#[test]
+fn adaptive_corpus_matches_opensubdiv() {
+    let (mut tables, mut stencils, mut holes, mut not_yet) = (0, 0, 0, 0);
+    for (name, mesh) in shapes::corpus() {
+        for scheme in [Scheme::Catmark, Scheme::Bilinear, Scheme::Loop] {
+            for boundary in [
+                BoundaryInterpolation::EdgeOnly,
+                BoundaryInterpolation::EdgeAndCorner,
+            ] {
+                let options = Options::shape_file_defaults()
+                    .with_scheme(scheme)
+                    .with_boundary(boundary);
+                let Ok(native) = Refiner::new(&mesh, &options) else {
+                    continue;
+                };
+                let locs = locations(ptex_faces(&mesh, &options));
+                for (isolation, inf_sharp) in [(1, false), (3, false), (2, true)] {
+                    let ao = AdaptiveOptions::new(isolation).inf_sharp_patch(inf_sharp);
+                    let Ok(mine) = native.clone().refine_adaptive(ao, &[]) else {
+                        continue;
+                    };
+                    let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+                    theirs.refine_adaptive(ao, &[]).unwrap();
+                    for o in [
+                        LimitStencilOptions::new().first_derivatives(false),
+                        LimitStencilOptions::new(),
+                        LimitStencilOptions::new().second_derivatives(true),
+                    ] {
+                        let case = format!("{name} {options:?} {ao:?} {o:?}");
+                        let b = match theirs.location_stencils(&locs, &o) {
+                            Ok(b) => b,
+                            // Refused by the bridge (faces repeating a vertex).
+                            Err(Error::Osd(_)) => continue,
+                            Err(e) => panic!("{case}: {e}"),
+                        };
+                        let a = match mine.location_stencils(&locs, &o) {
+                            Ok(a) => a,
+                            // Loop's irregular patches are not native yet.
+                            Err(Error::NotYetSupported(_)) if scheme == Scheme::Loop => {
+                                not_yet += 1;
+                                continue;
+                            }
+                            Err(e) => panic!("{case}: {e}"),
+                        };
+                        same(&a, &b, &case);
+                        tables += 1;
+                        stencils += a.len();
+                        holes += locs.len() - a.len();
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{tables} tables, {stencils} stencils, {holes} locations in holes, \
+         {not_yet} Loop tables not native yet"
+    );
+    assert!(tables > 300 && stencils > 100_000 && holes > 0 && not_yet > 0);
+}
+
+#[test]
+fn uniform_corpus_matches_opensubdiv() {
+    let mut tables = 0;
+    for (name, mesh) in shapes::corpus() {
+        for scheme in [Scheme::Catmark, Scheme::Loop, Scheme::Bilinear] {
+            let options = Options::shape_file_defaults().with_scheme(scheme);
+            let Ok(native) = Refiner::new(&mesh, &options) else {
+                continue;
+            };
+            let locs = locations(ptex_faces(&mesh, &options));
+            for level in [1, 2] {
+                let mut mine = native.clone();
+                mine.refine_uniform(UniformOptions::new(level)).unwrap();
+                let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+                theirs.refine_uniform(UniformOptions::new(level)).unwrap();
+                for o in [
+                    LimitStencilOptions::new(),
+                    LimitStencilOptions::new()
+                        .second_derivatives(true)
+                        .interpolation(StencilInterpolation::Varying),
+                ] {
+                    let case = format!("{name} {options:?} level {level} {o:?}");
+                    let b = theirs.location_stencils(&locs, &o).expect(&case);
+                    let a = mine.location_stencils(&locs, &o).expect(&case);
+                    same(&a, &b, &case);
+                    tables += 1;
+                }
+            }
+        }
+    }
+    assert!(tables > 300, "{tables}");
+}
+
+/// Applied to the base positions, the stencils give the limit surface the
+/// patch table evaluates from refined and local points.
+#[test]
+fn applied_stencils_are_the_limit_surface() {
+    let mut compared = 0;
+    for (name, mesh) in shapes::corpus() {
+        let options = Options::shape_file_defaults();
+        let Ok(r) = Refiner::new(&mesh, &options) else {
+            continue;
+        };
+        let po = PatchOptions::new().max_isolation(3).double_precision(true);
+        let Ok(a) = r.refine_adaptive(po.refine_adaptive_options(), &[]) else {
+            continue;
+        };
+        let Ok(table) = a.patch_table(&po, &[]) else {
+            continue;
+        };
+        let base = mesh.flat_positions::<f64>();
+        let points = a.patch_points(&table, 3, &base).unwrap();
+        let locs = locations(table.ptex_faces);
+        let o = LimitStencilOptions::new().second_derivatives(true);
+        let s = a.location_stencils(&locs, &o).unwrap();
+        let applied = s.apply(3, &base).unwrap();
+        let found: Vec<_> = s.locations.iter().map(|&i| locs[i]).collect();
+        let direct = patches::evaluate(&table, &points, 3, &found, Derivatives::Second).unwrap();
+        let d = &direct.values;
+        for (what, x, y) in [
+            ("point", &applied.point, &d.point),
+            ("du", &applied.du, &d.du),
+            ("dvv", &applied.dvv, &d.dvv),
+        ] {
+            for (p, q) in x.iter().zip(y) {
+                assert!((p - q).abs() < 1e-9, "{name} {what}: {p} vs {q}");
+            }
+        }
+        compared += found.len();
+    }
+    assert!(compared > 10_000, "{compared}");
+}
+
+/// On a regular patch the stencil is the bicubic B-spline's tensor product,
+/// by formula: at (u, v) the weight of control point (i, j) of the 4×4
+/// neighbourhood is b_i(u) b_j(v).
+#[test]
+fn regular_patch_weights_by_formula() {
+    // A closed torus of quads, all regular: every face is one B-spline
+    // patch over its 4×4 neighbourhood.
+    let (nu, nv) = (8u32, 6u32);
+    let mesh = shapes::torus(nu, nv);
+    let mut r = osd::TopologyRefiner::new(&mesh, &Options::default()).unwrap();
+    r.refine_adaptive(AdaptiveOptions::new(2), &[]).unwrap();
+    let native = Refiner::new(&mesh, &Options::default())
+        .unwrap()
+        .refine_adaptive(AdaptiveOptions::new(2), &[])
+        .unwrap();
+    let b = |t: f64| {
+        let s = 1.0 - t;
+        [
+            s * s * s / 6.0,
+            (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+            (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0,
+            t * t * t / 6.0,
+        ]
+    };
+    let (u, v) = (0.25, 0.625);
+    let o = LimitStencilOptions::new().first_derivatives(false);
+    let s = native.location_stencils(&[(0, u, v)], &o).unwrap();
+    same(&s, &r.location_stencils(&[(0, u, v)], &o).unwrap(), "torus");
+    assert_eq!(s.sizes, [16]);
+    // The 16 weights are the products of the two cubic bases, in some
+    // order: compare them sorted.
+    let mut want: Vec<f64> = b(u).iter().flat_map(|&x| b(v).map(|y| x * y)).collect();
+    let mut got = s.weights.point.clone();
+    want.sort_by(f64::total_cmp);
+    got.sort_by(f64::total_cmp);
+    for (g, w) in got.iter().zip(&want) {
+        assert!((g - w).abs() < 1e-14, "{got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn holes_have_no_stencil_and_bad_locations_are_refused() {
+    // A 4×4 grid with face 5 a hole (boundary edges kept: with OpenSubdiv's
+    // default of no boundary interpolation, faces at the boundary are holes
+    // too).
+    let mut mesh = shapes::grid(4, 4);
+    mesh.holes = vec![5];
+    let options = Options::default().with_boundary(BoundaryInterpolation::EdgeOnly);
+    let native = Refiner::new(&mesh, &options)
+        .unwrap()
+        .refine_adaptive(AdaptiveOptions::new(2), &[])
+        .unwrap();
+    let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+    theirs
+        .refine_adaptive(AdaptiveOptions::new(2), &[])
+        .unwrap();
+    let o = LimitStencilOptions::new();
+    let locs = [(4, 0.5, 0.5), (5, 0.5, 0.5), (6, 0.1, 0.9)];
+    let a = native.location_stencils(&locs, &o).unwrap();
+    same(&a, &theirs.location_stencils(&locs, &o).unwrap(), "holes");
+    assert_eq!(a.locations, [0, 2]);
+    for bad in [(16, 0.5, 0.5), (0, 1.5, 0.5), (0, 0.5, f64::NAN)] {
+        assert!(
+            matches!(
+                native.location_stencils(&[bad], &o),
+                Err(Error::NoSuchPtexFace { .. } | Error::Location { .. })
+            ),
+            "{bad:?}"
+        );
+        assert!(
+            matches!(theirs.location_stencils(&[bad], &o), Err(Error::Osd(_))),
+            "{bad:?}"
+        );
+    }
+    // An unrefined uniform refiner: refused by both (OpenSubdiv's table of
+    // level 0 has its patches unset).
+    let unrefined = Refiner::new(&mesh, &options).unwrap();
+    assert!(matches!(
+        unrefined.location_stencils(&locs, &o),
+        Err(Error::PatchOptions { .. })
+    ));
+    let theirs0 = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+    assert!(matches!(
+        theirs0.location_stencils(&locs, &o),
+        Err(Error::Osd(_))
+    ));
+    // Not native yet, and said so.
+    for o in [
+        o.interpolation(StencilInterpolation::Varying),
+        o.interpolation(StencilInterpolation::FaceVarying),
+    ] {
+        assert!(matches!(
+            native.location_stencils(&locs, &o),
+            Err(Error::NotYetSupported(_))
+        ));
+    }
+}
+
+/// The modes only the bridge has (varying after adaptive refinement,
+/// face-varying): OpenSubdiv builds them over the corpus without refusing,
+/// and they are affine — each stencil's position weights sum to 1, its
+/// derivative weights to 0.
+#[test]
+fn bridge_varying_and_face_varying_stencils_are_affine() {
+    let mut checked = 0;
+    for (name, mesh) in shapes::corpus() {
+        if mesh.fvar_channels.is_empty() {
+            continue;
+        }
+        for scheme in [Scheme::Catmark, Scheme::Bilinear, Scheme::Loop] {
+            let options = Options::shape_file_defaults().with_scheme(scheme);
+            if Refiner::new(&mesh, &options).is_err() {
+                continue;
+            }
+            let locs = locations(ptex_faces(&mesh, &options));
+            let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+            if theirs
+                .refine_adaptive(AdaptiveOptions::new(2), &[])
+                .is_err()
+            {
+                continue;
+            }
+            for interpolation in [
+                StencilInterpolation::Varying,
+                StencilInterpolation::FaceVarying,
+            ] {
+                let o = LimitStencilOptions::new()
+                    .interpolation(interpolation)
+                    .second_derivatives(true);
+                let case = format!("{name} {scheme:?} {interpolation:?}");
+                let s = match theirs.location_stencils(&locs, &o) {
+                    Ok(s) => s,
+                    Err(Error::Osd(_)) => continue,
+                    Err(e) => panic!("{case}: {e}"),
+                };
+                assert!(!s.is_empty(), "{case}");
+                for i in 0..s.len() {
+                    let t = s.offsets[i] as usize..(s.offsets[i] + s.sizes[i]) as usize;
+                    let sum = |w: &[f64]| w[t.clone()].iter().sum::<f64>();
+                    let w = &s.weights;
+                    assert!((sum(&w.point) - 1.0).abs() < 1e-12, "{case} stencil {i}");
+                    for d in [&w.du, &w.dv, &w.duu, &w.duv, &w.dvv] {
+                        assert!(sum(d).abs() < 1e-9, "{case} stencil {i}");
+                    }
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 10, "{checked}");
+}
