@@ -2,19 +2,23 @@
 //! → `Refiner::limit_stencil_table`.
 //!
 //! OpenSubdiv's factory evaluates the limit surface at arbitrary (ptex face,
-//! s, t) locations through patch tables. subdiv has no patch tables: its limit
-//! stencils sit at the vertices of the last refined level. This example shows
-//! what that covers: every location whose parameters are multiples of 1/2^n
-//! on a quad face is a vertex of level n, found by walking the child faces.
-//! It checks the stencils against `Refiner::limit`, the walk against the
-//! bilinear scheme, and the limit on a regular face against the bicubic
-//! B-spline patch evaluated from its definition.
+//! s, t) locations through patch tables; so does
+//! `AdaptiveRefiner::location_stencils`. This example shows both that and
+//! the stencils at the vertices of the last uniformly refined level
+//! (`Refiner::limit_stencil_table`): every location whose parameters are
+//! multiples of 1/2^n on a quad face is a vertex of level n, found by
+//! walking the child faces. It checks the vertex stencils against
+//! `Refiner::limit`, the walk against the bilinear scheme, the limit on a
+//! regular face against the bicubic B-spline patch evaluated from its
+//! definition, and the location stencils against the same B-spline and
+//! (with `osd`) OpenSubdiv's.
 //!
 //! Run with `cargo run --example migrate_limit_stencils`.
 
 use glam::DVec3;
+use subdiv::patches::LimitStencilOptions;
 use subdiv::refiner::Refiner;
-use subdiv::{Error, Mesh, Options, Scheme, UniformOptions, shapes};
+use subdiv::{AdaptiveOptions, Error, Mesh, Options, Scheme, UniformOptions, shapes};
 
 // [locate]
 /// The vertex of level `level` at parameter `(u, v)` of quad face `face` of
@@ -183,6 +187,61 @@ fn main() -> Result<(), Error> {
          normals to {worst_normal:.1e}",
         (steps + 1) * (steps + 1)
     );
+
+    // Stencils at arbitrary locations, as LimitStencilTableFactory builds
+    // them: adaptive refinement, a patch table, the stencil of each
+    // (ptex face, u, v) over the base vertices (an all-quad mesh: the ptex
+    // face is the face). On the regular face they are the bicubic B-spline,
+    // derivatives included (true d/du and d/dv here).
+    let locations: Vec<(u32, f64, f64)> = (0..=4)
+        .flat_map(|a| (0..=4).map(move |b| (face as u32, a as f64 / 4.0, b as f64 / 7.0)))
+        .collect();
+    // [location-stencils]
+    let adaptive = Refiner::new(&mesh, &options)?.refine_adaptive(AdaptiveOptions::new(3), &[])?;
+    let at_locations = adaptive.location_stencils(&locations, &LimitStencilOptions::new())?;
+    let values = at_locations.apply(3, &base)?; // UpdateValues, UpdateDerivs
+    // values.point, values.du, values.dv: 3 per location
+    // [end]
+    let mut worst_at = 0.0f64;
+    for (k, &(_, u, v)) in locations.iter().enumerate() {
+        let (bu, bv) = (basis(u), basis(v));
+        let (du_basis, dv_basis) = (basis_derivative(u), basis_derivative(v));
+        let (mut spline, mut spline_du, mut spline_dv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        for r in 0..4 {
+            for c in 0..4 {
+                let control = at(i + c as u32 - 1, j + r as u32 - 1);
+                spline += control * (bu[c] * bv[r]);
+                spline_du += control * (du_basis[c] * bv[r]);
+                spline_dv += control * (bu[c] * dv_basis[r]);
+            }
+        }
+        let k = k as u32;
+        worst_at = worst_at
+            .max((point(&values.point, k) - spline).length())
+            .max((point(&values.du, k) - spline_du).length())
+            .max((point(&values.dv, k) - spline_dv).length());
+    }
+    assert!(worst_at < 1e-12, "{worst_at}");
+    println!(
+        "{} location stencils on face {face}: limit and d/du, d/dv == bicubic B-spline to {worst_at:.1e}",
+        at_locations.len()
+    );
+
+    #[cfg(feature = "osd")]
+    {
+        // OpenSubdiv's stencils at the same locations: same terms.
+        let mut osd = subdiv::osd::TopologyRefiner::new(&mesh, &options)?;
+        osd.refine_adaptive(AdaptiveOptions::new(3), &[])?;
+        let theirs = osd.location_stencils(&locations, &LimitStencilOptions::new())?;
+        assert_eq!(
+            (&theirs.sizes, &theirs.indices),
+            (&at_locations.sizes, &at_locations.indices)
+        );
+        let d = diff(&theirs.weights.point, &at_locations.weights.point)
+            .max(diff(&theirs.weights.du, &at_locations.weights.du));
+        assert!(d < 1e-12, "{d}");
+        println!("OpenSubdiv's location stencils: same terms, weights to {d:.1e}");
+    }
 
     #[cfg(feature = "osd")]
     {
