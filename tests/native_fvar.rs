@@ -444,6 +444,18 @@ fn range(channel: &FVarChannel) -> f64 {
     (hi - lo).max(1.0)
 }
 
+/// A pool of one thread, where face-varying interpolation takes the vertex
+/// kernel's path.
+fn one_thread() -> &'static rayon::ThreadPool {
+    static POOL: std::sync::OnceLock<rayon::ThreadPool> = std::sync::OnceLock::new();
+    POOL.get_or_init(|| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a one-thread pool")
+    })
+}
+
 /// Refines `mesh` with both engines and compares every channel at every level.
 fn check(
     name: &str,
@@ -522,9 +534,24 @@ fn check(
                 let de = expected
                     .interpolate_face_varying(c, level, channel.width, de)
                     .map_err(|e| e.to_string())?;
-                let da = actual
+                // On one thread the values that follow the vertex topology
+                // come from the vertex kernel, on several from the
+                // face-varying pass alone: both must give OpenSubdiv's.
+                let on_pool = actual
                     .interpolate_face_varying(c, level, channel.width, da)
                     .map_err(|e| e.to_string())?;
+                let da = one_thread()
+                    .install(|| actual.interpolate_face_varying(c, level, channel.width, da))
+                    .map_err(|e| e.to_string())?;
+                if let Some(i) = (0..da.len()).find(|&i| da[i].to_bits() != on_pool[i].to_bits()) {
+                    return Err(format!(
+                        "{}: level {level} channel {c}: value {} differs between one thread ({}) and the pool ({})",
+                        what(),
+                        i / channel.width,
+                        da[i],
+                        on_pool[i]
+                    ));
+                }
                 let tolerance = TOLERANCE * range(channel);
                 let differs = |i: usize| {
                     if BIT_EXACT {

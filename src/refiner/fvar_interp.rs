@@ -23,6 +23,7 @@
 //! masks instead of the rules; widths up to 4 are computed with the width
 //! known at compile time, wider values in blocks of 16 columns.
 
+use super::fvar_fast::Fast;
 use super::kernel::{Cache, MAX_WIDTH, takes_smooth_mask};
 use super::{Emit, Refiner, Source};
 use crate::error::{Buffer, Error, Result};
@@ -156,7 +157,12 @@ impl Refiner {
         src: &[T],
         dst: &mut [T],
     ) {
-        fvar_level(&self.fvar_step(channel, level), width, src, dst);
+        let fast = self.fvar_by_vertex_kernel(channel, level, width, src, dst);
+        let step = FVarStep {
+            fast: fast.as_ref(),
+            ..self.fvar_step(channel, level)
+        };
+        fvar_level(&step, width, src, dst);
     }
 
     /// The step of face-varying `channel` from level `level - 1` to `level`.
@@ -169,6 +175,7 @@ impl Refiner {
             r: &self.refinements[level - 1],
             pf: &self.fvar[channel][level - 1],
             cf: &self.fvar[channel][level],
+            fast: None,
         }
     }
 }
@@ -212,6 +219,10 @@ pub(crate) struct FVarStep<'a, R> {
     pub r: &'a R,
     pub pf: &'a ChannelLevel,
     pub cf: &'a ChannelLevel,
+    /// With the children the vertex kernel computed
+    /// (`Refiner::fvar_by_vertex_kernel`), the elements whose children are
+    /// left: the pass computes only those.
+    pub fast: Option<&'a Fast>,
 }
 
 /// One level of one channel: face points, edge points, vertex points. The
@@ -279,7 +290,27 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
         rest = tail;
         at = end;
     }
-    let [mut faces, edges, vertices] = parts;
+    let [mut faces, mut edges, mut vertices] = parts;
+    if let Some(left) = step.fast {
+        // Only what the vertex kernel left, in one run.
+        fn each(list: &[u32]) -> impl Iterator<Item = usize> + '_ {
+            list.iter().map(|&x| x as usize)
+        }
+        pass.face_points(
+            each(&left.faces),
+            &mut Values::new(src, View::empty(), faces.reborrow(), cols),
+        );
+        let faces = faces.view();
+        pass.edge_points(
+            each(&left.edges),
+            &mut Values::new(src, faces, edges.reborrow(), cols),
+        );
+        pass.vertex_points(
+            each(&left.vertices),
+            &mut Values::new(src, faces, vertices.reborrow(), cols),
+        );
+        return;
+    }
     let chunks = |kind: usize| Chunks {
         first: blocks[kind].0,
         parents: blocks[kind].2,
@@ -528,7 +559,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
     }
 
     /// Face points (none with Loop's split): the average of the face's values.
-    fn face_points(&self, faces: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+    fn face_points(&self, faces: impl Iterator<Item = usize>, sink: &mut impl Sink<T>) {
         let (parent, r, pf, cf) = (self.parent, self.r, self.pf, self.cf);
         let mut cache = Cache::<T>::new();
         for f in faces {
@@ -545,7 +576,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
     }
 
     /// Edge points; `faces` holds the face points.
-    fn edge_points(&self, edges: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+    fn edge_points(&self, edges: impl Iterator<Item = usize>, sink: &mut impl Sink<T>) {
         let (parent, child, r, pf, cf) = (self.parent, self.child, self.r, self.pf, self.cf);
         let mut cache = Cache::<T>::new();
         let mut mask = Mask::<T>::new();
@@ -633,7 +664,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
     }
 
     /// Vertex points; `faces` holds the face points.
-    fn vertex_points(&self, vertices: std::ops::Range<usize>, sink: &mut impl Sink<T>) {
+    fn vertex_points(&self, vertices: impl Iterator<Item = usize>, sink: &mut impl Sink<T>) {
         let (parent, child, r, pf, cf) = (self.parent, self.child, self.r, self.pf, self.cf);
         let options = self.options;
         let mut cache = Cache::<T>::new();

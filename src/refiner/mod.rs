@@ -24,6 +24,7 @@ pub(crate) use crate::topology::fvar::Children;
 use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
 
 pub mod adaptive;
+mod fvar_fast;
 pub(crate) mod fvar_interp;
 mod queries;
 mod whole;

@@ -75,6 +75,7 @@ impl AdaptiveRefiner {
             r: &self.steps[level - 1],
             pf: &self.fvar[channel][level - 1],
             cf: &self.fvar[channel][level],
+            fast: None,
         }
     }
 

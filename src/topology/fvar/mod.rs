@@ -248,6 +248,12 @@ impl ChannelLevel {
         &self.face_values
     }
 
+    /// The tags of edge `e` for this channel.
+    #[inline]
+    pub fn edge_tag(&self, e: usize) -> FVarEdgeTag {
+        self.edge_tags[e]
+    }
+
     /// The values of the corners of face `f` of `level`.
     #[inline]
     pub fn face_values_of(&self, level: &Level, f: usize) -> &[u32] {
