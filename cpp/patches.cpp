@@ -264,6 +264,7 @@ int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, s
         out->num_valence_entries = (int32_t)t.GetVertexValenceTable().size();
         out->feature_adaptive = t.IsFeatureAdaptive() ? 1 : 0;
         out->varying_type = (int32_t)t.GetVaryingPatchDescriptor().GetType();
+        out->num_varying_vertices = t.GetVaryingVertices().size();
     });
 }
 
@@ -297,6 +298,10 @@ int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *
         check_cap(out->sharpness_cap, (long long)patches, "patch sharpness");
         check_cap(out->quad_offsets_cap, (long long)quad.size(), "quad offsets");
         check_cap(out->valence.cap, (long long)valence.size(), "vertex valence table");
+        Far::ConstIndexArray varying = t.GetVaryingVertices();
+        check_cap(out->varying.cap, (long long)varying.size(), "varying vertices");
+        if (varying.size() > 0 && !out->varying.data) fail("null output");
+        std::copy(varying.begin(), varying.end(), out->varying.data);
         if ((!cvs.empty() && !out->cvs.data) || (patches && (!out->params || !out->sharpness)) ||
             (!quad.empty() && !out->quad_offsets) || (!valence.empty() && !out->valence.data))
             fail("null output");

@@ -368,6 +368,7 @@ typedef struct sdv_patch_counts {
     int32_t num_valence_entries; /* entries of the legacy Gregory vertex valence table */
     int32_t feature_adaptive;
     int32_t varying_type; /* GetVaryingPatchDescriptor().GetType() */
+    int32_t num_varying_vertices; /* entries of the varying-vertex table, all arrays (0 without) */
 } sdv_patch_counts;
 int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, size_t err_len);
 
@@ -390,6 +391,7 @@ typedef struct sdv_patch_tables {
     uint32_t *quad_offsets;
     size_t quad_offsets_cap;
     sdv_ibuf valence;
+    sdv_ibuf varying; /* GetVaryingVertices(): each patch's varying vertices, array after array */
 } sdv_patch_tables;
 int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *err, size_t err_len);
 

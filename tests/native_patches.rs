@@ -140,7 +140,17 @@ fn same_table(a: &PatchTable, b: &PatchTable, case: &str) {
                 y.sharpness[p].to_bits(),
                 "{case}: sharpness of patch {p} of array {i}"
             );
+            assert_eq!(
+                x.patch_varying_vertices(p),
+                y.patch_varying_vertices(p),
+                "{case}: varying vertices of patch {p} of array {i}"
+            );
         }
+        assert_eq!(
+            x.varying_vertices.len(),
+            y.varying_vertices.len(),
+            "{case}: varying vertices of array {i}"
+        );
     }
     for (name, x, y) in [
         (

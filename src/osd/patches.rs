@@ -207,6 +207,7 @@ impl OsdPatchTable {
             num_valence_entries: 0,
             feature_adaptive: 0,
             varying_type: 0,
+            num_varying_vertices: 0,
         };
         // SAFETY: the table is live; `c` is written by the shim.
         err.run(|e| unsafe { ffi::sdv_patches_counts(self.raw.as_ptr(), &mut c, e, ERR_LEN) })?;
@@ -217,6 +218,7 @@ impl OsdPatchTable {
         let mut sharpness = try_vec(0f32, patches)?;
         let mut quad = try_vec(0u32, count(c.num_quad_offsets)?)?;
         let mut valence = try_vec(0i32, count(c.num_valence_entries)?)?;
+        let mut varying = try_vec(0i32, count(c.num_varying_vertices)?)?;
         let tables = ffi::sdv_patch_tables {
             cvs: ffi::sdv_ibuf {
                 data: cvs.as_mut_ptr(),
@@ -232,10 +234,25 @@ impl OsdPatchTable {
                 data: valence.as_mut_ptr(),
                 cap: valence.len(),
             },
+            varying: ffi::sdv_ibuf {
+                data: varying.as_mut_ptr(),
+                cap: varying.len(),
+            },
         };
         // SAFETY: every buffer has the capacity passed beside it, which the
         // shim checks against the table's sizes.
         err.run(|e| unsafe { ffi::sdv_patches_tables(self.raw.as_ptr(), &tables, e, ERR_LEN) })?;
+        let varying_type = PatchType::from_code(c.varying_type)
+            .ok_or_else(|| internal("unknown varying patch type"))?;
+        // Varying vertices per patch, when the table has them.
+        let per_patch = if varying.is_empty() {
+            0
+        } else {
+            varying_type.control_vertices()
+        };
+        if varying.len() != per_patch * patches {
+            return Err(internal("varying vertices do not match the patches"));
+        }
         let mut arrays = Vec::new();
         let (mut cv_at, mut patch_at) = (0usize, 0usize);
         for a in 0..c.num_arrays {
@@ -267,6 +284,10 @@ impl OsdPatchTable {
                     })
                     .collect(),
                 sharpness: sharpness[patch_at..patch_at + n].to_vec(),
+                varying_vertices: varying[per_patch * patch_at..per_patch * (patch_at + n)]
+                    .iter()
+                    .map(|&v| v as u32)
+                    .collect(),
             });
             cv_at += n * ncv;
             patch_at += n;
@@ -282,8 +303,7 @@ impl OsdPatchTable {
             quad_offsets: quad,
             vertex_valences: valence,
             feature_adaptive: c.feature_adaptive != 0,
-            varying_patch_type: PatchType::from_code(c.varying_type)
-                .ok_or_else(|| internal("unknown varying patch type"))?,
+            varying_patch_type: varying_type,
         })
     }
 

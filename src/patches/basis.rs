@@ -357,6 +357,7 @@ mod tests {
                         control_vertices: vec![0; 16],
                         params: vec![p],
                         sharpness: vec![0.0],
+                        varying_vertices: Vec::new(),
                     }],
                     varying_patch_type: varying,
                     ..PatchTable::default()

@@ -194,8 +194,10 @@ impl AdaptiveRefiner {
     /// Errors: a ptex face out of range ([`Error::NoSuchPtexFace`]), a
     /// coordinate outside [0, 1] ([`Error::Location`]), and what building
     /// the patch table refuses. Not yet native
-    /// ([`Error::NotYetSupported`]): varying and face-varying stencils, and
-    /// Loop meshes with irregular patches (the bridge has them).
+    /// ([`Error::NotYetSupported`]): face-varying stencils, and Loop meshes
+    /// with irregular patches (the bridge has them). Varying stencils use the
+    /// table's varying patches (each patch's face, bilinear), as
+    /// `EvaluateBasisVarying` does.
     ///
     /// ```
     /// use subdiv::patches::LimitStencilOptions;
@@ -215,7 +217,7 @@ impl AdaptiveRefiner {
         locations: &[(u32, f64, f64)],
         options: &LimitStencilOptions,
     ) -> Result<LocationStencils> {
-        check_native(options, "varying limit stencils after adaptive refinement")?;
+        check_native(options)?;
         let patch_options = patch_options(options, self.adaptive_options().use_inf_sharp_patch);
         let table = self.patch_table(&patch_options, &[])?;
         check_locations(&table, locations)?;
@@ -235,14 +237,14 @@ impl Refiner {
     /// OpenSubdiv. Errors as for
     /// [`AdaptiveRefiner::location_stencils`], and [`Error::PatchOptions`]
     /// before any level is refined (OpenSubdiv's uniform table of level 0
-    /// leaves its patches unset); varying stencils are native here (they
-    /// use the same linear patches), face-varying ones not yet.
+    /// leaves its patches unset); varying stencils use the same linear
+    /// patches.
     pub fn location_stencils(
         &self,
         locations: &[(u32, f64, f64)],
         options: &LimitStencilOptions,
     ) -> Result<LocationStencils> {
-        check_native(options, "")?;
+        check_native(options)?;
         if self.max_level() == 0 {
             return Err(unrefined());
         }
@@ -266,16 +268,13 @@ pub(crate) fn unrefined() -> Error {
 }
 
 /// Refuses what the native engine does not build yet: face-varying
-/// stencils always, varying ones where `varying` names the case (empty:
-/// supported).
-fn check_native(options: &LimitStencilOptions, varying: &'static str) -> Result<()> {
+/// stencils (they need face-varying patch tables).
+fn check_native(options: &LimitStencilOptions) -> Result<()> {
     match options.interpolation {
-        StencilInterpolation::Vertex => Ok(()),
-        StencilInterpolation::Varying if varying.is_empty() => Ok(()),
-        StencilInterpolation::Varying => Err(Error::NotYetSupported(varying)),
         StencilInterpolation::FaceVarying => {
             Err(Error::NotYetSupported("face-varying limit stencils"))
         }
+        _ => Ok(()),
     }
 }
 
@@ -413,9 +412,17 @@ fn build(
     locations: &[(u32, f64, f64)],
     options: &LimitStencilOptions,
 ) -> Result<LocationStencils> {
+    // Varying stencils of an adaptive table use its varying patches (the
+    // patches' faces, bilinear) and varying local points; a uniform table's
+    // linear patches serve both.
+    let varying = options.interpolation == StencilInterpolation::Varying && table.feature_adaptive;
     // The local points over the base vertices.
     let mut local = Builder::<1>::new(base);
-    let lp = &table.local_point_stencils;
+    let lp = if varying {
+        &table.local_point_varying_stencils
+    } else {
+        &table.local_point_stencils
+    };
     for s in 0..lp.len() {
         let (indices, weights) = row(lp, s)?;
         for (&i, &w) in indices.iter().zip(weights) {
@@ -438,6 +445,7 @@ fn build(
         table,
         map: PatchMap::new(table),
         derivatives: options.derivatives(),
+        varying,
     };
     let (found, offsets, indices, weights) = match options.derivatives() {
         Derivatives::None => at.stencils::<1>(base, locations, &source)?,
@@ -473,6 +481,8 @@ struct Locator<'a> {
     table: &'a PatchTable,
     map: PatchMap,
     derivatives: Derivatives,
+    /// Whether to evaluate the varying patches (`EvaluateBasisVarying`).
+    varying: bool,
 }
 
 /// Which locations have a stencil, and the stencils' offsets, indices and
@@ -499,9 +509,14 @@ impl Locator<'_> {
             };
             let array = &self.table.arrays[h.array];
             let param = array.params[h.patch];
-            let count =
-                evaluate_basis_into(array.patch_type, param, u, v, self.derivatives, &mut basis)?;
-            for (k, &cv) in array.patch_vertices(h.patch).iter().enumerate().take(count) {
+            let (patch_type, cvs) = if self.varying {
+                let cvs = array.patch_varying_vertices(h.patch);
+                (self.table.varying_patch_type, cvs)
+            } else {
+                (array.patch_type, array.patch_vertices(h.patch))
+            };
+            let count = evaluate_basis_into(patch_type, param, u, v, self.derivatives, &mut basis)?;
+            for (k, &cv) in cvs.iter().enumerate().take(count) {
                 let (indices, weights) = source(cv)?;
                 b.add_row(indices, weights, std::array::from_fn(|j| basis[j][k]));
             }

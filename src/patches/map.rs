@@ -25,6 +25,7 @@ use std::collections::{HashMap, HashSet};
 ///         control_vertices: vec![0; 16],
 ///         params: params.collect(),
 ///         sharpness: vec![0.0; 4],
+///         varying_vertices: Vec::new(),
 ///     }],
 ///     ptex_faces: 1,
 ///     varying_patch_type: PatchType::Quads,

@@ -300,6 +300,12 @@ pub struct PatchArray {
     pub params: Vec<PatchParam>,
     /// Each patch's single-crease sharpness (0 where none).
     pub sharpness: Vec<f32>,
+    /// The varying patch of each patch (`GetPatchArrayVaryingVertices`):
+    /// the vertices of the patch's face, indexed as `control_vertices`
+    /// ([`PatchTable::varying_patch_type`]'s count per patch: 4, or 3 under
+    /// Loop), in adaptive tables built with `generateVaryingTables`; empty
+    /// otherwise.
+    pub varying_vertices: Vec<u32>,
 }
 
 impl PatchArray {
@@ -317,6 +323,15 @@ impl PatchArray {
     pub fn patch_vertices(&self, patch: usize) -> &[u32] {
         let n = self.patch_type.control_vertices();
         &self.control_vertices[patch * n..(patch + 1) * n]
+    }
+
+    /// The varying vertices of patch `patch` (`GetPatchVaryingVertices`;
+    /// empty without varying tables).
+    pub fn patch_varying_vertices(&self, patch: usize) -> &[u32] {
+        let n = self.varying_vertices.len() / self.len().max(1);
+        self.varying_vertices
+            .get(patch * n..(patch + 1) * n)
+            .unwrap_or(&[])
     }
 }
 

@@ -350,6 +350,7 @@ mod tests {
                 control_vertices: (0..8).collect(),
                 params: vec![PatchParam::default(); 2],
                 sharpness: vec![0.0; 2],
+                varying_vertices: Vec::new(),
             }],
             local_point_stencils: subdiv::StencilTable {
                 sizes: vec![1],

@@ -388,6 +388,13 @@ impl Builder<'_> {
             array
                 .params
                 .push(self.param(p.level, p.face, &ptex, is_regular, param_boundary));
+            // The varying patch: the face's own vertices.
+            if options.varying_tables {
+                let verts = self.levels[p.level].face_verts(p.face);
+                array
+                    .varying_vertices
+                    .extend(verts.iter().map(|&v| v + offset));
+            }
         }
         let local_points = local.count();
         let (stencils, varying) = local.finish();
@@ -585,6 +592,7 @@ impl PatchArray {
             control_vertices: Vec::new(),
             params: Vec::new(),
             sharpness: Vec::new(),
+            varying_vertices: Vec::new(),
         }
     }
 }

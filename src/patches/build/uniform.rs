@@ -82,6 +82,7 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
             control_vertices: vec![0; n * patch_type.control_vertices()],
             params: vec![PatchParam::default(); n],
             sharpness: vec![0.0; n],
+            varying_vertices: Vec::new(),
         });
     }
     for level in 1..=max {
@@ -92,6 +93,7 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
                 control_vertices: Vec::new(),
                 params: Vec::new(),
                 sharpness: Vec::new(),
+                varying_vertices: Vec::new(),
             };
             for f in (0..l.face_count()).filter(|&f| !l.is_hole(f)) {
                 let verts = l.face_verts(f);
