@@ -265,6 +265,7 @@ int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, s
         out->feature_adaptive = t.IsFeatureAdaptive() ? 1 : 0;
         out->varying_type = (int32_t)t.GetVaryingPatchDescriptor().GetType();
         out->num_varying_vertices = t.GetVaryingVertices().size();
+        out->num_fvar_channels = t.GetNumFVarChannels();
     });
 }
 
@@ -323,6 +324,33 @@ int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *
         }
         std::copy(quad.begin(), quad.end(), out->quad_offsets);
         std::copy(valence.begin(), valence.end(), out->valence.data);
+    });
+}
+
+int sdv_patches_fvar(const sdv_patches *p, int32_t channel, sdv_fvar_patches *info, int32_t *values,
+                     size_t values_cap, uint32_t *params, size_t params_cap, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        if (!info) fail("null output");
+        Far::PatchTable const &t = *need_patches(p).table;
+        if (channel < 0 || channel >= t.GetNumFVarChannels())
+            fail("face-varying patch channel " + str(channel) + " does not exist (the table has " +
+                 str(t.GetNumFVarChannels()) + ")");
+        Far::ConstIndexArray v = t.GetFVarValues(channel);
+        Far::ConstPatchParamArray pp = t.GetFVarPatchParams(channel);
+        info->regular_type = (int32_t)t.GetFVarPatchDescriptorRegular(channel).GetType();
+        info->irregular_type = (int32_t)t.GetFVarPatchDescriptorIrregular(channel).GetType();
+        info->stride = t.GetFVarValueStride(channel);
+        info->num_values = v.size();
+        info->num_params = pp.size();
+        if (!values && !params) return;
+        check_cap(values_cap, (long long)v.size(), "face-varying patch values");
+        check_cap(params_cap, 2 * (long long)pp.size(), "face-varying patch params");
+        if ((v.size() > 0 && !values) || (pp.size() > 0 && !params)) fail("null output");
+        std::copy(v.begin(), v.end(), values);
+        for (int i = 0; i < pp.size(); ++i) {
+            params[2 * i] = pp[i].field0;
+            params[2 * i + 1] = pp[i].field1;
+        }
     });
 }
 

@@ -369,6 +369,7 @@ typedef struct sdv_patch_counts {
     int32_t feature_adaptive;
     int32_t varying_type; /* GetVaryingPatchDescriptor().GetType() */
     int32_t num_varying_vertices; /* entries of the varying-vertex table, all arrays (0 without) */
+    int32_t num_fvar_channels; /* GetNumFVarChannels() */
 } sdv_patch_counts;
 int sdv_patches_counts(const sdv_patches *p, sdv_patch_counts *out, char *err, size_t err_len);
 
@@ -394,6 +395,23 @@ typedef struct sdv_patch_tables {
     sdv_ibuf varying; /* GetVaryingVertices(): each patch's varying vertices, array after array */
 } sdv_patch_tables;
 int sdv_patches_tables(const sdv_patches *p, const sdv_patch_tables *out, char *err, size_t err_len);
+
+/*
+ * Face-varying patch channel `channel` (0..num_fvar_channels): its regular
+ * and irregular PatchDescriptor types, the value stride per patch, and its
+ * values (stride per patch, patches in table order: GetFVarValues) and
+ * PatchParam words (2 per patch: GetFVarPatchParams). With NULL outputs
+ * only the sizes are written.
+ */
+typedef struct sdv_fvar_patches {
+    int32_t regular_type;
+    int32_t irregular_type;
+    int32_t stride;
+    int32_t num_values;
+    int32_t num_params;
+} sdv_fvar_patches;
+int sdv_patches_fvar(const sdv_patches *p, int32_t channel, sdv_fvar_patches *info, int32_t *values,
+                     size_t values_cap, uint32_t *params, size_t params_cap, char *err, size_t err_len);
 
 /* Local-point stencils (0 vertex, 1 varying), weights as double. */
 int sdv_patches_local_stencils(const sdv_patches *p, int32_t kind, sdv_stencils **out, char *err,

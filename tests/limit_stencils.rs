@@ -89,6 +89,7 @@ fn adaptive_corpus_matches_opensubdiv() {
                         LimitStencilOptions::new(),
                         LimitStencilOptions::new().second_derivatives(true),
                         LimitStencilOptions::new().interpolation(StencilInterpolation::Varying),
+                        LimitStencilOptions::new().interpolation(StencilInterpolation::FaceVarying),
                     ] {
                         let case = format!("{name} {options:?} {ao:?} {o:?}");
                         let b = match theirs.location_stencils(&locs, &o) {
@@ -142,8 +143,14 @@ fn uniform_corpus_matches_opensubdiv() {
                     LimitStencilOptions::new()
                         .second_derivatives(true)
                         .interpolation(StencilInterpolation::Varying),
+                    LimitStencilOptions::new().interpolation(StencilInterpolation::FaceVarying),
                 ] {
                     let case = format!("{name} {options:?} level {level} {o:?}");
+                    if o.interpolation == StencilInterpolation::FaceVarying
+                        && mesh.fvar_channels.is_empty()
+                    {
+                        continue;
+                    }
                     let b = theirs.location_stencils(&locs, &o).expect(&case);
                     let a = mine.location_stencils(&locs, &o).expect(&case);
                     same(&a, &b, &case);
@@ -281,11 +288,26 @@ fn holes_have_no_stencil_and_bad_locations_are_refused() {
         theirs0.location_stencils(&locs, &o),
         Err(Error::Osd(_))
     ));
-    // Not native yet, and said so.
+    // Face-varying stencils after a refinement that considered the
+    // channels: OpenSubdiv's non-linear face-varying patches, not native
+    // yet, and said so.
     let fvar = o.interpolation(StencilInterpolation::FaceVarying);
+    assert!(!mesh.fvar_channels.is_empty());
+    // (A channel interpolated linearly everywhere, OpenSubdiv's default,
+    // keeps linear patches: take USD's corners-plus-one.)
+    let smooth_uvs = options.with_fvar(subdiv::FVarLinearInterpolation::CornersPlus1);
+    let considered = Refiner::new(&mesh, &smooth_uvs)
+        .unwrap()
+        .refine_adaptive(AdaptiveOptions::new(2).consider_fvar(true), &[])
+        .unwrap();
     assert!(matches!(
-        native.location_stencils(&locs, &fvar),
+        considered.location_stencils(&locs, &fvar),
         Err(Error::NotYetSupported(_))
+    ));
+    // A channel the mesh lacks.
+    assert!(matches!(
+        native.location_stencils(&locs, &fvar.fvar_channel(3)),
+        Err(Error::NoSuchChannel { .. })
     ));
 }
 

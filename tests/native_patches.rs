@@ -24,6 +24,8 @@ struct Tally {
     local_points: usize,
     carried_sharpness: usize,
     carried_boundary: usize,
+    not_yet_fvar: usize,
+    fvar_patches: usize,
 }
 
 fn compare(
@@ -72,6 +74,11 @@ fn compare_refined(
             same_table(&a, b.table(), &case);
             t.identical += 1;
             t.patches += a.patch_count();
+            t.fvar_patches += a
+                .fvar_channels
+                .iter()
+                .map(|c| c.params.len())
+                .sum::<usize>();
             t.local_points += a.local_points;
             if !a.quad_offsets.is_empty() {
                 t.legacy_irregular += 1;
@@ -91,6 +98,14 @@ fn compare_refined(
                     t.carried_boundary += usize::from(!p.is_regular() && p.boundary() != 0);
                 }
             }
+        }
+        (Err(Error::NotYetSupported(_)), Ok(b))
+            if po.fvar_tables
+                && !po.fvar_legacy_linear_patches
+                && !b.table().fvar_channels.is_empty() =>
+        {
+            // Non-linear face-varying patches.
+            t.not_yet_fvar += 1;
         }
         (Err(Error::NotYetSupported(_)), Ok(b)) => {
             // Only end caps with local points around irregular patches.
@@ -221,6 +236,17 @@ fn patch_option_sets(isolation: u32) -> Vec<PatchOptions> {
             ..o.clone().double_precision(true)
         });
     }
+    // Face-varying patches: OpenSubdiv's default legacy linear ones (built
+    // natively), and its non-linear ones (not yet).
+    let fvar = PatchOptions {
+        fvar_tables: true,
+        ..o.clone()
+    };
+    sets.push(fvar.clone());
+    sets.push(PatchOptions {
+        fvar_legacy_linear_patches: false,
+        ..fvar
+    });
     sets
 }
 
@@ -266,6 +292,44 @@ fn corpus_tables_match_opensubdiv() {
     assert!(t.legacy_irregular > 50 && t.single_crease > 10, "{t:?}");
     assert!(t.local_points > 100_000, "{t:?}");
     assert!(t.carried_sharpness > 0 && t.carried_boundary > 0, "{t:?}");
+    assert!(t.fvar_patches > 10_000, "{t:?}");
+}
+
+/// Face-varying patches in every face-varying interpolation mode: legacy
+/// linear ones identical to OpenSubdiv's; non-linear ones (a channel not
+/// interpolated linearly, legacy patches off) not native yet, and only
+/// those refused.
+#[test]
+fn face_varying_tables_match_opensubdiv() {
+    use subdiv::FVarLinearInterpolation as F;
+    let mut t = Tally::default();
+    for (name, mesh) in shapes::corpus() {
+        if mesh.fvar_channels.is_empty() {
+            continue;
+        }
+        for fvar in [
+            F::None,
+            F::CornersOnly,
+            F::CornersPlus1,
+            F::CornersPlus2,
+            F::Boundaries,
+            F::All,
+        ] {
+            let options = Options::shape_file_defaults().with_fvar(fvar);
+            for legacy in [true, false] {
+                for isolation in [1, 3] {
+                    let po = PatchOptions {
+                        fvar_tables: true,
+                        fvar_legacy_linear_patches: legacy,
+                        ..PatchOptions::new().max_isolation(isolation)
+                    };
+                    compare(&name, &mesh, &options, &po, &[], &mut t);
+                }
+            }
+        }
+    }
+    eprintln!("{t:?}");
+    assert!(t.fvar_patches > 5_000 && t.not_yet_fvar > 0, "{t:?}");
 }
 
 /// Tables of selected faces, depth first under each face.
@@ -456,10 +520,14 @@ fn uniform_tables_match_opensubdiv() {
                     (true, false, true),
                     (false, false, true),
                 ] {
+                    // Face-varying patches of every channel, their values
+                    // offset past the base level's or not.
                     let po = PatchOptions {
                         generate_all_levels: all,
                         include_base_level_indices: base,
+                        include_fvar_base_level_indices: !base,
                         triangulate_quads: triangulate,
+                        fvar_tables: true,
                         ..PatchOptions::new()
                     };
                     let case = format!("{name} {scheme:?} level {level} {po:?}");

@@ -962,6 +962,57 @@ pub fn check_adaptive_differential(case: &MeshCase, adaptive: &AdaptiveCase) {
     check_osd_patches(&native, &theirs, case, adaptive);
 }
 
+/// Limit stencils at a few locations of the first ptex faces (vertex data,
+/// first derivatives): where both engines build them, the same stencils
+/// term by term, weights within 1e-9; the native engine refuses only what
+/// it does not build yet (Loop's irregular patches).
+#[cfg(feature = "osd")]
+fn check_location_stencils(
+    native: &subdiv::refiner::AdaptiveRefiner,
+    theirs: &subdiv::osd::TopologyRefiner,
+    case: &MeshCase,
+    adaptive: &AdaptiveCase,
+) {
+    use subdiv::patches::LimitStencilOptions;
+    if !adaptive.faces.is_empty() {
+        // The other faces' patches are undefined: the bridge refuses.
+        return;
+    }
+    let ptex = native
+        .patch_table(&subdiv::patches::PatchOptions::new(), &[])
+        .map_or(0, |t| t.ptex_faces);
+    let locations: Vec<(u32, f64, f64)> = (0..ptex.min(6) as u32)
+        .flat_map(|f| [(f, 0.25, 0.75), (f, 1.0, 0.0)])
+        .collect();
+    let o = LimitStencilOptions::new();
+    match (
+        native.location_stencils(&locations, &o),
+        theirs.location_stencils(&locations, &o),
+    ) {
+        (Ok(a), Ok(b)) => {
+            assert_eq!(
+                (&a.locations, &a.sizes, &a.indices),
+                (&b.locations, &b.sizes, &b.indices),
+                "location stencils differ"
+            );
+            for (x, y) in [(&a.weights.point, &b.weights.point), (&a.weights.du, &b.weights.du)] {
+                for (p, q) in x.iter().zip(y) {
+                    assert!((p - q).abs() <= 1e-9, "location stencil weight {p} vs {q}");
+                }
+            }
+        }
+        (Err(subdiv::Error::NotYetSupported(_)), Ok(_)) => assert_eq!(
+            case.options.scheme,
+            subdiv::Scheme::Loop,
+            "native location stencils not built"
+        ),
+        // The bridge refuses what would make OpenSubdiv overrun.
+        (_, Err(subdiv::Error::Osd(_))) => {}
+        (Err(e), _) => panic!("native location stencils refused: {e}"),
+        (Ok(_), Err(e)) => panic!("bridge location stencils failed: {e}"),
+    }
+}
+
 /// OpenSubdiv's patch table of an adaptive refinement, through the bridge:
 /// options derived from the case (every end-cap type, single-crease and
 /// infinitely sharp patches as refined, the refinement's selected faces),
@@ -995,6 +1046,8 @@ fn check_osd_patches(
     let options = PatchOptions {
         share_end_cap_points: ao.order_vertices_from_faces_first,
         legacy_sharp_corner_patches: !ao.consider_fvar_channels,
+        // Linear face-varying patches (OpenSubdiv's default legacy ones).
+        fvar_tables: ao.isolation_level % 2 == 1,
         ..PatchOptions::new()
             .max_isolation(ao.isolation_level.min(10))
             .end_caps(end_caps)
@@ -1047,6 +1100,7 @@ fn check_osd_patches(
         }
     };
     assert!(!repeats, "a face repeating a vertex was not refused");
+    check_location_stencils(native, theirs, case, adaptive);
     let t = patches.table();
     match mine {
         Ok(m) => assert!(m == *t, "native patch table differs from OpenSubdiv's"),

@@ -10,8 +10,8 @@ use super::shim::{ErrBuf, check_length, internal, to_i32};
 use crate::alloc::try_vec;
 use crate::error::{Buffer, Element, Error, LevelRefusal, Result};
 use crate::patches::{
-    Derivatives, Partials, PatchArray, PatchHandle, PatchOptions, PatchParam, PatchTable,
-    PatchType, SurfaceSamples,
+    Derivatives, FVarPatches, Partials, PatchArray, PatchHandle, PatchOptions, PatchParam,
+    PatchTable, PatchType, SurfaceSamples,
 };
 use crate::stencil::StencilTable;
 use std::ptr::NonNull;
@@ -208,6 +208,7 @@ impl OsdPatchTable {
             feature_adaptive: 0,
             varying_type: 0,
             num_varying_vertices: 0,
+            num_fvar_channels: 0,
         };
         // SAFETY: the table is live; `c` is written by the shim.
         err.run(|e| unsafe { ffi::sdv_patches_counts(self.raw.as_ptr(), &mut c, e, ERR_LEN) })?;
@@ -304,6 +305,75 @@ impl OsdPatchTable {
             vertex_valences: valence,
             feature_adaptive: c.feature_adaptive != 0,
             varying_patch_type: varying_type,
+            fvar_channels: (0..count(c.num_fvar_channels)?)
+                .map(|k| self.fvar_patches(k))
+                .collect::<Result<_>>()?,
+        })
+    }
+
+    /// Face-varying patch channel `k` of the table.
+    fn fvar_patches(&self, k: usize) -> Result<FVarPatches> {
+        let mut err = ErrBuf::new();
+        let mut info = ffi::sdv_fvar_patches {
+            regular_type: 0,
+            irregular_type: 0,
+            stride: 0,
+            num_values: 0,
+            num_params: 0,
+        };
+        let channel = to_i32(k, "face-varying patch channel")?;
+        // SAFETY: the table is live; null outputs ask for the sizes only.
+        err.run(|e| unsafe {
+            ffi::sdv_patches_fvar(
+                self.raw.as_ptr(),
+                channel,
+                &mut info,
+                std::ptr::null_mut(),
+                0,
+                std::ptr::null_mut(),
+                0,
+                e,
+                ERR_LEN,
+            )
+        })?;
+        let count = |n: i32| usize::try_from(n).map_err(|_| internal("negative count"));
+        let mut values = try_vec(0i32, count(info.num_values)?)?;
+        let mut params = try_vec(0u32, 2 * count(info.num_params)?)?;
+        // SAFETY: both buffers have the capacities passed, which the shim
+        // checks.
+        err.run(|e| unsafe {
+            ffi::sdv_patches_fvar(
+                self.raw.as_ptr(),
+                channel,
+                &mut info,
+                values.as_mut_ptr(),
+                values.len(),
+                params.as_mut_ptr(),
+                params.len(),
+                e,
+                ERR_LEN,
+            )
+        })?;
+        let ty = |code: i32| {
+            PatchType::from_code(code).ok_or_else(|| internal("unknown face-varying patch type"))
+        };
+        Ok(FVarPatches {
+            channel: if self.options.fvar_channels.is_empty() {
+                k
+            } else {
+                self.options.fvar_channels[k]
+            },
+            regular_type: ty(info.regular_type)?,
+            irregular_type: ty(info.irregular_type)?,
+            stride: count(info.stride)?,
+            values: values.into_iter().map(|v| v as u32).collect(),
+            params: params
+                .chunks_exact(2)
+                .map(|w| PatchParam {
+                    field0: w[0],
+                    field1: w[1],
+                })
+                .collect(),
         })
     }
 

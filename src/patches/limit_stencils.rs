@@ -193,11 +193,14 @@ impl AdaptiveRefiner {
     ///
     /// Errors: a ptex face out of range ([`Error::NoSuchPtexFace`]), a
     /// coordinate outside [0, 1] ([`Error::Location`]), and what building
-    /// the patch table refuses. Not yet native
-    /// ([`Error::NotYetSupported`]): face-varying stencils, and Loop meshes
-    /// with irregular patches (the bridge has them). Varying stencils use the
-    /// table's varying patches (each patch's face, bilinear), as
-    /// `EvaluateBasisVarying` does.
+    /// the patch table refuses. Varying stencils use the table's varying
+    /// patches (each patch's face, bilinear), as `EvaluateBasisVarying`
+    /// does; face-varying ones the channel's linear patches over the
+    /// channel's values (indices of the base level's values). Not yet
+    /// native ([`Error::NotYetSupported`]; the bridge has them): face-varying
+    /// stencils after a refinement that considered face-varying channels
+    /// (OpenSubdiv then builds the channel's own non-linear patches), and
+    /// Loop meshes with irregular patches.
     ///
     /// ```
     /// use subdiv::patches::LimitStencilOptions;
@@ -217,11 +220,21 @@ impl AdaptiveRefiner {
         locations: &[(u32, f64, f64)],
         options: &LimitStencilOptions,
     ) -> Result<LocationStencils> {
-        check_native(options)?;
-        let patch_options = patch_options(options, self.adaptive_options().use_inf_sharp_patch);
+        let adaptive = self.adaptive_options();
+        let patch_options = patch_options(
+            options,
+            adaptive.use_inf_sharp_patch,
+            !adaptive.consider_fvar_channels,
+            self.fvar_channel_count(),
+        )?;
         let table = self.patch_table(&patch_options, &[])?;
         check_locations(&table, locations)?;
-        let base = self.level_counts(0)?.vertices;
+        let base = match options.interpolation {
+            StencilInterpolation::FaceVarying => {
+                self.level(0)?.fvar[options.fvar_channel].value_count
+            }
+            _ => self.level_counts(0)?.vertices,
+        };
         crate::alloc::guard(None, || {
             let refined = self.stencil_table_with(&refined_options(options, true))?;
             build(&refined, &table, base, locations, options)
@@ -244,13 +257,18 @@ impl Refiner {
         locations: &[(u32, f64, f64)],
         options: &LimitStencilOptions,
     ) -> Result<LocationStencils> {
-        check_native(options)?;
         if self.max_level() == 0 {
             return Err(unrefined());
         }
-        let table = self.patch_table(&patch_options(options, false))?;
+        let patch_options = patch_options(options, false, true, self.fvar.len())?;
+        let table = self.patch_table(&patch_options)?;
         check_locations(&table, locations)?;
-        let base = self.level_counts(0)?.vertices;
+        let base = match options.interpolation {
+            StencilInterpolation::FaceVarying => {
+                self.level(0)?.fvar[options.fvar_channel].value_count
+            }
+            _ => self.level_counts(0)?.vertices,
+        };
         crate::alloc::guard(None, || {
             let refined = self.stencil_table_with(&refined_options(options, false))?;
             build(&refined, &table, base, locations, options)
@@ -267,29 +285,39 @@ pub(crate) fn unrefined() -> Error {
     }
 }
 
-/// Refuses what the native engine does not build yet: face-varying
-/// stencils (they need face-varying patch tables).
-fn check_native(options: &LimitStencilOptions) -> Result<()> {
-    match options.interpolation {
-        StencilInterpolation::FaceVarying => {
-            Err(Error::NotYetSupported("face-varying limit stencils"))
-        }
-        _ => Ok(()),
-    }
-}
-
 /// The patch table `LimitStencilTableFactory` builds: the factory's
 /// defaults with double-precision local points, base-level indices,
-/// Gregory end caps, varying tables only for varying stencils and the
-/// refinement's infinitely-sharp patches.
-fn patch_options(options: &LimitStencilOptions, inf_sharp: bool) -> PatchOptions {
+/// Gregory end caps, varying tables only for varying stencils, the
+/// refinement's infinitely-sharp patches, and for face-varying stencils the
+/// channel's patches (legacy linear ones when `linear_fvar`: after uniform
+/// refinement, or adaptive refinement that did not consider the channels),
+/// its values offset past the base level's. `channels` is the refiner's
+/// count, which the face-varying channel must be below.
+fn patch_options(
+    options: &LimitStencilOptions,
+    inf_sharp: bool,
+    linear_fvar: bool,
+    channels: usize,
+) -> Result<PatchOptions> {
     let mut o = PatchOptions::new()
         .end_caps(EndCapType::GregoryBasis)
         .inf_sharp_patch(inf_sharp);
     o.patch_precision_double = true;
     o.include_base_level_indices = true;
     o.varying_tables = options.interpolation == StencilInterpolation::Varying;
-    o
+    if options.interpolation == StencilInterpolation::FaceVarying {
+        if options.fvar_channel >= channels {
+            return Err(Error::NoSuchChannel {
+                channel: options.fvar_channel,
+                count: channels,
+            });
+        }
+        o.fvar_tables = true;
+        o.include_fvar_base_level_indices = true;
+        o.fvar_channels = vec![options.fvar_channel];
+        o.fvar_legacy_linear_patches = linear_fvar;
+    }
+    Ok(o)
 }
 
 /// The refined vertices' stencils `LimitStencilTableFactory` builds: control
@@ -414,14 +442,26 @@ fn build(
 ) -> Result<LocationStencils> {
     // Varying stencils of an adaptive table use its varying patches (the
     // patches' faces, bilinear) and varying local points; a uniform table's
-    // linear patches serve both.
-    let varying = options.interpolation == StencilInterpolation::Varying && table.feature_adaptive;
+    // linear patches serve both. Face-varying stencils use the channel's
+    // patches, linear: no local points.
+    let patches = match options.interpolation {
+        StencilInterpolation::Varying if table.feature_adaptive => Patches::Varying,
+        StencilInterpolation::FaceVarying => Patches::FaceVarying,
+        _ => Patches::Vertex,
+    };
+    if patches == Patches::FaceVarying && table.fvar_channels.is_empty() {
+        return Err(Error::NoSuchChannel {
+            channel: options.fvar_channel,
+            count: 0,
+        });
+    }
+    let none = StencilTable::default();
     // The local points over the base vertices.
     let mut local = Builder::<1>::new(base);
-    let lp = if varying {
-        &table.local_point_varying_stencils
-    } else {
-        &table.local_point_stencils
+    let lp = match patches {
+        Patches::Vertex => &table.local_point_stencils,
+        Patches::Varying => &table.local_point_varying_stencils,
+        Patches::FaceVarying => &none,
     };
     for s in 0..lp.len() {
         let (indices, weights) = row(lp, s)?;
@@ -445,7 +485,7 @@ fn build(
         table,
         map: PatchMap::new(table),
         derivatives: options.derivatives(),
-        varying,
+        patches,
     };
     let (found, offsets, indices, weights) = match options.derivatives() {
         Derivatives::None => at.stencils::<1>(base, locations, &source)?,
@@ -481,8 +521,18 @@ struct Locator<'a> {
     table: &'a PatchTable,
     map: PatchMap,
     derivatives: Derivatives,
-    /// Whether to evaluate the varying patches (`EvaluateBasisVarying`).
-    varying: bool,
+    /// Which patches to evaluate.
+    patches: Patches,
+}
+
+/// The patches a location's stencil comes from: the vertex patches
+/// (`EvaluateBasis`), the varying ones (`EvaluateBasisVarying`) or those of
+/// the table's face-varying channel (`EvaluateBasisFaceVarying`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Patches {
+    Vertex,
+    Varying,
+    FaceVarying,
 }
 
 /// Which locations have a stencil, and the stencils' offsets, indices and
@@ -508,12 +558,23 @@ impl Locator<'_> {
                 continue;
             };
             let array = &self.table.arrays[h.array];
-            let param = array.params[h.patch];
-            let (patch_type, cvs) = if self.varying {
-                let cvs = array.patch_varying_vertices(h.patch);
-                (self.table.varying_patch_type, cvs)
-            } else {
-                (array.patch_type, array.patch_vertices(h.patch))
+            let (patch_type, param, cvs) = match self.patches {
+                Patches::Vertex => (
+                    array.patch_type,
+                    array.params[h.patch],
+                    array.patch_vertices(h.patch),
+                ),
+                Patches::Varying => (
+                    self.table.varying_patch_type,
+                    array.params[h.patch],
+                    array.patch_varying_vertices(h.patch),
+                ),
+                Patches::FaceVarying => {
+                    // `build` checked that the table has the channel.
+                    let c = &self.table.fvar_channels[0];
+                    let i = self.table.patch_index(h);
+                    (c.patch_type(i), c.params[i], c.patch_values(i))
+                }
             };
             let count = evaluate_basis_into(patch_type, param, u, v, self.derivatives, &mut basis)?;
             for (k, &cv) in cvs.iter().enumerate().take(count) {

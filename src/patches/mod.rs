@@ -368,12 +368,72 @@ pub struct PatchTable {
     /// `TRIANGLES` for Loop, whose ptex faces [`PatchMap`] divides into
     /// triangles, `QUADS` otherwise.
     pub varying_patch_type: PatchType,
+    /// The face-varying patch channels (`generateFVarTables`), one per
+    /// channel asked for, in that order.
+    pub fvar_channels: Vec<FVarPatches>,
 }
 
 impl PatchTable {
     /// Number of patches in all arrays (`GetNumPatchesTotal`).
     pub fn patch_count(&self) -> usize {
         self.arrays.iter().map(PatchArray::len).sum()
+    }
+
+    /// The index of a patch among all the table's patches, array after
+    /// array (OpenSubdiv's `PatchHandle::patchIndex`).
+    pub fn patch_index(&self, handle: PatchHandle) -> usize {
+        let before: usize = self.arrays[..handle.array.min(self.arrays.len())]
+            .iter()
+            .map(PatchArray::len)
+            .sum();
+        before + handle.patch
+    }
+}
+
+/// One face-varying channel of a patch table (OpenSubdiv's face-varying
+/// patch channel): for every patch of the table, in table order, the patch
+/// in the channel's own topology — its values (indices of the channel's
+/// values of every level, base first, as the vertex patches index
+/// vertices) and its [`PatchParam`]. Linear channels (OpenSubdiv's default
+/// `generateFVarLegacyLinearPatches`, or a channel interpolated linearly
+/// everywhere) have a linear patch over each patch's face: its corner
+/// values, the vertex patch's parameter.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FVarPatches {
+    /// The refiner's channel.
+    pub channel: usize,
+    /// `GetFVarPatchDescriptorRegular`.
+    pub regular_type: PatchType,
+    /// `GetFVarPatchDescriptorIrregular`.
+    pub irregular_type: PatchType,
+    /// Values per patch in [`FVarPatches::values`] (`GetFVarValueStride`).
+    pub stride: usize,
+    /// The values of every patch, `stride` per patch (`GetFVarValues`).
+    pub values: Vec<u32>,
+    /// The parameter of every patch (`GetFVarPatchParams`).
+    pub params: Vec<PatchParam>,
+}
+
+impl FVarPatches {
+    /// The values of patch `patch` (an index over the whole table:
+    /// [`PatchTable::patch_index`]), as many as its type has
+    /// (`GetPatchFVarValues`).
+    pub fn patch_values(&self, patch: usize) -> &[u32] {
+        let ty = match self.params.get(patch) {
+            Some(p) if !p.is_regular() => self.irregular_type,
+            _ => self.regular_type,
+        };
+        let start = patch * self.stride;
+        let n = ty.control_vertices().min(self.stride);
+        self.values.get(start..start + n).unwrap_or(&[])
+    }
+
+    /// The type of patch `patch`'s face-varying patch.
+    pub fn patch_type(&self, patch: usize) -> PatchType {
+        match self.params.get(patch) {
+            Some(p) if !p.is_regular() => self.irregular_type,
+            _ => self.regular_type,
+        }
     }
 }
 

@@ -14,15 +14,18 @@
 //! * `legacy.rs`: the legacy Gregory tables;
 //! * `source.rs`, `limits.rs`, `gregory.rs`, `bspline.rs`, `linear.rs`,
 //!   `matrix.rs`, `local.rs`: end caps and their local points;
-//! * `uniform.rs`: tables of uniformly refined topologies.
+//! * `uniform.rs`: tables of uniformly refined topologies;
+//! * `fvar.rs`: linear face-varying patches.
 //!
 //! Not yet native: Loop end caps (Gregory triangles, box-spline and linear
-//! triangles around irregular patches) and face-varying patch tables; a
-//! table that would need them is refused with [`Error::NotYetSupported`].
-//! A Loop table whose patches are all regular needs no end caps.
+//! triangles around irregular patches) and non-linear face-varying patches
+//! (`generateFVarLegacyLinearPatches` off, the channel not linear); a table
+//! that would need them is refused with [`Error::NotYetSupported`]. A Loop
+//! table whose patches are all regular needs no end caps.
 
 mod bspline;
 mod corners;
+mod fvar;
 mod gregory;
 mod legacy;
 mod limits;
@@ -62,6 +65,8 @@ pub(super) struct Builder<'a> {
     sharp_corners: bool,
     /// Whether a base face is not of the regular size.
     irregular_base_faces: bool,
+    /// The face-varying channels to build (linear) patches for.
+    fvar: Vec<fvar::Channel<'a>>,
 }
 
 /// One patch: a face of a level.
@@ -81,8 +86,11 @@ impl AdaptiveRefiner {
     /// The native engine builds every table of Catmull-Clark and bilinear
     /// topologies (every end-cap type, with the local points' vertex and
     /// varying stencils in `f32` or `f64`) and of Loop topologies whose
-    /// patches are all regular; Loop end caps around irregular patches and
-    /// face-varying tables are [`Error::NotYetSupported`] — the `osd`
+    /// patches are all regular, with face-varying patches of linear
+    /// channels (`generateFVarLegacyLinearPatches`, OpenSubdiv's default, or
+    /// a channel interpolated linearly everywhere: each patch's face in the
+    /// channel); Loop end caps around irregular patches and non-linear
+    /// face-varying patches are [`Error::NotYetSupported`] — the `osd`
     /// engine builds them.
     ///
     /// Refused: an isolation level beyond 10 ([`Error::Level`]), a selected
@@ -126,8 +134,9 @@ impl AdaptiveRefiner {
         }
         let base = &levels[0];
         crate::refiner::adaptive::check_selected_faces(base, selected_faces)?;
-        if options.fvar_tables && (channels > 0 || !options.fvar_channels.is_empty()) {
-            return Err(Error::NotYetSupported("face-varying patch tables"));
+        let requested = fvar::requested(options, channels)?;
+        if !requested.is_empty() {
+            fvar::check_linear(options, self.options().fvar)?;
         }
         let scheme = self.options().scheme;
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
@@ -147,6 +156,10 @@ impl AdaptiveRefiner {
             sharp_corners: options.legacy_sharp_corner_patches,
             irregular_base_faces: (0..base.face_count())
                 .any(|f| base.face_vertices.count(f) != reg),
+            fvar: requested
+                .iter()
+                .map(|&c| fvar::Channel::new(c, self.fvar_levels(c)))
+                .collect(),
         };
         crate::alloc::guard(None, || b.build(options, selected_faces, scheme))
     }
@@ -320,8 +333,13 @@ impl Builder<'_> {
             matrix::Matrix::<R>::default(),
             matrix::Matrix::<R>::default(),
         );
+        // Each face-varying channel's values, by array (regular, irregular,
+        // legacy interior and boundary), put in table order at the end.
+        let mut fvar_values: Vec<[Vec<u32>; 4]> =
+            self.fvar.iter().map(|_| Default::default()).collect();
         for (p, &is_regular) in patches.iter().zip(&regular) {
             let offset = offsets[p.level];
+            let slot;
             let array = if is_regular {
                 let mask = self.boundary_mask(p.level, p.face);
                 param_boundary = mask;
@@ -339,10 +357,12 @@ impl Builder<'_> {
                 reg_array
                     .control_vertices
                     .extend(cvs.iter().map(|&v| v + offset));
+                slot = 0;
                 &mut reg_array
             } else if legacy {
                 let corners = self.composite(p.level, p.face);
                 legacy_faces.add(p.face, corners.boundary);
+                slot = if corners.boundary { 3 } else { 2 };
                 let a = if corners.boundary {
                     &mut boundary
                 } else {
@@ -374,9 +394,11 @@ impl Builder<'_> {
                 // types agree.
                 if irregular_type == regular_type {
                     reg_array.control_vertices.extend(cvs);
+                    slot = 0;
                     &mut reg_array
                 } else {
                     irregular.control_vertices.extend(cvs);
+                    slot = 1;
                     &mut irregular
                 }
             };
@@ -389,11 +411,17 @@ impl Builder<'_> {
                 .params
                 .push(self.param(p.level, p.face, &ptex, is_regular, param_boundary));
             // The varying patch: the face's own vertices.
+            let topology = &self.levels[p.level];
             if options.varying_tables {
-                let verts = self.levels[p.level].face_verts(p.face);
+                let verts = topology.face_verts(p.face);
                 array
                     .varying_vertices
                     .extend(verts.iter().map(|&v| v + offset));
+            }
+            // The linear face-varying patches: the face in each channel.
+            for (ch, parts) in self.fvar.iter().zip(&mut fvar_values) {
+                let at = ch.offsets[p.level];
+                parts[slot].extend(ch.face(topology, p.level, p.face, at));
             }
         }
         let local_points = local.count();
@@ -410,6 +438,7 @@ impl Builder<'_> {
             vertex_valences: Vec::new(),
             feature_adaptive: true,
             varying_patch_type: linear_type,
+            fvar_channels: Vec::new(),
         };
         // OpenSubdiv fills the valence table whenever legacy Gregory end caps
         // are asked for, irregular patches or not.
@@ -419,10 +448,25 @@ impl Builder<'_> {
             table.vertex_valences =
                 self.vertex_valences(table.max_valence, offsets[self.max_level()]);
         }
-        table.arrays = [reg_array, irregular, interior, boundary]
-            .into_iter()
-            .filter(|a| !a.is_empty())
+        let all = [reg_array, irregular, interior, boundary];
+        let kept: Vec<usize> = (0..all.len()).filter(|&i| !all[i].is_empty()).collect();
+        table.fvar_channels = self
+            .fvar
+            .iter()
+            .zip(fvar_values)
+            .map(|(ch, parts)| {
+                let values = kept
+                    .iter()
+                    .flat_map(|&i| parts[i].iter().copied())
+                    .collect();
+                let params = kept
+                    .iter()
+                    .flat_map(|&i| all[i].params.iter().copied())
+                    .collect();
+                fvar::Channel::finish(ch.channel, linear_type, values, params)
+            })
             .collect();
+        table.arrays = all.into_iter().filter(|a| !a.is_empty()).collect();
         Ok(table)
     }
 

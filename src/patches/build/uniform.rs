@@ -6,8 +6,9 @@
 //! per quad with `triangulate_quads`, and the [`PatchParam`] that places
 //! the face in its ptex face.
 
+use super::fvar::Channel;
 use super::{PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::options::Scheme;
 use crate::refiner::Refiner;
 use crate::topology::Level;
@@ -19,9 +20,10 @@ impl Refiner {
     /// `triangulate_quads`) of the last level, or of every refined level
     /// with `generate_all_levels`, as OpenSubdiv 3.5 builds them — the same
     /// arrays, control vertices and [`PatchParam`] words. The options read
-    /// are `generate_all_levels`, `include_base_level_indices` and
-    /// `triangulate_quads`; face-varying tables are
-    /// [`Error::NotYetSupported`].
+    /// are `generate_all_levels`, `include_base_level_indices`,
+    /// `triangulate_quads` and, for face-varying patches (each face in the
+    /// channel, with its parameter), `fvar_tables`, `fvar_channels` and
+    /// `include_fvar_base_level_indices`.
     ///
     /// ```
     /// use subdiv::{patches::{PatchOptions, PatchType}, refiner::Refiner, shapes, Options, UniformOptions};
@@ -34,15 +36,14 @@ impl Refiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn patch_table(&self, options: &PatchOptions) -> Result<PatchTable> {
-        if options.fvar_tables && (!self.fvar.is_empty() || !options.fvar_channels.is_empty()) {
-            return Err(Error::NotYetSupported("face-varying patch tables"));
-        }
-        crate::alloc::guard(None, || Ok(uniform_table(self, options)))
+        let requested = super::fvar::requested(options, self.fvar.len())?;
+        crate::alloc::guard(None, || Ok(uniform_table(self, options, &requested)))
     }
 }
 
-/// [`Refiner::patch_table`]'s table.
-fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
+/// [`Refiner::patch_table`]'s table, with face-varying patches for
+/// `channels`.
+fn uniform_table(r: &Refiner, options: &PatchOptions, channels: &[usize]) -> PatchTable {
     let levels = &r.levels;
     let scheme = r.options.scheme;
     let reg = if scheme == Scheme::Loop { 3 } else { 4 };
@@ -71,6 +72,20 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
     } else {
         0
     };
+    // Each face-varying channel, its values so far and the offset of the
+    // current level's values.
+    let mut fvar: Vec<(Channel, Vec<u32>, u32)> = channels
+        .iter()
+        .map(|&c| {
+            let ch = Channel::new(c, &r.fvar[c]);
+            let first = if options.include_fvar_base_level_indices {
+                ch.value_count(0) as u32
+            } else {
+                0
+            };
+            (ch, Vec::new(), first)
+        })
+        .collect();
     // An unrefined topology: one array of the base faces that OpenSubdiv
     // sizes but never fills (vertices 0, parameters 0); none when every
     // refined level is asked for.
@@ -84,6 +99,9 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
             sharpness: vec![0.0; n],
             varying_vertices: Vec::new(),
         });
+        for (_, values, _) in &mut fvar {
+            values.resize(n * patch_type.control_vertices(), 0);
+        }
     }
     for level in 1..=max {
         let l = &levels[level];
@@ -107,11 +125,19 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
                     0,
                 );
                 a.params.push(param);
+                for (ch, values, at) in &mut fvar {
+                    values.extend(ch.face(l, level, f, *at));
+                }
                 if triangulate {
                     let n = a.control_vertices.len();
                     let (v0, v2) = (a.control_vertices[n - 4], a.control_vertices[n - 2]);
                     a.control_vertices.extend([v0, v2]);
                     a.params.push(param);
+                    for (_, values, _) in &mut fvar {
+                        let n = values.len();
+                        let (v0, v2) = (values[n - 4], values[n - 2]);
+                        values.extend([v0, v2]);
+                    }
                 }
             }
             a.sharpness = vec![0.0; a.params.len()];
@@ -119,10 +145,23 @@ fn uniform_table(r: &Refiner, options: &PatchOptions) -> PatchTable {
         }
         if options.generate_all_levels {
             offset += l.vertex_count as u32;
+            for (ch, _, at) in &mut fvar {
+                *at += ch.value_count(level) as u32;
+            }
         }
     }
+    // Every patch's face-varying parameter is its own.
+    let params: Vec<PatchParam> = arrays
+        .iter()
+        .flat_map(|a| a.params.iter().copied())
+        .collect();
+    let fvar_channels = fvar
+        .into_iter()
+        .map(|(ch, values, _)| Channel::finish(ch.channel, patch_type, values, params.clone()))
+        .collect();
     PatchTable {
         arrays,
+        fvar_channels,
         max_valence: max_valence(levels, reg),
         ptex_faces: *ptex.last().unwrap_or(&0) as usize,
         feature_adaptive: false,

@@ -293,6 +293,12 @@ impl AdaptiveRefiner {
         self.fvar.len()
     }
 
+    /// Face-varying channel `channel` at every level (for the patch-table
+    /// builder).
+    pub(crate) fn fvar_levels(&self, channel: usize) -> &[ChannelLevel] {
+        &self.fvar[channel]
+    }
+
     /// The deepest level refined: at most the isolation level, less when a
     /// level selected nothing.
     pub fn max_level(&self) -> u32 {
