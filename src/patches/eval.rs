@@ -117,21 +117,7 @@ pub fn evaluate_with(
     }
     let mut buf: BasisBuffer = [[0.0; 20]; 6];
     for (i, &(face, u, v)) in locations.iter().enumerate() {
-        if face as usize >= table.ptex_faces {
-            return Err(Error::NoSuchPtexFace {
-                face: face as usize,
-                count: table.ptex_faces,
-            });
-        }
-        for (coordinate, value) in [("u", u), ("v", v)] {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(Error::Location {
-                    face,
-                    coordinate,
-                    value,
-                });
-            }
-        }
+        check_location(table, face, u, v)?;
         let handle = map
             .find_patch(face, u, v)
             .ok_or(Error::NoPatchAt { face, u, v })?;
@@ -176,4 +162,25 @@ pub fn evaluate_with(
         dvv,
     };
     Ok(SurfaceSamples { width, values: out })
+}
+
+/// Location (`face`, `u`, `v`) on a ptex face of `table`, its coordinates in
+/// [0, 1], or the error naming what is wrong with it.
+pub(crate) fn check_location(table: &PatchTable, face: u32, u: f64, v: f64) -> Result<()> {
+    if face as usize >= table.ptex_faces {
+        return Err(Error::NoSuchPtexFace {
+            face: face as usize,
+            count: table.ptex_faces,
+        });
+    }
+    for (coordinate, value) in [("u", u), ("v", v)] {
+        if !(0.0..=1.0).contains(&value) {
+            return Err(Error::Location {
+                face,
+                coordinate,
+                value,
+            });
+        }
+    }
+    Ok(())
 }

@@ -18,6 +18,7 @@
 //! [`LocationStencils::locations`] says which location each stencil is for.
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
+use super::eval::check_location;
 use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable};
 use crate::error::{Buffer, Error, Result, StencilFault};
 use crate::refiner::{AdaptiveRefiner, Refiner};
@@ -228,17 +229,14 @@ impl AdaptiveRefiner {
             self.fvar_channel_count(),
         )?;
         let table = self.patch_table(&patch_options, &[])?;
-        check_locations(&table, locations)?;
-        let base = match options.interpolation {
+        let base = || match options.interpolation {
             StencilInterpolation::FaceVarying => {
-                self.level(0)?.fvar[options.fvar_channel].value_count
+                Ok(self.level(0)?.fvar[options.fvar_channel].value_count)
             }
-            _ => self.level_counts(0)?.vertices,
+            _ => Ok(self.level_counts(0)?.vertices),
         };
-        crate::alloc::guard(None, || {
-            let refined = self.stencil_table_with(&refined_options(options, true))?;
-            build(&refined, &table, base, locations, options)
-        })
+        let refined = || self.stencil_table_with(&refined_options(options, true));
+        at_locations(&table, base, refined, locations, options)
     }
 }
 
@@ -262,18 +260,32 @@ impl Refiner {
         }
         let patch_options = patch_options(options, false, true, self.fvar.len())?;
         let table = self.patch_table(&patch_options)?;
-        check_locations(&table, locations)?;
-        let base = match options.interpolation {
+        let base = || match options.interpolation {
             StencilInterpolation::FaceVarying => {
-                self.level(0)?.fvar[options.fvar_channel].value_count
+                Ok(self.level(0)?.fvar[options.fvar_channel].value_count)
             }
-            _ => self.level_counts(0)?.vertices,
+            _ => Ok(self.level_counts(0)?.vertices),
         };
-        crate::alloc::guard(None, || {
-            let refined = self.stencil_table_with(&refined_options(options, false))?;
-            build(&refined, &table, base, locations, options)
-        })
+        let refined = || self.stencil_table_with(&refined_options(options, false));
+        at_locations(&table, base, refined, locations, options)
     }
+}
+
+/// The stencils at `locations` from a refinement's patch table `table`, its
+/// number of base vertices (or values) `base` and its refined stencils
+/// `refined`, asked for once the locations are checked.
+fn at_locations(
+    table: &PatchTable,
+    base: impl FnOnce() -> Result<usize>,
+    refined: impl FnOnce() -> Result<StencilTable>,
+    locations: &[(u32, f64, f64)],
+    options: &LimitStencilOptions,
+) -> Result<LocationStencils> {
+    for &(face, u, v) in locations {
+        check_location(table, face, u, v)?;
+    }
+    let base = base()?;
+    crate::alloc::guard(None, || build(&refined()?, table, base, locations, options))
 }
 
 /// The refusal of limit stencils on an unrefined uniform refiner.
@@ -332,28 +344,6 @@ fn refined_options(options: &LimitStencilOptions, adaptive: bool) -> StencilOpti
         fvar_channel: options.fvar_channel,
         ..StencilOptions::new()
     }
-}
-
-/// Every location on a ptex face of `table`, its coordinates in [0, 1].
-fn check_locations(table: &PatchTable, locations: &[(u32, f64, f64)]) -> Result<()> {
-    for &(face, u, v) in locations {
-        if face as usize >= table.ptex_faces {
-            return Err(Error::NoSuchPtexFace {
-                face: face as usize,
-                count: table.ptex_faces,
-            });
-        }
-        for (coordinate, value) in [("u", u), ("v", v)] {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(Error::Location {
-                    face,
-                    coordinate,
-                    value,
-                });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Stencils over the base vertices merged term by term as OpenSubdiv's
