@@ -422,6 +422,13 @@ fn generated() -> Vec<(String, Mesh)> {
             "torus-uv-triangles".into(),
             shapes::with_torus_uvs(shapes::torus_triangles(8, 6), 8, 6),
         ),
+        // Mostly clean faces (the vertex kernel's path on one thread) and
+        // an unused last vertex, which has no value of the channel.
+        ("torus-uv-unused".into(), {
+            let mut t = shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6);
+            t.positions.push(DVec3::new(9.0, 9.0, 9.0));
+            t
+        }),
     ];
     for (name, m) in &out {
         m.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
