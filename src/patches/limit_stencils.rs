@@ -379,6 +379,15 @@ impl<const K: usize> Builder<K> {
         if w.iter().all(|&x| x == 0.0) {
             return;
         }
+        // Room for every term of the row, or the unwinding `alloc::guard`
+        // turns into an error.
+        let n = indices.len();
+        if self.indices.try_reserve(n).is_err()
+            || self.weights.iter_mut().any(|c| c.try_reserve(n).is_err())
+        {
+            let terms = self.indices.len().saturating_add(n);
+            crate::alloc::fail(terms.saturating_mul(4 + 8 * K));
+        }
         for (&i, &x) in indices.iter().zip(weights) {
             if x == 0.0 {
                 continue;
@@ -403,6 +412,9 @@ impl<const K: usize> Builder<K> {
     fn end(&mut self) {
         for &i in &self.indices[self.start..] {
             self.slot[i as usize] = u32::MAX;
+        }
+        if self.offsets.try_reserve(1).is_err() {
+            crate::alloc::fail(self.offsets.len().saturating_mul(8));
         }
         self.offsets.push(self.start as u32);
         self.start = self.indices.len();
@@ -541,6 +553,9 @@ impl Locator<'_> {
     ) -> Result<Built> {
         let mut b = Builder::<K>::new(base);
         let mut found = Vec::new();
+        if found.try_reserve_exact(locations.len()).is_err() {
+            crate::alloc::fail(locations.len().saturating_mul(8));
+        }
         let mut basis: BasisBuffer = [[0.0; 20]; 6];
         for (n, &(face, u, v)) in locations.iter().enumerate() {
             // No patch: a hole, which OpenSubdiv leaves without a stencil.
