@@ -87,6 +87,15 @@ int sdv_limit_stencils_create(const sdv_refiner *r, const sdv_limit_stencil_opti
                     fail("the refiner was refined adaptively around selected faces only: the patches of the "
                          "others, which limit stencils are built from, are undefined");
             check_no_repeated_vertices(tr.GetLevel(0));
+            // Face-varying stencils over the non-linear face-varying patches
+            // of a refinement that considered the channels:
+            // appendLocalPointStencilTable reads uninitialised weights there
+            // (Valgrind) and the stencils come out wrong (weights summing to
+            // 2e-5 instead of 1 on the production-like shape).
+            if (fvar && tr.GetAdaptiveOptions().considerFVarChannels)
+                fail_unsafe("face-varying limit stencils after adaptive refinement that considered face-varying "
+                            "channels: OpenSubdiv 3.5 reads uninitialised local-point weights there and returns "
+                            "wrong stencils");
         }
         for (int l = 0; l < tr.GetMaxLevel(); ++l) {
             if (o->interpolation == 0) check_smooth_vertex_masks(tr, l, -1);

@@ -464,7 +464,10 @@ int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size
  * faces or the unit square, an
  * unknown mode or channel, an adaptive refinement of selected faces (the
  * patches of the others are undefined), faces repeating a vertex after
- * adaptive refinement (the patch builders overrun), and the Catmull-Clark
+ * adaptive refinement (the patch builders overrun), face-varying stencils
+ * after adaptive refinement that considered the face-varying channels
+ * (appendLocalPointStencilTable reads uninitialised weights), and the
+ * Catmull-Clark
  * vertex masks that overflow (as for every stencil table). The result's
  * derivative weights are read with sdv_stencils_derivative.
  */

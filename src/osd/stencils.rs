@@ -298,8 +298,11 @@ impl TopologyRefiner {
     /// coordinate outside [0, 1], a face-varying channel the mesh lacks, a
     /// refiner adaptively refined around selected faces only (the other
     /// faces' patches are undefined), faces repeating a vertex after
-    /// adaptive refinement, and the Catmull-Clark vertex masks that
-    /// overflow (as for every stencil table).
+    /// adaptive refinement, face-varying stencils after adaptive refinement
+    /// that considered the face-varying channels (OpenSubdiv 3.5 reads
+    /// uninitialised local-point weights there and returns wrong stencils:
+    /// found by Valgrind), and the Catmull-Clark vertex masks that overflow
+    /// (as for every stencil table).
     ///
     /// ```
     /// use subdiv::patches::LimitStencilOptions;
