@@ -101,18 +101,25 @@ fn report_on_an_obj_file() {
         assert!(!doc.contains("http"), "an external resource or link");
     }
     assert_self_contained(&html);
-    // Three inline SVGs: deviation plot, time plot, picture of the shape.
-    assert_eq!(html.matches("<svg").count(), 3);
+    // Four inline SVGs: deviation plot, time plot, picture of the shape,
+    // picture of the limit surface (16 quads per ptex face: this shape's
+    // four faces are quads without holes, 25 locations each).
+    assert_eq!(html.matches("<svg").count(), 4);
     assert!(html.contains("deviation from OpenSubdiv (log scale)"));
     assert!(html.contains("refine + positions: median time"));
     assert!(html.contains("native level 2, coloured by deviation"));
+    assert!(html.contains("limit surface, coloured by deviation"));
+    assert!(
+        html.contains("64 quads between 100 evaluated locations"),
+        "{html}"
+    );
     // The options that apply to this mesh were varied: boundary, creasing,
     // triangles (none here), face-varying modes.
     for mode in ["corners-only", "boundaries", "chaikin", "edge-and-corner"] {
         assert!(md.contains(mode), "{mode} not compared");
     }
     // The Markdown's figures exist as files.
-    for kind in ["deviation", "time", "shape"] {
+    for kind in ["deviation", "time", "shape", "limit"] {
         let f = out
             .join("figures")
             .join(format!("01-seam-crease-obj-{kind}.svg"));
@@ -157,7 +164,13 @@ fn report_on_the_embedded_set() {
     }
     assert_self_contained(&html);
     assert!(!md.contains("http"));
-    assert_eq!(html.matches("<svg").count(), 3 * names.len());
+    // Three figures per input, and the limit surface's where it was
+    // compared (not where the native engine builds no table yet).
+    let limit = html
+        .matches("<title>limit surface, coloured by deviation</title>")
+        .count();
+    assert!(limit + 2 >= names.len(), "{limit} limit-surface pictures");
+    assert_eq!(html.matches("<svg").count(), 3 * names.len() + limit);
     assert!(html.contains("class=\"verdict pass\""));
     assert!(html.contains("OpenSubdiv"));
     assert!(html.contains("Machine"));

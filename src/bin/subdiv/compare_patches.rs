@@ -11,7 +11,7 @@ use subdiv::refiner::Refiner;
 use subdiv::{AdaptiveOptions, Error, Mesh, Options, osd};
 
 /// The locations on each ptex face: u and v in {0, 1/4, 1/2, 3/4, 1}.
-const STEPS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+pub(crate) const STEPS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 
 /// The report, as printed and as JSON.
 #[derive(serde::Serialize)]
@@ -51,6 +51,10 @@ pub(crate) struct LimitComparison {
     pub relative_position_deviation: f64,
     pub worst_location: Option<(u32, f64, f64)>,
     pub relative_derivative_deviation: f64,
+    /// The locations evaluated, the native limit positions there and their
+    /// distances from OpenSubdiv's, relative to the diagonal (the report's
+    /// limit-surface picture).
+    pub samples: Vec<((u32, f64, f64), glam::DVec3, f64)>,
 }
 
 impl LimitComparison {
@@ -107,6 +111,19 @@ pub(crate) fn limit_comparison(
         .chain(&b.values.dv)
         .fold(0.0f64, |m, x| m.max(x.abs()))
         .max(f64::MIN_POSITIVE);
+    let samples = locations
+        .iter()
+        .zip(
+            a.values
+                .point
+                .chunks_exact(3)
+                .zip(b.values.point.chunks_exact(3)),
+        )
+        .map(|(&l, (p, q))| {
+            let (p, q) = (glam::DVec3::from_slice(p), glam::DVec3::from_slice(q));
+            (l, p, (p - q).length() / diagonal)
+        })
+        .collect();
     let (du_dev, _) = largest_deviation(&a.values.du, &b.values.du);
     let (dv_dev, _) = largest_deviation(&a.values.dv, &b.values.dv);
     let arrays = (0..mine.arrays.len().max(t.arrays.len()))
@@ -131,6 +148,7 @@ pub(crate) fn limit_comparison(
         relative_position_deviation: max_dev / diagonal,
         worst_location: worst.map(|k| locations[k]),
         relative_derivative_deviation: du_dev.max(dv_dev) / derivative_scale,
+        samples,
     })
 }
 

@@ -2,7 +2,7 @@
 
 use super::format::slug;
 use super::plot::{deviation_svg, time_svg};
-use super::results::Report;
+use super::results::{LimitSurface, Report};
 use std::path::Path;
 use subdiv::io::atomic::write_bytes as write_atomically;
 use subdiv::{Error, Result};
@@ -30,6 +30,9 @@ impl Report {
                 &figures.join(format!("{sl}-shape.svg")),
                 i.picture.svg.as_bytes(),
             )?;
+            if let LimitSurface::Compared { picture, .. } = &i.limit_surface {
+                write_atomically(&figures.join(format!("{sl}-limit.svg")), picture.as_bytes())?;
+            }
         }
         write_atomically(&dir.join("report.md"), self.markdown().as_bytes())?;
         write_atomically(&dir.join("report.html"), self.html().as_bytes())?;

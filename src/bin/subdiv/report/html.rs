@@ -3,7 +3,7 @@
 use super::format::{format_deviation, format_ms, format_worst, options_label, slug};
 use super::markdown::sentence;
 use super::plot::{deviation_svg, inline_svg, time_svg};
-use super::results::{InputReport, Report};
+use super::results::{InputReport, LimitSurface, Report};
 use super::settings::{MAX_PICTURE_FACES, Settings};
 use std::fmt::Write as _;
 use subdiv::io::svg::escape;
@@ -138,6 +138,17 @@ impl Report {
             );
             h.push_str("</div>\n");
             let _ = writeln!(h, "<p>{}</p>", escape(&i.limit_surface.sentence()));
+            if let LimitSurface::Compared { picture, .. } = &i.limit_surface {
+                let _ = writeln!(
+                    h,
+                    "<div class=\"figs\"><figure>{}<figcaption>The limit surface at the evaluated locations (native positions), coloured by their distance from OpenSubdiv's.</figcaption></figure></div>",
+                    inline_svg(&picture.replacen(
+                        &format!("limscale-{}", slug(0, &i.name)),
+                        &format!("limscale-{}", slug(idx, &i.name)),
+                        2
+                    ))
+                );
+            }
             let _ = writeln!(
                 h,
                 "<details{}><summary>{} option sets × {} — every case</summary>",

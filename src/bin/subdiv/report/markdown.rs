@@ -1,7 +1,7 @@
 //! The report as text and Markdown.
 
 use super::format::{format_deviation, format_ms, format_worst, options_label, slug};
-use super::results::{InputReport, Report};
+use super::results::{InputReport, LimitSurface, Report};
 use super::settings::Settings;
 use std::fmt::Write as _;
 
@@ -154,6 +154,12 @@ impl Report {
             );
             s.push_str(&sets_markdown(i, &self.settings));
             let _ = writeln!(s, "\n{}", i.limit_surface.sentence());
+            if matches!(i.limit_surface, LimitSurface::Compared { .. }) {
+                let _ = writeln!(
+                    s,
+                    "\n![limit surface coloured by deviation](figures/{sl}-limit.svg)"
+                );
+            }
             s.push_str("\n| level | faces | native ms | OpenSubdiv ms | speed-up | repetitions |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
             for t in &i.timings {
                 let _ = writeln!(

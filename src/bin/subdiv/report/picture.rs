@@ -49,18 +49,82 @@ pub(crate) fn picture(
         .filter(|(_, d)| **d > 0.0)
         .max_by(|a, b| a.1.total_cmp(b.1))
         .map(|(i, _)| i);
-    let projection = Projection::orbit(-58.0, 28.0);
-    let (width, max_h, top) = (400.0, 290.0, 42.0);
-    // Faces to draw: not holes; on a closed manifold level, only those facing the viewer.
+    // Faces to draw: not holes.
     let counts = edge_face_counts(topo.faces());
     let closed = counts.values().all(|&n| n == 2) && !topo.face_holes.iter().any(|&h| h);
+    let faces: Vec<&[u32]> = topo
+        .faces()
+        .enumerate()
+        .filter(|&(f, _)| !topo.face_holes.get(f).copied().unwrap_or(false))
+        .map(|(_, verts)| verts)
+        .collect();
+    let note = if max_dev == 0.0 {
+        format!(
+            "all {} vertices: 0 (bit-identical to OpenSubdiv)",
+            pos.len()
+        )
+    } else if let Some(v) = worst_vertex {
+        format!(
+            "largest deviation {} (relative to the diagonal) at vertex {v}",
+            format_deviation(max_dev)
+        )
+    } else {
+        format!("largest deviation {}", format_deviation(max_dev))
+    };
+    let out = render(&Shaded {
+        title: format!("native level {level}, coloured by deviation"),
+        subtitle: format!(
+            "{} faces, {} vertices; {}",
+            topo.face_count(),
+            topo.vertex_count,
+            input.name
+        ),
+        faces: &faces,
+        closed,
+        positions: pos,
+        deviations: &dev,
+        max_deviation: max_dev,
+        note,
+        gradient: format!("devscale-{}", slug(0, &input.name)),
+        tolerance,
+    });
+    Picture {
+        level: level as u32,
+        faces: topo.face_count(),
+        max_deviation: max_dev,
+        svg: out,
+    }
+}
+
+/// A surface to draw shaded, each face coloured by the largest deviation of
+/// its vertices.
+struct Shaded<'a> {
+    title: String,
+    subtitle: String,
+    faces: &'a [&'a [u32]],
+    /// A closed manifold surface: only the faces toward the viewer are drawn.
+    closed: bool,
+    positions: &'a [DVec3],
+    /// Per vertex, relative to the diagonal (infinite: no counterpart).
+    deviations: &'a [f64],
+    max_deviation: f64,
+    note: String,
+    /// The colour bar's gradient id (unique in a page).
+    gradient: String,
+    tolerance: f64,
+}
+
+/// The picture of `s`: an orbit view, faces sorted back to front, lit, a
+/// colour bar from bit-identical to the tolerance.
+fn render(s: &Shaded) -> String {
+    let projection = Projection::orbit(-58.0, 28.0);
+    let (width, max_h, top) = (400.0, 290.0, 42.0);
+    // On a closed manifold surface, only the faces facing the viewer.
+    let (pos, dev, tolerance) = (s.positions, s.deviations, s.tolerance);
     let mut faces: Vec<(f64, usize, DVec3)> = Vec::new();
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
-    for (f, verts) in topo.faces().enumerate() {
-        if topo.face_holes.get(f).copied().unwrap_or(false) {
-            continue;
-        }
+    for (f, &verts) in s.faces.iter().enumerate() {
         let p = |v: u32| pos.get(v as usize).copied().unwrap_or_default();
         let mut n = DVec3::ZERO;
         for (i, &a) in verts.iter().enumerate() {
@@ -79,7 +143,7 @@ pub(crate) fn picture(
                 hi = hi.max(q);
             }
         }
-        if closed && n.dot(projection.toward_viewer) < -1e-9 {
+        if s.closed && n.dot(projection.toward_viewer) < -1e-9 {
             continue;
         }
         let depth = verts.iter().map(|&v| projection.depth(p(v))).sum::<f64>() / verts.len() as f64;
@@ -99,16 +163,13 @@ pub(crate) fn picture(
     };
     let legend_top = top + box_h + 14.0;
     let height = legend_top + 56.0;
-    let title = format!("native level {level}, coloured by deviation");
     let mut out = String::new();
-    svg_open(&mut out, width, height, &title);
+    svg_open(&mut out, width, height, &s.title);
     let _ = write!(
         out,
-        r##"<text x="{:.1}" y="34" text-anchor="middle" font-size="10" fill="#555">{} faces, {} vertices; {}</text>"##,
+        r##"<text x="{:.1}" y="34" text-anchor="middle" font-size="10" fill="#555">{}</text>"##,
         width / 2.0,
-        topo.face_count(),
-        topo.vertex_count,
-        escape(&input.name)
+        escape(&s.subtitle)
     );
     let to_light =
         (projection.up * 0.6 - projection.right * 0.4 + projection.toward_viewer * 0.7).normalize();
@@ -118,7 +179,7 @@ pub(crate) fn picture(
         r##"<g stroke-width="{stroke_w}" stroke-linejoin="round">"##
     );
     for (_, f, n) in &faces {
-        let verts = topo.face(*f);
+        let verts = s.faces[*f];
         let d = verts
             .iter()
             .map(|&v| dev.get(v as usize).copied().unwrap_or(f64::INFINITY))
@@ -144,7 +205,7 @@ pub(crate) fn picture(
     out.push_str("</g>");
     // The legend: the exact colour, the colour bar, the failure colour.
     let y = legend_top;
-    let gid = format!("devscale-{}", slug(0, &input.name));
+    let gid = &s.gradient;
     let bar_x = 150.0;
     let bar_w = 170.0;
     let _ = write!(
@@ -179,25 +240,13 @@ pub(crate) fn picture(
         bar_x + bar_w + 30.0,
         y + 10.0
     );
-    let note = if max_dev == 0.0 {
-        format!(
-            "all {} vertices: 0 (bit-identical to OpenSubdiv)",
-            pos.len()
-        )
-    } else if let Some(v) = worst_vertex {
-        format!(
-            "largest deviation {} (relative to the diagonal) at vertex {v}",
-            format_deviation(max_dev)
-        )
-    } else {
-        format!("largest deviation {}", format_deviation(max_dev))
-    };
+    let max_dev = s.max_deviation;
     let _ = write!(
         out,
         r##"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{}</text>"##,
         width / 2.0,
         y + 44.0,
-        escape(&note)
+        escape(&s.note)
     );
     if max_dev == 0.0 {
         // Mark where on the bar zero would be: nowhere; say so.
@@ -216,10 +265,79 @@ pub(crate) fn picture(
         );
     }
     out.push_str("</svg>\n");
-    Picture {
-        level: level as u32,
-        faces: topo.face_count(),
-        max_deviation: max_dev,
-        svg: out,
+    out
+}
+
+/// The limit surface both engines evaluate (`subdiv compare --patches`'
+/// locations: u, v in {0, 1/4, 1/2, 3/4, 1} on every ptex face off the
+/// holes), drawn as the quads between neighbouring locations of each ptex
+/// face at the native positions, each coloured by the largest distance of
+/// its corners from OpenSubdiv's (relative to the diagonal).
+pub(crate) fn limit_picture(
+    name: &str,
+    samples: &[((u32, f64, f64), DVec3, f64)],
+    tolerance: f64,
+) -> String {
+    use crate::compare_patches::STEPS;
+    let step = |x: f64| STEPS.iter().position(|&s| s == x);
+    let mut at = std::collections::HashMap::new();
+    for (k, &((f, u, v), _, _)) in samples.iter().enumerate() {
+        if let (Some(i), Some(j)) = (step(u), step(v)) {
+            at.insert((f, i, j), k as u32);
+        }
     }
+    let mut quads: Vec<[u32; 4]> = Vec::new();
+    for &((f, u, v), _, _) in samples {
+        let (Some(i), Some(j)) = (step(u), step(v)) else {
+            continue;
+        };
+        let corner = |di: usize, dj: usize| at.get(&(f, i + di, j + dj)).copied();
+        if let (Some(a), Some(b), Some(c), Some(d)) =
+            (corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 1))
+        {
+            quads.push([a, b, c, d]);
+        }
+    }
+    let faces: Vec<&[u32]> = quads.iter().map(|q| &q[..]).collect();
+    let positions: Vec<DVec3> = samples.iter().map(|s| s.1).collect();
+    let deviations: Vec<f64> = samples
+        .iter()
+        .map(|s| if s.2.is_nan() { f64::INFINITY } else { s.2 })
+        .collect();
+    let worst = deviations
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| **d > 0.0)
+        .max_by(|a, b| a.1.total_cmp(b.1));
+    let max_dev = worst.map_or(0.0, |w| *w.1);
+    let note = match worst {
+        None => format!(
+            "all {} locations: 0 (bit-identical to OpenSubdiv)",
+            samples.len()
+        ),
+        Some((k, d)) => {
+            let (f, u, v) = samples[k].0;
+            format!(
+                "largest deviation {} at ptex face {f} ({u}, {v})",
+                format_deviation(*d)
+            )
+        }
+    };
+    render(&Shaded {
+        title: "limit surface, coloured by deviation".into(),
+        subtitle: format!(
+            "{} quads between {} evaluated locations; {}",
+            quads.len(),
+            samples.len(),
+            name
+        ),
+        faces: &faces,
+        closed: false,
+        positions: &positions,
+        deviations: &deviations,
+        max_deviation: max_dev,
+        note,
+        gradient: format!("limscale-{}", slug(0, name)),
+        tolerance,
+    })
 }

@@ -190,6 +190,8 @@ pub enum LimitSurface {
         derivative_deviation: f64,
         /// Whether it all agrees within the report's tolerance.
         agrees: bool,
+        /// The evaluated surface coloured by deviation (SVG).
+        picture: String,
     },
     /// Not compared, and why (a table the native engine does not build
     /// yet, an input OpenSubdiv refuses).
@@ -211,6 +213,7 @@ impl LimitSurface {
                 deviation,
                 derivative_deviation,
                 agrees,
+                ..
             } => format!(
                 "Limit surface (patch tables at isolation {LIMIT_ISOLATION}, Gregory basis end caps): tables {} ({patches} patches, {}/{} local points); the surface at {locations} locations (u, v in {{0, 1/4, 1/2, 3/4, 1}} on every ptex face) deviates by at most {deviation:.2e} of the diagonal, derivatives {derivative_deviation:.2e} of their largest: {}.",
                 match first_difference {

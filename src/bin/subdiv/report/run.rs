@@ -176,6 +176,7 @@ fn limit_surface(input: &Input, tolerance: f64) -> super::results::LimitSurface 
             locations: c.locations,
             deviation: c.relative_position_deviation,
             derivative_deviation: c.relative_derivative_deviation,
+            picture: super::picture::limit_picture(&input.name, &c.samples, tolerance),
         },
         Err(e) => LimitSurface::NotCompared(e.to_string()),
     }
