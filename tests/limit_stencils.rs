@@ -391,3 +391,78 @@ fn bridge_varying_and_face_varying_stencils_are_affine() {
     }
     assert!(checked > 10 && refused > 0, "{checked} {refused}");
 }
+
+/// Varying and face-varying values evaluated from a patch table
+/// (`patches::evaluate_data` over `patch_data_points`) are what the location
+/// stencils of the same data give (which are OpenSubdiv's, above): values
+/// and first derivatives within 1e-12 of the data's size.
+#[test]
+fn evaluated_primvars_match_their_location_stencils() {
+    use subdiv::patches::{PatchData, PatchMap};
+    let mut compared = 0;
+    for (name, mesh) in shapes::corpus() {
+        if mesh.fvar_channels.is_empty() {
+            continue;
+        }
+        let options = Options::shape_file_defaults();
+        let Ok(r) = Refiner::new(&mesh, &options) else {
+            continue;
+        };
+        let mut po = PatchOptions::new().max_isolation(2).double_precision(true);
+        po.fvar_tables = true;
+        let a = r
+            .refine_adaptive(po.refine_adaptive_options(), &[])
+            .unwrap();
+        let table = a.patch_table(&po, &[]).unwrap();
+        let map = PatchMap::new(&table);
+        let locs = locations(table.ptex_faces);
+        let uv = &mesh.fvar_channels[0];
+        for (data, interpolation, width, base) in [
+            (
+                PatchData::Varying,
+                StencilInterpolation::Varying,
+                3,
+                mesh.flat_positions::<f64>(),
+            ),
+            (
+                PatchData::FaceVarying(0),
+                StencilInterpolation::FaceVarying,
+                uv.width,
+                uv.values.clone(),
+            ),
+        ] {
+            let o = LimitStencilOptions::new().interpolation(interpolation);
+            let stencils = a.location_stencils(&locs, &o).unwrap();
+            let found: Vec<_> = stencils.locations.iter().map(|&i| locs[i]).collect();
+            let want = stencils.apply(width, &base).unwrap();
+            let points = a.patch_data_points(&table, data, width, &base).unwrap();
+            let got = patches::evaluate_data(
+                &map,
+                &table,
+                data,
+                &points,
+                width,
+                &found,
+                Derivatives::First,
+            )
+            .unwrap()
+            .values;
+            let size = base.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (what, x, y) in [
+                ("value", &got.point, &want.point),
+                ("du", &got.du, &want.du),
+                ("dv", &got.dv, &want.dv),
+            ] {
+                assert_eq!(x.len(), y.len(), "{name} {data:?} {what}");
+                for (p, q) in x.iter().zip(y) {
+                    assert!(
+                        (p - q).abs() <= 1e-12 * size,
+                        "{name} {data:?} {what}: {p} vs {q}"
+                    );
+                }
+            }
+            compared += found.len();
+        }
+    }
+    assert!(compared > 1_000, "{compared}");
+}

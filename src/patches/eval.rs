@@ -6,9 +6,80 @@
 //! weighted sum of its control points ([`evaluate`]).
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
-use super::{Derivatives, Partials, PatchMap, PatchTable, SurfaceSamples};
+use super::{
+    Derivatives, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType, Partials,
+    SurfaceSamples,
+};
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
+
+/// Which primvar a table's patches are evaluated for: vertex data over the
+/// patches themselves (`EvaluateBasis`), varying data over each patch's
+/// varying patch (`EvaluateBasisVarying`: the patch's face, bilinear; a
+/// uniform table's own linear patches), or the values of the table's
+/// face-varying channel `k` (`table.fvar_channels[k]`,
+/// `EvaluateBasisFaceVarying`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PatchData {
+    /// Vertex data.
+    #[default]
+    Vertex,
+    /// Varying data.
+    Varying,
+    /// Face-varying channel `k` of the table (not of the refiner).
+    FaceVarying(usize),
+}
+
+/// The patch `handle` names in `table` for `data`: its type, parameter and
+/// control points (vertices, varying vertices or face-varying values).
+/// Errors: a handle of another table, a table without varying patches or
+/// without that face-varying channel.
+pub(crate) fn patch_of(
+    table: &PatchTable,
+    data: PatchData,
+    handle: PatchHandle,
+) -> Result<(PatchType, PatchParam, &[u32])> {
+    let missing = |patches| Error::NoSuchPatch {
+        array: handle.array,
+        patch: handle.patch,
+        arrays: table.arrays.len(),
+        patches,
+    };
+    let array = table.arrays.get(handle.array).ok_or(missing(0))?;
+    let param = *array.params.get(handle.patch).ok_or(missing(array.len()))?;
+    let vertex = || {
+        let n = array.patch_type.control_vertices();
+        let cvs = array
+            .control_vertices
+            .get(handle.patch * n..(handle.patch + 1) * n)
+            .ok_or(missing(array.len()))?;
+        Ok((array.patch_type, param, cvs))
+    };
+    match data {
+        PatchData::Vertex => vertex(),
+        // A uniform table's linear patches are their own varying patches.
+        PatchData::Varying if !table.feature_adaptive => vertex(),
+        PatchData::Varying => {
+            let cvs = array.patch_varying_vertices(handle.patch);
+            if cvs.is_empty() {
+                return Err(Error::PatchOptions {
+                    reason: "the table has no varying patches (built without generateVaryingTables)"
+                        .into(),
+                });
+            }
+            Ok((table.varying_patch_type, param, cvs))
+        }
+        PatchData::FaceVarying(k) => {
+            let channel = table.fvar_channels.get(k).ok_or(Error::NoSuchChannel {
+                channel: k,
+                count: table.fvar_channels.len(),
+            })?;
+            let i = table.patch_index(handle);
+            let param = *channel.params.get(i).ok_or(missing(array.len()))?;
+            Ok((channel.patch_type(i), param, channel.patch_values(i)))
+        }
+    }
+}
 
 impl AdaptiveRefiner {
     /// The points `table`'s control vertices index, for data of `width`
@@ -38,6 +109,66 @@ impl AdaptiveRefiner {
         }
         if !table.local_point_stencils.is_empty() {
             let local = table.local_point_stencils.apply(width, &points)?;
+            points.extend_from_slice(&local);
+        }
+        Ok(points)
+    }
+
+    /// The points `table`'s patches for `data` index, from the data at the
+    /// base level (`base`, `width` components per base vertex, or per value
+    /// of the face-varying channel): for vertex data
+    /// [`AdaptiveRefiner::patch_points`]; for varying data every level's
+    /// varying values (linear interpolation) and the varying local points;
+    /// for face-varying channel `k` of the table every level's values of
+    /// the refiner's channel it holds, base first.
+    pub fn patch_data_points(
+        &self,
+        table: &PatchTable,
+        data: PatchData,
+        width: usize,
+        base: &[f64],
+    ) -> Result<Vec<f64>> {
+        if data == PatchData::Vertex {
+            return self.patch_points(table, width, base);
+        }
+        let channel = match data {
+            PatchData::FaceVarying(k) => Some(
+                table
+                    .fvar_channels
+                    .get(k)
+                    .ok_or(Error::NoSuchChannel {
+                        channel: k,
+                        count: table.fvar_channels.len(),
+                    })?
+                    .channel,
+            ),
+            _ => None,
+        };
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let count = match channel {
+            Some(c) => self.level(0)?.fvar[c].value_count,
+            None => self.level_counts(0)?.vertices,
+        };
+        if base.len() != count.saturating_mul(width) {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Base,
+                expected: count.saturating_mul(width),
+                got: base.len(),
+            });
+        }
+        let mut points = base.to_vec();
+        let mut level = base.to_vec();
+        for l in 1..=self.max_level() {
+            level = match channel {
+                Some(c) => self.interpolate_face_varying(c, l, width, &level)?,
+                None => self.interpolate_varying(l, width, &level)?,
+            };
+            points.extend_from_slice(&level);
+        }
+        if channel.is_none() && !table.local_point_varying_stencils.is_empty() {
+            let local = table.local_point_varying_stencils.apply(width, &points)?;
             points.extend_from_slice(&local);
         }
         Ok(points)
@@ -98,6 +229,46 @@ pub fn evaluate_with(
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
 ) -> Result<SurfaceSamples> {
+    evaluate_data(
+        map,
+        table,
+        PatchData::Vertex,
+        points,
+        width,
+        locations,
+        derivatives,
+    )
+}
+
+/// [`evaluate_with`] for any primvar ([`PatchData`]): varying data over the
+/// varying patches and points, face-varying values over a face-varying
+/// channel's patches and values ([`AdaptiveRefiner::patch_data_points`]).
+///
+/// ```
+/// use subdiv::patches::{self, Derivatives, PatchData, PatchMap, PatchOptions};
+/// use subdiv::{refiner::Refiner, shapes, Options};
+/// let mesh = shapes::cube_with_uvs();
+/// let mut options = PatchOptions::new().max_isolation(3);
+/// options.fvar_tables = true; // OpenSubdiv's linear face-varying patches
+/// let adaptive = Refiner::new(&mesh, &Options::default())?
+///     .refine_adaptive(options.refine_adaptive_options(), &[])?;
+/// let table = adaptive.patch_table(&options, &[])?;
+/// let uvs = PatchData::FaceVarying(0);
+/// let points = adaptive.patch_data_points(&table, uvs, 2, &mesh.fvar_channels[0].values)?;
+/// let map = PatchMap::new(&table);
+/// let s = patches::evaluate_data(&map, &table, uvs, &points, 2, &[(0, 0.5, 0.5)], Derivatives::None)?;
+/// assert_eq!(s.values.point.len(), 2); // the UV at the centre of ptex face 0
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn evaluate_data(
+    map: &PatchMap,
+    table: &PatchTable,
+    data: PatchData,
+    points: &[f64],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    derivatives: Derivatives,
+) -> Result<SurfaceSamples> {
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
@@ -122,20 +293,8 @@ pub fn evaluate_with(
             .find_patch(face, u, v)
             .ok_or(Error::NoPatchAt { face, u, v })?;
         // A map of another table names patches this one may not have.
-        let missing = |patches| Error::NoSuchPatch {
-            array: handle.array,
-            patch: handle.patch,
-            arrays: table.arrays.len(),
-            patches,
-        };
-        let array = table.arrays.get(handle.array).ok_or(missing(0))?;
-        let param = *array.params.get(handle.patch).ok_or(missing(array.len()))?;
-        let n = evaluate_basis_into(array.patch_type, param, u, v, derivatives, &mut buf)?;
-        let size = array.patch_type.control_vertices();
-        let cvs = array
-            .control_vertices
-            .get(handle.patch * size..(handle.patch + 1) * size)
-            .ok_or(missing(array.len()))?;
+        let (patch_type, param, cvs) = patch_of(table, data, handle)?;
+        let n = evaluate_basis_into(patch_type, param, u, v, derivatives, &mut buf)?;
         // Every control point's values, once per table asked for.
         for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
             let dst = &mut out[i * width..(i + 1) * width];

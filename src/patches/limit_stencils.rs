@@ -18,7 +18,7 @@
 //! [`LocationStencils::locations`] says which location each stencil is for.
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
-use super::eval::check_location;
+use super::eval::{PatchData, check_location, patch_of};
 use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable};
 use crate::error::{Buffer, Error, Result, StencilFault};
 use crate::refiner::{AdaptiveRefiner, Refiner};
@@ -446,24 +446,19 @@ fn build(
     // patches' faces, bilinear) and varying local points; a uniform table's
     // linear patches serve both. Face-varying stencils use the channel's
     // patches, linear: no local points.
-    let patches = match options.interpolation {
-        StencilInterpolation::Varying if table.feature_adaptive => Patches::Varying,
-        StencilInterpolation::FaceVarying => Patches::FaceVarying,
-        _ => Patches::Vertex,
+    let data = match options.interpolation {
+        StencilInterpolation::Vertex => PatchData::Vertex,
+        StencilInterpolation::Varying => PatchData::Varying,
+        // The table's only channel.
+        StencilInterpolation::FaceVarying => PatchData::FaceVarying(0),
     };
-    if patches == Patches::FaceVarying && table.fvar_channels.is_empty() {
-        return Err(Error::NoSuchChannel {
-            channel: options.fvar_channel,
-            count: 0,
-        });
-    }
     let none = StencilTable::default();
     // The local points over the base vertices.
     let mut local = Builder::<1>::new(base);
-    let lp = match patches {
-        Patches::Vertex => &table.local_point_stencils,
-        Patches::Varying => &table.local_point_varying_stencils,
-        Patches::FaceVarying => &none,
+    let lp = match data {
+        PatchData::Vertex => &table.local_point_stencils,
+        PatchData::Varying if table.feature_adaptive => &table.local_point_varying_stencils,
+        _ => &none,
     };
     for s in 0..lp.len() {
         let (indices, weights) = row(lp, s)?;
@@ -487,7 +482,7 @@ fn build(
         table,
         map: PatchMap::new(table),
         derivatives: options.derivatives(),
-        patches,
+        data,
     };
     let (found, offsets, indices, weights) = match options.derivatives() {
         Derivatives::None => at.stencils::<1>(base, locations, &source)?,
@@ -524,17 +519,7 @@ struct Locator<'a> {
     map: PatchMap,
     derivatives: Derivatives,
     /// Which patches to evaluate.
-    patches: Patches,
-}
-
-/// The patches a location's stencil comes from: the vertex patches
-/// (`EvaluateBasis`), the varying ones (`EvaluateBasisVarying`) or those of
-/// the table's face-varying channel (`EvaluateBasisFaceVarying`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Patches {
-    Vertex,
-    Varying,
-    FaceVarying,
+    data: PatchData,
 }
 
 /// Which locations have a stencil, and the stencils' offsets, indices and
@@ -562,25 +547,7 @@ impl Locator<'_> {
             let Some(h) = self.map.find_patch(face, u, v) else {
                 continue;
             };
-            let array = &self.table.arrays[h.array];
-            let (patch_type, param, cvs) = match self.patches {
-                Patches::Vertex => (
-                    array.patch_type,
-                    array.params[h.patch],
-                    array.patch_vertices(h.patch),
-                ),
-                Patches::Varying => (
-                    self.table.varying_patch_type,
-                    array.params[h.patch],
-                    array.patch_varying_vertices(h.patch),
-                ),
-                Patches::FaceVarying => {
-                    // `build` checked that the table has the channel.
-                    let c = &self.table.fvar_channels[0];
-                    let i = self.table.patch_index(h);
-                    (c.patch_type(i), c.params[i], c.patch_values(i))
-                }
-            };
+            let (patch_type, param, cvs) = patch_of(self.table, self.data, h)?;
             let count = evaluate_basis_into(patch_type, param, u, v, self.derivatives, &mut basis)?;
             for (k, &cv) in cvs.iter().enumerate().take(count) {
                 let (indices, weights) = source(cv)?;

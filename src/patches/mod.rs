@@ -34,7 +34,7 @@ mod param;
 use crate::stencil::StencilTable;
 
 pub use basis::evaluate_basis;
-pub use eval::{evaluate, evaluate_with};
+pub use eval::{PatchData, evaluate, evaluate_data, evaluate_with};
 pub use limit_stencils::{LimitStencilOptions, LocationStencils};
 pub use map::PatchMap;
 pub use param::PatchParam;
