@@ -7,8 +7,7 @@
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
 use super::{
-    Derivatives, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType, Partials,
-    SurfaceSamples,
+    Derivatives, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType, SurfaceSamples,
 };
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
@@ -63,8 +62,9 @@ pub(crate) fn patch_of(
             let cvs = array.patch_varying_vertices(handle.patch);
             if cvs.is_empty() {
                 return Err(Error::PatchOptions {
-                    reason: "the table has no varying patches (built without generateVaryingTables)"
-                        .into(),
+                    reason:
+                        "the table has no varying patches (built without generateVaryingTables)"
+                            .into(),
                 });
             }
             Ok((table.varying_patch_type, param, cvs))
