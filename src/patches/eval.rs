@@ -144,11 +144,18 @@ impl AdaptiveRefiner {
             ),
             _ => None,
         };
+        // A table of another refinement may name a channel this one lacks.
+        if let Some(c) = channel.filter(|&c| c >= self.fvar_channel_count()) {
+            return Err(Error::NoSuchChannel {
+                channel: c,
+                count: self.fvar_channel_count(),
+            });
+        }
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
         let count = match channel {
-            Some(c) => self.level(0)?.fvar[c].value_count,
+            Some(c) => self.fvar_levels(c)[0].value_count(),
             None => self.level_counts(0)?.vertices,
         };
         if base.len() != count.saturating_mul(width) {
@@ -311,16 +318,10 @@ pub fn evaluate_data(
             }
         }
     }
-    let [point, du, dv, duu, duv, dvv] = outs;
-    let out = Partials {
-        point,
-        du,
-        dv,
-        duu,
-        duv,
-        dvv,
-    };
-    Ok(SurfaceSamples { width, values: out })
+    Ok(SurfaceSamples {
+        width,
+        values: Partials::from_columns(outs),
+    })
 }
 
 /// Location (`face`, `u`, `v`) on a ptex face of `table`, its coordinates in

@@ -173,15 +173,7 @@ impl LocationStencils {
                 }
             }
         }
-        let [point, du, dv, duu, duv, dvv] = out;
-        Ok(Partials {
-            point,
-            du,
-            dv,
-            duu,
-            duv,
-            dvv,
-        })
+        Ok(Partials::from_columns(out))
     }
 }
 
@@ -229,12 +221,11 @@ impl AdaptiveRefiner {
             self.fvar_channel_count(),
         )?;
         let table = self.patch_table(&patch_options, &[])?;
-        let base = || match options.interpolation {
-            StencilInterpolation::FaceVarying => {
-                Ok(self.level(0)?.fvar[options.fvar_channel].value_count)
-            }
-            _ => Ok(self.level_counts(0)?.vertices),
-        };
+        let base = control_count(
+            options,
+            self.level_counts(0)?.vertices,
+            (0..self.fvar_channel_count()).map(|c| self.fvar_levels(c)[0].value_count()),
+        );
         let refined = || self.stencil_table_with(&refined_options(options, true));
         at_locations(&table, base, refined, locations, options)
     }
@@ -260,14 +251,28 @@ impl Refiner {
         }
         let patch_options = patch_options(options, false, true, self.fvar.len())?;
         let table = self.patch_table(&patch_options)?;
-        let base = || match options.interpolation {
-            StencilInterpolation::FaceVarying => {
-                Ok(self.level(0)?.fvar[options.fvar_channel].value_count)
-            }
-            _ => Ok(self.level_counts(0)?.vertices),
-        };
+        let base = control_count(
+            options,
+            self.levels[0].vertex_count,
+            self.fvar.iter().map(|c| c[0].value_count()),
+        );
         let refined = || self.stencil_table_with(&refined_options(options, false));
         at_locations(&table, base, refined, locations, options)
+    }
+}
+
+/// The base vertices a refinement's stencils are over: the base level's
+/// `vertices`, or for face-varying stencils the base values of the channel
+/// (`channel_values`: each channel's count; the channel was checked when
+/// the patch table was built).
+fn control_count(
+    options: &LimitStencilOptions,
+    vertices: usize,
+    mut channel_values: impl Iterator<Item = usize>,
+) -> usize {
+    match options.interpolation {
+        StencilInterpolation::FaceVarying => channel_values.nth(options.fvar_channel).unwrap_or(0),
+        _ => vertices,
     }
 }
 
@@ -276,7 +281,7 @@ impl Refiner {
 /// `refined`, asked for once the locations are checked.
 fn at_locations(
     table: &PatchTable,
-    base: impl FnOnce() -> Result<usize>,
+    base: usize,
     refined: impl FnOnce() -> Result<StencilTable>,
     locations: &[(u32, f64, f64)],
     options: &LimitStencilOptions,
@@ -284,7 +289,6 @@ fn at_locations(
     for &(face, u, v) in locations {
         check_location(table, face, u, v)?;
     }
-    let base = base()?;
     crate::alloc::guard(None, || build(&refined()?, table, base, locations, options))
 }
 
@@ -495,21 +499,13 @@ fn build(
         .copied()
         .chain([indices.len() as u32]);
     let sizes = offsets.iter().zip(ends).map(|(&a, b)| b - a).collect();
-    let [point, du, dv, duu, duv, dvv] = weights;
     Ok(LocationStencils {
         control_vertices: base,
         locations: found,
         sizes,
         offsets,
         indices,
-        weights: Partials {
-            point,
-            du,
-            dv,
-            duu,
-            duv,
-            dvv,
-        },
+        weights: Partials::from_columns(weights),
     })
 }
 

@@ -478,6 +478,22 @@ pub struct Partials {
     pub dvv: Vec<f64>,
 }
 
+impl Partials {
+    /// The six columns in their order: values, ∂/∂u, ∂/∂v, ∂²/∂u²,
+    /// ∂²/∂u∂v, ∂²/∂v² (those not computed empty).
+    pub(crate) fn from_columns(columns: [Vec<f64>; 6]) -> Partials {
+        let [point, du, dv, duu, duv, dvv] = columns;
+        Partials {
+            point,
+            du,
+            dv,
+            duu,
+            duv,
+            dvv,
+        }
+    }
+}
+
 /// Values of the limit surface at a list of locations, `width` components
 /// each, location after location, with the derivatives asked for.
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -86,16 +86,17 @@ impl Refiner {
                 .zip(values)
                 .all(|(&v, &x)| pf.vertex_value(v as usize, 0) == x)
         });
+        // The faces that are not clean (their face points are left to the
+        // face-varying pass) and the vertices around them.
+        let unclean = select(nf, |f| !clean_faces[f]);
+        if ((nf - unclean.len()) as f64) < MIN_CLEAN_SHARE * nf as f64 {
+            return None;
+        }
         let mut clean_vertices = crate::alloc::vec_or_unwind(true, parent.vertex_count);
-        let mut clean = nf;
-        for f in (0..nf).filter(|&f| !clean_faces[f]) {
-            clean -= 1;
-            for &v in parent.face_verts(f) {
+        for &f in &unclean {
+            for &v in parent.face_verts(f as usize) {
                 clean_vertices[v as usize] = false;
             }
-        }
-        if (clean as f64) < MIN_CLEAN_SHARE * nf as f64 {
-            return None;
         }
         // The channel's values one per parent vertex (its first sibling),
         // refined as vertex data into the front of `dst`, one row per child
@@ -136,7 +137,7 @@ impl Refiner {
         // value is.
         let left = Fast {
             faces: if split.has_face_points() {
-                select(nf, |f| !clean_faces[f])
+                unclean
             } else {
                 Vec::new()
             },
