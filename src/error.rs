@@ -159,6 +159,23 @@ pub enum Error {
         /// Why, naming the level and element concerned.
         reason: String,
     },
+    /// A face Bfr cannot parameterize, or a sub-face query of a face without
+    /// sub-faces ([`crate::bfr::Parameterization`]).
+    #[error("no parameterization of a {face_size}-sided face: {reason}")]
+    Parameterization {
+        /// The face's number of vertices.
+        face_size: usize,
+        /// Why, naming the scheme, vertex or sub-face concerned.
+        reason: String,
+    },
+    /// Tessellation rates or options OpenSubdiv's `Bfr::Tessellation` holds
+    /// invalid, or a coordinate-index map that does not fit the pattern
+    /// ([`crate::bfr::Tessellation`]).
+    #[error("tessellation refused: {reason}")]
+    Tessellation {
+        /// Why, naming the rate or index concerned.
+        reason: String,
+    },
     /// Limit evaluation without full topology in the last level.
     #[error(
         "limit evaluation needs full topology in the last level \

@@ -33,6 +33,9 @@
 //! - [`patches`]: patch tables as data (`Far::PatchTable`'s arrays,
 //!   `PatchParam` words, `PatchTableFactory::Options`), built by the `osd`
 //!   engine today;
+//! - [`bfr`]: limit surfaces one base face at a time (OpenSubdiv's `Bfr`):
+//!   parameterizations, tessellation patterns, evaluation at (face, u, v)
+//!   and a watertight mesher;
 //! - `osd` (feature `osd`): the bridge to OpenSubdiv, the only module with
 //!   `unsafe`;
 //! - [`compare`]: level-by-level comparison of two refinements;
@@ -75,6 +78,7 @@
 #![deny(unsafe_code)]
 
 mod alloc;
+pub mod bfr;
 pub mod classic;
 pub mod compare;
 pub mod engine;
