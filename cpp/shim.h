@@ -1,5 +1,6 @@
 /*
- * subdiv shim: a plain C ABI over OpenSubdiv's Far layer.
+ * subdiv shim: a plain C ABI over OpenSubdiv's Far layer (and Bfr's
+ * Tessellation and Parameterization, cpp/bfr.cpp).
  *
  * No C++ type crosses this header. Every function returns SDV_OK (0) or a
  * negative status and, on failure, writes a NUL-terminated message into the
@@ -492,6 +493,144 @@ int32_t sdv_stencils_controls(const sdv_stencils *s);
  */
 int sdv_stencils_derivative(const sdv_stencils *s, int32_t kind, double *out, size_t cap, size_t *len, char *err,
                             size_t err_len);
+
+/*
+ * Bfr (cpp/bfr.cpp): Bfr::Tessellation and Bfr::Parameterization of one
+ * face, given by its scheme (0 bilinear, 1 catmark, 2 loop) and size.
+ *
+ * Refused before OpenSubdiv sees them (SDV_ERR_INVALID unless noted): a
+ * scheme outside 0..2; a face size outside 3..65535 (OpenSubdiv's
+ * Parameterization would be invalid); under bilinear or Catmull-Clark a
+ * face size of 65026 or more (SDV_ERR_UNSAFE: the sub-face grid width,
+ * 1 + sqrt(N - 1), wraps to 0 in its unsigned char and the sub-face
+ * coordinates divide by it). A non-triangle under Loop is not refused: its
+ * Parameterization and Tessellation are invalid, and say so.
+ */
+
+/* Bounds of a tessellation: coordinates, and facets (a triangulated disc has
+   fewer than two per coordinate). OpenSubdiv counts both in int. */
+enum { SDV_BFR_MAX_COORDS = 1 << 24, SDV_BFR_MAX_FACETS = 1 << 25 };
+
+/* Opaque tessellation: owns a Bfr::Tessellation. */
+typedef struct sdv_tessellation sdv_tessellation;
+
+/*
+ * Bfr::Tessellation(Parameterization(scheme, face_size), num_rates, rates,
+ * Options().SetFacetSize(facet_size).PreserveQuads(preserve_quads)), with
+ * the default strides (2 per coordinate, facet_size per facet). Refused
+ * besides the face sizes above: preserve_quads not 0 or 1, facet_size not 3
+ * or 4, num_rates outside 1..face_size + 2, a rate below 1 (OpenSubdiv
+ * would hold the tessellation invalid), and rates whose pattern has more
+ * than SDV_BFR_MAX_COORDS coordinates or SDV_BFR_MAX_FACETS facets (counted
+ * in 64 bits first, with OpenSubdiv's clamp of every rate to 32767 and its
+ * inference of the rates not given).
+ */
+int sdv_tessellation_create(int32_t scheme, int32_t face_size, const int32_t *rates, size_t num_rates,
+                            int32_t preserve_quads, int32_t facet_size, sdv_tessellation **out, char *err,
+                            size_t err_len);
+void sdv_tessellation_destroy(sdv_tessellation *t);
+
+/*
+ * IsValid and, for a valid tessellation (all 0 otherwise): IsUniform,
+ * GetFaceSize, GetRates' count, GetNumBoundaryCoords, GetNumInteriorCoords,
+ * GetNumFacets, GetFacetSize, and the sum of GetNumEdgeCoords over the edges.
+ */
+typedef struct sdv_tess_counts {
+    int32_t is_valid;
+    int32_t is_uniform;
+    int32_t face_size;
+    int32_t num_rates;
+    int32_t num_boundary_coords;
+    int32_t num_interior_coords;
+    int32_t num_facets;
+    int32_t facet_size;
+    int32_t num_edge_coords;
+} sdv_tess_counts;
+int sdv_tessellation_counts(const sdv_tessellation *t, sdv_tess_counts *out, char *err, size_t err_len);
+
+/*
+ * The contents of a valid tessellation (nothing is written for an invalid
+ * one): GetRates (num_rates), GetCoords<double> and GetCoords<float>
+ * (2 per coordinate, boundary first), GetFacets (facet_size per facet; a
+ * triangle among 4-index facets ends with OpenSubdiv's -1), GetNumEdgeCoords
+ * of every edge (face_size), GetEdgeCoords<double> and <float> edge after
+ * edge (2 * num_edge_coords), GetVertexCoord<double> of every vertex
+ * (2 * face_size).
+ */
+typedef struct sdv_tess_data {
+    sdv_ibuf rates;
+    double *coords_f64;
+    size_t coords_f64_cap;
+    float *coords_f32;
+    size_t coords_f32_cap;
+    sdv_ibuf facets;
+    sdv_ibuf edge_coord_counts;
+    double *edge_coords_f64;
+    size_t edge_coords_f64_cap;
+    float *edge_coords_f32;
+    size_t edge_coords_f32_cap;
+    double *vertex_coords;
+    size_t vertex_coords_cap;
+} sdv_tess_data;
+int sdv_tessellation_data(const sdv_tessellation *t, const sdv_tess_data *out, char *err, size_t err_len);
+
+/* The overloads of Tessellation::TransformFacetCoordIndices. */
+enum {
+    SDV_FACETS_OFFSET = 0,            /* (facets, commonOffset) */
+    SDV_FACETS_BOUNDARY_OFFSET = 1,   /* (facets, boundaryIndices, interiorOffset) */
+    SDV_FACETS_BOUNDARY_INTERIOR = 2  /* (facets, boundaryIndices, interiorIndices) */
+};
+/*
+ * GetFacets into `facets` (facets_cap at least num_facets * facet_size),
+ * then TransformFacetCoordIndices of overload `kind` with `offset`,
+ * `boundary` (num_boundary_coords entries; kinds 1 and 2) and `interior`
+ * (num_interior_coords entries; kind 2). Refused: maps of another length,
+ * and (SDV_ERR_UNSAFE) an offset that overflows an int when added to the
+ * largest coordinate index it applies to. Nothing is written for an invalid
+ * tessellation (it has no facets).
+ */
+int sdv_tessellation_transform_facets(sdv_tessellation *t, int32_t kind, int32_t offset, const int32_t *boundary,
+                                      size_t num_boundary, const int32_t *interior, size_t num_interior,
+                                      int32_t *facets, size_t facets_cap, char *err, size_t err_len);
+
+/* Parameterization::IsValid, GetType (0 quad, 1 tri, 2 quad sub-faces), HasSubFaces, GetFaceSize. */
+typedef struct sdv_param_info {
+    int32_t is_valid;
+    int32_t type;
+    int32_t has_sub_faces;
+    int32_t face_size;
+} sdv_param_info;
+int sdv_parameterization_info(int32_t scheme, int32_t face_size, sdv_param_info *out, char *err,
+                              size_t err_len);
+
+/*
+ * Batched Parameterization queries: n queries of one kind, query i reading
+ * index[i], t[i] and uv_in[2i..2i+2] and writing index_out[i] and
+ * uv_out[2i..2i+2], as the kind uses them (the others may be NULL):
+ */
+enum {
+    SDV_PARAM_VERTEX_COORD = 0,                /* index: vertex -> uv_out (GetVertexCoord) */
+    SDV_PARAM_EDGE_COORD = 1,                  /* index: edge, t -> uv_out (GetEdgeCoord) */
+    SDV_PARAM_CENTER_COORD = 2,                /* -> uv_out (GetCenterCoord) */
+    SDV_PARAM_SUB_FACE = 3,                    /* uv_in -> index_out (GetSubFace) */
+    SDV_PARAM_COORD_TO_SUB_FACE = 4,           /* uv_in -> index_out, uv_out (ConvertCoordToSubFace) */
+    SDV_PARAM_SUB_FACE_TO_COORD = 5,           /* index: sub-face, uv_in -> uv_out (ConvertSubFaceToCoord) */
+    SDV_PARAM_COORD_TO_NORMALIZED_SUB_FACE = 6, /* as 4, ConvertCoordToNormalizedSubFace */
+    SDV_PARAM_NORMALIZED_SUB_FACE_TO_COORD = 7  /* as 5, ConvertNormalizedSubFaceToCoord */
+};
+/*
+ * Refused before any query runs: an invalid parameterization (it answers
+ * none), a vertex, edge or sub-face outside 0..face_size-1, t or a
+ * coordinate that is not finite or beyond +-2^20 (the sub-face queries
+ * convert coordinates to int), a sub-face conversion of a parameterization
+ * without sub-faces (OpenSubdiv asserts, then divides by 0).
+ */
+int sdv_parameterization_query_f64(int32_t scheme, int32_t face_size, int32_t kind, size_t n, const int32_t *index,
+                                   const double *t, const double *uv_in, int32_t *index_out, double *uv_out,
+                                   char *err, size_t err_len);
+int sdv_parameterization_query_f32(int32_t scheme, int32_t face_size, int32_t kind, size_t n, const int32_t *index,
+                                   const float *t, const float *uv_in, int32_t *index_out, float *uv_out,
+                                   char *err, size_t err_len);
 
 #ifdef __cplusplus
 }

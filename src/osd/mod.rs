@@ -56,6 +56,7 @@ pub fn version_number() -> u32 {
 }
 
 mod adaptive;
+pub mod bfr;
 mod patches;
 mod refiner;
 mod shim;
