@@ -649,6 +649,7 @@ fn writer_output_is_exact() {
             values: &values,
             face_values: &face_values,
         }),
+        normals: None,
         precision: Precision::F64,
     };
     let mut out = Vec::new();
@@ -703,6 +704,7 @@ fn writer_refuses_malformed_input_before_writing() {
         face_vertices: &[0, 1, 2],
         holes: None,
         uv: None,
+        normals: None,
         precision: Precision::F64,
     };
     let bad = [
@@ -789,8 +791,46 @@ fn triangle_output(positions: &[DVec3]) -> ObjOutput<'_> {
         face_vertices: &[0, 1, 2],
         holes: None,
         uv: None,
+        normals: None,
         precision: Precision::F64,
     }
+}
+
+#[test]
+fn normals_are_written_as_vn_and_named_by_each_corner() {
+    let positions = [DVec3::ZERO, DVec3::X, DVec3::Y];
+    let normals = [DVec3::Z; 3];
+    let data = ObjOutput {
+        normals: Some(&normals),
+        ..triangle_output(&positions)
+    };
+    let mut out = Vec::new();
+    write_obj_to(&mut out, &data).unwrap();
+    assert_eq!(
+        String::from_utf8(out).unwrap(),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n"
+    );
+    let uv = UvOutput {
+        width: 2,
+        values: &[0.0, 0.0, 1.0, 0.0],
+        face_values: &[0, 1, 0],
+    };
+    let data = ObjOutput {
+        uv: Some(uv),
+        ..data
+    };
+    let mut out = Vec::new();
+    write_obj_to(&mut out, &data).unwrap();
+    assert!(
+        String::from_utf8(out)
+            .unwrap()
+            .ends_with("f 1/1/1 2/2/2 3/1/3\n")
+    );
+    let short = ObjOutput {
+        normals: Some(&normals[..2]),
+        ..triangle_output(&positions)
+    };
+    assert!(write_obj_to(&mut Vec::new(), &short).is_err());
 }
 
 #[test]

@@ -382,17 +382,9 @@ pub fn transform_facets(
     Ok(facets)
 }
 
-/// The kinds of `Bfr::Parameterization` (`Parameterization::Type`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ParameterizationType {
-    /// `QUAD`: the unit square (a quad of a quad scheme).
-    Quad,
-    /// `TRI`: the unit triangle (a triangle of Loop).
-    Triangle,
-    /// `QUAD_SUBFACES`: quadrilateral sub-faces, one per corner (any other
-    /// face of a quad scheme).
-    QuadSubfaces,
-}
+/// The kinds of `Bfr::Parameterization` (`Parameterization::Type`): the
+/// native type, so the two engines' answers compare directly.
+pub use crate::bfr::ParameterizationType;
 
 /// OpenSubdiv's `Bfr::Parameterization(scheme, face_size)`, with batched
 /// queries: each sends any number of inputs to OpenSubdiv in one call.

@@ -313,6 +313,7 @@ pub(crate) fn write_native_last(
         face_vertices: faces.vertices,
         holes: faces.holes,
         uv,
+        normals: None,
         precision,
     };
     write_output(path, input, |w| subdiv::io::write_obj_to(w, &data))
@@ -347,6 +348,7 @@ pub(crate) fn write_refinement(
         face_vertices: &level.face_vertices,
         holes: Some(&level.face_holes),
         uv,
+        normals: None,
         precision: r.precision,
     };
     write_output(path, input, |w| subdiv::io::write_obj_to(w, &data))

@@ -1,4 +1,4 @@
-//! The OBJ writer: `%.17g` / `%.9g` numbers, UVs, faces without holes, atomic files.
+//! The OBJ writer: `%.17g` / `%.9g` numbers, UVs, normals, faces without holes, atomic files.
 
 use crate::error::Error;
 use crate::io::number::{g_format, push_u64};
@@ -21,6 +21,9 @@ pub struct ObjOutput<'a> {
     pub holes: Option<&'a [bool]>,
     /// Face-varying values written as `vt` lines and `v/vt` face corners.
     pub uv: Option<UvOutput<'a>>,
+    /// One normal per position, written as `vn` lines, each corner naming
+    /// its vertex's (`v//vn`, or `v/vt/vn` with UVs).
+    pub normals: Option<&'a [DVec3]>,
     /// `F64` writes `%.17g` (exact); `F32` rounds to `f32` and writes `%.9g`.
     pub precision: Precision,
 }
@@ -95,6 +98,23 @@ fn check_output(data: &ObjOutput<'_>) -> io::Result<()> {
             .map(|x| (v, x))
     }) {
         return Err(not_finite("vertex", v, x));
+    }
+    if let Some(normals) = data.normals {
+        if normals.len() != data.positions.len() {
+            return Err(invalid(format!(
+                "{} normals for {} vertices",
+                normals.len(),
+                data.positions.len()
+            )));
+        }
+        if let Some((v, x)) = normals.iter().enumerate().find_map(|(v, n)| {
+            n.to_array()
+                .into_iter()
+                .find(|&x| !finite(x))
+                .map(|x| (v, x))
+        }) {
+            return Err(not_finite("normal", v, x));
+        }
     }
     if let Some(uv) = &data.uv {
         if let Some((i, &x)) = uv.values.iter().enumerate().find(|(_, x)| !finite(**x)) {
@@ -192,6 +212,14 @@ pub fn write_obj_to<W: Write>(out: W, data: &ObjOutput<'_>) -> io::Result<()> {
             w.end_line()?;
         }
     }
+    for n in data.normals.unwrap_or(&[]) {
+        w.buf.extend_from_slice(b"vn");
+        for c in n.to_array() {
+            w.buf.push(b' ');
+            w.number(c);
+        }
+        w.end_line()?;
+    }
     for (f, range) in data.face_offsets.windows(2).enumerate() {
         if data.holes.is_some_and(|holes| holes[f]) {
             continue;
@@ -204,6 +232,11 @@ pub fn write_obj_to<W: Write>(out: W, data: &ObjOutput<'_>) -> io::Result<()> {
             if let Some(uv) = &data.uv {
                 w.buf.push(b'/');
                 push_u64(u64::from(uv.face_values[i]) + 1, &mut w.buf);
+            }
+            if data.normals.is_some() {
+                w.buf
+                    .extend_from_slice(if data.uv.is_some() { b"/" } else { b"//" });
+                push_u64(u64::from(data.face_vertices[i]) + 1, &mut w.buf);
             }
         }
         w.end_line()?;
@@ -248,6 +281,7 @@ pub fn write_mesh_obj_to<W: Write>(
         face_vertices: &mesh.face_vertices,
         holes: None,
         uv,
+        normals: None,
         precision,
     };
     write_obj_to(&mut out, &data)?;
