@@ -1,7 +1,7 @@
 //! Builds the C++ shim over OpenSubdiv (feature `osd`, on by default).
 //!
 //! * `cc` compiles `cpp/shim.cpp`, `cpp/patches.cpp`,
-//!   `cpp/limit_stencils.cpp` and `cpp/bfr.cpp` (their shared
+//!   `cpp/limit_stencils.cpp`, `cpp/bfr.cpp` and `cpp/bfr_surface.cpp` (their shared
 //!   internals in `cpp/internal.h`); `bindgen` binds `cpp/shim.h` only.
 //! * OpenSubdiv is found in `SUBDIV_OSD_DIR` (with `include/` and `lib/`) when
 //!   set, else in the system paths where Debian's `libosd-dev` installs it.
@@ -23,6 +23,7 @@ mod osd {
         println!("cargo:rerun-if-changed=cpp/patches.cpp");
         println!("cargo:rerun-if-changed=cpp/limit_stencils.cpp");
         println!("cargo:rerun-if-changed=cpp/bfr.cpp");
+        println!("cargo:rerun-if-changed=cpp/bfr_surface.cpp");
         println!("cargo:rerun-if-changed=cpp/internal.h");
         println!("cargo:rerun-if-env-changed=SUBDIV_OSD_DIR");
 
@@ -52,6 +53,7 @@ mod osd {
             .file("cpp/patches.cpp")
             .file("cpp/limit_stencils.cpp")
             .file("cpp/bfr.cpp")
+            .file("cpp/bfr_surface.cpp")
             .include("cpp")
             .include(&include_dir)
             .warnings(true)

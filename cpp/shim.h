@@ -1,6 +1,7 @@
 /*
  * subdiv shim: a plain C ABI over OpenSubdiv's Far layer (and Bfr's
- * Tessellation and Parameterization, cpp/bfr.cpp).
+ * Tessellation and Parameterization, cpp/bfr.cpp, and its limit surfaces,
+ * cpp/bfr_surface.cpp).
  *
  * No C++ type crosses this header. Every function returns SDV_OK (0) or a
  * negative status and, on failure, writes a NUL-terminated message into the
@@ -631,6 +632,103 @@ int sdv_parameterization_query_f64(int32_t scheme, int32_t face_size, int32_t ki
 int sdv_parameterization_query_f32(int32_t scheme, int32_t face_size, int32_t kind, size_t n, const int32_t *index,
                                    const float *t, const float *uv_in, int32_t *index_out, float *uv_out,
                                    char *err, size_t err_len);
+
+/*
+ * Bfr limit surfaces (cpp/bfr_surface.cpp): a Bfr::RefinerSurfaceFactory<>
+ * over the base level of a refiner (which must outlive it, and is only
+ * read), with Bfr::Surface<double> built per call for one base face and
+ * evaluated there.
+ *
+ * The factory's topology cache is disabled: it is keyed by a 64-bit hash
+ * alone (a collision hands a face another topology's patch, whose stencils
+ * are sized for other control points) and is not thread-safe. Refused
+ * before OpenSubdiv sees them (SDV_ERR_INVALID unless noted): approximation
+ * levels outside 0..10; a face or channel out of range; a face of more
+ * than SDV_BFR_MAX_SURFACE_FACE_SIZE vertices or a corner vertex with more
+ * than SDV_BFR_MAX_SURFACE_VALENCE faces (SDV_ERR_UNSAFE: Bfr keeps both in
+ * a short); under a non-linear surface, a face with an interior vertex of
+ * valence 2, a boundary or non-manifold corner and a sharp interior edge
+ * at a corner (SDV_ERR_UNSAFE: OpenSubdiv 3.5.0 then reads crease vertex
+ * indices from uninitialised memory and looks edges up with them, fixed in
+ * 3.5.1); coordinates not finite or off the face's parameter domain;
+ * fewer points than the surface's indices reach, or more than an int of
+ * reals.
+ */
+enum { SDV_BFR_MAX_SURFACE_FACE_SIZE = 32767, SDV_BFR_MAX_SURFACE_VALENCE = 16383 };
+
+/* Opaque: owns a Bfr::RefinerSurfaceFactory<> (not the refiner). */
+typedef struct sdv_surfaces sdv_surfaces;
+
+/* Kinds of surface: InitVertexSurface, InitVaryingSurface, InitFaceVaryingSurface. */
+enum { SDV_SURFACE_VERTEX = 0, SDV_SURFACE_VARYING = 1, SDV_SURFACE_FACE_VARYING = 2 };
+
+/*
+ * SurfaceFactory::Options().SetApproxLevelSmooth(smooth)
+ * .SetApproxLevelSharp(sharp).SetDefaultFVarID(0).EnableCaching(false).
+ */
+int sdv_surfaces_create(const sdv_refiner *r, int32_t approx_level_smooth, int32_t approx_level_sharp,
+                        sdv_surfaces **out, char *err, size_t err_len);
+void sdv_surfaces_destroy(sdv_surfaces *s);
+/* RefinerSurfaceFactory::GetNumFaces (0 for NULL). */
+int32_t sdv_surfaces_face_count(const sdv_surfaces *s);
+
+/*
+ * The surface of one face: IsValid (0 for a hole or a face OpenSubdiv
+ * finds no limit surface for; then only param_type and face_size, of the
+ * face's GetFaceParameterization, are set), IsRegular, IsLinear,
+ * GetNumControlPoints, GetNumPatchPoints, GetParameterization's type
+ * (0 quad, 1 tri, 2 quad sub-faces) and face size. `control_points`
+ * receives GetControlPointIndices when it is non-NULL and holds
+ * num_control_points (else it is left alone).
+ */
+typedef struct sdv_surface_info {
+    int32_t is_valid;
+    int32_t is_regular;
+    int32_t is_linear;
+    int32_t num_control_points;
+    int32_t num_patch_points;
+    int32_t param_type;
+    int32_t face_size;
+} sdv_surface_info;
+int sdv_surface_info_get(const sdv_surfaces *s, int32_t face, int32_t kind, int32_t channel, sdv_surface_info *out,
+                         int32_t *control_points, size_t cap, char *err, size_t err_len);
+
+/*
+ * Evaluation of one face's surface at n coordinates (uv, 2 per coordinate,
+ * in the face's Parameterization): PreparePatchPoints from `points`
+ * (num_points points of `width` reals: the mesh's vertices, or the
+ * channel's values) and Evaluate at each coordinate, with derivatives 0
+ * (positions), 1 (and du, dv) or 2 (and duu, duv, dvv). out[0..] receive
+ * n * width reals each (out[k] beyond the derivatives asked for may be
+ * NULL); cap is their capacity. Fails (SDV_ERR_INVALID) for a face
+ * without a limit surface.
+ */
+typedef struct sdv_surface_eval {
+    int32_t kind;
+    int32_t channel;
+    const double *points;
+    size_t num_points;
+    int32_t width;
+    const double *uv;
+    size_t n;
+    int32_t derivatives;
+    double *out[6];
+    size_t cap;
+} sdv_surface_eval;
+int sdv_surface_evaluate(const sdv_surfaces *s, int32_t face, const sdv_surface_eval *e, char *err, size_t err_len);
+
+/*
+ * Surface::EvaluateStencil at n coordinates: for coordinate i and column c
+ * (0 position, 1 du, 2 dv, 3 duu, 4 duv, 5 dvv; 1, 3 or 6 columns for
+ * derivatives 0, 1 or 2), the weights of the num_control_points control
+ * points (GetControlPointIndices' order) at
+ * out[(i * columns + c) * num_control_points]. `num_control_points` is
+ * always written; with out NULL nothing else is (cap is then ignored),
+ * else cap must hold n * columns * num_control_points.
+ */
+int sdv_surface_stencils(const sdv_surfaces *s, int32_t face, int32_t kind, int32_t channel, const double *uv,
+                         size_t n, int32_t derivatives, double *out, size_t cap, int32_t *num_control_points,
+                         char *err, size_t err_len);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,10 @@
 //! 3 or 4, a pattern of more than [`MAX_COORDS`] coordinates or
 //! [`MAX_FACETS`] facets, an index out of range.
 //!
+//! OpenSubdiv's limit surfaces (`Bfr::RefinerSurfaceFactory` and
+//! `Bfr::Surface`) are in [`bfr_surface`](super::bfr_surface); its
+//! [`Surfaces`] and [`SurfaceInfo`] are re-exported here.
+//!
 //! ```
 //! use subdiv::{Scheme, osd::bfr};
 //! let t = bfr::tessellate(Scheme::Catmark, 4, &[2], false, 3)?;
@@ -22,6 +26,8 @@
 //! assert_eq!(t.num_facets(), 8);
 //! # Ok::<(), subdiv::Error>(())
 //! ```
+
+pub use crate::osd::bfr_surface::{SurfaceInfo, Surfaces};
 
 use super::ERR_LEN;
 use super::ffi;
