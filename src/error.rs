@@ -117,6 +117,19 @@ pub enum Error {
         /// The value given.
         value: f64,
     },
+    /// A location outside its base face's Bfr parameterization
+    /// ([`crate::bfr::Parameterization::contains`]).
+    #[error("(u, v) = ({u}, {v}) is outside base face {face}'s parameterization ({domain})")]
+    OffFace {
+        /// The base face.
+        face: usize,
+        /// The location's u.
+        u: f64,
+        /// The location's v.
+        v: f64,
+        /// The domain, in words.
+        domain: &'static str,
+    },
     /// A face-varying channel the mesh does not have.
     #[error("face-varying channel {channel} does not exist (the mesh has {count})")]
     NoSuchChannel {

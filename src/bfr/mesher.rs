@@ -76,8 +76,9 @@ impl FaceSurfaces for crate::bfr::LimitSurfaces {
 pub struct TessellateOptions {
     /// The rate of every edge (at least 1), unless `edge_length` is set.
     pub rate: u32,
-    /// A target edge length in object space: each base edge's rate is its
-    /// control edge's length over this, rounded up (at least 1, at most
+    /// A tessellation interval in object space: each base edge's rate is 1
+    /// plus its control edge's length over this, rounded down (as bfr
+    /// tutorial 2_1 computes it from the control hull; at most
     /// [`MAX_RATE`](crate::bfr::MAX_RATE)).
     pub edge_length: Option<f64>,
     /// Keep quads where the patterns have them (else triangles only).
@@ -178,7 +179,7 @@ pub fn tessellate(
                     None => options.rate,
                     Some(l) => {
                         let len = mesh.positions[a as usize].distance(mesh.positions[b as usize]);
-                        ((len / l).ceil().clamp(1.0, f64::from(crate::bfr::MAX_RATE))) as u32
+                        (1.0 + (len / l).floor()).min(f64::from(crate::bfr::MAX_RATE)) as u32
                     }
                 };
                 edge_rate.push(rate);

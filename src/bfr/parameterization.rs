@@ -230,6 +230,35 @@ impl Parameterization {
         ])
     }
 
+    /// Whether `uv` lies in the face's domain, up to `slack` beyond its
+    /// sides: the unit square, the unit triangle, or one of the sub-face
+    /// tiles (a tile's `[0, 0.5]²` corner).
+    pub fn contains(&self, [u, v]: [f64; 2], slack: f64) -> bool {
+        let within = |x: f64, hi: f64| x >= -slack && x <= hi + slack;
+        match self.kind {
+            ParameterizationType::Quad => within(u, 1.0) && within(v, 1.0),
+            ParameterizationType::Triangle => {
+                within(u, 1.0) && within(v, 1.0) && u + v <= 1.0 + slack
+            }
+            ParameterizationType::QuadSubfaces => {
+                if !(u.is_finite() && v.is_finite()) || u < -slack || v < -slack {
+                    return false;
+                }
+                let (sub, [s, t]) = self.split_subface([u, v], false);
+                sub < self.face_size && within(s, 0.5) && within(t, 0.5)
+            }
+        }
+    }
+
+    /// The domain, in words (for errors).
+    pub fn domain(&self) -> &'static str {
+        match self.kind {
+            ParameterizationType::Quad => "the unit square",
+            ParameterizationType::Triangle => "the unit triangle",
+            ParameterizationType::QuadSubfaces => "a sub-face tile [i, i + 0.5] x [j, j + 0.5]",
+        }
+    }
+
     fn require_subfaces(&self) -> Result<()> {
         if self.has_subfaces() {
             Ok(())

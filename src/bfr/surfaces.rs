@@ -12,16 +12,16 @@
 //! the native engine builds here, once for every face, and evaluates through
 //! its [`PatchMap`], mapping Bfr's (u, v) to ptex faces (a sub-face of an
 //! n-gon is its ptex face, in normalized coordinates). Derivatives are with
-//! respect to those ptex coordinates, as Bfr's are — except on linear
-//! (bilinear-scheme) n-gons, whose derivatives Bfr takes with respect to the
-//! sub-face's own (u, v), twice as large.
+//! respect to those ptex coordinates, as Bfr's are. Smooth corners are not
+//! approximated by sharp ones (Bfr's patch builder does not; the patch
+//! table's legacy sharp-corner patches are off).
 //!
 //! Face-varying data is evaluated as Bfr does for channels interpolated
 //! linearly (`FVarLinearInterpolation::All`, and every channel under the
 //! bilinear scheme); smooth face-varying surfaces are not native yet.
 
 use crate::alloc;
-use crate::bfr::{Parameterization, ParameterizationType};
+use crate::bfr::Parameterization;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::options::{FVarLinearInterpolation, Options, Scheme};
@@ -69,13 +69,18 @@ impl LimitSurfaces {
     ///
     /// Not native yet ([`Error::NotYetSupported`]): approximation levels of
     /// 0 (Bfr then refines some faces once regardless), and Loop meshes
-    /// with irregular patches (as for patch tables).
+    /// (the patch evaluation has no Loop basis yet).
     pub fn new(mesh: &Mesh, options: &Options, surface: &SurfaceOptions) -> Result<Self> {
         let sharp = surface.approx_level_sharp;
         let smooth = surface.approx_level_smooth.min(sharp);
         if smooth == 0 {
             return Err(Error::NotYetSupported(
                 "Bfr surfaces with an approximation level of 0",
+            ));
+        }
+        if options.scheme == Scheme::Loop {
+            return Err(Error::NotYetSupported(
+                "Bfr surfaces of Loop meshes (the Loop box-spline and Gregory-triangle bases)",
             ));
         }
         let refiner = Refiner::new(mesh, options)?;
@@ -88,6 +93,7 @@ impl LimitSurfaces {
             .inf_sharp_patch(true)
             .max_isolation(sharp)
             .double_precision(true);
+        patch_options.legacy_sharp_corner_patches = false;
         patch_options.fvar_tables = !mesh.fvar_channels.is_empty();
         let adaptive: AdaptiveRefiner = refiner.refine_adaptive(adaptive_options, &[])?;
         let table = adaptive.patch_table(&patch_options, &[])?;
@@ -217,6 +223,14 @@ impl LimitSurfaces {
         let mut locations = Vec::new();
         alloc::reserve(&mut locations, coords.len())?;
         for &uv in coords {
+            if !param.contains(uv, 1e-9) {
+                return Err(Error::OffFace {
+                    face,
+                    u: uv[0],
+                    v: uv[1],
+                    domain: param.domain(),
+                });
+            }
             let (sub, [s, t]) = if param.has_subfaces() {
                 param.coord_to_subface(uv, true)?
             } else {
@@ -225,7 +239,7 @@ impl LimitSurfaces {
             // Bfr's sub-face coordinates may stray just outside [0, 1].
             locations.push((first + sub as u32, s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
         }
-        let mut samples = patches::evaluate_data(
+        patches::evaluate_data(
             &self.map,
             &self.table,
             data,
@@ -233,16 +247,6 @@ impl LimitSurfaces {
             width,
             &locations,
             derivatives,
-        )?;
-        // Linear n-gons: derivatives in the sub-face's (u, v), half the
-        // ptex face's size.
-        let linear = self.scheme == Scheme::Bilinear || matches!(data, PatchData::FaceVarying(_));
-        if linear && param.kind() == ParameterizationType::QuadSubfaces {
-            let v = &mut samples.values;
-            for (column, scale) in [(&mut v.du, 2.0), (&mut v.dv, 2.0), (&mut v.duv, 4.0)] {
-                column.iter_mut().for_each(|x| *x *= scale);
-            }
-        }
-        Ok(samples)
+        )
     }
 }

@@ -33,6 +33,7 @@ mod patches;
 mod refine;
 #[cfg(feature = "osd")]
 mod report;
+mod tessellate;
 
 use subdiv::{Mesh, shapes};
 

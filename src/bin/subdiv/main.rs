@@ -40,6 +40,7 @@ mod output;
 mod patches;
 mod refine;
 mod report;
+mod tessellate;
 
 use bench::BenchArgs;
 use compare::CompareArgs;
@@ -71,6 +72,9 @@ pub(crate) enum Command {
     /// Evaluate the limit surface at (ptex face, u, v) locations (PatchMap::FindPatch and
     /// EvaluateBasis), with first derivatives on request.
     Eval(patches::EvalArgs),
+    /// Tessellate every base face's limit surface (Bfr's patterns, a uniform rate or a rate
+    /// per edge) into one watertight OBJ with UVs and, on request, normals.
+    Tessellate(tessellate::TessellateArgs),
     /// Refine a curve (one point per line) with Chaikin, B-spline, four-point or Jarek's scheme,
     /// or insert knots into a B-spline or NURBS curve and sample it (--knots).
     Curve(CurveArgs),
@@ -168,6 +172,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare::compare(&args),
         Command::Patches(args) => patches::patches(&args),
         Command::Eval(args) => patches::eval(&args),
+        Command::Tessellate(args) => tessellate::tessellate(&args),
         Command::Curve(args) => curve::curve(&args),
         Command::Bench(args) => bench::bench(&args),
         Command::Report(args) => report::report(&args),

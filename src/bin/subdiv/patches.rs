@@ -69,6 +69,13 @@ pub(crate) struct EvalArgs {
     /// Also print the first derivatives: x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv.
     #[arg(long)]
     pub(crate) derivatives: bool,
+    /// Where locations live: `patches` (ptex faces of the patch table) or `bfr` (base
+    /// faces in Bfr's parameterization: FACE U V, U and V over the unit square, the
+    /// unit triangle under Loop, or the sub-face tiles of an n-gon).
+    #[arg(long, value_name = "KIND", default_value = "patches", value_parser = ["patches", "bfr"])]
+    pub(crate) surface: String,
+    #[command(flatten)]
+    pub(crate) bfr: crate::tessellate::SurfaceArgs,
     /// Output file (`-` or absent: standard output).
     #[arg(short, long, value_name = "OUT.txt")]
     pub(crate) output: Option<PathBuf>,
@@ -287,9 +294,10 @@ fn write_json(
     })
 }
 
-/// The locations of a file: `PTEX_FACE U V` per line, `#` comments; errors
-/// name the file and line.
-fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
+/// The locations of a file: `FACE U V` per line, `#` comments; errors
+/// name the file and line. `unit`: U and V must lie in [0, 1] (ptex
+/// faces), else only be finite (Bfr's domains are checked per face).
+fn read_locations(path: &Path, unit: bool) -> Result<Vec<(usize, Location)>, Failure> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         Failure::Message(format!(
             "{}: cannot read the locations: {e}",
@@ -307,17 +315,24 @@ fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
         let fields: Vec<&str> = content.split_whitespace().collect();
         let [face, u, v] = fields[..] else {
             return Err(bad(format!(
-                "expected PTEX_FACE U V, found {} fields",
+                "expected {} U V, found {} fields",
+                if unit { "PTEX_FACE" } else { "FACE" },
                 fields.len()
             )));
         };
-        let face: u32 = face
-            .parse()
-            .map_err(|_| bad(format!("'{face}' is not a ptex face index")))?;
+        let face: u32 = face.parse().map_err(|_| {
+            let what = if unit {
+                "ptex face index"
+            } else {
+                "face index"
+            };
+            bad(format!("'{face}' is not a {what}"))
+        })?;
         let coord = |s: &str, name: &str| -> Result<f64, Failure> {
             match s.parse::<f64>() {
-                Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
-                Ok(x) => Err(bad(format!("{name} = {x} is not in [0, 1]"))),
+                Ok(x) if (0.0..=1.0).contains(&x) || (!unit && x.is_finite()) => Ok(x),
+                Ok(x) if unit => Err(bad(format!("{name} = {x} is not in [0, 1]"))),
+                Ok(x) => Err(bad(format!("{name} = {x} is not a finite number"))),
                 Err(_) => Err(bad(format!("'{s}' is not a number ({name})"))),
             }
         };
@@ -328,7 +343,10 @@ fn read_locations(path: &Path) -> Result<Vec<(usize, Location)>, Failure> {
 
 /// `subdiv eval`.
 pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
-    let locations = read_locations(&args.at)?;
+    if args.surface == "bfr" {
+        return eval_bfr(args);
+    }
+    let locations = read_locations(&args.at, true)?;
     let b = build(&args.patch)?;
     let ptex_faces = b.table().ptex_faces;
     // A location off the mesh or in a hole is an error naming its line.
@@ -367,11 +385,16 @@ pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
         }
         Err(e) => return Err(Failure::from(e).in_input(&b.name)),
     };
+    write_samples(args, &s)
+}
+
+/// Writes one line per location: x y z, and the first derivatives when asked.
+fn write_samples(args: &EvalArgs, s: &SurfaceSamples) -> Result<(), Failure> {
     let path = args.output.clone().unwrap_or_else(|| PathBuf::from("-"));
     write_output(&path, args.patch.mesh.input.as_deref(), |w| {
         let mut w = std::io::BufWriter::new(w);
         let v = &s.values;
-        for i in 0..points.len() {
+        for i in 0..v.point.len() / 3 {
             let mut row: Vec<f64> = v.point[3 * i..3 * i + 3].to_vec();
             if args.derivatives {
                 row.extend_from_slice(&v.du[3 * i..3 * i + 3]);
@@ -382,4 +405,69 @@ pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
         }
         w.flush()
     })
+}
+
+/// `subdiv eval --surface bfr`: base faces in Bfr's parameterization.
+fn eval_bfr(args: &EvalArgs) -> Result<(), Failure> {
+    let locations = read_locations(&args.at, false)?;
+    let (name, mesh, options) = crate::args::load(&args.patch.mesh)?;
+    let surfaces = args.bfr.build(args.patch.engine, &name, &mesh, &options)?;
+    let derivatives = if args.derivatives {
+        Derivatives::First
+    } else {
+        Derivatives::None
+    };
+    let at = |line: usize, what: String| {
+        Failure::Message(format!("{}:{line}: {what}", args.at.display()))
+    };
+    let mut out = SurfaceSamples {
+        width: 3,
+        ..SurfaceSamples::default()
+    };
+    // Consecutive locations on one face are evaluated together.
+    let mut i = 0;
+    while i < locations.len() {
+        let face = locations[i].1.0 as usize;
+        let run = locations[i..]
+            .iter()
+            .take_while(|(_, l)| l.0 as usize == face)
+            .count();
+        let (line, _) = locations[i];
+        if face >= mesh.face_count() {
+            return Err(at(
+                line,
+                format!(
+                    "face {face} does not exist ({name} has {})",
+                    mesh.face_count()
+                ),
+            ));
+        }
+        if !surfaces.has_surface(face) {
+            return Err(at(
+                line,
+                format!("face {face} has no limit surface (a hole)"),
+            ));
+        }
+        let coords: Vec<[f64; 2]> = locations[i..i + run]
+            .iter()
+            .map(|(_, l)| [l.1, l.2])
+            .collect();
+        let s = surfaces
+            .evaluate(face, &coords, derivatives)
+            .map_err(|e| match e {
+                subdiv::Error::OffFace { u, v, .. } => {
+                    let line = locations[i..i + run]
+                        .iter()
+                        .find(|(_, l)| l.1 == u && l.2 == v)
+                        .map_or(line, |&(line, _)| line);
+                    at(line, e.to_string())
+                }
+                e => Failure::from(e).in_input(&name),
+            })?;
+        out.values.point.extend_from_slice(&s.values.point);
+        out.values.du.extend_from_slice(&s.values.du);
+        out.values.dv.extend_from_slice(&s.values.dv);
+        i += run;
+    }
+    write_samples(args, &out)
 }
