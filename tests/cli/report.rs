@@ -82,8 +82,9 @@ fn report_on_an_obj_file() {
         let prefix = format!("subdiv report: [{}/{total}] ", k + 1);
         assert!(line.starts_with(&prefix), "{line:?} in\n{err}");
     }
-    assert!(steps[total - 2].contains("timing level 2"), "{err}");
-    assert!(steps[total - 1].contains("limit surface"), "{err}");
+    assert!(steps[total - 3].contains("timing level 2"), "{err}");
+    assert!(steps[total - 2].contains(": limit surface"), "{err}");
+    assert!(steps[total - 1].contains("tessellated limit surface"), "{err}");
     // The small shape gets the quick run's sets, and the report says so.
     assert!(md.contains("one option varied at a time"), "{md}");
     let summary = stdout(&o);
@@ -101,10 +102,12 @@ fn report_on_an_obj_file() {
         assert!(!doc.contains("http"), "an external resource or link");
     }
     assert_self_contained(&html);
-    // Four inline SVGs: deviation plot, time plot, picture of the shape,
+    // Five inline SVGs: deviation plot, time plot, picture of the shape,
     // picture of the limit surface (16 quads per ptex face: this shape's
-    // four faces are quads without holes, 25 locations each).
-    assert_eq!(html.matches("<svg").count(), 4);
+    // four faces are quads without holes, 25 locations each), picture of
+    // the Bfr tessellation (4 faces at rate 4, two triangles per quad).
+    assert_eq!(html.matches("<svg").count(), 5);
+    assert!(html.contains("128 facets at rate 4"), "{html}");
     assert!(html.contains("deviation from OpenSubdiv (log scale)"));
     assert!(html.contains("refine + positions: median time"));
     assert!(html.contains("native level 2, coloured by deviation"));
@@ -170,7 +173,14 @@ fn report_on_the_embedded_set() {
         .matches("<title>limit surface, coloured by deviation</title>")
         .count();
     assert!(limit + 2 >= names.len(), "{limit} limit-surface pictures");
-    assert_eq!(html.matches("<svg").count(), 3 * names.len() + limit);
+    // And the Bfr tessellation's, but on Loop inputs (not native yet).
+    let tessellated = html
+        .matches("<title>tessellated limit surface (Bfr), coloured by deviation</title>")
+        .count();
+    assert!(tessellated + 2 >= names.len(), "{tessellated} tessellation pictures");
+    assert!(md.contains("Tessellated limit surface (Bfr, rate 4"), "{md}");
+    assert!(!md.contains("DIFFERS"), "{md}");
+    assert_eq!(html.matches("<svg").count(), 3 * names.len() + limit + tessellated);
     assert!(html.contains("class=\"verdict pass\""));
     assert!(html.contains("OpenSubdiv"));
     assert!(html.contains("Machine"));

@@ -3,6 +3,7 @@
 use super::format::slug;
 use super::plot::{deviation_svg, time_svg};
 use super::results::{LimitSurface, Report};
+use super::tessellated::Tessellated;
 use std::path::Path;
 use subdiv::io::atomic::write_bytes as write_atomically;
 use subdiv::{Error, Result};
@@ -32,6 +33,12 @@ impl Report {
             )?;
             if let LimitSurface::Compared { picture, .. } = &i.limit_surface {
                 write_atomically(&figures.join(format!("{sl}-limit.svg")), picture.as_bytes())?;
+            }
+            if let Tessellated::Compared { picture, .. } = &i.tessellated {
+                write_atomically(
+                    &figures.join(format!("{sl}-tessellated.svg")),
+                    picture.as_bytes(),
+                )?;
             }
         }
         write_atomically(&dir.join("report.md"), self.markdown().as_bytes())?;

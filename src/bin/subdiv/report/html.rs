@@ -5,6 +5,7 @@ use super::markdown::sentence;
 use super::plot::{deviation_svg, inline_svg, time_svg};
 use super::results::{InputReport, LimitSurface, Report};
 use super::settings::{MAX_PICTURE_FACES, Settings};
+use super::tessellated::Tessellated;
 use std::fmt::Write as _;
 use subdiv::io::svg::escape;
 
@@ -145,6 +146,18 @@ impl Report {
                     inline_svg(&picture.replacen(
                         &format!("limscale-{}", slug(0, &i.name)),
                         &format!("limscale-{}", slug(idx, &i.name)),
+                        2
+                    ))
+                );
+            }
+            let _ = writeln!(h, "<p>{}</p>", escape(&i.tessellated.sentence()));
+            if let Tessellated::Compared { picture, .. } = &i.tessellated {
+                let _ = writeln!(
+                    h,
+                    "<div class=\"figs\"><figure>{}<figcaption>The limit surface tessellated the Bfr way (native surfaces), each facet coloured by the distance of its points from those of OpenSubdiv's Bfr.</figcaption></figure></div>",
+                    inline_svg(&picture.replacen(
+                        &format!("tesscale-{}", slug(0, &i.name)),
+                        &format!("tesscale-{}", slug(idx, &i.name)),
                         2
                     ))
                 );

@@ -3,6 +3,7 @@
 use super::format::{format_deviation, format_ms, format_worst, options_label, slug};
 use super::results::{InputReport, LimitSurface, Report};
 use super::settings::Settings;
+use super::tessellated::Tessellated;
 use std::fmt::Write as _;
 
 impl Report {
@@ -158,6 +159,13 @@ impl Report {
                 let _ = writeln!(
                     s,
                     "\n![limit surface coloured by deviation](figures/{sl}-limit.svg)"
+                );
+            }
+            let _ = writeln!(s, "\n{}", i.tessellated.sentence());
+            if matches!(i.tessellated, Tessellated::Compared { .. }) {
+                let _ = writeln!(
+                    s,
+                    "\n![tessellated limit surface coloured by deviation](figures/{sl}-tessellated.svg)"
                 );
             }
             s.push_str("\n| level | faces | native ms | OpenSubdiv ms | speed-up | repetitions |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");

@@ -18,7 +18,10 @@
 //!   both engines interleaved, medians ([`bench::interleaved`]), the native
 //!   engine on one thread;
 //! - draws the native refined shape, each face coloured by how far its
-//!   vertices are from OpenSubdiv's.
+//!   vertices are from OpenSubdiv's;
+//! - compares the limit surface through both engines' patch tables, and
+//!   tessellates it the Bfr way over both engines' surfaces
+//!   ([`tessellated`]), each drawn coloured by deviation.
 //!
 //! ```no_run
 //! use subdiv::report::{self, Settings};
@@ -52,6 +55,8 @@ mod results;
 mod run;
 #[cfg(feature = "osd")]
 mod settings;
+#[cfg(feature = "osd")]
+mod tessellated;
 #[cfg(all(test, feature = "osd"))]
 mod tests;
 

@@ -98,25 +98,25 @@ pub(crate) fn picture(
 
 /// A surface to draw shaded, each face coloured by the largest deviation of
 /// its vertices.
-struct Shaded<'a> {
-    title: String,
-    subtitle: String,
-    faces: &'a [&'a [u32]],
+pub(super) struct Shaded<'a> {
+    pub(super) title: String,
+    pub(super) subtitle: String,
+    pub(super) faces: &'a [&'a [u32]],
     /// A closed manifold surface: only the faces toward the viewer are drawn.
-    closed: bool,
-    positions: &'a [DVec3],
+    pub(super) closed: bool,
+    pub(super) positions: &'a [DVec3],
     /// Per vertex, relative to the diagonal (infinite: no counterpart).
-    deviations: &'a [f64],
-    max_deviation: f64,
-    note: String,
+    pub(super) deviations: &'a [f64],
+    pub(super) max_deviation: f64,
+    pub(super) note: String,
     /// The colour bar's gradient id (unique in a page).
-    gradient: String,
-    tolerance: f64,
+    pub(super) gradient: String,
+    pub(super) tolerance: f64,
 }
 
 /// The picture of `s`: an orbit view, faces sorted back to front, lit, a
 /// colour bar from bit-identical to the tolerance.
-fn render(s: &Shaded) -> String {
+pub(super) fn render(s: &Shaded) -> String {
     let projection = Projection::orbit(-58.0, 28.0);
     let (width, max_h, top) = (400.0, 290.0, 42.0);
     // On a closed manifold surface, only the faces facing the viewer.

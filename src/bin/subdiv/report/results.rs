@@ -167,6 +167,8 @@ pub struct InputReport {
     pub picture: Picture,
     /// The limit surface through both engines' patch tables.
     pub limit_surface: LimitSurface,
+    /// The limit surface tessellated the Bfr way by both engines.
+    pub tessellated: super::tessellated::Tessellated,
 }
 
 /// Both engines' patch tables of an input (its default options, isolation
@@ -259,14 +261,15 @@ impl InputReport {
         self.sets.iter().map(SetResult::agreeing).sum()
     }
 
-    /// Whether every check passed (the limit surface's too, where it was
-    /// compared).
+    /// Whether every check passed (the limit surface's and the tessellated
+    /// surface's too, where they were compared).
     pub fn conforms(&self) -> bool {
         self.agreeing() == self.cases()
             && !matches!(
                 self.limit_surface,
                 LimitSurface::Compared { agrees: false, .. }
             )
+            && self.tessellated.conforms()
     }
 
     /// The largest deviation of any check.

@@ -15,10 +15,12 @@ use subdiv::mesh::Mesh;
 use subdiv::options::{Options, Scheme, UniformOptions};
 use subdiv::{Engine, Error, OsdErrorKind, Refinement, Request, Result, check_level, osd, refiner};
 
+/// The steps of a report: per input its option sets, its timed levels,
+/// the limit surface and the tessellated surface.
 pub fn steps(inputs: &[Input], settings: &Settings) -> u64 {
     inputs
         .iter()
-        .map(|i| choose(i, settings).1.len() as u64 + settings.timed_levels().count() as u64 + 1)
+        .map(|i| choose(i, settings).1.len() as u64 + settings.timed_levels().count() as u64 + 2)
         .sum()
 }
 
@@ -146,6 +148,8 @@ pub(crate) fn run_input(
     };
     progress(&format!("{}: limit surface", input.name));
     let limit_surface = limit_surface(input, settings.tolerance);
+    progress(&format!("{}: tessellated limit surface", input.name));
+    let tessellated = super::tessellated::tessellated(input, settings.tolerance);
     Ok(InputReport {
         name: input.name.clone(),
         description: input.description.clone(),
@@ -158,6 +162,7 @@ pub(crate) fn run_input(
         timings,
         picture,
         limit_surface,
+        tessellated,
     })
 }
 
