@@ -232,3 +232,31 @@ fn eval_bfr_gives_the_limit_points_of_the_base_vertices() {
         }
     }
 }
+
+#[test]
+fn smooth_uvs_are_left_out_natively_with_a_warning() {
+    let dir = scratch("cli-tessellate-smooth-uv");
+    let input = write(&dir, "cube.obj", &obj_text(&shapes::cube_with_uvs()));
+    let out = dir.join("out.obj");
+    let o = subdiv(&[
+        "tessellate",
+        input.to_str().unwrap(),
+        "--fvar",
+        "corners-plus1",
+        "--rate",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("UVs left out"), "{}", stderr(&o));
+    assert_eq!(read_obj(&std::fs::read_to_string(&out).unwrap()).vt, 0);
+    if cfg!(feature = "osd") {
+        let obj = tessellate(
+            input.to_str().unwrap(),
+            "osd",
+            &["--fvar", "corners-plus1", "--rate", "2"],
+        );
+        assert_eq!(obj.vt, 6 * 9);
+    }
+}
