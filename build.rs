@@ -1,8 +1,9 @@
 //! Builds the C++ shim over OpenSubdiv (feature `osd`, on by default).
 //!
 //! * `cc` compiles `cpp/shim.cpp`, `cpp/patches.cpp`,
-//!   `cpp/limit_stencils.cpp`, `cpp/bfr.cpp` and `cpp/bfr_surface.cpp` (their shared
-//!   internals in `cpp/internal.h`); `bindgen` binds `cpp/shim.h` only.
+//!   `cpp/limit_stencils.cpp`, `cpp/bfr.cpp`, `cpp/bfr_surface.cpp` and
+//!   `cpp/bfr_mesh.cpp` (their shared internals in `cpp/internal.h` and
+//!   `cpp/bfr_internal.h`); `bindgen` binds `cpp/shim.h` only.
 //! * OpenSubdiv is found in `SUBDIV_OSD_DIR` (with `include/` and `lib/`) when
 //!   set, else in the system paths where Debian's `libosd-dev` installs it.
 //! * A missing OpenSubdiv fails early, naming the package and the way out.
@@ -24,7 +25,9 @@ mod osd {
         println!("cargo:rerun-if-changed=cpp/limit_stencils.cpp");
         println!("cargo:rerun-if-changed=cpp/bfr.cpp");
         println!("cargo:rerun-if-changed=cpp/bfr_surface.cpp");
+        println!("cargo:rerun-if-changed=cpp/bfr_mesh.cpp");
         println!("cargo:rerun-if-changed=cpp/internal.h");
+        println!("cargo:rerun-if-changed=cpp/bfr_internal.h");
         println!("cargo:rerun-if-env-changed=SUBDIV_OSD_DIR");
 
         let (include_dir, lib_dir) = match env::var_os("SUBDIV_OSD_DIR") {
@@ -54,6 +57,7 @@ mod osd {
             .file("cpp/limit_stencils.cpp")
             .file("cpp/bfr.cpp")
             .file("cpp/bfr_surface.cpp")
+            .file("cpp/bfr_mesh.cpp")
             .include("cpp")
             .include(&include_dir)
             .warnings(true)

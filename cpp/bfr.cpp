@@ -30,7 +30,7 @@
 // * TransformFacetCoordIndices reads the index arrays at every boundary and
 //   interior coordinate index of the facets, and adds offsets in int.
 
-#include "internal.h"
+#include "bfr_internal.h"
 
 #include <opensubdiv/bfr/limits.h>
 #include <opensubdiv/bfr/parameterization.h>
@@ -83,17 +83,15 @@ void check_face_size(int32_t scheme, int32_t n) {
     }
 }
 
+long long clamp_rate(int32_t r) { return std::min<long long>(r, MAX_RATE); }
+
+}  // namespace
+
 // The rates Tessellation infers from the given ones (initializeRates,
 // replayed in 64 bits), and from them the number of coordinates it will
 // count (initializeInventoryFor*), so that a pattern too large is refused
-// before OpenSubdiv counts it in int.
-struct Inventory {
-    long long boundary = 0, interior = 0;
-};
-
-long long clamp_rate(int32_t r) { return std::min<long long>(r, MAX_RATE); }
-
-Inventory inventory(Bfr::Parameterization const &p, int32_t const *rates, int num_rates) {
+// before OpenSubdiv counts it in int (shared: see bfr_internal.h).
+BfrInventory sdv_internal::bfr_inventory(Bfr::Parameterization const &p, int32_t const *rates, int num_rates) {
     int n = p.GetFaceSize();
     bool quad = (n == 4);
     std::vector<long long> outer((size_t)n);
@@ -130,7 +128,7 @@ Inventory inventory(Bfr::Parameterization const &p, int32_t const *rates, int nu
             inner[0] = inner[1] = total / n;
         }
     }
-    Inventory inv;
+    BfrInventory inv;
     inv.boundary = total;
     long long r = inner[0];
     // qsub::countUniformCoords and tri::countUniformCoords.
@@ -166,6 +164,8 @@ Inventory inventory(Bfr::Parameterization const &p, int32_t const *rates, int nu
     }
     return inv;
 }
+
+namespace {
 
 Bfr::Tessellation &need_valid(const sdv_tessellation *t) {
     if (!t || !t->t) fail("null tessellation");
@@ -304,7 +304,7 @@ int sdv_tessellation_create(int32_t scheme, int32_t face_size, const int32_t *ra
         o.SetFacetSize(facet_size);
         o.PreserveQuads(preserve_quads != 0);
         if (p.IsValid()) {
-            Inventory inv = inventory(p, rates, (int)num_rates);
+            BfrInventory inv = bfr_inventory(p, rates, (int)num_rates);
             long long coords = inv.boundary + inv.interior;
             if (coords > SDV_BFR_MAX_COORDS)
                 fail("these rates give " + str(coords) + " coordinates (" + str(inv.boundary) + " on the boundary, " +

@@ -54,7 +54,7 @@
 // computes the duv and dvv weights by evaluating the surface on the
 // control points' unit vectors (the stencil's definition).
 
-#include "internal.h"
+#include "bfr_internal.h"
 
 #include <opensubdiv/bfr/parameterization.h>
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
@@ -186,10 +186,11 @@ void check_valence2(Far::TopologyLevel const &base, int face, bool fvar) {
                 "them, out of bounds");
 }
 
-// What every surface of `face` needs of its topology before OpenSubdiv
-// builds it.
-void check_face_topology(const sdv_surfaces &s, int32_t face, int32_t kind) {
-    Far::TopologyLevel const &base = base_of(s);
+}  // namespace
+
+// What a surface of `face` needs of its topology before OpenSubdiv builds
+// it (shared: see bfr_internal.h).
+void sdv_internal::check_bfr_surface_face(Far::TopologyLevel const &base, int face, bool nonlinear, bool fvar) {
     Far::ConstIndexArray fv = base.GetFaceVertices(face);
     if (fv.size() > SDV_BFR_MAX_SURFACE_FACE_SIZE)
         fail_unsafe("face " + str(face) + " has " + str(fv.size()) + " vertices: Bfr keeps a face's size in a short "
@@ -202,10 +203,18 @@ void check_face_topology(const sdv_surfaces &s, int32_t face, int32_t kind) {
                         "2 * valence face-edges in shorts (the bridge takes up to " +
                         str(SDV_BFR_MAX_SURFACE_VALENCE) + " faces at a vertex)");
     }
+    if (nonlinear) check_valence2(base, face, fvar);
+}
+
+namespace {
+
+// What every surface of `face` needs of its topology before OpenSubdiv
+// builds it.
+void check_face_topology(const sdv_surfaces &s, int32_t face, int32_t kind) {
     bool nonlinear = kind == SDV_SURFACE_VERTEX ? !s.linear_scheme
                      : kind == SDV_SURFACE_FACE_VARYING ? !s.linear_fvar
                                                         : false;
-    if (nonlinear) check_valence2(base, face, kind == SDV_SURFACE_FACE_VARYING);
+    check_bfr_surface_face(base_of(s), face, nonlinear, kind == SDV_SURFACE_FACE_VARYING);
 }
 
 // Builds the surface of `face` (false: no limit surface). OpenSubdiv's
@@ -307,7 +316,9 @@ long long point_count(const sdv_surfaces &s, int32_t kind, int32_t channel) {
     return kind == SDV_SURFACE_FACE_VARYING ? base.GetNumFVarValues(channel) : base.GetNumVertices();
 }
 
-void check_control_points(Surface const &surface, long long available, int32_t face) {
+}  // namespace
+
+void sdv_internal::check_bfr_control_points(Surface const &surface, long long available, int32_t face) {
     std::vector<int> cvs((size_t)surface.GetNumControlPoints());
     if (!cvs.empty()) surface.GetControlPointIndices(cvs.data());
     for (size_t i = 0; i < cvs.size(); ++i)
@@ -315,6 +326,8 @@ void check_control_points(Surface const &surface, long long available, int32_t f
             throw ShimError(SDV_ERR_INTERNAL, "face " + str(face) + "'s surface names control point " +
                                                   str(cvs[i]) + " of " + str(available));
 }
+
+namespace {
 
 int columns_of(int32_t derivatives) {
     if (derivatives < 0 || derivatives > 2) fail("derivatives " + str(derivatives) + " is not 0, 1 or 2");
@@ -342,7 +355,7 @@ void evaluate(const sdv_surfaces &s, int32_t face, const sdv_surface_eval &e) {
     }
     Surface surface = need_surface(s, face, e.kind, e.channel);
     check_coords(surface.GetParameterization(), face, e.uv, e.n);
-    check_control_points(surface, needed, face);
+    check_bfr_control_points(surface, needed, face);
     long long patch_points = surface.GetNumPatchPoints();
     if (patch_points < 1 || patch_points * e.width > INT_MAX)
         fail("face " + str(face) + "'s surface has " + str(patch_points) + " patch points of " + str(e.width) +
@@ -477,7 +490,7 @@ int sdv_surface_info_get(const sdv_surfaces *s, int32_t face, int32_t kind, int3
         out->num_patch_points = surface.GetNumPatchPoints();
         out->param_type = (int32_t)p.GetType();
         out->face_size = p.GetFaceSize();
-        check_control_points(surface, point_count(ss, kind, channel), face);
+        check_bfr_control_points(surface, point_count(ss, kind, channel), face);
         if (control_points && cap >= (size_t)out->num_control_points && out->num_control_points > 0)
             surface.GetControlPointIndices(control_points);
     });

@@ -1,7 +1,8 @@
 /*
  * subdiv shim: a plain C ABI over OpenSubdiv's Far layer (and Bfr's
- * Tessellation and Parameterization, cpp/bfr.cpp, and its limit surfaces,
- * cpp/bfr_surface.cpp).
+ * Tessellation and Parameterization, cpp/bfr.cpp, its limit surfaces,
+ * cpp/bfr_surface.cpp, and a whole mesh tessellated with them,
+ * cpp/bfr_mesh.cpp).
  *
  * No C++ type crosses this header. Every function returns SDV_OK (0) or a
  * negative status and, on failure, writes a NUL-terminated message into the
@@ -729,6 +730,110 @@ int sdv_surface_evaluate(const sdv_surfaces *s, int32_t face, const sdv_surface_
 int sdv_surface_stencils(const sdv_surfaces *s, int32_t face, int32_t kind, int32_t channel, const double *uv,
                          size_t n, int32_t derivatives, double *out, size_t cap, int32_t *num_control_points,
                          char *err, size_t err_len);
+
+/*
+ * A whole mesh tessellated with Bfr (cpp/bfr_mesh.cpp), as a C++ program
+ * over OpenSubdiv does it (bfr tutorial 2_2's approach), in one call: one
+ * Bfr::RefinerSurfaceFactory<> over the refiner's base level (options as
+ * sdv_surfaces_create's, caching off), the faces in index order, a face
+ * skipped when InitVertexSurface (InitSurfaces with face-varying channel 0
+ * when UVs are asked for) finds no limit surface; a Bfr::Tessellation per
+ * face with one rate per edge (the uniform rate, or 1 + floor(length / L)
+ * of the edge's control points, at most 32767), facet size 4 and
+ * PreserveQuads when `quads`, else 3; a point per base vertex and
+ * rate - 1 points per base edge (base edges told apart by their unordered
+ * pair of vertices), each created and evaluated (Surface<double>::Evaluate)
+ * by the first face using it -- an edge's points in that face's direction,
+ * walked backwards by faces traversing the edge the other way -- then each
+ * face's interior points; facets renumbered with
+ * TransformFacetCoordIndices, the -1 of a triangle among quads dropped.
+ * With `normals`, normalize(cross(du, dv)) per point (zero where that
+ * cross product has no finite inverse length). With UVs (`uvs` non-NULL:
+ * channel 0's values, `uv_width` reals each), channel 0 evaluated at every
+ * coordinate of every face, its first two components (the second 0 for a
+ * width of 1), indexed per face.
+ *
+ * Refused before OpenSubdiv sees them (SDV_ERR_INVALID unless noted):
+ * approximation levels outside 0..10; fewer positions than base vertices,
+ * or more reals than an int indexes; with UVs, a mesh without channel 0,
+ * fewer values than it has, a width below 1, more reals than an int
+ * indexes; a uniform rate outside 1..32767, an edge length that is not
+ * positive and finite; every face (holes aside: Bfr never builds their
+ * surfaces) that sdv_surface_evaluate would refuse for its vertex surface,
+ * and with UVs for its face-varying one (SDV_ERR_UNSAFE: faces of more than
+ * SDV_BFR_MAX_SURFACE_FACE_SIZE vertices, corners of more than
+ * SDV_BFR_MAX_SURFACE_VALENCE faces, OpenSubdiv 3.5.0's valence-2 fault);
+ * a face whose pattern has more than SDV_BFR_MAX_COORDS coordinates or
+ * SDV_BFR_MAX_FACETS facets (as sdv_tessellation_create); a mesh whose
+ * tessellation (counted in 64 bits before any surface is built, every face
+ * but the holes included) has more than SDV_BFR_MESH_MAX_POINTS points,
+ * SDV_BFR_MESH_MAX_FACETS facets or, with UVs, SDV_BFR_MESH_MAX_UVS
+ * texture coordinates. OpenSubdiv's errors while building a surface fail
+ * the call (SDV_ERR_OSD).
+ */
+enum {
+    SDV_BFR_MESH_MAX_POINTS = 1 << 25,
+    SDV_BFR_MESH_MAX_FACETS = 1 << 26,
+    SDV_BFR_MESH_MAX_UVS = 1 << 26
+};
+
+/* Opaque: the tessellated mesh, owned. */
+typedef struct sdv_bfr_mesh sdv_bfr_mesh;
+
+typedef struct sdv_bfr_mesh_input {
+    const double *positions; /* 3 per base vertex */
+    size_t num_vertices;
+    const double *uvs;       /* face-varying channel 0's values, or NULL: no UVs */
+    size_t num_uv_values;
+    int32_t uv_width;
+    int32_t approx_level_smooth;
+    int32_t approx_level_sharp;
+    int32_t rate;            /* every edge's rate, unless use_edge_length */
+    int32_t use_edge_length; /* 0 or 1 */
+    double edge_length;
+    int32_t quads;           /* 0 or 1 */
+    int32_t normals;         /* 0 or 1 */
+} sdv_bfr_mesh_input;
+
+int sdv_bfr_mesh_create(const sdv_refiner *r, const sdv_bfr_mesh_input *in, sdv_bfr_mesh **out, char *err,
+                        size_t err_len);
+void sdv_bfr_mesh_destroy(sdv_bfr_mesh *m);
+
+/* The sizes of the tessellated mesh's arrays (0 for NULL). */
+typedef struct sdv_bfr_mesh_counts {
+    size_t num_points;        /* positions: 3 reals each */
+    size_t num_normals;       /* num_points with normals, else 0 */
+    size_t num_facets;
+    size_t num_face_vertices; /* all facets' corners */
+    size_t num_uvs;           /* texture coordinates: 2 reals each */
+    size_t num_uv_indices;    /* num_face_vertices with UVs, else 0 */
+} sdv_bfr_mesh_counts;
+void sdv_bfr_mesh_counts_get(const sdv_bfr_mesh *m, sdv_bfr_mesh_counts *out);
+
+/*
+ * Copies the mesh into caller buffers, each with its capacity in elements:
+ * positions and normals (3 * count reals), face_offsets (num_facets + 1:
+ * 0, then each facet's end in face_vertices), face_vertices, uvs (2 *
+ * num_uvs), uv_indices (one per corner, into uvs), facet_faces (the base
+ * face of each facet). A buffer may be NULL when its count is 0.
+ */
+typedef struct sdv_bfr_mesh_data {
+    double *positions;
+    size_t positions_cap;
+    double *normals;
+    size_t normals_cap;
+    uint32_t *face_offsets;
+    size_t face_offsets_cap;
+    uint32_t *face_vertices;
+    size_t face_vertices_cap;
+    double *uvs;
+    size_t uvs_cap;
+    uint32_t *uv_indices;
+    size_t uv_indices_cap;
+    uint32_t *facet_faces;
+    size_t facet_faces_cap;
+} sdv_bfr_mesh_data;
+int sdv_bfr_mesh_read(const sdv_bfr_mesh *m, const sdv_bfr_mesh_data *out, char *err, size_t err_len);
 
 #ifdef __cplusplus
 }

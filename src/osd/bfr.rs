@@ -16,7 +16,9 @@
 //!
 //! OpenSubdiv's limit surfaces (`Bfr::RefinerSurfaceFactory` and
 //! `Bfr::Surface`) are in [`bfr_surface`](super::bfr_surface); its
-//! [`Surfaces`] and [`SurfaceInfo`] are re-exported here.
+//! [`Surfaces`] and [`SurfaceInfo`] are re-exported here, as is
+//! [`tessellate_mesh`] from [`bfr_mesh`](super::bfr_mesh): a whole mesh
+//! tessellated watertight by OpenSubdiv in one C++ call.
 //!
 //! ```
 //! use subdiv::{Scheme, osd::bfr};
@@ -27,6 +29,7 @@
 //! # Ok::<(), subdiv::Error>(())
 //! ```
 
+pub use crate::osd::bfr_mesh::tessellate_mesh;
 pub use crate::osd::bfr_surface::{SurfaceInfo, Surfaces};
 
 use super::ERR_LEN;

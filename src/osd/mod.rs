@@ -57,6 +57,7 @@ pub fn version_number() -> u32 {
 
 mod adaptive;
 pub mod bfr;
+pub mod bfr_mesh;
 pub mod bfr_surface;
 mod patches;
 mod refiner;
