@@ -116,6 +116,7 @@ pub fn write_level_obj(
             values,
             face_values: indices,
         }),
+        normals: None,
         precision,
     };
     py.detach(|| subdiv::io::write_obj(&path, &data))

@@ -84,7 +84,10 @@ fn report_on_an_obj_file() {
     }
     assert!(steps[total - 3].contains("timing level 2"), "{err}");
     assert!(steps[total - 2].contains(": limit surface"), "{err}");
-    assert!(steps[total - 1].contains("tessellated limit surface"), "{err}");
+    assert!(
+        steps[total - 1].contains("tessellated limit surface"),
+        "{err}"
+    );
     // The small shape gets the quick run's sets, and the report says so.
     assert!(md.contains("one option varied at a time"), "{md}");
     let summary = stdout(&o);
@@ -177,10 +180,19 @@ fn report_on_the_embedded_set() {
     let tessellated = html
         .matches("<title>tessellated limit surface (Bfr), coloured by deviation</title>")
         .count();
-    assert!(tessellated + 2 >= names.len(), "{tessellated} tessellation pictures");
-    assert!(md.contains("Tessellated limit surface (Bfr, rate 4"), "{md}");
+    assert!(
+        tessellated + 2 >= names.len(),
+        "{tessellated} tessellation pictures"
+    );
+    assert!(
+        md.contains("Tessellated limit surface (Bfr, rate 4"),
+        "{md}"
+    );
     assert!(!md.contains("DIFFERS"), "{md}");
-    assert_eq!(html.matches("<svg").count(), 3 * names.len() + limit + tessellated);
+    assert_eq!(
+        html.matches("<svg").count(),
+        3 * names.len() + limit + tessellated
+    );
     assert!(html.contains("class=\"verdict pass\""));
     assert!(html.contains("OpenSubdiv"));
     assert!(html.contains("Machine"));

@@ -133,11 +133,17 @@ pub(crate) fn tessellate(args: &TessellateArgs) -> Result<(), Failure> {
 /// Whether the UVs (face-varying channel 0) can be evaluated: the native
 /// engine evaluates linearly interpolated channels only; otherwise they are
 /// left out with a warning naming the way to get them.
-fn uvs_available(engine: Engine, mesh: &subdiv::Mesh, options: &subdiv::Options, name: &str) -> bool {
+fn uvs_available(
+    engine: Engine,
+    mesh: &subdiv::Mesh,
+    options: &subdiv::Options,
+    name: &str,
+) -> bool {
     if mesh.fvar_channels.is_empty() {
         return false;
     }
-    let linear = options.scheme == subdiv::Scheme::Bilinear || options.fvar == subdiv::FVarLinearInterpolation::All;
+    let linear = options.scheme == subdiv::Scheme::Bilinear
+        || options.fvar == subdiv::FVarLinearInterpolation::All;
     if engine == Engine::Native && !linear {
         eprintln!(
             "subdiv: warning: {name}: UVs left out: the native engine evaluates face-varying data interpolated \
