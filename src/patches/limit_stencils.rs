@@ -162,7 +162,7 @@ impl LocationStencils {
                 for (&i, &wt) in self.indices[terms.clone()].iter().zip(&k[terms]) {
                     let src = base
                         .get(i as usize * width..(i as usize + 1) * width)
-                        .ok_or(Error::BufferLength {
+                        .ok_or_else(|| Error::BufferLength {
                             buffer: Buffer::Base,
                             expected: (i as usize + 1) * width,
                             got: base.len(),

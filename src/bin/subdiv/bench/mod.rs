@@ -15,6 +15,8 @@ mod render;
 pub(crate) mod results;
 #[cfg(feature = "osd")]
 mod run;
+#[cfg(feature = "osd")]
+mod tessellation;
 #[cfg(all(test, feature = "osd"))]
 mod tests;
 #[cfg(feature = "osd")]

@@ -94,6 +94,37 @@ impl BenchReport {
                 );
             }
         }
+        if !self.tessellation.is_empty() {
+            let _ = writeln!(
+                s,
+                "\nTessellation of the limit surface, the Bfr way ({} thread(s); `LimitSurfaces::new` + `bfr::tessellate` against OpenSubdiv's RefinerSurfaceFactory + Surface + Tessellation in one C++ loop (bfr tutorial 2_2's, one thread); meshes checked equal before timing):\n",
+                self.threads
+            );
+            let _ = writeln!(
+                s,
+                "| input | task | points | triangles | native ms | OpenSubdiv ms | speed-up | native Mtri/s | OpenSubdiv Mtri/s |"
+            );
+            let _ = writeln!(
+                s,
+                "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+            );
+            for t in &self.tessellation {
+                let (r, (rn, ro)) = (&t.row, t.rates());
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {:.2} | {:.2} | {:.2}x | {:.2} | {:.2} |",
+                    r.input,
+                    r.task,
+                    r.vertices,
+                    t.triangles,
+                    r.native * 1e3,
+                    r.osd * 1e3,
+                    r.speedup(),
+                    rn / 1e6,
+                    ro / 1e6
+                );
+            }
+        }
         if !self.parallel.is_empty() {
             let _ = writeln!(
                 s,

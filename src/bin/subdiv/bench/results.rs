@@ -74,6 +74,9 @@ pub struct BenchReport {
     /// isolation levels 3 and 6, apart from [`BenchReport::rows`] (whose
     /// levels are uniform levels).
     pub adaptive: Vec<AdaptiveRow>,
+    /// Tessellation of the limit surface the Bfr way (issue #25): the
+    /// Catmull-Clark tori at rates 4 and 16.
+    pub tessellation: Vec<TessellationRow>,
     /// Whole programs: the first input at level 4, and each input refined
     /// at most two levels (the big ones) at levels 1 and 2 (standard inputs
     /// only).
@@ -230,6 +233,27 @@ pub struct AdaptiveRow {
     /// The times.
     #[serde(flatten)]
     pub row: Row,
+}
+
+/// One comparison of the tessellation section: `row.vertices` counts the
+/// mesh's points.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct TessellationRow {
+    /// The rate of every edge.
+    pub rate: u32,
+    /// Triangles of the mesh (a kept quad counts as two).
+    pub triangles: usize,
+    /// The times.
+    #[serde(flatten)]
+    pub row: Row,
+}
+
+impl TessellationRow {
+    /// Triangles per second: native, OpenSubdiv.
+    pub fn rates(&self) -> (f64, f64) {
+        let n = self.triangles as f64;
+        (n / self.row.native, n / self.row.osd)
+    }
 }
 
 /// A named series of (level, native seconds, OpenSubdiv seconds).

@@ -258,6 +258,15 @@ pub fn run(
         let locations = super::adaptive::LOCATIONS / if quick { 10 } else { 1 };
         adaptive.extend(adaptive_rows(&pool, input, reps, locations, &mut progress)?);
     }
+    let mut tessellation = Vec::new();
+    for input in super::tessellation::tessellation_inputs(inputs) {
+        tessellation.extend(super::tessellation::tessellation_rows(
+            &pool,
+            input,
+            reps,
+            &mut progress,
+        )?);
+    }
     let mut parallel = Vec::new();
     if let Some(first) = inputs.first() {
         progress(&format!(
@@ -286,6 +295,7 @@ pub fn run(
         parallel,
         osd_alone,
         adaptive,
+        tessellation,
         whole_process: Vec::new(),
         obj_writer: None,
         obj_reader: Vec::new(),

@@ -159,6 +159,7 @@ fn empty_report(threads: usize) -> BenchReport {
         parallel: Vec::new(),
         osd_alone: Vec::new(),
         adaptive: Vec::new(),
+        tessellation: Vec::new(),
         whole_process: Vec::new(),
         obj_writer: None,
         obj_reader: Vec::new(),
@@ -390,6 +391,65 @@ fn the_targets_script_reads_the_bench_json() {
         );
     }
     assert_eq!(code, Some(1));
+}
+
+/// The tessellation rows on tiny tori: both rates, the meshes' triangles
+/// (two per quad of a rate-r pattern, r² quads per face of a quad torus),
+/// in the Markdown and the JSON; the section's inputs are the Catmull-Clark
+/// tori.
+#[test]
+fn tessellation_rows_on_tiny_tori() {
+    use super::tessellation::{RATES, tessellation_inputs, tessellation_rows};
+    let pool = pool();
+    let torus = BenchShape {
+        name: "torus 6x4 quads".into(),
+        mesh: shapes::torus(6, 4),
+        options: Options::default(),
+        max_level: 4,
+    };
+    let mut steps = 0;
+    let rows = tessellation_rows(&pool, &torus, 1, |_| steps += 1).unwrap();
+    assert_eq!(steps, RATES.len());
+    let got: Vec<(u32, usize, usize)> = rows
+        .iter()
+        .map(|t| (t.rate, t.triangles, t.row.vertices))
+        .collect();
+    // 24 faces; points: 24 vertices + 48 edges * (r - 1) + 24 * (r - 1)^2.
+    assert_eq!(
+        got,
+        [
+            (4, 24 * 32, 24 + 48 * 3 + 24 * 9),
+            (16, 24 * 512, 24 + 48 * 15 + 24 * 225)
+        ]
+    );
+    assert!(rows.iter().all(|t| t.row.native > 0.0
+        && t.row.osd > 0.0
+        && t.row.task.starts_with("tessellation (rate")));
+    let standard = subdiv::shapes::bench_shapes(true);
+    let names: Vec<&str> = tessellation_inputs(&standard)
+        .iter()
+        .map(|i| i.name.as_str())
+        .collect();
+    assert!(
+        names.iter().all(|n| n.starts_with("torus")) && names.len() >= 2,
+        "{names:?}"
+    );
+    let report = BenchReport {
+        tessellation: rows,
+        ..empty_report(1)
+    };
+    let md = report.markdown();
+    assert!(
+        md.contains("Tessellation of the limit surface, the Bfr way"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| torus 6x4 quads | tessellation (rate 16, UVs) | 6144 | 12288 |"),
+        "{md}"
+    );
+    let json: serde_json::Value = serde_json::to_value(&report).unwrap();
+    assert_eq!(json["tessellation"][1]["rate"], 16);
+    assert_eq!(json["tessellation"][1]["triangles"], 12288);
 }
 
 /// The adaptive rows on tiny inputs: both isolation levels, topology and
