@@ -20,7 +20,7 @@ use crate::options::Scheme;
 use crate::patches::{Derivatives, SurfaceSamples};
 use glam::DVec3;
 use rayon::prelude::*;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// The limit surfaces of a mesh's base faces, evaluated in Bfr's
 /// parameterization: what [`tessellate`] needs of an engine.
@@ -166,7 +166,7 @@ pub fn tessellate(
     let scheme = surfaces.scheme();
 
     // Base edges by vertex pair, in order of first use.
-    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     let mut edge_rate: Vec<u32> = Vec::new();
     for f in 0..mesh.face_count() {
         let fv = mesh.face(f);
@@ -255,72 +255,77 @@ pub fn tessellate(
     }
     let total = next as usize;
 
-    // Evaluate each face's own points, in parallel.
+    // Evaluate each face's own points, in parallel. They are a contiguous
+    // range (taken in order while planning that face), so the outputs split
+    // into disjoint slices, one per face, in plan order.
+    debug_assert!(plans.iter().all(|p| {
+        p.owned
+            .iter()
+            .enumerate()
+            .all(|(k, &c)| p.points[c as usize] == p.points[p.owned[0] as usize] + k as u32)
+    }));
     let derivs = if options.normals {
         Derivatives::First
     } else {
         Derivatives::None
     };
     let uvs = options.uvs && !mesh.fvar_channels.is_empty();
-    type Evaluated = (Vec<(u32, DVec3, DVec3)>, Vec<f64>, Vec<[f64; 2]>);
-    let evaluated: Vec<Evaluated> = plans
+    let uv_width = mesh.fvar_channels.first().map_or(0, |c| c.width).max(1);
+    // Each face's own texture coordinates: one per pattern coordinate.
+    let uv_counts: Vec<usize> = plans
+        .iter()
+        .map(|p| if uvs { p.tess.num_coords() } else { 0 })
+        .collect();
+    let mut positions = alloc::try_vec(DVec3::ZERO, total)?;
+    let mut normals = alloc::try_vec(DVec3::ZERO, if options.normals { total } else { 0 })?;
+    let mut uv_values = alloc::try_vec(0.0, 2 * uv_counts.iter().sum::<usize>())?;
+    let owned = |p: &FacePlan| p.owned.len();
+    let pos_chunks = split_by(&mut positions, plans.iter().map(owned));
+    let normal_chunks = split_by(
+        &mut normals,
+        plans
+            .iter()
+            .map(|p| if options.normals { owned(p) } else { 0 }),
+    );
+    let uv_chunks = split_by(&mut uv_values, uv_counts.iter().map(|&n| 2 * n));
+    plans
         .par_iter()
-        .map(|plan| -> Result<Evaluated> {
+        .zip(pos_chunks)
+        .zip(normal_chunks)
+        .zip(uv_chunks)
+        .try_for_each(|(((plan, pos), nrm), uv_out)| -> Result<()> {
             let coords = plan.tess.coords::<f64>()?;
             let own: Vec<[f64; 2]> = plan.owned.iter().map(|&k| coords[k as usize]).collect();
             let s = surfaces.evaluate(plan.face, &own, derivs)?;
             let v = &s.values;
-            let out = plan
-                .owned
-                .iter()
-                .enumerate()
-                .map(|(i, &k)| {
-                    let p = DVec3::from_slice(&v.point[3 * i..3 * i + 3]);
-                    let normal = if options.normals {
-                        let du = DVec3::from_slice(&v.du[3 * i..3 * i + 3]);
-                        let dv = DVec3::from_slice(&v.dv[3 * i..3 * i + 3]);
-                        du.cross(dv).normalize_or_zero()
-                    } else {
-                        DVec3::ZERO
-                    };
-                    (plan.points[k as usize], p, normal)
-                })
-                .collect();
-            let uv = if uvs {
-                surfaces.evaluate_fvar(plan.face, 0, &coords)?.values.point
-            } else {
-                Vec::new()
-            };
-            Ok((out, uv, coords))
-        })
-        .collect::<Result<_>>()?;
+            for (i, p) in pos.iter_mut().enumerate() {
+                *p = DVec3::from_slice(&v.point[3 * i..3 * i + 3]);
+            }
+            for (i, n) in nrm.iter_mut().enumerate() {
+                let du = DVec3::from_slice(&v.du[3 * i..3 * i + 3]);
+                let dv = DVec3::from_slice(&v.dv[3 * i..3 * i + 3]);
+                *n = du.cross(dv).normalize_or_zero();
+            }
+            if uvs {
+                // Texture coordinates are 2D: the first two components.
+                let uv = surfaces.evaluate_fvar(plan.face, 0, &coords)?.values.point;
+                for (value, dst) in uv.chunks(uv_width).zip(uv_out.chunks_mut(2)) {
+                    dst[0] = value[0];
+                    dst[1] = value.get(1).copied().unwrap_or(0.0);
+                }
+            }
+            Ok(())
+        })?;
 
     let mut out = TessellatedMesh {
-        positions: alloc::try_vec(DVec3::ZERO, total)?,
-        normals: if options.normals {
-            alloc::try_vec(DVec3::ZERO, total)?
-        } else {
-            Vec::new()
-        },
+        positions,
+        normals,
+        uvs: uv_values,
         face_offsets: vec![0],
         ..TessellatedMesh::default()
     };
-    let uv_width = mesh.fvar_channels.first().map_or(0, |c| c.width);
-    for (plan, (points, uv, _)) in plans.iter().zip(evaluated) {
-        for (index, p, normal) in points {
-            out.positions[index as usize] = p;
-            if options.normals {
-                out.normals[index as usize] = normal;
-            }
-        }
-        let uv_base = (out.uvs.len() / 2) as i64;
-        if uvs {
-            // Texture coordinates are 2D: the first two components.
-            for value in uv.chunks(uv_width.max(1)) {
-                out.uvs.push(value[0]);
-                out.uvs.push(value.get(1).copied().unwrap_or(0.0));
-            }
-        }
+    let mut uv_base = 0i64;
+    for (plan, &uv_count) in plans.iter().zip(&uv_counts) {
         let mut facets = plan.tess.facets()?;
         let nb = plan.tess.num_boundary_coords();
         let original = facets.clone();
@@ -344,6 +349,19 @@ pub fn tessellate(
             out.face_offsets.push(out.face_vertices.len() as u32);
             out.facet_faces.push(plan.face as u32);
         }
+        uv_base += uv_count as i64;
     }
     Ok(out)
+}
+
+/// `slice` cut into consecutive pieces of `sizes` (which sum to at most its
+/// length).
+fn split_by<'a, T>(mut slice: &'a mut [T], sizes: impl Iterator<Item = usize>) -> Vec<&'a mut [T]> {
+    let mut out = Vec::new();
+    for n in sizes {
+        let (piece, rest) = std::mem::take(&mut slice).split_at_mut(n);
+        out.push(piece);
+        slice = rest;
+    }
+    out
 }

@@ -309,7 +309,28 @@ pub fn evaluate_data(
         // A map of another table names patches this one may not have.
         let (patch_type, param, cvs) = patch_of(table, data, handle)?;
         let n = evaluate_basis_into(patch_type, param, u, v, derivatives, &mut buf)?;
-        // Every control point's values, once per table asked for.
+        // Every control point's values, once per table asked for; points
+        // of width 3 (positions) summed in registers, in the same order.
+        if width == 3 {
+            for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
+                let mut acc = [0.0f64; 3];
+                for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
+                    let start = cv as usize * 3;
+                    let Some(row) = points.get(start..start + 3) else {
+                        return Err(Error::BufferLength {
+                            buffer: Buffer::Source,
+                            expected: start + 3,
+                            got: points.len(),
+                        });
+                    };
+                    acc[0] += w * row[0];
+                    acc[1] += w * row[1];
+                    acc[2] += w * row[2];
+                }
+                out[i * 3..i * 3 + 3].copy_from_slice(&acc);
+            }
+            continue;
+        }
         for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
             let dst = &mut out[i * width..(i + 1) * width];
             for (&cv, &w) in cvs.iter().zip(&weights[..n]) {

@@ -11,7 +11,7 @@
 //! follows the location's path down until a patch sits there.
 
 use super::{PatchHandle, PatchParam, PatchTable};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::FxHashMap;
 
 /// Locates (ptex face, u, v) in a patch table (`Far::PatchMap`).
 ///
@@ -42,11 +42,11 @@ pub struct PatchMap {
     triangular: bool,
     max_depth: u32,
     /// The patch at each (ptex face, level, quadrant path: two bits per
-    /// level, the first level in the highest bits).
-    patches: HashMap<(u32, u32, u64), PatchHandle>,
-    /// Faces whose first quadrant is covered (OpenSubdiv's test for a
-    /// face with patches).
-    covered: HashSet<u32>,
+    /// level, the first level in the highest bits) below the root.
+    patches: FxHashMap<(u32, u32, u64), PatchHandle>,
+    /// Per ptex face: whether its first quadrant is covered (OpenSubdiv's
+    /// test for a face with patches), and the patch covering all of it.
+    roots: Vec<(bool, Option<PatchHandle>)>,
 }
 
 /// The quadrant of (`u`, `v`) in a square halved at `median`, and (`u`,
@@ -121,8 +121,8 @@ impl PatchMap {
         let mut map = PatchMap {
             triangular,
             max_depth: 0,
-            patches: HashMap::new(),
-            covered: HashSet::new(),
+            patches: FxHashMap::default(),
+            roots: vec![(false, None); table.ptex_faces],
         };
         for (a, array) in table.arrays.iter().enumerate() {
             for (k, &p) in array.params.iter().enumerate() {
@@ -147,10 +147,18 @@ impl PatchMap {
                 }
                 // A root patch fills every quadrant; any other covers the
                 // first one when its path starts there.
-                if levels == 0 || path >> (2 * (levels - 1)) == 0 {
-                    map.covered.insert(p.face_id());
+                let face = p.face_id() as usize;
+                if face >= map.roots.len() {
+                    map.roots.resize(face + 1, (false, None));
                 }
-                map.patches.insert((p.face_id(), levels, path), handle);
+                if levels == 0 || path >> (2 * (levels - 1)) == 0 {
+                    map.roots[face].0 = true;
+                }
+                if levels == 0 {
+                    map.roots[face].1 = Some(handle);
+                } else {
+                    map.patches.insert((p.face_id(), levels, path), handle);
+                }
             }
         }
         map
@@ -166,11 +174,10 @@ impl PatchMap {
         if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
             return None;
         }
-        if !self.covered.contains(&face) {
-            return None;
-        }
-        if let Some(&h) = self.patches.get(&(face, 0, 0)) {
-            return Some(h);
+        match self.roots.get(face as usize) {
+            Some((true, Some(root))) => return Some(*root),
+            Some((true, None)) => {}
+            _ => return None,
         }
         let (mut u, mut v) = (u, v);
         let (mut median, mut rotated, mut path) = (0.5, false, 0u64);
