@@ -356,7 +356,7 @@ pub fn tessellate(
 
 /// `slice` cut into consecutive pieces of `sizes` (which sum to at most its
 /// length).
-fn split_by<'a, T>(mut slice: &'a mut [T], sizes: impl Iterator<Item = usize>) -> Vec<&'a mut [T]> {
+fn split_by<T>(mut slice: &mut [T], sizes: impl Iterator<Item = usize>) -> Vec<&mut [T]> {
     let mut out = Vec::new();
     for n in sizes {
         let (piece, rest) = std::mem::take(&mut slice).split_at_mut(n);
