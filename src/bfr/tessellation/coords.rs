@@ -26,31 +26,70 @@ fn step<R: Real>(rate: i32) -> R {
     R::ONE / small::<R>(rate as usize)
 }
 
+/// A polygon's sides: each edge's first corner and its direction (the
+/// next corner minus it).
+type Sides = [([f64; 2], [f64; 2])];
+
+/// The unit square's sides, counter-clockwise from (0, 0).
+const SQUARE: [([f64; 2], [f64; 2]); 4] = [
+    ([0.0, 0.0], [1.0, 0.0]),
+    ([1.0, 0.0], [0.0, 1.0]),
+    ([1.0, 1.0], [-1.0, 0.0]),
+    ([0.0, 1.0], [0.0, -1.0]),
+];
+
+/// The unit triangle's sides, counter-clockwise from (0, 0).
+const TRIANGLE: [([f64; 2], [f64; 2]); 3] = [
+    ([0.0, 0.0], [1.0, 0.0]),
+    ([1.0, 0.0], [-1.0, 1.0]),
+    ([0.0, 1.0], [0.0, -1.0]),
+];
+
+/// The points inside edge `edge` of `sides` at rate `res` (its ends
+/// excluded): from the corner plus one step. (A step of `dt` times -1, 0 or
+/// 1 added to 0 or 1 is exactly OpenSubdiv's `dt`, `1 - dt` and so on.)
+fn side_edge<R: Real>(sides: &Sides, edge: usize, res: i32, out: &mut Vec<[R; 2]>) {
+    let ([u, v], [a, b]) = sides[edge];
+    let dt = step::<R>(res);
+    let (du, dv) = (dt * R::from_f64(a), dt * R::from_f64(b));
+    line(
+        out,
+        res - 1,
+        R::from_f64(u) + du,
+        R::from_f64(v) + dv,
+        du,
+        dv,
+    );
+}
+
+/// The boundary ring of `sides` at rates `rates`: each edge from its
+/// corner, stepping by 1 / its rate.
+fn side_boundary<R: Real>(sides: &Sides, rates: &[i32], out: &mut Vec<[R; 2]>) {
+    for (&([u, v], [a, b]), &rate) in sides.iter().zip(rates) {
+        let dt = step::<R>(rate);
+        line(
+            out,
+            rate,
+            R::from_f64(u),
+            R::from_f64(v),
+            dt * R::from_f64(a),
+            dt * R::from_f64(b),
+        );
+    }
+}
+
 /// Coordinates of the unit square.
 pub(super) mod quad {
     use super::*;
 
     /// The points inside edge `edge` at rate `res` (its ends excluded).
     pub(in super::super) fn edge<R: Real>(edge: usize, res: i32, out: &mut Vec<[R; 2]>) {
-        let (zero, one) = (R::ZERO, R::ONE);
-        let dt = step::<R>(res);
-        let (t0, t1) = (dt, one - dt);
-        let n = res - 1;
-        match edge {
-            0 => line(out, n, t0, zero, dt, zero),
-            1 => line(out, n, one, t0, zero, dt),
-            2 => line(out, n, t1, one, -dt, zero),
-            _ => line(out, n, zero, t1, zero, -dt),
-        }
+        side_edge(&SQUARE, edge, res, out);
     }
 
     /// The boundary ring at rates `rates`.
     pub(in super::super) fn boundary<R: Real>(rates: &[i32], out: &mut Vec<[R; 2]>) {
-        let (zero, one) = (R::ZERO, R::ONE);
-        line(out, rates[0], zero, zero, step(rates[0]), zero);
-        line(out, rates[1], one, zero, zero, step(rates[1]));
-        line(out, rates[2], one, one, -step::<R>(rates[2]), zero);
-        line(out, rates[3], zero, one, zero, -step::<R>(rates[3]));
+        side_boundary(&SQUARE, rates, out);
     }
 
     /// The interior rings of inner rates `uv_res`.
@@ -88,30 +127,12 @@ pub(super) mod tri {
 
     /// The points inside edge `edge` at rate `res` (its ends excluded).
     pub(in super::super) fn edge<R: Real>(edge: usize, res: i32, out: &mut Vec<[R; 2]>) {
-        let (zero, one) = (R::ZERO, R::ONE);
-        let dt = step::<R>(res);
-        let (t0, t1) = (dt, one - dt);
-        let n = res - 1;
-        match edge {
-            0 => line(out, n, t0, zero, dt, zero),
-            1 => line(out, n, t1, t0, -dt, dt),
-            _ => line(out, n, zero, t1, zero, -dt),
-        }
+        side_edge(&TRIANGLE, edge, res, out);
     }
 
     /// The boundary ring at rates `rates`.
     pub(in super::super) fn boundary<R: Real>(rates: &[i32], out: &mut Vec<[R; 2]>) {
-        let (zero, one) = (R::ZERO, R::ONE);
-        line(out, rates[0], zero, zero, step(rates[0]), zero);
-        line(
-            out,
-            rates[1],
-            one,
-            zero,
-            -step::<R>(rates[1]),
-            step(rates[1]),
-        );
-        line(out, rates[2], zero, one, zero, -step::<R>(rates[2]));
+        side_boundary(&TRIANGLE, rates, out);
     }
 
     /// The interior rings of inner rate `res`.
