@@ -9,7 +9,12 @@
 //! evaluation, a flattened curve lying on its curve). Sizes are bounded so
 //! that one run takes milliseconds.
 
+#[cfg(feature = "osd")]
+pub mod bfr;
 pub mod limit;
+
+#[cfg(feature = "osd")]
+pub use bfr::{check_bfr_pattern, check_bfr_surfaces};
 
 use arbitrary::{Result as AResult, Unstructured};
 use glam::DVec3;
