@@ -170,6 +170,16 @@ pub(crate) fn run_input(
 /// limit surfaces they evaluate (`subdiv compare --patches`' comparison).
 fn limit_surface(input: &Input, tolerance: f64) -> super::results::LimitSurface {
     use super::results::{LIMIT_ISOLATION, LimitSurface};
+    let faces = input.mesh.face_count();
+    if faces > super::tessellated::MAX_FACES {
+        // Both engines' tables and 25 locations per ptex face: minutes and
+        // gigabytes on a production mesh; `subdiv compare --patches` does it
+        // on request.
+        return LimitSurface::NotCompared(format!(
+            "{faces} faces, above the report's {} for this comparison; `subdiv compare --patches` compares it",
+            super::tessellated::MAX_FACES
+        ));
+    }
     let po = subdiv::patches::PatchOptions::new().max_isolation(LIMIT_ISOLATION);
     let ao = po.refine_adaptive_options();
     match crate::compare_patches::limit_comparison(&input.mesh, &input.options, &po, ao, &[]) {
