@@ -165,25 +165,28 @@ pub fn tessellate(
     };
     let scheme = surfaces.scheme();
 
-    // Base edges by vertex pair, in order of first use.
+    // Base edges by vertex pair, in order of first use, and the edge of
+    // every face corner (from the corner to the next), found once.
     let mut edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     let mut edge_rate: Vec<u32> = Vec::new();
+    let mut corner_edge: Vec<u32> = Vec::new();
+    alloc::reserve(&mut corner_edge, mesh.face_vertices.len())?;
     for f in 0..mesh.face_count() {
         let fv = mesh.face(f);
         for (i, &a) in fv.iter().enumerate() {
             let b = fv[(i + 1) % fv.len()];
-            let key = (a.min(b), a.max(b));
-            if let std::collections::hash_map::Entry::Vacant(slot) = edges.entry(key) {
-                slot.insert(edge_rate.len() as u32);
-                let rate = match options.edge_length {
+            let next = edge_rate.len() as u32;
+            let e = *edges.entry((a.min(b), a.max(b))).or_insert(next);
+            if e == next {
+                edge_rate.push(match options.edge_length {
                     None => options.rate,
                     Some(l) => {
                         let len = mesh.positions[a as usize].distance(mesh.positions[b as usize]);
                         (1.0 + (len / l).floor()).min(f64::from(crate::bfr::MAX_RATE)) as u32
                     }
-                };
-                edge_rate.push(rate);
+                });
             }
+            corner_edge.push(e);
         }
     }
 
@@ -213,25 +216,21 @@ pub fn tessellate(
         let fv = mesh.face(f);
         let n = fv.len();
         let param = Parameterization::new(scheme, n)?;
-        let rates: Vec<u32> = (0..n)
-            .map(|i| {
-                let (a, b) = (fv[i], fv[(i + 1) % n]);
-                edge_rate[edges[&(a.min(b), a.max(b))] as usize]
-            })
-            .collect();
+        let face_edges = &corner_edge[mesh.face_offsets[f] as usize..][..n];
+        let rates: Vec<u32> = face_edges.iter().map(|&e| edge_rate[e as usize]).collect();
         let tess = Tessellation::new(param, &rates, tess_options)?;
         let mut points = Vec::new();
         alloc::reserve(&mut points, tess.num_coords())?;
         let mut owned = Vec::new();
         for i in 0..n {
-            let (a, b) = (fv[i], fv[(i + 1) % n]);
+            let a = fv[i];
             if vertex_point[a as usize] == u32::MAX {
                 vertex_point[a as usize] = take(1)?;
                 owned.push(points.len() as u32);
             }
             points.push(vertex_point[a as usize]);
             let inner = rates[i] as usize - 1;
-            let e = edges[&(a.min(b), a.max(b))] as usize;
+            let e = face_edges[i] as usize;
             if edge_points[e].0 == u32::MAX {
                 edge_points[e] = (take(inner)?, a);
                 owned.extend((0..inner).map(|k| (points.len() + k) as u32));
