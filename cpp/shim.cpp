@@ -736,6 +736,7 @@ int sdv_refiner_create(const sdv_mesh_desc *desc, const sdv_options *opts, sdv_r
         }
         d.numFVarChannels = desc->num_fvar_channels;
         d.fvarChannels = channels.empty() ? nullptr : channels.data();
+        d.isLeftHanded = desc->is_left_handed != 0;
 
         Sdc::Options so;
         so.SetVtxBoundaryInterpolation((Sdc::Options::VtxBoundaryInterpolation)opts->boundary);

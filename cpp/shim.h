@@ -58,6 +58,7 @@ typedef struct sdv_mesh_desc {
     const int32_t *holes;
     int32_t num_fvar_channels;
     const sdv_fvar_channel *fvar_channels;
+    int32_t is_left_handed; /* TopologyDescriptor::isLeftHanded: faces listed clockwise */
 } sdv_mesh_desc;
 
 /* Numeric values are those of Sdc::SchemeType and Sdc::Options. */

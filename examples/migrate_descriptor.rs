@@ -3,8 +3,8 @@
 //!
 //! Builds OpenSubdiv's tutorial cube from the same flat arrays a
 //! `TopologyDescriptor` points to, adds a crease, a corner, a hole and a UV
-//! channel, validates it, shows what happens to bad input, and emulates
-//! `isLeftHanded`. With the `osd` feature, both engines refine the mesh and
+//! channel, validates it, shows what happens to bad input, and reads
+//! clockwise faces as `isLeftHanded` does. With the `osd` feature, both engines refine the mesh and
 //! must agree bit for bit.
 //!
 //! Run with `cargo run --example migrate_descriptor`.
@@ -36,20 +36,15 @@ fn mesh_from_descriptor(
 }
 // [end]
 
-// [left-handed]
-/// What `isLeftHanded = true` makes OpenSubdiv store: each face's first
-/// corner, then its other corners in reverse order (face-varying indices
-/// alike). Apply it to clockwise input before building a refiner.
-fn from_left_handed(mesh: &mut Mesh) {
-    for f in 0..mesh.face_count() {
-        let rest = mesh.face_offsets[f] as usize + 1..mesh.face_offsets[f + 1] as usize;
-        mesh.face_vertices[rest.clone()].reverse();
-        for channel in &mut mesh.fvar_channels {
-            channel.indices[rest.clone()].reverse();
-        }
+/// The tutorial cube written clockwise, as a left-handed application keeps
+/// it: each face's first corner, then its other corners in reverse order.
+fn clockwise(mesh: &Mesh) -> Mesh {
+    let mut left = mesh.clone();
+    for w in mesh.face_offsets.windows(2) {
+        left.face_vertices[w[0] as usize + 1..w[1] as usize].reverse();
     }
+    left
 }
-// [end]
 
 /// The cube of OpenSubdiv's `far_tutorial_0`.
 fn tutorial_cube() -> Mesh {
@@ -170,22 +165,29 @@ fn main() -> Result<(), subdiv::Error> {
     assert!(diagonal.validate_strict().is_err());
     println!("crease on a diagonal: warning \"{}\"", warnings[0]);
 
-    // isLeftHanded: clockwise faces. `from_left_handed` is its own inverse, so
-    // it also turns the (counter-clockwise) tutorial cube into clockwise input.
+    // isLeftHanded: clockwise faces.
     let right = tutorial_cube();
-    let mut left = right.clone();
-    from_left_handed(&mut left);
-    assert_ne!(left.face_vertices, right.face_vertices);
+    let mut left = clockwise(&right);
     let (points, inward) = limit_normals(&left)?; // clockwise taken as counter-clockwise
     assert!(points.iter().zip(&inward).all(|(p, n)| p.dot(*n) < 0.0));
-    from_left_handed(&mut left); // what isLeftHanded = true does
-    assert_eq!(left, right);
+    // [left-handed]
+    left.left_handed = true; // desc.isLeftHanded = true
+    // [end]
+    assert_eq!(*left.right_handed(), right); // how both engines read it
     let (points, outward) = limit_normals(&left)?;
     assert!(points.iter().zip(&outward).all(|(p, n)| p.dot(*n) > 0.0));
     println!(
-        "left-handed input: {} limit normals point inward as given, outward after from_left_handed",
+        "left-handed input: {} limit normals point inward as given, outward with left_handed",
         points.len()
     );
+    #[cfg(feature = "osd")]
+    {
+        let uniform = UniformOptions::new(2);
+        let options = Options::default();
+        let native = subdiv::refiner::refine(&left, &options, uniform)?;
+        assert_eq!(native, subdiv::osd::refine(&left, &options, uniform)?);
+        assert_eq!(native, subdiv::osd::refine(&right, &options, uniform)?);
+    }
 
     #[cfg(feature = "osd")]
     {

@@ -90,6 +90,12 @@ pub struct Mesh {
     pub holes: Vec<u32>,
     /// Face-varying channels; channel 0 is the UV set read from `vt`.
     pub fvar_channels: Vec<FVarChannel>,
+    /// The faces are listed clockwise (USD's `orientation = "leftHanded"`),
+    /// as OpenSubdiv's `Far::TopologyDescriptor::isLeftHanded`: both engines
+    /// then read each face (and its face-varying indices) from its first
+    /// corner backwards, so refined faces come out counter-clockwise.
+    /// [`Mesh::right_handed`] gives that reading as a mesh of its own.
+    pub left_handed: bool,
 }
 
 impl Default for Mesh {
@@ -102,6 +108,7 @@ impl Default for Mesh {
             corners: Vec::new(),
             holes: Vec::new(),
             fvar_channels: Vec::new(),
+            left_handed: false,
         }
     }
 }
@@ -362,6 +369,41 @@ impl Mesh {
         } else {
             &[Scheme::Catmark, Scheme::Bilinear]
         }
+    }
+
+    /// The mesh as the engines read it: itself when it is right-handed; when
+    /// [`Mesh::left_handed`], a copy whose faces keep their first corner and
+    /// list the others in reverse — OpenSubdiv's `isLeftHanded` reading of
+    /// face vertices and face-varying indices alike — marked right-handed.
+    /// Faces whose offsets are malformed are left as they are (validation
+    /// names them).
+    ///
+    /// ```
+    /// use subdiv::Mesh;
+    /// use glam::DVec3;
+    /// let mut mesh = Mesh::from_faces(vec![DVec3::ZERO; 4], &[&[0, 1, 2, 3]]);
+    /// mesh.left_handed = true;
+    /// assert_eq!(mesh.right_handed().face(0), &[0, 3, 2, 1]);
+    /// ```
+    pub fn right_handed(&self) -> std::borrow::Cow<'_, Mesh> {
+        if !self.left_handed {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut mesh = self.clone();
+        mesh.left_handed = false;
+        let reverse = |list: &mut [u32]| {
+            for w in self.face_offsets.windows(2) {
+                let face = list.get_mut(w[0] as usize..w[1] as usize);
+                if let Some(rest) = face.and_then(|face| face.get_mut(1..)) {
+                    rest.reverse();
+                }
+            }
+        };
+        reverse(&mut mesh.face_vertices);
+        for channel in &mut mesh.fvar_channels {
+            reverse(&mut channel.indices);
+        }
+        std::borrow::Cow::Owned(mesh)
     }
 
     /// Iterates over the faces' vertex lists (stops early if the offsets are malformed).

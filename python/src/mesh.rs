@@ -9,7 +9,7 @@ use pyo3::types::PyTuple;
 /// A polygon mesh with OpenSubdiv's tags, validated when it is made.
 ///
 /// ``Mesh(points, face_counts, face_indices, *, creases=None, corners=None,
-/// holes=None, uvs=None, uv_indices=None)``:
+/// holes=None, uvs=None, uv_indices=None, left_handed=False)``:
 ///
 /// - ``points``: ``(N, 3)`` float32 or float64 positions;
 /// - ``face_counts``: ``(F,)`` integers, the number of vertices of each face;
@@ -21,7 +21,10 @@ use pyo3::types::PyTuple;
 /// - ``holes``: ``(H,)`` face indices;
 /// - ``uvs``: ``(M, 2)`` face-varying values (channel 0);
 /// - ``uv_indices``: one value index per face corner, parallel to
-///   ``face_indices`` (without it, ``face_indices`` itself: one UV per vertex).
+///   ``face_indices`` (without it, ``face_indices`` itself: one UV per vertex);
+/// - ``left_handed``: the faces are listed clockwise (USD's
+///   ``orientation = "leftHanded"``, OpenSubdiv's ``isLeftHanded``); both
+///   engines read each face from its first corner backwards.
 ///
 /// Every problem raises ``MeshError`` with the Rust library's message.
 #[pyclass(frozen, module = "subdiv")]
@@ -80,7 +83,7 @@ fn tagged(obj: &Bound<'_, PyAny>, what: &str, width: usize) -> PyResult<(Vec<u32
 #[pymethods]
 impl Mesh {
     #[new]
-    #[pyo3(signature = (points, face_counts, face_indices, *, creases=None, corners=None, holes=None, uvs=None, uv_indices=None))]
+    #[pyo3(signature = (points, face_counts, face_indices, *, creases=None, corners=None, holes=None, uvs=None, uv_indices=None, left_handed=false))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         points: &Bound<'_, PyAny>,
@@ -91,6 +94,7 @@ impl Mesh {
         holes: Option<&Bound<'_, PyAny>>,
         uvs: Option<&Bound<'_, PyAny>>,
         uv_indices: Option<&Bound<'_, PyAny>>,
+        left_handed: bool,
     ) -> PyResult<Mesh> {
         let positions = convert::positions(points, "points")?;
         let counts = int_vector(face_counts, "face_counts")?;
@@ -100,6 +104,7 @@ impl Mesh {
             positions,
             face_offsets,
             face_vertices,
+            left_handed,
             ..subdiv::Mesh::default()
         };
         if let Some(creases) = creases {
@@ -191,6 +196,12 @@ impl Mesh {
     #[getter]
     fn holes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i32>> {
         convert::indices(py, self.inner.holes.clone())
+    }
+
+    /// Whether the faces are listed clockwise (read from their first corner backwards).
+    #[getter]
+    fn left_handed(&self) -> bool {
+        self.inner.left_handed
     }
 
     /// ``(M, width)`` float64 values of face-varying channel 0 (the UVs), or None.

@@ -102,3 +102,36 @@ def test_stencil_tables_native_equals_osd_and_refine():
         assert np.allclose(x @ mesh.points, y @ mesh.points, rtol=0, atol=1e-12)
     p, _, _ = tables["native"].limit(refined)
     assert np.allclose(la[0] @ mesh.points, p, rtol=0, atol=1e-12)
+
+
+def test_left_handed_meshes_refine_as_their_counter_clockwise_originals(corpus):
+    """A face list written clockwise (first corner kept, UV indices alike) with
+    left_handed=True refines, in both engines, exactly as the original
+    counter-clockwise mesh: every level, level 0 included (the engines' own
+    reading of the input)."""
+    for name, mesh in corpus:
+        counts = mesh.face_counts
+        indices, uv_indices = mesh.face_indices.copy(), mesh.uv_indices
+        uv_indices = None if uv_indices is None else uv_indices.copy()
+        start = 0
+        for n in counts:
+            for array in (indices, uv_indices):
+                if array is not None:
+                    array[start + 1 : start + n] = array[start + 1 : start + n][::-1].copy()
+            start += n
+        flipped = subdiv.Mesh(
+            mesh.points,
+            counts,
+            indices,
+            creases=mesh.creases if len(mesh.creases[1]) else None,
+            corners=mesh.corners if len(mesh.corners[1]) else None,
+            holes=mesh.holes if len(mesh.holes) else None,
+            uvs=mesh.uvs,
+            uv_indices=uv_indices,
+            left_handed=True,
+        )
+        assert flipped.left_handed and not mesh.left_handed
+        for engine in ["native", "osd"]:
+            a = subdiv.refine(mesh, 2, subdiv.Options(), engine)
+            b = subdiv.refine(flipped, 2, subdiv.Options(), engine)
+            assert_levels_equal(a, b, f"{name} {engine}")

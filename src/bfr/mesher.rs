@@ -136,6 +136,9 @@ struct FacePlan {
 /// Tessellates every base face of `mesh` with a limit surface in
 /// `surfaces` into one watertight mesh.
 ///
+/// A [`Mesh::left_handed`] mesh is tessellated as the surfaces read it
+/// ([`Mesh::right_handed`]): facets come out counter-clockwise.
+///
 /// Refused: a rate of 0, an edge length that is not positive and finite, a
 /// mesh whose tessellation has more points than 32-bit indices hold.
 pub fn tessellate(
@@ -143,6 +146,7 @@ pub fn tessellate(
     surfaces: &dyn FaceSurfaces,
     options: &TessellateOptions,
 ) -> Result<TessellatedMesh> {
+    let mesh = &*mesh.right_handed();
     if options.rate == 0 {
         return Err(Error::Tessellation {
             reason: "the tessellation rate is 0; rates start at 1".into(),

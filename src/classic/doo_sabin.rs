@@ -202,6 +202,7 @@ pub fn refine(
     levels: u32,
 ) -> Result<Vec<Mesh>, DooSabinError> {
     mesh.validate()?;
+    let mesh = &*mesh.right_handed();
     let base = Mesh {
         positions: mesh.positions.clone(),
         face_offsets: mesh.face_offsets.clone(),
@@ -219,7 +220,7 @@ pub fn refine(
 /// One level of Doo-Sabin subdivision.
 pub fn refine_once(mesh: &Mesh, options: &DooSabinOptions) -> Result<Mesh, DooSabinError> {
     mesh.validate()?;
-    refine_level(mesh, options, 1)
+    refine_level(&mesh.right_handed(), options, 1)
 }
 
 /// The half-edge structure of a face-vertex mesh: for every face corner, the

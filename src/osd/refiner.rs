@@ -131,6 +131,7 @@ impl TopologyRefiner {
             holes: holes.as_ptr(),
             num_fvar_channels: to_i32(channels.len(), "face-varying channels")?,
             fvar_channels: channels.as_ptr(),
+            is_left_handed: i32::from(mesh.left_handed),
         };
         let opts = ffi::sdv_options {
             scheme: options.scheme.code(),

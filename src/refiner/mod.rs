@@ -122,9 +122,12 @@ pub struct Refiner {
 impl Refiner {
     /// Builds the base level of a mesh (validated first; a mesh without faces
     /// is [`Error::EmptyMesh`], as in the `osd` engine).
+    /// A [`Mesh::left_handed`] mesh is read as OpenSubdiv reads it
+    /// ([`Mesh::right_handed`]).
     pub fn new(mesh: &Mesh, options: &Options) -> Result<Refiner> {
         crate::alloc::guard(None, || {
             let validation = mesh.validate()?;
+            let mesh = &*mesh.right_handed();
             if options.scheme == Scheme::Loop {
                 if let Some((face, size)) = mesh
                     .faces()

@@ -260,12 +260,15 @@ pub fn write_obj(path: &Path, data: &ObjOutput<'_>) -> Result<(), Error> {
 /// (other channels are not written), every face (holes included), then one
 /// `t crease 2/1/0 a b s` line per crease, one `t corner` line for all corners
 /// and one `t hole` line for all holes. Sharpness is written with 9 significant
-/// digits, which is exact for `f32`. Option tags are not written.
+/// digits, which is exact for `f32`. Option tags are not written. OBJ faces
+/// are counter-clockwise: a [`Mesh::left_handed`] mesh is written as
+/// [`Mesh::right_handed`] reads it.
 pub fn write_mesh_obj_to<W: Write>(
     mut out: W,
     mesh: &Mesh,
     precision: Precision,
 ) -> io::Result<()> {
+    let mesh = &*mesh.right_handed();
     let uv = mesh
         .fvar_channels
         .first()
