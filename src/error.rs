@@ -18,6 +18,11 @@ pub enum Error {
     /// An OBJ file could not be read.
     #[error(transparent)]
     Obj(#[from] ObjError),
+    /// A USD file could not be read, or one of its meshes is malformed
+    /// (feature `usd`). Boxed, so that `Error` stays small.
+    #[cfg(feature = "usd")]
+    #[error(transparent)]
+    Usd(Box<UsdError>),
     /// The mesh has no faces, so there is nothing to refine. Both engines
     /// refuse it, before OpenSubdiv is involved.
     #[error("the mesh has no faces: there is nothing to refine")]
@@ -527,4 +532,182 @@ pub enum ObjErrorKind {
     /// The file could not be read.
     #[error("cannot read: {0}")]
     Io(String),
+}
+
+/// An error reading a USD file ([`crate::io::usd`]): the file, the prim and
+/// the attribute concerned, and what is wrong.
+///
+/// Displayed as `FILE: PRIM.ATTRIBUTE: what` (the attribute's USD path), or
+/// `FILE: PRIM: what` when no attribute is concerned, or `FILE: what` when
+/// no prim is (the file cannot be opened or parsed, a prim pattern is bad).
+#[cfg(feature = "usd")]
+#[derive(Debug, Clone, PartialEq, Error)]
+pub struct UsdError {
+    /// The file named by the caller.
+    pub file: PathBuf,
+    /// The prim's path (`/World/Body`); empty when no prim is concerned.
+    pub prim: String,
+    /// The attribute's name on the prim (`creaseIndices`,
+    /// `primvars:st:indices`); empty when no attribute is concerned.
+    pub attribute: String,
+    /// What is wrong.
+    pub kind: UsdErrorKind,
+}
+
+#[cfg(feature = "usd")]
+impl fmt::Display for UsdError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: ", self.file.display())?;
+        match (self.prim.is_empty(), self.attribute.is_empty()) {
+            (true, true) => {}
+            (false, true) => write!(f, "{}: ", self.prim)?,
+            (true, false) => write!(f, "{}: ", self.attribute)?,
+            (false, false) => write!(f, "{}.{}: ", self.prim, self.attribute)?,
+        }
+        write!(f, "{}", self.kind)
+    }
+}
+
+#[cfg(feature = "usd")]
+impl From<UsdError> for Error {
+    fn from(e: UsdError) -> Error {
+        Error::Usd(Box::new(e))
+    }
+}
+
+/// What is wrong in a USD file ([`UsdError`]).
+#[cfg(feature = "usd")]
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum UsdErrorKind {
+    /// The file cannot be opened, parsed or composed; the message is the
+    /// USD library's.
+    #[error("cannot read the stage: {0}")]
+    Open(String),
+    /// A prim pattern ([`UsdReadOptions::prims`](crate::io::usd::UsdReadOptions::prims))
+    /// that cannot match a prim path.
+    #[error("prim pattern {pattern:?} {reason}")]
+    Pattern {
+        /// The pattern.
+        pattern: String,
+        /// Why it is refused.
+        reason: &'static str,
+    },
+    /// An attribute the mesh needs is not authored (or blocked).
+    #[error("is not authored, but the mesh has {faces} faces")]
+    Missing {
+        /// The mesh's number of faces.
+        faces: usize,
+    },
+    /// A value of another type than the attribute can hold.
+    #[error("holds a value of type {found}, expected {expected}")]
+    WrongType {
+        /// The types the reader accepts.
+        expected: &'static str,
+        /// The type found (the USD library's name of the value).
+        found: String,
+    },
+    /// A token that is not one of the attribute's allowed tokens.
+    #[error("unknown token {token:?} (expected one of {allowed})")]
+    UnknownToken {
+        /// The token found.
+        token: String,
+        /// The allowed tokens, in words.
+        allowed: &'static str,
+    },
+    /// An index that names no element.
+    #[error("element {position} is {index}, out of range: there are {count} {of}")]
+    IndexOutOfRange {
+        /// The element's position in the array.
+        position: usize,
+        /// The index it holds.
+        index: i64,
+        /// How many elements it can name.
+        count: usize,
+        /// What it names (`points`, `faces`, `values`).
+        of: &'static str,
+    },
+    /// A count below zero.
+    #[error("element {position} is {count}: a count cannot be negative")]
+    NegativeCount {
+        /// The element's position in the array.
+        position: usize,
+        /// The count it holds.
+        count: i64,
+    },
+    /// `faceVertexCounts` does not add up to the length of `faceVertexIndices`.
+    #[error("the face sizes add up to {sum}, but faceVertexIndices has {indices} elements")]
+    FaceVertexCounts {
+        /// The sum of the face sizes.
+        sum: u64,
+        /// The length of `faceVertexIndices`.
+        indices: usize,
+    },
+    /// `creaseLengths` does not add up to the length of `creaseIndices`.
+    #[error("the crease lengths add up to {sum}, but creaseIndices has {indices} elements")]
+    CreaseLengths {
+        /// The sum of the crease lengths.
+        sum: u64,
+        /// The length of `creaseIndices`.
+        indices: usize,
+    },
+    /// A crease of fewer than two vertices (no edge).
+    #[error("crease {crease} has length {length}; a crease needs at least 2 vertices")]
+    CreaseTooShort {
+        /// The crease.
+        crease: usize,
+        /// Its length.
+        length: i64,
+    },
+    /// `creaseSharpnesses` has neither one value per crease nor one per
+    /// crease edge.
+    #[error(
+        "has {found} values; expected {creases} (one per crease) or {edges} (one per crease edge)"
+    )]
+    CreaseSharpnessCount {
+        /// The number of sharpness values.
+        found: usize,
+        /// The number of creases.
+        creases: usize,
+        /// The number of crease edges.
+        edges: usize,
+    },
+    /// `cornerSharpnesses` has not one value per element of `cornerIndices`.
+    #[error("has {found} values for {corners} corners")]
+    CornerSharpnessCount {
+        /// The number of sharpness values.
+        found: usize,
+        /// The number of corner indices.
+        corners: usize,
+    },
+    /// A primvar (or its indices) with the wrong number of elements for its
+    /// interpolation.
+    #[error("has {found} elements; {interpolation} interpolation needs {expected}")]
+    PrimvarCount {
+        /// The primvar's interpolation token.
+        interpolation: &'static str,
+        /// The number of elements found.
+        found: usize,
+        /// The number expected.
+        expected: usize,
+    },
+    /// A primvar's `elementSize` below 1, or that does not divide its values.
+    #[error("elementSize {element_size} does not fit its {values} values")]
+    ElementSize {
+        /// The `elementSize` metadata.
+        element_size: i64,
+        /// The number of values (array elements).
+        values: usize,
+    },
+    /// More elements than 32-bit indices address.
+    #[error("has {count} {what}, more than 32-bit indices address")]
+    TooLarge {
+        /// What is counted.
+        what: &'static str,
+        /// How many there are.
+        count: usize,
+    },
+    /// The mesh the attributes describe is invalid ([`Mesh::validate`](crate::Mesh::validate)).
+    #[error("invalid mesh: {0}")]
+    Mesh(MeshError),
 }

@@ -107,6 +107,8 @@ pub use error::{
     Buffer, Element, Error, LevelRefusal, ObjError, ObjErrorKind, OsdError, OsdErrorKind, Result,
     StencilFault,
 };
+#[cfg(feature = "usd")]
+pub use error::{UsdError, UsdErrorKind};
 pub use limits::{check_level, check_precision};
 pub use mesh::{Corner, Crease, FVarChannel, Mesh, MeshError, MeshWarning, Validation};
 pub use names::{Named, ParseNameError};
