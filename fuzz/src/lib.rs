@@ -249,6 +249,8 @@ pub fn mesh_case(u: &mut Unstructured<'_>, wild: bool) -> AResult<MeshCase> {
             indices,
         });
     }
+    // Clockwise faces read as OpenSubdiv's isLeftHanded reads them.
+    mesh.left_handed = u.ratio(1u8, 8u8)?;
     if wild && u.ratio(1u8, 32u8)? {
         // Structural damage that only hand-built meshes can have.
         match u.int_in_range(0..=4)? {

@@ -34,6 +34,9 @@ mod refine;
 #[cfg(feature = "osd")]
 mod report;
 mod tessellate;
+// USD stages need the `usd` feature.
+#[cfg(feature = "usd")]
+mod usd;
 
 use subdiv::{Mesh, shapes};
 

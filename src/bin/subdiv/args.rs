@@ -1,7 +1,7 @@
 //! Arguments shared by the subcommands: the input mesh, its options, level ranges.
 
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use subdiv::io::ShapeFile;
 use subdiv::{
@@ -37,15 +37,28 @@ impl FromStr for SchemeArg {
 /// The input mesh and the subdivision options, shared by `refine` and `compare`.
 #[derive(Args)]
 pub(crate) struct MeshArgs {
-    /// Input OBJ file (with OpenSubdiv `t` tags); see --builtin for generated shapes.
+    /// Input OBJ file (with OpenSubdiv `t` tags) or USD stage (.usd, .usda,
+    /// .usdc, .usdz: its subdivision meshes); see --builtin for generated shapes.
     #[arg(required_unless_present = "builtin", conflicts_with = "builtin")]
     pub(crate) input: Option<PathBuf>,
     /// Use a generated shape instead of a file: cube, cube-uv, grid, torus, tetrahedron.
     #[arg(long, value_name = "NAME")]
     pub(crate) builtin: Option<String>,
-    /// Subdivision scheme.
-    #[arg(long, default_value = "catmark", value_parser = parse::<SchemeArg>)]
-    pub(crate) scheme: SchemeArg,
+    /// USD input: the mesh prims to read (repeatable; `*` within a path
+    /// segment, `**` across segments, `?` one character); default every mesh.
+    #[arg(long = "prim", value_name = "PATH")]
+    pub(crate) prims: Vec<String>,
+    /// USD input: read time-sampled attributes at time code T (the sample at
+    /// or before T) instead of their default values.
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub(crate) time: Option<f64>,
+    /// USD input: drop a malformed crease or corner with a warning instead of
+    /// failing, as USD's renderer does.
+    #[arg(long)]
+    pub(crate) lenient: bool,
+    /// Subdivision scheme (default: catmark; a USD mesh's subdivisionScheme).
+    #[arg(long, value_parser = parse::<SchemeArg>)]
+    pub(crate) scheme: Option<SchemeArg>,
     /// Vertex boundary interpolation (overrides the file's tag).
     #[arg(long, value_parser = parse::<BoundaryInterpolation>)]
     pub(crate) boundary: Option<BoundaryInterpolation>,
@@ -156,8 +169,78 @@ pub(crate) fn parse<T: FromStr<Err = ParseNameError>>(s: &str) -> Result<T, Stri
     s.parse().map_err(|e: ParseNameError| e.to_string())
 }
 
-/// Loads the input: a file (tags applied over the shape-file defaults) or a built-in shape.
+/// One mesh to work on: an OBJ file, a built-in shape or a prim of a USD stage.
+pub(crate) struct Loaded {
+    /// How messages name it: the file (`FILE:PRIM` for a USD prim) or `builtin:NAME`.
+    pub(crate) name: String,
+    /// The mesh.
+    pub(crate) mesh: Mesh,
+    /// Its options: the file's (OBJ tags, USD attributes) under the command line's.
+    pub(crate) options: Options,
+    /// For a USD prim: its path and its face-varying channels' primvar names.
+    pub(crate) prim: Option<(String, Vec<String>)>,
+}
+
+/// Whether `path` names a USD file (by its extension).
+pub(crate) fn is_usd(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["usd", "usda", "usdc", "usdz"].contains(&e.to_ascii_lowercase().as_str()))
+}
+
+/// Loads the single mesh a command works on: [`load_all`], which must give
+/// exactly one (a USD stage with several subdivision meshes needs `--prim`).
 pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
+    let mut all = load_all(args)?;
+    if all.len() == 1 {
+        let one = all.remove(0);
+        return Ok((one.name, one.mesh, one.options));
+    }
+    let file = args
+        .input
+        .as_deref()
+        .map_or(String::new(), |p| p.display().to_string());
+    if all.is_empty() {
+        return Err(Failure::Message(format!(
+            "{file}: no subdivision mesh to read (see the notes above)"
+        )));
+    }
+    let prims: Vec<&str> = all
+        .iter()
+        .filter_map(|l| l.prim.as_ref())
+        .map(|p| p.0.as_str())
+        .collect();
+    Err(Failure::Usage(format!(
+        "{file} has {} subdivision meshes ({}); this command takes one: choose it with --prim PATH",
+        all.len(),
+        prims.join(", ")
+    )))
+}
+
+/// Loads every mesh of the input: an OBJ file (its tags over the shape-file
+/// defaults), a built-in shape, or the selected subdivision meshes of a USD
+/// stage (their attributes with USD's fallbacks); the command line's
+/// options over each.
+pub(crate) fn load_all(args: &MeshArgs) -> Result<Vec<Loaded>, Failure> {
+    if let Some(path) = args.input.as_deref().filter(|p| is_usd(p)) {
+        return crate::usd::load(args, path);
+    }
+    if !args.prims.is_empty() || args.time.is_some() || args.lenient {
+        return Err(Failure::Usage(
+            "--prim, --time and --lenient apply to USD inputs (.usd, .usda, .usdc, .usdz)".into(),
+        ));
+    }
+    let (name, mesh, options) = load_obj(args)?;
+    Ok(vec![Loaded {
+        name,
+        mesh,
+        options,
+        prim: None,
+    }])
+}
+
+/// Loads an OBJ file (tags applied over the shape-file defaults) or a built-in shape.
+fn load_obj(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> {
     let (name, shape) = match (&args.input, &args.builtin) {
         (Some(path), _) => (
             path.display().to_string(),
@@ -207,7 +290,13 @@ pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> 
         .collect();
     print_warnings(&name, texts.iter().map(|t| (0, t.as_str(), t.clone())));
     let mut options = shape.options();
-    if let SchemeArg::Osd(scheme) = args.scheme {
+    override_options(args, &mut options);
+    Ok((name, shape.mesh, options))
+}
+
+/// The command line's options over a file's.
+pub(crate) fn override_options(args: &MeshArgs, options: &mut Options) {
+    if let Some(SchemeArg::Osd(scheme)) = args.scheme {
         options.scheme = scheme;
     }
     if let Some(b) = args.boundary {
@@ -222,5 +311,4 @@ pub(crate) fn load(args: &MeshArgs) -> Result<(String, Mesh, Options), Failure> 
     if let Some(t) = args.triangles {
         options.triangles = t;
     }
-    Ok((name, shape.mesh, options))
 }

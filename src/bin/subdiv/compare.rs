@@ -5,7 +5,7 @@ use subdiv::{Engine, Error, Request};
 
 use crate::Failure;
 use crate::adaptive::AdaptiveArgs;
-use crate::args::{MeshArgs, SchemeArg, load, parse_levels, parse_tolerance};
+use crate::args::{MeshArgs, SchemeArg, load_all, parse_levels, parse_tolerance};
 
 #[derive(Args)]
 pub(crate) struct CompareArgs {
@@ -50,17 +50,17 @@ pub(crate) struct CompareRow {
 }
 
 #[derive(serde::Serialize)]
-pub(crate) struct CompareReport<'a> {
-    pub(crate) input: &'a str,
+pub(crate) struct CompareReport {
+    pub(crate) input: String,
     pub(crate) options: String,
-    pub(crate) precision: &'a str,
+    pub(crate) precision: &'static str,
     pub(crate) tolerance: f64,
     pub(crate) levels: Vec<CompareRow>,
     pub(crate) agrees: bool,
 }
 
 pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
-    if args.mesh.scheme == SchemeArg::DooSabin {
+    if args.mesh.scheme == Some(SchemeArg::DooSabin) {
         return Err(Failure::Unavailable(
             "compare needs both engines and OpenSubdiv has no Doo-Sabin scheme; use `subdiv refine --scheme doo-sabin`".into(),
         ));
@@ -74,20 +74,70 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
     if let Some(level) = args.adaptive.adaptive {
         return crate::adaptive::compare_adaptive(args, level);
     }
-    let (name, mesh, options) = load(&args.mesh)?;
+    let inputs = load_all(&args.mesh)?;
+    let usd = args.mesh.input.as_deref().is_some_and(crate::args::is_usd);
+    if inputs.is_empty() {
+        return Err(Failure::Message(format!(
+            "{}: no subdivision mesh to compare (see the notes above)",
+            args.mesh
+                .input
+                .as_deref()
+                .map_or(String::new(), |p| p.display().to_string())
+        )));
+    }
+    let mut reports = Vec::with_capacity(inputs.len());
+    for input in &inputs {
+        reports.push(compare_one(args, &input.name, &input.mesh, &input.options)?);
+    }
+    let agrees = reports.iter().all(|r| r.agrees);
+    if args.json {
+        // A USD stage gives a list, one report per prim.
+        let text = if usd {
+            serde_json::to_string_pretty(&reports)
+        } else {
+            serde_json::to_string_pretty(&reports[0])
+        }
+        .map_err(|e| Failure::Message(format!("cannot encode the report: {e}")))?;
+        outln!("{text}");
+    } else {
+        for report in &reports {
+            print_report(report, args.tolerance);
+        }
+        if reports.len() > 1 {
+            let differ = reports.iter().filter(|r| !r.agrees).count();
+            outln!(
+                "{} meshes compared: {}",
+                reports.len(),
+                match differ {
+                    0 => "the engines agree on every one".to_string(),
+                    n => format!("the engines DIFFER on {n}"),
+                }
+            );
+        }
+    }
+    if agrees { Ok(()) } else { Err(Failure::Differ) }
+}
+
+/// Both engines on one mesh, level by level.
+fn compare_one(
+    args: &CompareArgs,
+    name: &str,
+    mesh: &subdiv::Mesh,
+    options: &subdiv::Options,
+) -> Result<CompareReport, Failure> {
     let (first, last) = args.levels;
     // Every error from here on names the input (unless it names its own file).
     let refine = || -> Result<_, Error> {
-        subdiv::check_level(&mesh, &options, last)?;
-        subdiv::check_precision(&mesh, args.mesh.precision)?;
+        subdiv::check_level(mesh, options, last)?;
+        subdiv::check_precision(mesh, args.mesh.precision)?;
         let request = Request::new(last)
             .faces_first(args.mesh.faces_first)
             .precision(args.mesh.precision);
-        let native = Engine::Native.refine(&mesh, &options, request)?;
-        let osd = Engine::Osd.refine(&mesh, &options, request)?;
+        let native = Engine::Native.refine(mesh, options, request)?;
+        let osd = Engine::Osd.refine(mesh, options, request)?;
         Ok((native, osd))
     };
-    let (native, osd) = refine().map_err(|e| Failure::from(e).in_input(&name))?;
+    let (native, osd) = refine().map_err(|e| Failure::from(e).in_input(name))?;
     let rows: Vec<CompareRow> = subdiv::compare::compare(&native, &osd)
         .into_iter()
         .filter(|c| c.level >= first)
@@ -105,53 +155,50 @@ pub(crate) fn compare(args: &CompareArgs) -> Result<(), Failure> {
         })
         .collect();
     let agrees = rows.iter().all(|r| r.agrees);
-    let report = CompareReport {
-        input: &name,
-        options: describe_options(&options, args.mesh.faces_first),
+    Ok(CompareReport {
+        input: name.to_string(),
+        options: describe_options(options, args.mesh.faces_first),
         precision: args.mesh.precision.name(),
         tolerance: args.tolerance,
         levels: rows,
         agrees,
-    };
-    if args.json {
-        let text = serde_json::to_string_pretty(&report)
-            .map_err(|e| Failure::Message(format!("cannot encode the report: {e}")))?;
-        outln!("{text}");
-    } else {
+    })
+}
+
+/// One mesh's comparison as text.
+fn print_report(report: &CompareReport, tolerance: f64) {
+    outln!(
+        "{}: {} ({}), tolerance {:e} of the bounding-box diagonal",
+        report.input,
+        report.options,
+        report.precision,
+        tolerance
+    );
+    outln!(
+        "level  vertices (native/osd)  faces (native/osd)  first diff face  max abs dev  max rel dev  fvar dev  result"
+    );
+    for r in &report.levels {
         outln!(
-            "{}: {} ({}), tolerance {:e} of the bounding-box diagonal",
-            name,
-            report.options,
-            report.precision,
-            args.tolerance
-        );
-        outln!(
-            "level  vertices (native/osd)  faces (native/osd)  first diff face  max abs dev  max rel dev  fvar dev  result"
-        );
-        for r in &report.levels {
-            outln!(
-                "{:>5}  {:>21}  {:>18}  {:>15}  {:>11.3e}  {:>11.3e}  {:>8.2e}  {}",
-                r.level,
-                format!("{}/{}", r.native_counts[0], r.osd_counts[0]),
-                format!("{}/{}", r.native_counts[2], r.osd_counts[2]),
-                r.first_differing_face
-                    .map_or("-".to_string(), |f| f.to_string()),
-                r.max_abs_deviation,
-                r.max_rel_deviation,
-                r.fvar_deviation,
-                if r.agrees { "ok" } else { "DIFFERENT" }
-            );
-        }
-        outln!(
-            "{}",
-            if agrees {
-                "the engines agree"
-            } else {
-                "the engines DIFFER"
-            }
+            "{:>5}  {:>21}  {:>18}  {:>15}  {:>11.3e}  {:>11.3e}  {:>8.2e}  {}",
+            r.level,
+            format!("{}/{}", r.native_counts[0], r.osd_counts[0]),
+            format!("{}/{}", r.native_counts[2], r.osd_counts[2]),
+            r.first_differing_face
+                .map_or("-".to_string(), |f| f.to_string()),
+            r.max_abs_deviation,
+            r.max_rel_deviation,
+            r.fvar_deviation,
+            if r.agrees { "ok" } else { "DIFFERENT" }
         );
     }
-    if agrees { Ok(()) } else { Err(Failure::Differ) }
+    outln!(
+        "{}",
+        if report.agrees {
+            "the engines agree"
+        } else {
+            "the engines DIFFER"
+        }
+    );
 }
 
 /// The options a comparison ran with, as its report names them.

@@ -41,6 +41,7 @@ mod patches;
 mod refine;
 mod report;
 mod tessellate;
+mod usd;
 
 use bench::BenchArgs;
 use compare::CompareArgs;
@@ -116,6 +117,8 @@ impl Failure {
     pub(crate) fn in_input(self, name: &str) -> Failure {
         match self {
             Failure::Error(e @ (Error::Io { .. } | Error::Obj(_))) => Failure::Error(e),
+            #[cfg(feature = "usd")]
+            Failure::Error(e @ Error::Usd(_)) => Failure::Error(e),
             Failure::Error(e) => Failure::Message(format!("{name}: {e}")),
             Failure::Unavailable(m) => Failure::Unavailable(format!("{name}: {m}")),
             other => other,

@@ -11,15 +11,21 @@ use subdiv::{
 
 use crate::Failure;
 use crate::adaptive::AdaptiveArgs;
-use crate::args::{MeshArgs, SchemeArg, load, parse, parse_level};
+use crate::args::{Loaded, MeshArgs, SchemeArg, load, load_all, parse, parse_level};
 use crate::output::write_output;
 
 #[derive(Args)]
 pub(crate) struct RefineArgs {
     #[command(flatten)]
     pub(crate) mesh: MeshArgs,
-    /// Output OBJ file; without it nothing is written and a summary is printed.
-    #[arg(short, long, value_name = "OUT.obj", conflicts_with = "adaptive")]
+    /// Output file: OBJ (one mesh), or a .usda layer with every mesh at its
+    /// prim's path; without it nothing is written and a summary is printed.
+    #[arg(
+        short,
+        long,
+        value_name = "OUT.obj|OUT.usda",
+        conflicts_with = "adaptive"
+    )]
     pub(crate) output: Option<PathBuf>,
     /// Refinement level (0..=10).
     #[arg(long, default_value = "2", value_parser = parse_level, allow_negative_numbers = true,
@@ -138,12 +144,12 @@ fn holes_note(holes: usize) -> String {
 }
 
 pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
-    if let (Some(_), SchemeArg::DooSabin) = (args.adaptive.adaptive, args.mesh.scheme) {
+    if let (Some(_), Some(SchemeArg::DooSabin)) = (args.adaptive.adaptive, args.mesh.scheme) {
         return Err(Failure::Usage(
             "--adaptive does not apply to --scheme doo-sabin (catmark and bilinear; loop with --engine osd)".into(),
         ));
     }
-    if args.mesh.scheme == SchemeArg::DooSabin {
+    if args.mesh.scheme == Some(SchemeArg::DooSabin) {
         return refine_doo_sabin(args);
     }
     if args.doo_sabin_weights.is_some() || args.doo_sabin_boundary.is_some() {
@@ -151,7 +157,17 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
             "--doo-sabin-weights and --doo-sabin-boundary need --scheme doo-sabin".into(),
         ));
     }
-    let (name, mesh, options) = load(&args.mesh)?;
+    let usda = args.output.as_deref().is_some_and(crate::usd::is_usda);
+    let mut inputs = load_all(&args.mesh)?;
+    if usda || inputs.len() != 1 {
+        return refine_all(args, &inputs, usda);
+    }
+    let Loaded {
+        name,
+        mesh,
+        options,
+        ..
+    } = inputs.remove(0);
     // Every error from here on names the input (unless it names its own file).
     match args.adaptive.adaptive {
         Some(level) => {
@@ -161,6 +177,72 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
         None => refine_loaded(args, &name, &mesh, &options),
     }
     .map_err(|f| f.in_input(&name))?;
+    if args.peak_memory {
+        eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
+    }
+    Ok(())
+}
+
+/// `refine` on several meshes (the prims of a USD stage), or into a `.usda`
+/// layer: each refined in turn, a summary line each, or all written as one
+/// layer.
+fn refine_all(args: &RefineArgs, inputs: &[Loaded], usda: bool) -> Result<(), Failure> {
+    let file = args
+        .mesh
+        .input
+        .as_deref()
+        .map_or(String::new(), |p| p.display().to_string());
+    if inputs.is_empty() {
+        return Err(Failure::Message(format!(
+            "{file}: no subdivision mesh to refine (see the notes above)"
+        )));
+    }
+    if args.adaptive.adaptive.is_some() {
+        return Err(Failure::Usage(format!(
+            "--adaptive refines one mesh and {file} has {}: choose it with --prim PATH",
+            inputs.len()
+        )));
+    }
+    if let (Some(path), false) = (&args.output, usda) {
+        return Err(Failure::Usage(format!(
+            "-o {} holds one mesh and {file} has {}: choose one with --prim PATH, or write them all to a .usda file",
+            path.display(),
+            inputs.len()
+        )));
+    }
+    let request = Request::new(args.level)
+        .faces_first(args.mesh.faces_first)
+        .precision(args.mesh.precision)
+        .limit(args.limit);
+    let mut refined = Vec::with_capacity(inputs.len());
+    for input in inputs {
+        let run = || -> Result<Refinement, Error> {
+            subdiv::check_level(&input.mesh, &input.options, args.level)?;
+            subdiv::check_precision(&input.mesh, args.mesh.precision)?;
+            args.engine.refine(&input.mesh, &input.options, request)
+        };
+        let start = Instant::now();
+        let r = run().map_err(|e| Failure::from(e).in_input(&input.name))?;
+        if !usda {
+            outln!(
+                "{}{}",
+                summary(
+                    &input.name,
+                    args.engine,
+                    &r.options,
+                    r.precision,
+                    &refinement_counts(&r),
+                    r.limit.is_some(),
+                    start.elapsed().as_secs_f64()
+                ),
+                holes_note(r.last_level().face_holes.iter().filter(|&&h| h).count())
+            );
+        }
+        refined.push((input, r));
+    }
+    if let Some(path) = &args.output {
+        crate::usd::write_refinements(path, args.mesh.input.as_deref(), &refined)?;
+    }
     if args.peak_memory {
         eprintln!("peak_memory_bytes {}", peak_memory().unwrap_or(0));
     }

@@ -10,11 +10,16 @@ use crate::args::{parse_levels, parse_tolerance};
 
 #[derive(Args)]
 pub(crate) struct ReportArgs {
-    /// OBJ files (with OpenSubdiv `t` tags) to report on; without them, the
-    /// embedded set (cube, torus, creases, pole, holes, UV seams, four boxes,
-    /// Loop, bilinear, non-manifold).
-    #[arg(value_name = "INPUT.obj")]
+    /// OBJ files (with OpenSubdiv `t` tags) or USD stages (each subdivision
+    /// mesh an input) to report on; without them, the embedded set (cube,
+    /// torus, creases, pole, holes, UV seams, four boxes, Loop, bilinear,
+    /// non-manifold).
+    #[arg(value_name = "INPUT.obj|INPUT.usd")]
     pub(crate) inputs: Vec<PathBuf>,
+    /// USD inputs: the mesh prims to report on (repeatable; `*` within a
+    /// path segment, `**` across segments); default every mesh.
+    #[arg(long = "prim", value_name = "PATH")]
+    pub(crate) prims: Vec<String>,
     /// Directory for report.md, report.html and figures/.
     #[arg(long, value_name = "DIR", default_value = "report")]
     pub(crate) out: PathBuf,
@@ -45,7 +50,7 @@ pub(crate) fn report(_args: &ReportArgs) -> Result<(), Failure> {
 /// `subdiv report`: conformance and benchmarks on the embedded set or on OBJ files.
 #[cfg(feature = "osd")]
 pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
-    use super::inputs::{embedded_inputs, read_input};
+    use super::inputs::{embedded_inputs, read_inputs};
     use super::run::{run, steps};
     use super::settings::Settings;
     use crate::args::print_warnings;
@@ -62,15 +67,22 @@ pub(crate) fn report(args: &ReportArgs) -> Result<(), Failure> {
         let mut v = Vec::with_capacity(args.inputs.len());
         for path in &args.inputs {
             let name = path.display().to_string();
-            let (input, warnings) =
-                read_input(path).map_err(|e| Failure::from(e).in_input(&name))?;
-            print_warnings(
-                &name,
-                warnings
-                    .iter()
-                    .map(|(line, key, text)| (*line, key.as_str(), text.clone())),
-            );
-            v.push(input);
+            let read =
+                read_inputs(path, &args.prims).map_err(|e| Failure::from(e).in_input(&name))?;
+            if read.is_empty() {
+                return Err(Failure::Message(format!(
+                    "{name}: no subdivision mesh to report on"
+                )));
+            }
+            for (input, warnings) in read {
+                print_warnings(
+                    &name,
+                    warnings
+                        .iter()
+                        .map(|(line, key, text)| (*line, key.as_str(), text.clone())),
+                );
+                v.push(input);
+            }
         }
         v
     };

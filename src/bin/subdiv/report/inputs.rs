@@ -44,6 +44,65 @@ impl Input {
 /// identifies repeats of it, and its text.
 pub type Warning = (usize, String, String);
 
+/// Reads the inputs of one file: an OBJ shape file ([`read_input`]) or, with
+/// the `usd` feature, every subdivision mesh of a USD stage selected by
+/// `prims` (all when empty), each named `FILE:PRIM` with the prim's options
+/// (USD's fallbacks where unauthored). Prims the stage skips
+/// (`subdivisionScheme = "none"`) come back as warnings.
+pub fn read_inputs(path: &Path, prims: &[String]) -> Result<Vec<(Input, Vec<Warning>)>> {
+    if !crate::args::is_usd(path) {
+        return Ok(vec![read_input(path)?]);
+    }
+    read_usd_inputs(path, prims)
+}
+
+#[cfg(feature = "usd")]
+fn read_usd_inputs(path: &Path, prims: &[String]) -> Result<Vec<(Input, Vec<Warning>)>> {
+    let read = subdiv::io::usd::UsdReadOptions {
+        prims: prims.to_vec(),
+        ..Default::default()
+    };
+    let stage = subdiv::io::usd::read_usd(path, &read)?;
+    let file = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let mut shared: Vec<Warning> = stage
+        .warnings
+        .iter()
+        .map(|w| (0, w.message.clone(), w.to_string()))
+        .collect();
+    shared.extend(stage.skipped.iter().map(|s| {
+        let text = format!("{} skipped: {}", s.prim, s.reason);
+        (0, text.clone(), text)
+    }));
+    let mut out = Vec::with_capacity(stage.meshes.len());
+    for (k, m) in stage.meshes.into_iter().enumerate() {
+        let description = format!("{} prim {}: {}", path.display(), m.path, describe(&m.mesh));
+        let warnings = if k == 0 {
+            std::mem::take(&mut shared)
+        } else {
+            Vec::new()
+        };
+        out.push((
+            Input::new(format!("{file}:{}", m.path), description, m.mesh, m.options),
+            warnings,
+        ));
+    }
+    Ok(out)
+}
+
+#[cfg(not(feature = "usd"))]
+fn read_usd_inputs(path: &Path, _prims: &[String]) -> Result<Vec<(Input, Vec<Warning>)>> {
+    Err(subdiv::Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            std::io::ErrorKind::Unsupported,
+            "this build reads no USD (rebuild with the default feature `usd`)",
+        ),
+    })
+}
+
 /// Reads an OBJ shape file as an input: its options are the file's tags over
 /// OpenSubdiv's shape-file defaults. Returns the input and the warnings of
 /// the reader and of the mesh validation. A malformed file is an
@@ -64,10 +123,15 @@ pub fn read_input(path: &Path) -> Result<(Input, Vec<Warning>)> {
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let m = &shape.mesh;
-    let description = format!(
-        "{}: {} vertices, {} faces{}{}{}",
-        path.display(),
+    let description = format!("{}: {}", path.display(), describe(&shape.mesh));
+    let options = shape.options();
+    Ok((Input::new(name, description, shape.mesh, options), warnings))
+}
+
+/// What a file's mesh holds: `N vertices, M faces, creases/corners, holes, UVs`.
+fn describe(m: &Mesh) -> String {
+    format!(
+        "{} vertices, {} faces{}{}{}{}",
         m.vertex_count(),
         m.face_count(),
         if m.creases.is_empty() && m.corners.is_empty() {
@@ -81,9 +145,8 @@ pub fn read_input(path: &Path) -> Result<(Input, Vec<Warning>)> {
         } else {
             ", UVs"
         },
-    );
-    let options = shape.options();
-    Ok((Input::new(name, description, shape.mesh, options), warnings))
+        if m.left_handed { ", left-handed" } else { "" },
+    )
 }
 
 /// A 4×4 grid of unit quads with a gentle wave in z (for nicer pictures).
