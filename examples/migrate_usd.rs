@@ -59,7 +59,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         r.last_fvar(0).map_or(0, |v| v.len() / 2)
     );
     let back = read_usd(&dir.path().join("refined.usda"), &UsdReadOptions::default())?;
-    assert!(back.meshes.is_empty(), "refined meshes are not subdivided again");
+    assert!(
+        back.meshes.is_empty(),
+        "refined meshes are not subdivided again"
+    );
     assert_eq!(back.skipped.len(), 1);
 
     #[cfg(feature = "osd")]
