@@ -349,3 +349,40 @@ fn malformed_usd_names_the_file_prim_and_attribute() {
     assert!(err.contains("faceVertexIndices"), "{err}");
     assert!(err.contains("99"), "{err}");
 }
+
+#[cfg(feature = "osd")]
+#[test]
+fn bench_takes_a_stages_prims_with_their_own_options() {
+    let dir = scratch("usd_bench");
+    let usd = write(
+        &dir,
+        "stage.usda",
+        &stage(&[
+            usd_mesh(
+                "Cube",
+                &shapes::cube(),
+                "        uniform token subdivisionScheme = \"bilinear\"\n",
+            ),
+            usd_mesh("Other", &shapes::cube(), ""),
+        ]),
+    );
+    let o = subdiv(&[
+        "bench",
+        usd.to_str().unwrap(),
+        "--prim",
+        "/World/Cube",
+        "--quick",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("stage.usda:/World/"))
+        .collect();
+    assert!(rows.len() > 10, "{text}");
+    assert!(
+        rows.iter()
+            .all(|r| r.contains("stage.usda:/World/Cube") && r.contains("bilinear")),
+        "{rows:?}"
+    );
+}

@@ -3,15 +3,21 @@
 use clap::Args;
 use std::path::PathBuf;
 #[cfg(feature = "osd")]
-use subdiv::{Error, Options, Scheme};
+use subdiv::Error;
 
 use crate::Failure;
 
 #[derive(Args)]
 pub(crate) struct BenchArgs {
-    /// OBJ files to benchmark (Catmull-Clark, levels 1-3); without them, the
-    /// generated tori and grid of the standard benchmark.
+    /// OBJ files or USD stages to benchmark (each with its own options: the
+    /// OBJ's tags, each USD prim's attributes; levels 1-3); without them, the
+    /// generated tori, grid and production-like mesh of the standard benchmark.
+    #[arg(value_name = "INPUT.obj|STAGE.usd")]
     pub(crate) inputs: Vec<PathBuf>,
+    /// USD inputs: the mesh prims to benchmark (repeatable; `*` within a
+    /// path segment, `**` across segments); default every mesh.
+    #[arg(long = "prim", value_name = "PATH")]
+    pub(crate) prims: Vec<String>,
     /// Smaller inputs and fewer repetitions.
     #[arg(long)]
     pub(crate) quick: bool,
@@ -41,13 +47,28 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     } else {
         let mut v = Vec::new();
         for path in &args.inputs {
-            let shape = subdiv::io::read_obj(path).map_err(Error::from)?;
-            v.push(subdiv::shapes::BenchShape {
-                name: path.display().to_string(),
-                mesh: shape.mesh,
-                options: Options::default().with_scheme(Scheme::Catmark),
-                max_level: 3,
-            });
+            let name = path.display().to_string();
+            let read = crate::report::read_inputs(path, &args.prims)
+                .map_err(|e| Failure::from(e).in_input(&name))?;
+            for (input, warnings) in read {
+                crate::args::print_warnings(
+                    &name,
+                    warnings
+                        .iter()
+                        .map(|(line, key, text)| (*line, key.as_str(), text.clone())),
+                );
+                v.push(subdiv::shapes::BenchShape {
+                    name: input.name,
+                    mesh: input.mesh,
+                    options: input.options,
+                    max_level: 3,
+                });
+            }
+        }
+        if v.is_empty() {
+            return Err(Failure::Message(
+                "no subdivision mesh to benchmark in the inputs".into(),
+            ));
         }
         v
     };

@@ -61,3 +61,5 @@ mod tessellated;
 mod tests;
 
 pub(crate) use command::{ReportArgs, report};
+#[cfg(feature = "osd")]
+pub(crate) use inputs::read_inputs;
