@@ -15,6 +15,9 @@ GEOMDL := geomdl==5.4.0
 # The Python module (issue #27): built with maturin into a wheel, installed
 # into .venv, tested with pytest; the wheel is also checked in a fresh venv.
 PY_TOOLS := maturin==1.16.0 numpy==2.4.6 pytest==9.2.0
+# Pixar's USD library (`pxr`), for python/tests/test_usd_pixar.py: stages
+# written and read by Pixar's own code.
+USD_CORE := usd-core==26.11
 WHEELS := python/target/wheels
 
 .PHONY: run test deps lint fmt check-no-osd check-nurbs check-python clean
@@ -62,10 +65,12 @@ check-nurbs: deps $(VENV)/bin/pip
 # .venv and its pytest suite run against the `subdiv` CLI (bit for bit); then
 # the same wheel in a fresh temporary venv with numpy only, running a
 # ten-line script (python/scripts/wheel_smoke.py). maturin, numpy and pytest
-# are installed into .venv when missing.
+# are installed into .venv when missing, and so is usd-core.
 check-python: deps $(VENV)/bin/pip
 	@$(VENV)/bin/python -c 'import maturin, numpy, pytest' 2>/dev/null || \
 	  $(VENV)/bin/pip install --quiet --disable-pip-version-check $(PY_TOOLS)
+	@$(VENV)/bin/python -c 'import pxr' 2>/dev/null || \
+	  $(VENV)/bin/pip install --quiet --disable-pip-version-check '$(USD_CORE)'
 	$(CARGO) build --all-features
 	rm -rf $(WHEELS)
 	cd python && ../$(VENV)/bin/maturin build --quiet --auditwheel skip --interpreter ../$(VENV)/bin/python
