@@ -4,7 +4,7 @@
 # usage: scripts/fuzz.sh TARGET SECONDS [LIBFUZZER_ARGS...]
 #        scripts/fuzz.sh --list
 #   TARGET    obj_parser | mesh_refine | mesh_differential | adaptive_differential |
-#             bfr_differential | limit_nonmanifold | curve
+#             bfr_differential | limit_nonmanifold | curve | usd_reader
 #   SECONDS   wall-clock budget (libFuzzer's -max_total_time)
 #
 # What works here (checked on Rust 1.95 stable, cargo-fuzz 0.13.2):
@@ -43,7 +43,7 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")/.." && pwd)
-targets=(obj_parser mesh_refine mesh_differential adaptive_differential bfr_differential limit_nonmanifold curve)
+targets=(obj_parser mesh_refine mesh_differential adaptive_differential bfr_differential limit_nonmanifold curve usd_reader)
 if [[ ${1:-} == --list ]]; then
   printf '%s\n' "${targets[@]}"
   exit 0

@@ -2000,3 +2000,64 @@ fn malformed_output_is_refused_before_anything_is_written() {
     assert!(text.contains("(0, 1.0000000000000001e+300, 0)"), "{text}");
     assert!(openusd::usda::parse(&text).is_ok());
 }
+
+/// What the `openusd` crate reads but Pixar's USD does not: a layer with a
+/// prim name that is not an identifier is refused (with a `}`, the crate's
+/// composition recurses until the stack overflows); a layer that is not a
+/// regular file (`@/dev/zero@`) is not read.
+#[test]
+fn names_usd_refuses_and_files_that_are_not_layers() {
+    let dir = scratch("not_usd");
+    let (pts, counts, indices) = grid_text();
+    let mesh = |name: &str| {
+        format!(
+            "def Mesh \"{name}\"\n{{\n    point3f[] points = {pts}\n    \
+             int[] faceVertexCounts = {counts}\n    int[] faceVertexIndices = {indices}\n}}\n"
+        )
+    };
+    // In text, refused as the layer is opened (a `}` in a prim name would
+    // send the crate's composition into unbounded recursion).
+    for name in ["Bo#dy", "Pa}", "a.b"] {
+        let text = format!("#usda 1.0\n{}", mesh(name));
+        let file = support::write(&dir, "bad_name.usda", &text);
+        let e = usd_error(&file, &UsdReadOptions::default());
+        assert!(matches!(e.kind, UsdErrorKind::Open(_)), "{e}");
+        assert!(e.to_string().contains("is not an identifier"), "{e}");
+    }
+    // In a binary layer too.
+    let a = Author::new();
+    author_grid(&a, "/Bo_dy");
+    let crate_file = a.export(&dir.join("bad_name.usdc"));
+    let mut bytes = std::fs::read(&crate_file).unwrap();
+    let at = bytes.windows(5).position(|w| w == b"Bo_dy").unwrap();
+    bytes[at + 2] = b'}';
+    std::fs::write(&crate_file, bytes).unwrap();
+    let e = usd_error(&crate_file, &UsdReadOptions::default());
+    let message = e.to_string();
+    assert!(
+        message.contains("\"Bo}dy\"") && message.contains("not an identifier"),
+        "{e}"
+    );
+    for arc in ["references = @/dev/zero@", "payload = @/dev/zero@"] {
+        let text = format!(
+            "#usda 1.0\ndef Xform \"World\" (\n    {arc}\n)\n{{\n}}\n{}",
+            mesh("Body")
+        );
+        let file = support::write(&dir, "zero.usda", &text);
+        let stage = read(&file);
+        assert_eq!(stage.meshes.len(), 1, "{arc}");
+        assert!(!stage.warnings.is_empty(), "{arc}");
+    }
+    let file = support::write(
+        &dir,
+        "zero_sublayer.usda",
+        &format!(
+            "#usda 1.0\n(\n    subLayers = [@/dev/zero@]\n)\n{}",
+            mesh("Body")
+        ),
+    );
+    match read_usd(&file, &UsdReadOptions::default()) {
+        Ok(stage) => assert!(!stage.warnings.is_empty()),
+        Err(e) => assert!(e.to_string().contains("/dev/zero"), "{e}"),
+    }
+}

@@ -1,11 +1,10 @@
 //! Sdf's legacy type names in text layers (`PointFloat[] points`), which
 //! Pixar's parser still accepts and the `openusd` crate's does not: every
-//! text layer the stage opens goes through [`LegacyTypesResolver`], which
-//! rewrites them to their current names before the crate parses the text.
+//! text layer the stage opens is rewritten with their current names
+//! ([`rewrite`]) by [`LayerResolver`](super::resolver::LayerResolver)
+//! before the crate parses it.
 
-use openusd::ar::{self, Asset, DefaultResolver, ResolvedPath, Resolver};
-use std::io;
-use std::time::SystemTime;
+use super::text::{is_ident, is_ident_start, skip_asset, skip_line, skip_string};
 
 /// Sdf's legacy value types (`_AddLegacyTypesToRegistry` in
 /// `pxr/usd/sdf/schema.cpp`) and the current types with the same value type
@@ -43,14 +42,6 @@ const LEGACY_TYPES: &[(&str, &str)] = &[
     ("EdgeIndex", "int"),
     ("FaceIndex", "int"),
 ];
-
-fn is_ident_start(b: u8) -> bool {
-    b.is_ascii_alphabetic() || b == b'_'
-}
-
-fn is_ident(b: u8) -> bool {
-    b.is_ascii_alphanumeric() || b == b'_'
-}
 
 /// `text` with every legacy type name in type position replaced by its
 /// current name, or `None` when it has none.
@@ -123,112 +114,6 @@ fn type_position(bytes: &[u8], mut end: usize) -> bool {
         .take_while(|&&c| c == b' ' || c == b'\t')
         .count();
     blanks > 0 && bytes.get(end + blanks).is_some_and(|&c| is_ident_start(c))
-}
-
-/// The end of the line starting at `i` (the newline's position).
-fn skip_line(bytes: &[u8], i: usize) -> usize {
-    bytes
-        .get(i..)
-        .and_then(|rest| rest.iter().position(|&c| c == b'\n'))
-        .map_or(bytes.len(), |p| i + p)
-}
-
-/// Past the string starting at `i` (single, double or triple quotes, with
-/// backslash escapes).
-fn skip_string(bytes: &[u8], i: usize) -> usize {
-    let quote = bytes[i];
-    let triple = [quote; 3];
-    if bytes.get(i..i + 3) == Some(&triple[..]) {
-        let mut j = i + 3;
-        while j < bytes.len() {
-            if bytes[j] == b'\\' {
-                j += 2;
-            } else if bytes.get(j..j + 3) == Some(&triple[..]) {
-                return j + 3;
-            } else {
-                j += 1;
-            }
-        }
-        return bytes.len();
-    }
-    let mut j = i + 1;
-    while let Some(&c) = bytes.get(j) {
-        match c {
-            b'\\' => j += 2,
-            b'\n' => return j,
-            _ if c == quote => return j + 1,
-            _ => j += 1,
-        }
-    }
-    bytes.len()
-}
-
-/// Past the asset path starting at `i` (`@…@` or `@@@…@@@`).
-fn skip_asset(bytes: &[u8], i: usize) -> usize {
-    let (close, start): (&[u8], usize) = if bytes.get(i..i + 3) == Some(b"@@@") {
-        (b"@@@", i + 3)
-    } else {
-        (b"@", i + 1)
-    };
-    bytes
-        .get(start..)
-        .and_then(|rest| rest.windows(close.len()).position(|w| w == close))
-        .map_or(bytes.len(), |p| start + p + close.len())
-}
-
-/// The default resolver, with text layers' legacy type names rewritten
-/// ([`rewrite`]) as they are opened.
-pub(super) struct LegacyTypesResolver(DefaultResolver);
-
-impl LegacyTypesResolver {
-    pub(super) fn new() -> Self {
-        LegacyTypesResolver(DefaultResolver::new())
-    }
-}
-
-impl Resolver for LegacyTypesResolver {
-    fn create_identifier(&self, asset_path: &str, anchor: Option<&ResolvedPath>) -> String {
-        self.0.create_identifier(asset_path, anchor)
-    }
-
-    fn resolve(&self, asset_path: &str) -> Option<ResolvedPath> {
-        self.0.resolve(asset_path)
-    }
-
-    fn resolve_for_new_asset(&self, asset_path: &str) -> Option<ResolvedPath> {
-        self.0.resolve_for_new_asset(asset_path)
-    }
-
-    fn open_asset(&self, resolved_path: &ResolvedPath) -> io::Result<Box<dyn Asset>> {
-        let mut asset = self.0.open_asset(resolved_path)?;
-        let bytes = asset.read_all()?;
-        // Only text layers: they start with their `#usda` header.
-        let rewritten = match std::str::from_utf8(&bytes) {
-            Ok(text) if text.starts_with("#usda") => rewrite(text).map(String::into_bytes),
-            _ => None,
-        };
-        Ok(Box::new(io::Cursor::new(rewritten.unwrap_or(bytes))))
-    }
-
-    fn get_extension<'a>(&self, asset_path: &'a str) -> &'a str {
-        self.0.get_extension(asset_path)
-    }
-
-    fn get_asset_info(&self, asset_path: &str, resolved_path: &ResolvedPath) -> ar::AssetInfo {
-        self.0.get_asset_info(asset_path, resolved_path)
-    }
-
-    fn get_modification_timestamp(
-        &self,
-        asset_path: &str,
-        resolved_path: &ResolvedPath,
-    ) -> Option<SystemTime> {
-        self.0.get_modification_timestamp(asset_path, resolved_path)
-    }
-
-    fn identity(&self) -> String {
-        self.0.identity()
-    }
 }
 
 #[cfg(test)]

@@ -57,6 +57,8 @@ mod legacy;
 mod mesh;
 mod primvars;
 mod read;
+mod resolver;
+mod text;
 mod values;
 mod write;
 
@@ -226,4 +228,20 @@ impl fmt::Display for UsdWarning {
         }
         f.write_str(&self.message)
     }
+}
+
+/// Whether `name` is a USD identifier: a letter or `_`, then letters,
+/// digits and `_` (Unicode letters and digits included, as USD 24.03 and
+/// later accept them).
+pub(super) fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c == '_' || c.is_alphabetic())
+        && chars.all(|c| c == '_' || c.is_alphanumeric())
+}
+
+/// Whether `name` is a primvar name (without `primvars:`): identifiers
+/// joined by `:`, not ending in `:indices` (the name of a primvar's
+/// indices).
+pub(super) fn is_primvar_name(name: &str) -> bool {
+    !name.ends_with(":indices") && name.split(':').all(is_identifier)
 }

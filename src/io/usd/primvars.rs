@@ -5,7 +5,7 @@
 //! index those elements.
 
 use super::values::{Context, library, numeric, type_name};
-use super::{UsdInterpolation, UsdPrimvar};
+use super::{UsdInterpolation, UsdPrimvar, is_primvar_name};
 use crate::error::{Error, UsdErrorKind};
 use crate::mesh::FVarChannel;
 use openusd::sdf::Value;
@@ -45,6 +45,10 @@ pub(super) fn read(
     let mut fvar: Vec<(String, FVarChannel)> = Vec::new();
     let mut primvars = Vec::new();
     for attribute in names {
+        if !is_primvar_name(&attribute["primvars:".len()..]) {
+            ctx.warn(&attribute, "is not a primvar name: ignored".to_string());
+            continue;
+        }
         let Some(read) = read_one(ctx, &attribute, points, corners)? else {
             continue;
         };

@@ -2,8 +2,8 @@
 //! each one ([`super::mesh`]).
 
 use super::glob::Pattern;
-use super::legacy::LegacyTypesResolver;
 use super::mesh::{Outcome, read_mesh};
+use super::resolver::LayerResolver;
 use super::values::{Context, library};
 use super::{UsdReadOptions, UsdSkipped, UsdStage, UsdWarning};
 use crate::error::{Error, UsdError, UsdErrorKind};
@@ -28,7 +28,8 @@ use std::path::Path;
 ///
 /// [`Error::Usd`] naming the file, and where it applies the prim and the
 /// attribute: the file cannot be opened, parsed or composed
-/// ([`UsdErrorKind::Open`]), a prim pattern is not absolute
+/// ([`UsdErrorKind::Open`]; a layer with a prim whose name is not an
+/// identifier, which Pixar's USD refuses, is such a file), a prim pattern is not absolute
 /// ([`UsdErrorKind::Pattern`]), or a selected mesh is malformed — an
 /// index out of range, counts that do not add up, sharpnesses that do not
 /// match their creases or corners, an unknown token, a primvar with the
@@ -67,7 +68,7 @@ pub fn read_usd(path: &Path, options: &UsdReadOptions) -> Result<UsdStage, Error
         return Err(file_error(UsdErrorKind::Open(e.to_string())));
     }
     let stage = usd::Stage::builder()
-        .resolver(LegacyTypesResolver::new())
+        .resolver(LayerResolver::new())
         .interpolation_type(usd::InterpolationType::Held)
         .open(path_text)
         .map_err(open_error)?;

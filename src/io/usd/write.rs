@@ -2,7 +2,7 @@
 //! `subdivisionScheme = "none"`, their holes and their primvars, every
 //! number written so that it reads back exactly.
 
-use super::UsdInterpolation;
+use super::{UsdInterpolation, is_identifier, is_primvar_name};
 use crate::error::Error;
 use crate::io::number::format_g;
 use crate::output::Refinement;
@@ -178,13 +178,6 @@ fn invalid(message: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidInput, message)
 }
 
-/// Whether `name` is a USD identifier.
-fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars.next().is_some_and(|c| c == '_' || c.is_alphabetic())
-        && chars.all(|c| c == '_' || c.is_alphanumeric())
-}
-
 /// Checks everything [`write_usda_to`] refuses in one mesh.
 fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
     const INT_MAX: usize = i32::MAX as usize;
@@ -239,8 +232,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
     )?;
     let mut names: Vec<&str> = Vec::new();
     let name = |names: &[&str], name: &str| -> Result<(), String> {
-        let valid = !name.ends_with(":indices") && name.split(':').all(is_identifier);
-        if !valid {
+        if !is_primvar_name(name) {
             return Err(format!("{name:?} is not a primvar name"));
         }
         if names.contains(&name) {

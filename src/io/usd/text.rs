@@ -1,0 +1,164 @@
+//! Scanning `.usda` text without parsing it: strings, asset paths and
+//! comments skipped ([`skip_string`], [`skip_asset`], [`skip_line`]), for
+//! the legacy type rewrite ([`super::legacy`]) and the prim name check
+//! ([`check_prim_names`]).
+
+/// Whether `b` can start an identifier.
+pub(super) fn is_ident_start(b: u8) -> bool {
+    b.is_ascii_alphabetic() || b == b'_'
+}
+
+/// Whether `b` can continue an identifier.
+pub(super) fn is_ident(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+/// The end of the line starting at `i` (the newline's position).
+pub(super) fn skip_line(bytes: &[u8], i: usize) -> usize {
+    bytes
+        .get(i..)
+        .and_then(|rest| rest.iter().position(|&c| c == b'\n'))
+        .map_or(bytes.len(), |p| i + p)
+}
+
+/// A quoted string in the text.
+pub(super) struct Quoted {
+    /// Where its content starts and ends.
+    pub body: std::ops::Range<usize>,
+    /// Past its closing quotes (or the end of the line or text).
+    pub end: usize,
+    /// Whether its closing quotes are there.
+    pub closed: bool,
+}
+
+/// The string starting at `i` (single, double or triple quotes, with
+/// backslash escapes; a single-quoted one ends at the end of its line).
+pub(super) fn quoted(bytes: &[u8], i: usize) -> Quoted {
+    let quote = bytes.get(i).copied().unwrap_or(b'"');
+    let triple = [quote; 3];
+    let open = if bytes.get(i..i + 3) == Some(&triple[..]) {
+        3
+    } else {
+        1
+    };
+    let start = i + open;
+    let mut j = start;
+    while let Some(&c) = bytes.get(j) {
+        let closes = if open == 3 {
+            bytes.get(j..j + 3) == Some(&triple[..])
+        } else {
+            c == quote
+        };
+        if closes {
+            return Quoted {
+                body: start..j,
+                end: j + open,
+                closed: true,
+            };
+        }
+        match c {
+            b'\\' => j += 2,
+            b'\n' if open == 1 => break,
+            _ => j += 1,
+        }
+    }
+    let end = j.min(bytes.len());
+    Quoted {
+        body: start.min(end)..end,
+        end,
+        closed: false,
+    }
+}
+
+/// Past the string starting at `i` ([`quoted`]).
+pub(super) fn skip_string(bytes: &[u8], i: usize) -> usize {
+    quoted(bytes, i).end
+}
+
+/// Past the asset path starting at `i` (`@…@` or `@@@…@@@`).
+pub(super) fn skip_asset(bytes: &[u8], i: usize) -> usize {
+    let (close, start): (&[u8], usize) = if bytes.get(i..i + 3) == Some(b"@@@") {
+        (b"@@@", i + 3)
+    } else {
+        (b"@", i + 1)
+    };
+    bytes
+        .get(start..)
+        .and_then(|rest| rest.windows(close.len()).position(|w| w == close))
+        .map_or(bytes.len(), |p| start + p + close.len())
+}
+
+/// Refuses text whose prims have names Pixar's parser refuses: the quoted
+/// name after `def`, `over` or `class` (and an optional type name) must be
+/// an identifier ([`super::is_identifier`]). The `openusd` crate reads
+/// some such names, and a `}` in one sends its composition into unbounded
+/// recursion (a stack overflow, which aborts the process).
+pub(super) fn check_prim_names(text: &str) -> Result<(), String> {
+    let bytes = text.as_bytes();
+    // 0: nothing; 1: after `def`/`over`/`class`; 2: after its type name.
+    let mut state = 0u8;
+    let mut i = 0;
+    while let Some(&b) = bytes.get(i) {
+        match b {
+            b'#' => i = skip_line(bytes, i),
+            b'"' | b'\'' => {
+                let string = quoted(bytes, i);
+                if state != 0 {
+                    let body = text.get(string.body.clone()).unwrap_or("");
+                    if !string.closed || !super::is_identifier(body) {
+                        return Err(format!("the prim name {body:?} is not an identifier"));
+                    }
+                    state = 0;
+                }
+                i = string.end;
+            }
+            b'@' => {
+                i = skip_asset(bytes, i);
+                state = 0;
+            }
+            _ if is_ident_start(b) => {
+                let start = i;
+                while bytes
+                    .get(i)
+                    .is_some_and(|&c| is_ident(c) || matches!(c, b':' | b'.'))
+                {
+                    i += 1;
+                }
+                state = match (state, &text[start..i]) {
+                    (_, "def" | "over" | "class") => 1,
+                    (1, _) => 2,
+                    _ => 0,
+                };
+            }
+            b' ' | b'\t' | b'\r' | b'\n' => i += 1,
+            _ => {
+                i += 1;
+                state = 0;
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_prim_names;
+
+    #[test]
+    fn prim_names_must_be_identifiers() {
+        let ok = "#usda 1.0\ndef Xform \"World\" (doc = \"a}\")\n{\n    over \"O\" {}\n    \
+                  class \"_C\" {}\n    def Mesh \"M_1\" { token t = \"def\" }\n    \
+                  string def = \"}\"\n    def '''Tri''' {}\n}\n# def \"}\"\n";
+        assert_eq!(check_prim_names(ok), Ok(()));
+        for bad in [
+            "def \"Pa}\" {}",
+            "def Xform \"a.b\" {}",
+            "over Mesh \"\" {}",
+            "class '''x y''' {}",
+            "def \"unterminated",
+            "def '''Open''",
+        ] {
+            assert!(check_prim_names(bad).is_err(), "{bad}");
+        }
+    }
+}
