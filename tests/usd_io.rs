@@ -1976,7 +1976,7 @@ fn malformed_output_is_refused_before_anything_is_written() {
                 positions: &[DVec3::ZERO, DVec3::X, DVec3::NAN],
                 ..mesh("/A")
             }],
-            "not a finite",
+            "points: value 6 is NaN, not a finite number",
         ),
     ];
     for (meshes, expected) in cases {
@@ -1999,6 +1999,30 @@ fn malformed_output_is_refused_before_anything_is_written() {
     let text = String::from_utf8(text).unwrap();
     assert!(text.contains("(0, 1.0000000000000001e+300, 0)"), "{text}");
     assert!(openusd::usda::parse(&text).is_ok());
+    // Infinite and NaN primvar values are written as USD spells them.
+    let odd = [f64::INFINITY, f64::NEG_INFINITY, -f64::NAN];
+    let with_odd = UsdMeshOut {
+        primvars: vec![UsdPrimvarOut {
+            name: "odd".into(),
+            interpolation: UsdInterpolation::Varying,
+            width: 1,
+            values: &odd,
+        }],
+        ..mesh("/A")
+    };
+    for precision in [Precision::F64, Precision::F32] {
+        let mut text = Vec::new();
+        write_usda_to(&mut text, std::slice::from_ref(&with_odd), precision).unwrap();
+        let file = support::write(&dir, "odd.usda", &String::from_utf8(text).unwrap());
+        let stage = usd::Stage::open(file.to_str().unwrap()).unwrap();
+        let values: Vec<f64> = match get(&stage, "/A.primvars:odd") {
+            Value::DoubleVec(v) => v,
+            Value::FloatVec(v) => v.into_iter().map(f64::from).collect(),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(values[..2], [f64::INFINITY, f64::NEG_INFINITY]);
+        assert!(values[2].is_nan());
+    }
 }
 
 /// What the `openusd` crate reads but Pixar's USD does not: a layer with a

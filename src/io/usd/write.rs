@@ -137,11 +137,13 @@ pub fn write_usda(
 /// `float3[]`…), `UsdGeomMesh`'s declared types, exact for every `f32`.
 /// Face-varying channel 0 of width 2 is typed `texCoord2`; values of widths
 /// 1 to 4 are scalars or tuples, wider ones flat with `elementSize`.
+/// Infinite and NaN primvar values are written `inf`, `-inf` and `nan`.
 ///
 /// Malformed input — a path that is not an absolute path of identifiers or
 /// that is given twice, offsets or indices out of range, values that do not
 /// fill their width, a count beyond USD's 32-bit `int`, a name that is not a
-/// primvar name or is used twice, a non-finite number — is an
+/// primvar name or is used twice, a point that is not finite, a finite value
+/// beyond `f32`'s range written in `f32` — is an
 /// [`io::ErrorKind::InvalidInput`] error naming the prim, before anything
 /// is written.
 pub fn write_usda_to<W: Write>(
@@ -214,21 +216,27 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
     if let Some(&h) = mesh.holes.iter().find(|h| **h as usize >= faces) {
         return Err(format!("hole {h} is not one of the {faces} faces"));
     }
-    let finite = |what: &str, values: &mut dyn Iterator<Item = f64>| -> Result<(), String> {
-        let ok = |x: f64| match precision {
-            Precision::F64 => x.is_finite(),
-            Precision::F32 => (x as f32).is_finite(),
+    // Points must be finite (a mesh with others is refused when read);
+    // primvar values may be infinite or NaN (`inf`, `-inf`, `nan`), but a
+    // finite value must stay finite in the precision written.
+    let representable = |what: &str, values: &mut dyn Iterator<Item = f64>, all_finite: bool| {
+        let ok = |x: f64| match (x.is_finite(), precision) {
+            (false, _) => !all_finite,
+            (true, Precision::F64) => true,
+            (true, Precision::F32) => (x as f32).is_finite(),
         };
         match values.enumerate().find(|(_, x)| !ok(*x)) {
-            Some((i, x)) => Err(format!(
-                "{what}: value {i} is {x:e}, not a finite {precision} number"
+            Some((i, x)) if x.is_finite() => Err(format!(
+                "{what}: value {i} is {x:e}, beyond the range of {precision} (write in f64)"
             )),
+            Some((i, x)) => Err(format!("{what}: value {i} is {x}, not a finite number")),
             None => Ok(()),
         }
     };
-    finite(
+    representable(
         "points",
         &mut mesh.positions.iter().flat_map(|p| p.to_array()),
+        true,
     )?;
     let mut names: Vec<&str> = Vec::new();
     let name = |names: &[&str], name: &str| -> Result<(), String> {
@@ -271,7 +279,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
         if count > INT_MAX {
             return Err(format!("{what}: {count} values, beyond USD's 32-bit int"));
         }
-        finite(&what, &mut channel.values.iter().copied())?;
+        representable(&what, &mut channel.values.iter().copied(), false)?;
     }
     for primvar in &mesh.primvars {
         name(&names, &primvar.name)?;
@@ -295,7 +303,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
                 primvar.width
             ));
         }
-        finite(&what, &mut primvar.values.iter().copied())?;
+        representable(&what, &mut primvar.values.iter().copied(), false)?;
     }
     Ok(())
 }
@@ -395,6 +403,12 @@ impl<W: Write> Writer<W> {
     }
 
     fn number(&mut self, x: f64) {
+        if x.is_nan() {
+            // USD's spelling; `-nan` (C's, for a NaN with its sign set) is
+            // not one the parser takes.
+            self.buf.push_str("nan");
+            return;
+        }
         match self.precision {
             Precision::F64 => format_g(x, 17, &mut self.buf),
             Precision::F32 => format_g(f64::from(x as f32), 9, &mut self.buf),
