@@ -775,7 +775,7 @@ fn grid_text() -> (String, String, String) {
 
 /// Sdf's legacy type names, which Pixar's parser accepts and the `openusd`
 /// crate's does not, read as their current names — in a plain layer, in a
-/// layer it references and in a `.usdz` package.
+/// layer it references and in a `.usdz` package — and in a binary layer.
 #[test]
 fn legacy_type_names_are_read() {
     let dir = scratch("legacy");
@@ -818,10 +818,36 @@ fn legacy_type_names_are_read() {
         },
     ];
     let rgb: Vec<f64> = (0..N * N).flat_map(|v| [v as f64, 0.5, 1.0]).collect();
+    // In a binary layer the type names are only names: the values are typed.
+    let binary = Author::new();
+    let (counts, indices) = grid_faces();
+    let colors = Value::Vec3fVec((0..N * N).map(|v| gf::vec3f(v as f32, 0.5, 1.0)).collect());
+    binary
+        .def("/Old", "Mesh")
+        .set("/Old.points", "PointFloat[]", points(&grid_points()))
+        .set("/Old.faceVertexCounts", "int[]", ints(&counts))
+        .set("/Old.faceVertexIndices", "PointIndex[]", ints(&indices))
+        .set("/Old.cornerIndices", "PointIndex[]", ints(&[0, 3]))
+        .set(
+            "/Old.cornerSharpnesses",
+            "float[]",
+            floats(&[f32::INFINITY, 1e30]),
+        )
+        .primvar(
+            "/Old",
+            "displayColor",
+            "ColorFloat[]",
+            colors.clone(),
+            "vertex",
+            (None, None),
+        )
+        .primvar("/Old", "offset", "Vec3f[]", colors, "varying", (None, None));
+    let crate_file = binary.export(&dir.join("old.usdc"));
     for (path, prim) in [
         (&file, "/Old"),
         (&referencing, "/World/Asset"),
         (&usdz, "/Old"),
+        (&crate_file, "/Old"),
     ] {
         let stage = read(path);
         let m = &stage.meshes[0];

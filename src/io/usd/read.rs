@@ -28,9 +28,10 @@ use std::path::Path;
 ///
 /// [`Error::Usd`] naming the file, and where it applies the prim and the
 /// attribute: the file cannot be opened, parsed or composed
-/// ([`UsdErrorKind::Open`]; a layer with a prim whose name is not an
-/// identifier, which Pixar's USD refuses, is such a file), a prim pattern is not absolute
-/// ([`UsdErrorKind::Pattern`]), or a selected mesh is malformed — an
+/// ([`UsdErrorKind::Open`]; so is a layer that is not a regular file, or
+/// that has a prim whose name is not an identifier, which Pixar's USD
+/// refuses), a prim pattern is not absolute ([`UsdErrorKind::Pattern`]),
+/// or a selected mesh is malformed — an
 /// index out of range, counts that do not add up, sharpnesses that do not
 /// match their creases or corners, an unknown token, a primvar with the
 /// wrong number of values for its interpolation, or a mesh that
