@@ -593,11 +593,17 @@ pub enum UsdErrorKind {
         /// Why it is refused.
         reason: &'static str,
     },
-    /// An attribute the mesh needs is not authored (or blocked).
-    #[error("is not authored, but the mesh has {faces} faces")]
+    /// An attribute the mesh needs has no value (not authored, blocked, or
+    /// only time samples read at the default time).
+    #[error(
+        "has no value{}, but the mesh has {faces} faces",
+        if *time_samples { " at the default time (it has time samples: read at a time)" } else { "" }
+    )]
     Missing {
         /// The mesh's number of faces.
         faces: usize,
+        /// Whether it has time samples (and was read at the default time).
+        time_samples: bool,
     },
     /// A value of another type than the attribute can hold.
     #[error("holds a value of type {found}, expected {expected}")]

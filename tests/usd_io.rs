@@ -997,11 +997,13 @@ def Xform "World"
     assert!(stage.warnings.is_empty(), "{:?}", stage.warnings);
 }
 
-/// Values at a time: the sample there, or the last one before (the first
-/// one before the first); without a time the default value, or the
-/// earliest sample when only samples are authored (with a warning).
+/// Values at a time as USD resolves them: the sample there, the first or
+/// last one outside their range, and between two samples floating-point
+/// arrays interpolated as `GfLerp` does (a `float3` term by term in
+/// `float`, a `float` in `double` rounded once), integers held; without a
+/// time the default value, and an attribute with samples only has none.
 #[test]
-fn time_samples_are_held() {
+fn time_samples_as_usd_resolves_them() {
     let dir = scratch("time");
     let a = Author::new();
     author_grid(&a, "/M");
@@ -1015,6 +1017,7 @@ fn time_samples_are_held() {
     a.sample("/M.points", "point3f[]", 1.0, lifted(1.0))
         .sample("/M.points", "point3f[]", 3.0, lifted(3.0))
         .sample("/M.cornerIndices", "int[]", 2.0, ints(&[7]))
+        .sample("/M.cornerIndices", "int[]", 4.0, ints(&[8]))
         .sample("/M.cornerSharpnesses", "float[]", 2.0, floats(&[4.0]))
         .sample("/M.cornerSharpnesses", "float[]", 4.0, floats(&[5.0]));
     let file = a.export(&dir.join("animated.usda"));
@@ -1028,19 +1031,18 @@ fn time_samples_are_held() {
             .map(|c| (c.vertex, c.sharpness))
             .collect()
     };
-    let at = |time: Option<f64>| {
+    let at = |file: &Path, time: Option<f64>| {
         read_usd(
-            &file,
+            file,
             &UsdReadOptions {
                 time,
                 ..UsdReadOptions::default()
             },
         )
-        .unwrap()
     };
-    let stage = at(None);
+    let stage = at(&file, None).unwrap();
     assert_eq!(z(&stage), f64::from(z0));
-    assert_eq!(corners(&stage), [(7, 4.0)]);
+    assert_eq!(corners(&stage), []);
     let attributes: Vec<&str> = stage
         .warnings
         .iter()
@@ -1048,24 +1050,60 @@ fn time_samples_are_held() {
         .collect();
     assert_eq!(attributes, ["cornerIndices", "cornerSharpnesses"]);
     assert!(
-        stage.warnings[1]
-            .message
-            .contains("earliest sample, time 2"),
+        stage.warnings[1].message.contains("no default value"),
         "{}",
         stage.warnings[1]
     );
-    for (time, dz, sharpness) in [
-        (0.0, 1.0, 4.0),
-        (1.0, 1.0, 4.0),
-        (2.5, 1.0, 4.0),
-        (3.0, 3.0, 4.0),
-        (9.0, 3.0, 5.0),
+    // GfLerp on a GfVec3f: each term rounded to float, then added in float.
+    let vec3f = |a: f32, b: f32, alpha: f64| {
+        f64::from((f64::from(a) * (1.0 - alpha)) as f32 + (f64::from(b) * alpha) as f32)
+    };
+    let between = vec3f(z0 + 1.0, z0 + 3.0, 0.75);
+    for (time, z_expected, corner) in [
+        (0.0, f64::from(z0 + 1.0), (7, 4.0)),
+        (1.0, f64::from(z0 + 1.0), (7, 4.0)),
+        (2.5, between, (7, 4.25)),
+        (3.0, f64::from(z0 + 3.0), (7, 4.5)),
+        (3.1, f64::from(z0 + 3.0), (7, 4.55)),
+        (4.0, f64::from(z0 + 3.0), (8, 5.0)),
+        (9.0, f64::from(z0 + 3.0), (8, 5.0)),
     ] {
-        let stage = at(Some(time));
-        assert_eq!(z(&stage), f64::from(z0 + dz), "time {time}");
-        assert_eq!(corners(&stage), [(7, sharpness)], "time {time}");
+        let stage = at(&file, Some(time)).unwrap();
+        assert_eq!(z(&stage), z_expected, "time {time}");
+        assert_eq!(corners(&stage), [corner], "time {time}");
         assert!(stage.warnings.is_empty());
     }
+    // Points with samples only: none at the default time.
+    let a = Author::new();
+    author_grid(&a, "/M");
+    let b = Author::new();
+    let (counts, indices) = grid_faces();
+    b.def("/M", "Mesh")
+        .set("/M.faceVertexCounts", "int[]", ints(&counts))
+        .set("/M.faceVertexIndices", "int[]", ints(&indices))
+        .sample("/M.points", "point3f[]", 1.0, lifted(1.0));
+    let file = b.export(&dir.join("sampled_points.usda"));
+    let e = usd_error(&file, &UsdReadOptions::default());
+    assert!(
+        matches!(
+            e.kind,
+            UsdErrorKind::Missing {
+                faces: 9,
+                time_samples: true
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("read at a time"), "{e}");
+    assert_eq!(z(&at(&file, Some(5.0)).unwrap()), f64::from(z0 + 1.0));
+    let e = usd_error(
+        &file,
+        &UsdReadOptions {
+            time: Some(f64::NAN),
+            ..UsdReadOptions::default()
+        },
+    );
+    assert!(matches!(e.kind, UsdErrorKind::Open(_)), "{e}");
 }
 
 // ---------------------------------------------------------------------------
@@ -1508,7 +1546,16 @@ fn malformed_attributes_give_typed_errors_naming_prim_and_attribute() {
         &UsdReadOptions::default(),
     );
     assert_eq!(e.attribute, "points");
-    assert!(matches!(e.kind, K::Missing { faces: 9 }), "{e}");
+    assert!(
+        matches!(
+            e.kind,
+            K::Missing {
+                faces: 9,
+                time_samples: false
+            }
+        ),
+        "{e}"
+    );
 }
 
 #[test]

@@ -46,9 +46,13 @@ pub(super) fn read_mesh(ctx: &mut Context<'_>) -> Result<Outcome, Error> {
     if face_count == 0 {
         return Ok(Outcome::Skipped("the mesh has no faces".to_string()));
     }
-    let positions = ctx
-        .points("points")?
-        .ok_or_else(|| ctx.error("points", UsdErrorKind::Missing { faces: face_count }))?;
+    let Some(positions) = ctx.points("points")? else {
+        let kind = UsdErrorKind::Missing {
+            faces: face_count,
+            time_samples: ctx.time.is_none() && ctx.has_samples("points")?,
+        };
+        return Err(ctx.error("points", kind));
+    };
     let face_vertices = indices
         .indices(positions.len())
         .map_err(|(position, index)| {

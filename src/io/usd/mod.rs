@@ -59,6 +59,7 @@ mod primvars;
 mod read;
 mod resolver;
 mod text;
+mod time;
 mod values;
 mod write;
 
@@ -72,14 +73,14 @@ use std::fmt;
 /// What [`read_usd`] reads, and how.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct UsdReadOptions {
-    /// The time code the attributes are read at. `None` reads each
-    /// attribute's default value; an attribute that has time samples but no
-    /// default value is then read at its earliest sample, with a warning.
-    /// `Some(t)` reads the sample at `t`, or the last sample before `t` (the
-    /// first one before the first sample): held interpolation, so every value
-    /// is one written in the file. USD's own stages interpolate points and
-    /// primvars linearly between samples by default; at the sample times the
-    /// two agree.
+    /// The time code the attributes are read at, as USD resolves values:
+    /// `None` reads each attribute's default value (an attribute with time
+    /// samples but no default value then has none, with a warning); `Some(t)`
+    /// reads the sample at `t`, the first or last sample before or after
+    /// them all, and between two samples interpolates floating-point arrays
+    /// linearly, bit for bit as USD's `GfLerp` does (points, `float` and
+    /// `double` primvars; half-precision ones are held), holding the earlier
+    /// sample of everything else (topology, creases, tokens).
     pub time: Option<f64>,
     /// Drop a malformed crease or corner, with a [`UsdWarning`], instead of
     /// failing — as USD's renderer does (`pxOsd` skips crease edges and

@@ -59,6 +59,10 @@ pub fn read_usd(path: &Path, options: &UsdReadOptions) -> Result<UsdStage, Error
             })
         })
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(time) = options.time.filter(|t| !t.is_finite()) {
+        let message = format!("the time {time} is not a finite number");
+        return Err(file_error(UsdErrorKind::Open(message)));
+    }
     let open_error = |e| file_error(library(e));
     let path_text = path
         .to_str()

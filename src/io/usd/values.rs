@@ -3,6 +3,7 @@
 //! naming the file, prim and attribute.
 
 use super::UsdWarning;
+use super::time::value_at;
 use crate::error::{Error, UsdError, UsdErrorKind};
 use glam::DVec3;
 use openusd::sdf::Value;
@@ -48,42 +49,39 @@ impl Context<'_> {
 
     /// The value of `attribute` at the requested time (see
     /// [`UsdReadOptions::time`](super::UsdReadOptions::time)), or `None`
-    /// when it has no value there (not authored, or blocked).
+    /// when it has no value there (not authored, or blocked). At the
+    /// default time an attribute with time samples but no default value has
+    /// none, as in USD; a warning says so.
     pub fn value(&mut self, attribute: &str) -> Result<Option<Value>, Error> {
         let attr = self.prim.attribute(attribute);
         let value = match self.time {
-            Some(t) => attr
-                .get_at::<Value>(usd::TimeCode::new(t))
-                .map_err(|e| self.error(attribute, library(e)))?,
-            None => match attr
-                .get::<Value>()
-                .map_err(|e| self.error(attribute, library(e)))?
-            {
-                Some(value) => Some(value),
-                None => {
-                    let times = attr
-                        .time_sample_times()
-                        .map_err(|e| self.error(attribute, library(e)))?;
-                    match times.first() {
-                        Some(&first) => {
-                            let value = attr
-                                .get_at::<Value>(usd::TimeCode::EARLIEST)
-                                .map_err(|e| self.error(attribute, library(e)))?;
-                            self.warn(
-                                attribute,
-                                format!(
-                                    "has time samples but no default value: read at its \
-                                     earliest sample, time {first}"
-                                ),
-                            );
-                            value
-                        }
-                        None => None,
-                    }
+            Some(t) => value_at(&attr, t).map_err(|kind| self.error(attribute, kind))?,
+            None => {
+                let value = attr
+                    .get::<Value>()
+                    .map_err(|e| self.error(attribute, library(e)))?
+                    .filter(|v| !matches!(v, Value::ValueBlock));
+                if value.is_none() && self.has_samples(attribute)? {
+                    self.warn(
+                        attribute,
+                        "has time samples but no default value: at the default time it has \
+                         none, as in USD (read at a time to use its samples)"
+                            .to_string(),
+                    );
                 }
-            },
+                value
+            }
         };
-        Ok(value.filter(|v| !matches!(v, Value::ValueBlock)))
+        Ok(value)
+    }
+
+    /// Whether `attribute` has time samples.
+    pub fn has_samples(&self, attribute: &str) -> Result<bool, Error> {
+        self.prim
+            .attribute(attribute)
+            .num_time_samples()
+            .map(|n| n > 0)
+            .map_err(|e| self.error(attribute, library(e)))
     }
 
     /// A metadata field of `attribute` (`interpolation`, `elementSize`).
