@@ -2100,8 +2100,9 @@ fn malformed_output_is_refused_before_anything_is_written() {
 
 /// What the `openusd` crate reads but Pixar's USD does not: a layer with a
 /// prim name that is not an identifier is refused (with a `}`, the crate's
-/// composition recurses until the stack overflows); a layer that is not a
-/// regular file (`@/dev/zero@`) is not read.
+/// composition recurses until the stack overflows), and one with a path
+/// holding characters no path has; a layer that is not a regular file
+/// (`@/dev/zero@`) is not read.
 #[test]
 fn names_usd_refuses_and_files_that_are_not_layers() {
     let dir = scratch("not_usd");
@@ -2121,6 +2122,15 @@ fn names_usd_refuses_and_files_that_are_not_layers() {
         assert!(matches!(e.kind, UsdErrorKind::Open(_)), "{e}");
         assert!(e.to_string().contains("is not an identifier"), "{e}");
     }
+    // A path with characters no path has (here a NUL byte): the crate's
+    // composition of such an `inherits` allocates until memory runs out.
+    let text = format!(
+        "#usda 1.0\ndef Mesh \"Body\" (\n    inherits = </_\0 F>\n)\n{{\n}}\n{}",
+        mesh("Other")
+    );
+    let file = support::write(&dir, "bad_path.usda", &text);
+    let e = usd_error(&file, &UsdReadOptions::default());
+    assert!(e.to_string().contains("has the character '\\0'"), "{e}");
     // In a binary layer too.
     let a = Author::new();
     author_grid(&a, "/Bo_dy");

@@ -1,7 +1,7 @@
 //! Scanning `.usda` text without parsing it: strings, asset paths and
 //! comments skipped ([`skip_string`], [`skip_asset`], [`skip_line`]), for
-//! the legacy type rewrite ([`super::legacy`]) and the prim name check
-//! ([`check_prim_names`]).
+//! the legacy type rewrite ([`super::legacy`]) and the name check
+//! ([`check_names`]).
 
 /// Whether `b` can start an identifier.
 pub(super) fn is_ident_start(b: u8) -> bool {
@@ -88,12 +88,15 @@ pub(super) fn skip_asset(bytes: &[u8], i: usize) -> usize {
         .map_or(bytes.len(), |p| start + p + close.len())
 }
 
-/// Refuses text whose prims have names Pixar's parser refuses: the quoted
-/// name after `def`, `over` or `class` (and an optional type name) must be
-/// an identifier ([`super::is_identifier`]). The `openusd` crate reads
-/// some such names, and a `}` in one sends its composition into unbounded
-/// recursion (a stack overflow, which aborts the process).
-pub(super) fn check_prim_names(text: &str) -> Result<(), String> {
+/// Refuses text with names Pixar's parser refuses: the quoted name after
+/// `def`, `over` or `class` (and an optional type name) must be an
+/// identifier ([`super::is_identifier`]), and a path (`</World/Body>`) may
+/// hold only the characters of prim, variant and property names and path
+/// punctuation ([`path_char`]). The `openusd` crate reads some such names:
+/// a `}` in a prim name sends its composition into unbounded recursion (a
+/// stack overflow, which aborts the process), and an `inherits` path with
+/// NUL bytes and blanks into a loop that allocates until memory runs out.
+pub(super) fn check_names(text: &str) -> Result<(), String> {
     let bytes = text.as_bytes();
     // 0: nothing; 1: after `def`/`over`/`class`; 2: after its type name.
     let mut state = 0u8;
@@ -114,6 +117,23 @@ pub(super) fn check_prim_names(text: &str) -> Result<(), String> {
             }
             b'@' => {
                 i = skip_asset(bytes, i);
+                state = 0;
+            }
+            b'<' => {
+                let body = bytes.get(i + 1..).unwrap_or(&[]);
+                let Some(len) = body.iter().position(|&c| c == b'>') else {
+                    return Err("a path (<…>) is not closed".to_string());
+                };
+                let path = text.get(i + 1..i + 1 + len).unwrap_or("");
+                if let Some(c) = path.chars().find(|&c| !path_char(c)) {
+                    let mut shown: String =
+                        path.chars().take(40).flat_map(char::escape_debug).collect();
+                    if path.chars().nth(40).is_some() {
+                        shown.push('…');
+                    }
+                    return Err(format!("the path <{shown}> has the character {c:?}"));
+                }
+                i += len + 2;
                 state = 0;
             }
             _ if is_ident_start(b) => {
@@ -140,16 +160,28 @@ pub(super) fn check_prim_names(text: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Whether `c` may appear in a path: letters, digits, `_`, and the
+/// punctuation of paths (`/ . : [ ] { } = - |`).
+fn path_char(c: char) -> bool {
+    c.is_alphanumeric()
+        || matches!(
+            c,
+            '_' | '/' | '.' | ':' | '[' | ']' | '{' | '}' | '=' | '-' | '|'
+        )
+}
+
 #[cfg(test)]
 mod tests {
-    use super::check_prim_names;
+    use super::check_names;
 
     #[test]
-    fn prim_names_must_be_identifiers() {
+    fn prim_names_and_paths_are_checked() {
         let ok = "#usda 1.0\ndef Xform \"World\" (doc = \"a}\")\n{\n    over \"O\" {}\n    \
                   class \"_C\" {}\n    def Mesh \"M_1\" { token t = \"def\" }\n    \
-                  string def = \"}\"\n    def '''Tri''' {}\n}\n# def \"}\"\n";
-        assert_eq!(check_prim_names(ok), Ok(()));
+                  string def = \"}\"\n    def '''Tri''' {}\n    \
+                  def \"R\" (references = @a.usda@</A/B{v=x-1}C.attr:ns[/T]> inherits = <../S>) {}\n}\n\
+                  # def \"}\" <a b>\n";
+        assert_eq!(check_names(ok), Ok(()));
         for bad in [
             "def \"Pa}\" {}",
             "def Xform \"a.b\" {}",
@@ -157,8 +189,11 @@ mod tests {
             "class '''x y''' {}",
             "def \"unterminated",
             "def '''Open''",
+            "def \"A\" (inherits = </_ F>) {}",
+            "def \"A\" (inherits = </_\0F>) {}",
+            "def \"A\" (inherits = </_F) {}",
         ] {
-            assert!(check_prim_names(bad).is_err(), "{bad}");
+            assert!(check_names(bad).is_err(), "{bad}");
         }
     }
 }
