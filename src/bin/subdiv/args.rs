@@ -48,8 +48,9 @@ pub(crate) struct MeshArgs {
     /// segment, `**` across segments, `?` one character); default every mesh.
     #[arg(long = "prim", value_name = "PATH")]
     pub(crate) prims: Vec<String>,
-    /// USD input: read time-sampled attributes at time code T (the sample at
-    /// or before T) instead of their default values.
+    /// USD input: read attributes at time code T, as USD resolves them
+    /// (points and float primvars interpolated between samples, the rest
+    /// held), instead of their default values.
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     pub(crate) time: Option<f64>,
     /// USD input: drop a malformed crease or corner with a warning instead of
