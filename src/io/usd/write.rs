@@ -130,13 +130,15 @@ pub fn write_usda(
 /// when left-handed, `points`, the primvars and
 /// `uniform token subdivisionScheme = "none"`.
 ///
-/// With [`Precision::F64`] values are `double` types written as `%.17g`
-/// (`point3d[] points`, `texCoord2d[] primvars:st`, `double3[]`…), exact
-/// for every `f64`; with [`Precision::F32`] they are rounded to `f32` and
-/// written as `%.9g` in `float` types (`point3f[]`, `texCoord2f[]`,
-/// `float3[]`…), `UsdGeomMesh`'s declared types, exact for every `f32`.
-/// Face-varying channel 0 of width 2 is typed `texCoord2`; values of widths
-/// 1 to 4 are scalars or tuples, wider ones flat with `elementSize`.
+/// `points` and face-varying channel 0 of width 2 have the types
+/// `UsdGeomMesh` and USD's renderers expect whatever the precision,
+/// `point3f[]` and `texCoord2f[]` (a `point3d[] points` is a type mismatch
+/// for USD: its validator reports it, and extents and bounds are not
+/// computed from it): their values are rounded to `f32` and written as
+/// `%.9g`, exact for every `f32`. Other primvars are `double` types written
+/// as `%.17g` with [`Precision::F64`] (`double3[]`…), exact for every
+/// `f64`, and `float` types as `%.9g` with [`Precision::F32`]. Values of
+/// widths 1 to 4 are scalars or tuples, wider ones flat with `elementSize`.
 /// Infinite and NaN primvar values are written `inf`, `-inf` and `nan`.
 ///
 /// Malformed input — a path that is not an absolute path of identifiers or
@@ -174,6 +176,12 @@ pub fn write_usda_to<W: Write>(
     }
     w.flush_buf()?;
     w.out.flush()
+}
+
+/// Whether face-varying channel `c` of `width` is written as texture
+/// coordinates (`texCoord2f[]`): channel 0 when two wide.
+fn is_tex_coord(c: usize, width: usize) -> bool {
+    c == 0 && width == 2
 }
 
 fn invalid(message: String) -> io::Error {
@@ -219,7 +227,10 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
     // Points must be finite (a mesh with others is refused when read);
     // primvar values may be infinite or NaN (`inf`, `-inf`, `nan`), but a
     // finite value must stay finite in the precision written.
-    let representable = |what: &str, values: &mut dyn Iterator<Item = f64>, all_finite: bool| {
+    let representable = |what: &str,
+                         values: &mut dyn Iterator<Item = f64>,
+                         all_finite: bool,
+                         precision: Precision| {
         let ok = |x: f64| match (x.is_finite(), precision) {
             (false, _) => !all_finite,
             (true, Precision::F64) => true,
@@ -227,7 +238,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
         };
         match values.enumerate().find(|(_, x)| !ok(*x)) {
             Some((i, x)) if x.is_finite() => Err(format!(
-                "{what}: value {i} is {x:e}, beyond the range of {precision} (write in f64)"
+                "{what}: value {i} is {x:e}, beyond the range of the {precision} it is written in"
             )),
             Some((i, x)) => Err(format!("{what}: value {i} is {x}, not a finite number")),
             None => Ok(()),
@@ -237,6 +248,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
         "points",
         &mut mesh.positions.iter().flat_map(|p| p.to_array()),
         true,
+        Precision::F32,
     )?;
     let mut names: Vec<&str> = Vec::new();
     let name = |names: &[&str], name: &str| -> Result<(), String> {
@@ -248,7 +260,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
         }
         Ok(())
     };
-    for channel in &mesh.fvar {
+    for (c, channel) in mesh.fvar.iter().enumerate() {
         name(&names, &channel.name)?;
         names.push(&channel.name);
         let what = format!("primvars:{}", channel.name);
@@ -279,7 +291,12 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
         if count > INT_MAX {
             return Err(format!("{what}: {count} values, beyond USD's 32-bit int"));
         }
-        representable(&what, &mut channel.values.iter().copied(), false)?;
+        let precision = if is_tex_coord(c, channel.width) {
+            Precision::F32
+        } else {
+            precision
+        };
+        representable(&what, &mut channel.values.iter().copied(), false, precision)?;
     }
     for primvar in &mesh.primvars {
         name(&names, &primvar.name)?;
@@ -303,7 +320,7 @@ fn check(mesh: &UsdMeshOut<'_>, precision: Precision) -> Result<(), String> {
                 primvar.width
             ));
         }
-        representable(&what, &mut primvar.values.iter().copied(), false)?;
+        representable(&what, &mut primvar.values.iter().copied(), false, precision)?;
     }
     Ok(())
 }
@@ -457,17 +474,24 @@ impl<W: Write> Writer<W> {
         Ok(())
     }
 
-    /// The array type of values of `width` (`double3[]`, `texCoord2f[]`).
-    fn array_type(&self, width: usize, tex_coord: bool) -> String {
-        let (scalar, role) = match self.precision {
-            Precision::F64 => ("double", "d"),
-            Precision::F32 => ("float", "f"),
+    /// The array type of values of `width` (`double3[]`, `float2[]`).
+    fn array_type(&self, width: usize) -> String {
+        let scalar = match self.precision {
+            Precision::F64 => "double",
+            Precision::F32 => "float",
         };
         match width {
-            2 if tex_coord => format!("texCoord2{role}[]"),
             2..=4 => format!("{scalar}{width}[]"),
             _ => format!("{scalar}[]"),
         }
+    }
+
+    /// [`Writer::reals`] in `precision` rather than the writer's.
+    fn reals_in(&mut self, values: &[f64], width: usize, precision: Precision) -> io::Result<()> {
+        let own = std::mem::replace(&mut self.precision, precision);
+        let written = self.reals(values, width);
+        self.precision = own;
+        written
     }
 
     fn node(
@@ -509,25 +533,26 @@ impl<W: Write> Writer<W> {
                 "{pad}uniform token orientation = \"leftHanded\"\n"
             ))?;
         }
-        let points = match self.precision {
-            Precision::F64 => "point3d[]",
-            Precision::F32 => "point3f[]",
-        };
-        self.text(&format!("{pad}{points} points = "))?;
+        self.text(&format!("{pad}point3f[] points = "))?;
         let flat: &[f64] = bytemuck::cast_slice(mesh.positions);
-        self.reals(flat, 3)?;
+        self.reals_in(flat, 3, Precision::F32)?;
         self.text("\n")?;
         for (c, channel) in mesh.fvar.iter().enumerate() {
-            let ty = self.array_type(channel.width, c == 0);
-            self.primvar_head(pad, &ty, &channel.name)?;
-            self.reals(channel.values, channel.width)?;
+            if is_tex_coord(c, channel.width) {
+                self.primvar_head(pad, "texCoord2f[]", &channel.name)?;
+                self.reals_in(channel.values, channel.width, Precision::F32)?;
+            } else {
+                let ty = self.array_type(channel.width);
+                self.primvar_head(pad, &ty, &channel.name)?;
+                self.reals(channel.values, channel.width)?;
+            }
             self.primvar_tail(pad, UsdInterpolation::FaceVarying, channel.width)?;
             self.text(&format!("{pad}int[] primvars:{}:indices = ", channel.name))?;
             self.ints(channel.face_values.iter().map(|&v| u64::from(v)))?;
             self.text("\n")?;
         }
         for primvar in &mesh.primvars {
-            let ty = self.array_type(primvar.width, false);
+            let ty = self.array_type(primvar.width);
             self.primvar_head(pad, &ty, &primvar.name)?;
             self.reals(primvar.values, primvar.width)?;
             self.primvar_tail(pad, primvar.interpolation, primvar.width)?;
