@@ -2136,6 +2136,41 @@ fn names_usd_refuses_and_files_that_are_not_layers() {
     let file = support::write(&dir, "bad_path.usda", &text);
     let e = usd_error(&file, &UsdReadOptions::default());
     assert!(e.to_string().contains("has the character '\\0'"), "{e}");
+    // Brackets nested deeper than USD ever nests them: the crate's parser
+    // takes time and memory exponential in the depth of `[`, and stack in
+    // the depth of everything.
+    let text = format!(
+        "#usda 1.0\n(\n    doc = {}{}\n)\n{}",
+        "[".repeat(30),
+        "]".repeat(30),
+        mesh("Body")
+    );
+    let file = support::write(&dir, "brackets.usda", &text);
+    let e = usd_error(&file, &UsdReadOptions::default());
+    assert!(e.to_string().contains("nest deeper than"), "{e}");
+    // A prim hierarchy 254 levels deep, brackets 256 deep in its points
+    // (`{`, then `[(`), is read, on the reader's own stack.
+    let text = format!(
+        "#usda 1.0\n{}{}{}",
+        "def \"P\" {\n".repeat(253),
+        mesh("Body").replace("{{", "{").replace("}}", "}"),
+        "}\n".repeat(253)
+    );
+    let file = support::write(&dir, "deep.usda", &text);
+    let stage = read(&file);
+    assert_eq!(stage.meshes[0].path.len(), "/P".len() * 253 + "/Body".len());
+    // Dictionaries 250 deep: beyond a test thread's 2 MiB stack in a debug
+    // build, within the reader's.
+    let dictionaries: String = (0..250)
+        .map(|i| format!("dictionary d{i} = {{\n"))
+        .collect();
+    let text = format!(
+        "#usda 1.0\n(\n    customLayerData = {{\n{dictionaries}int x = 1\n{}}}\n)\n{}",
+        "}\n".repeat(250),
+        mesh("Body")
+    );
+    let file = support::write(&dir, "deep_dictionaries.usda", &text);
+    assert_eq!(read(&file).meshes.len(), 1);
     // In a binary layer too.
     let a = Author::new();
     author_grid(&a, "/Bo_dy");

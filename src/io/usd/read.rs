@@ -29,8 +29,9 @@ use std::path::Path;
 /// [`Error::Usd`] naming the file, and where it applies the prim and the
 /// attribute: the file cannot be opened, parsed or composed
 /// ([`UsdErrorKind::Open`]; so is a layer that is not a regular file, or
-/// that has a prim whose name is not an identifier, which Pixar's USD
-/// refuses), a prim pattern is not absolute ([`UsdErrorKind::Pattern`]),
+/// that has a prim name or a path Pixar's USD refuses — a name that is not
+/// an identifier, a path with characters no path has —, or brackets nested
+/// deeper than the limits below), a prim pattern is not absolute ([`UsdErrorKind::Pattern`]),
 /// or a selected mesh is malformed — an
 /// index out of range, counts that do not add up, sharpnesses that do not
 /// match their creases or corners, an unknown token, a primvar with the
@@ -38,7 +39,39 @@ use std::path::Path;
 /// [`Mesh::validate`](crate::Mesh::validate) refuses. With
 /// [`UsdReadOptions::lenient`], malformed creases and corners are dropped
 /// with a warning instead.
+///
+/// The stage is read on a thread of its own with a 64 MiB stack (reserved,
+/// not committed), as the USD library recurses once per level of nesting of
+/// the text it parses; nesting deeper than 256 levels (8 for `[`) is
+/// refused as unreadable.
 pub fn read_usd(path: &Path, options: &UsdReadOptions) -> Result<UsdStage, Error> {
+    let (file, opts) = (path.to_path_buf(), options.clone());
+    let worker = std::thread::Builder::new()
+        .name("usd-reader".to_string())
+        .stack_size(READER_STACK)
+        .spawn(move || read_stage(&file, &opts));
+    match worker {
+        Ok(handle) => handle
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+        Err(e) => Err(Error::from(UsdError {
+            file: path.to_path_buf(),
+            prim: String::new(),
+            attribute: String::new(),
+            kind: UsdErrorKind::Open(format!("cannot start the reading thread: {e}")),
+        })),
+    }
+}
+
+/// The stack of the thread [`read_usd`] reads on: the `openusd` crate
+/// parses and composes recursively, a level of stack per level of nesting
+/// (some 20 KiB in a debug build), up to
+/// [`MAX_NESTING`](super::text::MAX_NESTING) levels. Reserved, not
+/// committed: only what is used is backed by memory.
+const READER_STACK: usize = 64 << 20;
+
+/// [`read_usd`], on the calling thread.
+fn read_stage(path: &Path, options: &UsdReadOptions) -> Result<UsdStage, Error> {
     let file_error = |kind| {
         Error::from(UsdError {
             file: path.to_path_buf(),

@@ -1,13 +1,12 @@
 //! The asset resolver every stage is opened with: the default resolver,
-//! with layers that are not regular files refused, layers with prim names
-//! Pixar's USD refuses refused ([`check_names`]; the `openusd` crate
-//! reads some, and a `}` in one sends its composition into unbounded
-//! recursion), and text layers' legacy type names rewritten ([`rewrite`]),
-//! as they are opened.
+//! with layers that are not regular files refused, layers that would harm
+//! the `openusd` crate refused ([`check_text`]: prim names and paths
+//! Pixar's USD refuses, brackets nested too deep), and text layers' legacy
+//! type names rewritten ([`rewrite`]), as they are opened.
 
 use super::is_identifier;
 use super::legacy::rewrite;
-use super::text::check_names;
+use super::text::check_text;
 use openusd::ar::{self, Asset, DefaultResolver, ResolvedPath, Resolver};
 use openusd::sdf::{AbstractData, SpecType};
 use openusd::usdc::CrateData;
@@ -68,7 +67,7 @@ impl Resolver for LayerResolver {
             match std::str::from_utf8(&bytes) {
                 // Text layers start with their `#usda` header.
                 Ok(text) if text.starts_with("#usda") => {
-                    check_names(text).map_err(refuse)?;
+                    check_text(text).map_err(refuse)?;
                     rewrite(text).map(String::into_bytes)
                 }
                 _ => None,
@@ -98,7 +97,7 @@ impl Resolver for LayerResolver {
     }
 }
 
-/// [`check_names`]' prim name check for a binary (crate) layer: every prim
+/// [`check_text`]'s prim name check for a binary (crate) layer: every prim
 /// spec's name
 /// must be an identifier. A layer the crate cannot index passes, for its
 /// reader to report.

@@ -1,7 +1,7 @@
 //! Scanning `.usda` text without parsing it: strings, asset paths and
 //! comments skipped ([`skip_string`], [`skip_asset`], [`skip_line`]), for
-//! the legacy type rewrite ([`super::legacy`]) and the name check
-//! ([`check_names`]).
+//! the legacy type rewrite ([`super::legacy`]) and the checks that keep
+//! the `openusd` crate out of harm ([`check_text`]).
 
 /// Whether `b` can start an identifier.
 pub(super) fn is_ident_start(b: u8) -> bool {
@@ -88,18 +88,30 @@ pub(super) fn skip_asset(bytes: &[u8], i: usize) -> usize {
         .map_or(bytes.len(), |p| start + p + close.len())
 }
 
-/// Refuses text with names Pixar's parser refuses: the quoted name after
-/// `def`, `over` or `class` (and an optional type name) must be an
-/// identifier ([`super::is_identifier`]), and a path (`</World/Body>`) may
-/// hold only the characters of prim, variant and property names and path
-/// punctuation ([`path_char`]). The `openusd` crate reads some such names:
-/// a `}` in a prim name sends its composition into unbounded recursion (a
-/// stack overflow, which aborts the process), and an `inherits` path with
-/// NUL bytes and blanks into a loop that allocates until memory runs out.
-pub(super) fn check_names(text: &str) -> Result<(), String> {
+/// The deepest nesting of `(`, `[` and `{` [`check_text`] accepts: far
+/// beyond real files (a prim hierarchy 256 levels deep), within what the
+/// `openusd` crate's recursive parser does on the reader's stack.
+pub(super) const MAX_NESTING: usize = 256;
+
+/// The deepest nesting of `[` alone [`check_text`] accepts (USD's values
+/// nest them twice at most: the crate parses nested `[` in time and memory
+/// exponential in their depth — 30 levels take 5 s and 800 MB).
+pub(super) const MAX_BRACKETS: usize = 8;
+
+/// Refuses text that Pixar's parser refuses and the `openusd` crate reads
+/// to its harm, before the crate parses it: the quoted name after `def`,
+/// `over` or `class` (and an optional type name) must be an identifier
+/// ([`super::is_identifier`]) — a `}` in one sends the crate's composition
+/// into unbounded recursion, a stack overflow that aborts the process —;
+/// a path (`</World/Body>`) may hold only the characters of names and path
+/// punctuation ([`path_char`]) — an `inherits` path with NUL bytes and
+/// blanks sends it into a loop that allocates until memory runs out —; and
+/// brackets may nest [`MAX_NESTING`] deep, `[` [`MAX_BRACKETS`] deep.
+pub(super) fn check_text(text: &str) -> Result<(), String> {
     let bytes = text.as_bytes();
     // 0: nothing; 1: after `def`/`over`/`class`; 2: after its type name.
     let mut state = 0u8;
+    let (mut depth, mut brackets) = (0usize, 0usize);
     let mut i = 0;
     while let Some(&b) = bytes.get(i) {
         match b {
@@ -152,6 +164,24 @@ pub(super) fn check_names(text: &str) -> Result<(), String> {
             }
             b' ' | b'\t' | b'\r' | b'\n' => i += 1,
             _ => {
+                match b {
+                    b'(' | b'[' | b'{' => {
+                        depth += 1;
+                        brackets += usize::from(b == b'[');
+                        if depth > MAX_NESTING || brackets > MAX_BRACKETS {
+                            return Err(format!(
+                                "brackets nest deeper than {MAX_NESTING} levels ({MAX_BRACKETS} for [)"
+                            ));
+                        }
+                    }
+                    b')' | b']' | b'}' => {
+                        depth = depth.saturating_sub(1);
+                        if b == b']' {
+                            brackets = brackets.saturating_sub(1);
+                        }
+                    }
+                    _ => {}
+                }
                 i += 1;
                 state = 0;
             }
@@ -172,16 +202,22 @@ fn path_char(c: char) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::check_names;
+    use super::check_text;
 
     #[test]
-    fn prim_names_and_paths_are_checked() {
+    fn names_paths_and_nesting_are_checked() {
         let ok = "#usda 1.0\ndef Xform \"World\" (doc = \"a}\")\n{\n    over \"O\" {}\n    \
                   class \"_C\" {}\n    def Mesh \"M_1\" { token t = \"def\" }\n    \
                   string def = \"}\"\n    def '''Tri''' {}\n    \
                   def \"R\" (references = @a.usda@</A/B{v=x-1}C.attr:ns[/T]> inherits = <../S>) {}\n}\n\
                   # def \"}\" <a b>\n";
-        assert_eq!(check_names(ok), Ok(()));
+        assert_eq!(check_text(ok), Ok(()));
+        let deep = format!(
+            "{}{}",
+            "def \"P\" {\n".repeat(247),
+            "(x = [[[[[[[[]]]]]]]])"
+        );
+        assert_eq!(check_text(&deep), Ok(()));
         for bad in [
             "def \"Pa}\" {}",
             "def Xform \"a.b\" {}",
@@ -192,8 +228,10 @@ mod tests {
             "def \"A\" (inherits = </_ F>) {}",
             "def \"A\" (inherits = </_\0F>) {}",
             "def \"A\" (inherits = </_F) {}",
+            &format!("(doc = {}{})", "[".repeat(9), "]".repeat(9)),
+            &"def \"P\" {\n".repeat(257),
         ] {
-            assert!(check_names(bad).is_err(), "{bad}");
+            assert!(check_text(bad).is_err(), "{bad}");
         }
     }
 }
