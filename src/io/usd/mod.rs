@@ -106,8 +106,9 @@ pub struct UsdStage {
     /// (`subdivisionScheme = "none"`, no faces).
     pub skipped: Vec<UsdSkipped>,
     /// What was questionable but accepted: creases and corners dropped in
-    /// lenient mode, crease edges that do not exist, values read at their
-    /// earliest time sample, primvars ignored, composition errors (a
+    /// lenient mode, crease edges that do not exist, attributes with time
+    /// samples but no default value read at the default time, primvars
+    /// ignored, composition errors (a
     /// reference that does not resolve), prim patterns that matched nothing.
     pub warnings: Vec<UsdWarning>,
 }
