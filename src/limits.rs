@@ -82,16 +82,16 @@ pub fn check_level_counts(faces: usize, corners: usize, scheme: Scheme, level: u
     // about as many vertices as faces.
     let all_corners = face_vertices * 4.0 / 3.0;
     let bytes = all_corners * BYTES_PER_CORNER + all_corners / 4.0 * BYTES_PER_VERTEX;
-    if let Some(available) = available_memory() {
-        if bytes > available as f64 {
-            return Err(Error::Level {
-                level,
-                reason: LevelRefusal::OutOfMemory {
-                    needed: bytes,
-                    available,
-                },
-            });
-        }
+    if let Some(available) = available_memory()
+        && bytes > available as f64
+    {
+        return Err(Error::Level {
+            level,
+            reason: LevelRefusal::OutOfMemory {
+                needed: bytes,
+                available,
+            },
+        });
     }
     Ok(())
 }

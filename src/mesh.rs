@@ -327,10 +327,10 @@ impl Mesh {
     pub fn positions_as<T: crate::Real>(&self) -> std::borrow::Cow<'_, [T]> {
         // Only `f64` shares the positions' layout (a cast to `f32` would
         // reinterpret their bits).
-        if T::PRECISION == crate::Precision::F64 {
-            if let Ok(flat) = bytemuck::try_cast_slice::<DVec3, T>(&self.positions) {
-                return std::borrow::Cow::Borrowed(flat);
-            }
+        if T::PRECISION == crate::Precision::F64
+            && let Ok(flat) = bytemuck::try_cast_slice::<DVec3, T>(&self.positions)
+        {
+            return std::borrow::Cow::Borrowed(flat);
         }
         std::borrow::Cow::Owned(self.flat_positions())
     }
@@ -558,7 +558,7 @@ impl Mesh {
         if ch.width == 0 {
             return Err(bad("width is 0".into()));
         }
-        if ch.values.len() % ch.width != 0 {
+        if !ch.values.len().is_multiple_of(ch.width) {
             return Err(bad(format!(
                 "{} components is not a multiple of the width {}",
                 ch.values.len(),
@@ -623,10 +623,11 @@ impl Mesh {
                 continue;
             };
             for &v in f {
-                if is_end(v) && is_end(prev) {
-                    if let Ok(i) = keys.binary_search(&key(prev, v)) {
-                        found[i] = true;
-                    }
+                if is_end(v)
+                    && is_end(prev)
+                    && let Ok(i) = keys.binary_search(&key(prev, v))
+                {
+                    found[i] = true;
                 }
                 prev = v;
             }

@@ -170,13 +170,13 @@ impl StencilTable {
     fn check_apply(&self, width: usize, base: &[f64]) -> Result<usize> {
         check_base(width, base.len())?;
         let count = base.len() / width;
-        if let Some(&v) = self.indices.iter().max() {
-            if v as usize >= count {
-                return Err(Error::StencilOutOfRange {
-                    index: v as usize,
-                    count,
-                });
-            }
+        if let Some(&v) = self.indices.iter().max()
+            && v as usize >= count
+        {
+            return Err(Error::StencilOutOfRange {
+                index: v as usize,
+                count,
+            });
         }
         Ok(count)
     }
@@ -447,7 +447,7 @@ fn check_base(width: usize, len: usize) -> Result<()> {
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
-    if len % width != 0 {
+    if !len.is_multiple_of(width) {
         return Err(Error::NotWholeElements {
             buffer: Buffer::Base,
             len,

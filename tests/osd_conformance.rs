@@ -759,7 +759,7 @@ impl Lcg {
 fn random_mesh(seed: u64) -> (String, bool) {
     let mut rng = Lcg(seed);
     let (nx, ny) = (2 + rng.below(4) as usize, 2 + rng.below(3) as usize);
-    let all_triangles = seed % 3 == 0;
+    let all_triangles = seed.is_multiple_of(3);
     let mut positions = Vec::new();
     for j in 0..=ny {
         for i in 0..=nx {

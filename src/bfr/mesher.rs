@@ -152,12 +152,12 @@ pub fn tessellate(
             reason: "the tessellation rate is 0; rates start at 1".into(),
         });
     }
-    if let Some(l) = options.edge_length {
-        if !(l.is_finite() && l > 0.0) {
-            return Err(Error::Tessellation {
-                reason: format!("edge length {l} is not a positive number"),
-            });
-        }
+    if let Some(l) = options.edge_length
+        && !(l.is_finite() && l > 0.0)
+    {
+        return Err(Error::Tessellation {
+            reason: format!("edge length {l} is not a positive number"),
+        });
     }
     let tess_options = TessellationOptions {
         preserve_quads: options.quads,

@@ -547,7 +547,7 @@ impl OsdPatchTable {
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
-        if points.len() % width != 0 {
+        if !points.len().is_multiple_of(width) {
             return Err(Error::NotWholeElements {
                 buffer: Buffer::Source,
                 len: points.len(),

@@ -511,7 +511,11 @@ fn halves_of<P: Copy>(cached: &mut (usize, P), half: usize, derive: impl FnOnce(
 /// Half `half % 2` of a pair (a select, not an indexed load).
 #[inline(always)]
 fn pick(pair: [[u32; 2]; 2], half: usize) -> [u32; 2] {
-    if half % 2 == 0 { pair[0] } else { pair[1] }
+    if half.is_multiple_of(2) {
+        pair[0]
+    } else {
+        pair[1]
+    }
 }
 
 /// Child vertices per parallel task.

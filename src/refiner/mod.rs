@@ -128,19 +128,18 @@ impl Refiner {
         crate::alloc::guard(None, || {
             let validation = mesh.validate()?;
             let mesh = &*mesh.right_handed();
-            if options.scheme == Scheme::Loop {
-                if let Some((face, size)) = mesh
+            if options.scheme == Scheme::Loop
+                && let Some((face, size)) = mesh
                     .faces()
                     .map(<[u32]>::len)
                     .enumerate()
                     .find(|&(_, n)| n != 3)
-                {
-                    return Err(Error::NotTriangles {
-                        scheme: Scheme::Loop,
-                        face,
-                        corners: size,
-                    });
-                }
+            {
+                return Err(Error::NotTriangles {
+                    scheme: Scheme::Loop,
+                    face,
+                    corners: size,
+                });
             }
             if mesh.face_count() == 0 {
                 return Err(Error::EmptyMesh);

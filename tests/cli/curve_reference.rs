@@ -148,7 +148,7 @@ impl Reference {
 /// curve and nothing could check it).
 fn random_curve(rng: &mut Rng, case: usize) -> Reference {
     let degree = 1 + case % 5;
-    let clamped = case % 2 == 0;
+    let clamped = case.is_multiple_of(2);
     let count = degree + 1 + ((rng.next() + 1.0) * 3.0) as usize;
     let m = count + degree;
     let mut knots = vec![rng.next() * 4.0];

@@ -238,7 +238,10 @@ fn refine_all(args: &RefineArgs, inputs: &[Loaded], usda: bool) -> Result<(), Fa
                 holes_note(r.last_level().face_holes.iter().filter(|&&h| h).count())
             );
         }
-        refined.push((input, r));
+        // Kept only for the layer: a summary needs none of it.
+        if usda {
+            refined.push((input, r));
+        }
     }
     if let Some(path) = &args.output {
         crate::usd::write_refinements(path, args.mesh.input.as_deref(), &refined)?;

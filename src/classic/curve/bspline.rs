@@ -40,7 +40,7 @@ pub fn bspline_basis(degree: usize, x: f64) -> f64 {
     while k <= degree + 1 && (k as f64) <= x {
         let y = x - k as f64;
         let term = binom * y.powi(degree as i32);
-        if k % 2 == 0 {
+        if k.is_multiple_of(2) {
             sum += term;
         } else {
             sum -= term;

@@ -97,10 +97,12 @@ const PARALLEL_BYTES: usize = 1 << 22;
 fn parse(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let threads = rayon::current_num_threads();
-    if fast_path && threads > 1 && text.len() >= PARALLEL_BYTES {
-        if let Some(result) = parse_chunked(text, file, threads) {
-            return result;
-        }
+    if fast_path
+        && threads > 1
+        && text.len() >= PARALLEL_BYTES
+        && let Some(result) = parse_chunked(text, file, threads)
+    {
+        return result;
     }
     parse_lines(text, file, fast_path)
 }
@@ -200,11 +202,9 @@ fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, Ob
     let mut line = 0;
     while !cursor.is_done() {
         line += 1;
-        if fast_path {
-            if let Some(end) = parser.fast_statement(line, cursor.rest()) {
-                cursor.skip(end);
-                continue;
-            }
+        if fast_path && let Some(end) = parser.fast_statement(line, cursor.rest()) {
+            cursor.skip(end);
+            continue;
         }
         parser
             .statement(line, cursor.take_line())

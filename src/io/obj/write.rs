@@ -59,21 +59,21 @@ fn check_output(data: &ObjOutput<'_>) -> io::Result<()> {
             data.face_offsets[i + 1]
         )));
     }
-    if let Some(&first) = data.face_offsets.first() {
-        if first as usize > corners {
-            return Err(invalid(format!(
-                "face offset 0 ({first}) is beyond the {corners} face vertices"
-            )));
-        }
+    if let Some(&first) = data.face_offsets.first()
+        && first as usize > corners
+    {
+        return Err(invalid(format!(
+            "face offset 0 ({first}) is beyond the {corners} face vertices"
+        )));
     }
     let faces = data.face_offsets.len().saturating_sub(1);
-    if let Some(holes) = data.holes {
-        if holes.len() != faces {
-            return Err(invalid(format!(
-                "{} hole flags for {faces} faces",
-                holes.len()
-            )));
-        }
+    if let Some(holes) = data.holes
+        && holes.len() != faces
+    {
+        return Err(invalid(format!(
+            "{} hole flags for {faces} faces",
+            holes.len()
+        )));
     }
     // Never an `inf` or `nan` in the file: the reader would refuse it.
     let finite = |x: f64| match data.precision {

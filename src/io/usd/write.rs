@@ -383,10 +383,10 @@ impl Tree {
                 };
                 parent = Some(node);
             }
-            if let Some(node) = parent {
-                if tree.nodes[node].mesh.replace(m).is_some() {
-                    return Err(invalid(format!("{}: the path is given twice", mesh.path)));
-                }
+            if let Some(node) = parent
+                && tree.nodes[node].mesh.replace(m).is_some()
+            {
+                return Err(invalid(format!("{}: the path is given twice", mesh.path)));
             }
         }
         Ok(tree)

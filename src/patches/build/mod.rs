@@ -347,11 +347,10 @@ impl Builder<'_> {
                 if options.single_crease_patch
                     && mask == 0
                     && (p.level as u32) < options.max_isolation_level
+                    && let Some((s, edge)) = self.single_crease(p.level, p.face)
                 {
-                    if let Some((s, edge)) = self.single_crease(p.level, p.face) {
-                        sharpness = s.min((options.max_isolation_level - p.level as u32) as f32);
-                        param_boundary = 1 << edge;
-                    }
+                    sharpness = s.min((options.max_isolation_level - p.level as u32) as f32);
+                    param_boundary = 1 << edge;
                 }
                 let cvs = self.regular_points(p.level, p.face, mask);
                 reg_array

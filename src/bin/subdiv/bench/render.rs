@@ -328,14 +328,15 @@ impl WholeProcess {
             s.push('\n');
         }
         let native = self.program(ProgramKind::Native);
-        if let (Some(n), Some(o)) = (native, self.program(ProgramKind::Osd)) {
-            if n.peak_bytes > 0 && o.peak_bytes > 0 {
-                let _ = writeln!(
-                    s,
-                    "  peak memory native / subdiv --engine osd: {:.2}",
-                    n.peak_bytes as f64 / o.peak_bytes as f64
-                );
-            }
+        if let (Some(n), Some(o)) = (native, self.program(ProgramKind::Osd))
+            && n.peak_bytes > 0
+            && o.peak_bytes > 0
+        {
+            let _ = writeln!(
+                s,
+                "  peak memory native / subdiv --engine osd: {:.2}",
+                n.peak_bytes as f64 / o.peak_bytes as f64
+            );
         }
         let Some(cpp) = self.program(ProgramKind::Cpp) else {
             s.push_str("  C++ program: skipped (g++ or libosd-dev not available)\n");
