@@ -389,8 +389,27 @@ impl Mesh {
         if !self.left_handed {
             return std::borrow::Cow::Borrowed(self);
         }
-        let mut mesh = self.clone();
-        mesh.left_handed = false;
+        // The large arrays are copied fallibly: under `Refiner::new`'s guard
+        // a mesh too large to copy is `Error::OutOfMemory`, not an abort.
+        use crate::alloc::copied;
+        let mut mesh = Mesh {
+            positions: copied(&self.positions),
+            face_offsets: copied(&self.face_offsets),
+            face_vertices: copied(&self.face_vertices),
+            creases: self.creases.clone(),
+            corners: self.corners.clone(),
+            holes: self.holes.clone(),
+            fvar_channels: self
+                .fvar_channels
+                .iter()
+                .map(|c| FVarChannel {
+                    width: c.width,
+                    values: copied(&c.values),
+                    indices: copied(&c.indices),
+                })
+                .collect(),
+            left_handed: false,
+        };
         let reverse = |list: &mut [u32]| {
             for w in self.face_offsets.windows(2) {
                 let face = list.get_mut(w[0] as usize..w[1] as usize);
