@@ -538,8 +538,9 @@ fn refusals() {
 /// `EvaluateBasis<double>` on every patch of tables with regular B-spline
 /// patches (boundary masks of every kind, single-crease and sharp-corner
 /// patches), Gregory basis and bilinear end caps, uniform bilinear quads and
-/// triangles, at locations inside, on the edges and at the corners of each
-/// patch: every weight and derivative within 1e-12 of OpenSubdiv's
+/// triangles, Loop box-spline patches (boundary edges and vertices) and
+/// Gregory triangles, at locations inside, on the edges and at the corners
+/// of each patch: every weight and derivative within 1e-12 of OpenSubdiv's
 /// (relative to the derivative's 2^depth scale; the two differ only in
 /// rounding: the same polynomials written differently).
 #[test]
@@ -549,19 +550,18 @@ fn native_basis_matches_opensubdiv() {
     let mut creased = shapes::cube();
     creased.add_crease(0, 1, 2.5);
     let mut types = std::collections::HashSet::new();
+    let mut loop_masks = std::collections::BTreeSet::new();
     let mut compared = 0;
     let mut check = |patches: &osd::OsdPatchTable| {
         for (a, array) in patches.table().arrays.iter().enumerate() {
-            if !array.patch_type.is_evaluable()
-                || matches!(
-                    array.patch_type,
-                    PatchType::Loop | PatchType::GregoryTriangle
-                )
-            {
+            if !array.patch_type.is_evaluable() {
                 continue;
             }
             types.insert(array.patch_type);
             for (k, p) in array.params.iter().enumerate() {
+                if array.patch_type == PatchType::Loop {
+                    loop_masks.insert(p.boundary());
+                }
                 let scale = (1u32 << (p.depth() - p.non_quad_root() as u32)) as f64;
                 for (s, t) in [(0.0, 0.0), (1.0, 1.0), (0.5, 0.0), (0.3, 0.7), (0.9, 0.15)] {
                     let (u, v) = ((p.u() as f64 + s) / scale, (p.v() as f64 + t) / scale);
@@ -626,6 +626,59 @@ fn native_basis_matches_opensubdiv() {
             .unwrap();
         check(&r.patch_table(&options, &[]).unwrap());
     }
+    // Loop tables: box-spline patches with boundary edges and vertices
+    // (open triangle meshes, creases), Gregory triangles at extraordinary
+    // vertices and as the B-spline end caps' Loop patches.
+    let loop_options = Options::default()
+        .with_scheme(Scheme::Loop)
+        .with_boundary(subdiv::BoundaryInterpolation::EdgeAndCorner);
+    // Regular triangular lattices (each cell split by the same diagonal):
+    // 6 × 6 cells with a crease across, and a strip one cell high, whose
+    // triangles have an edge on one boundary and the opposite vertex on the
+    // other.
+    let lattice = |nx: u32, ny: u32| {
+        let mut mesh = Mesh::default();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                mesh.positions.push(glam::DVec3::new(
+                    f64::from(i) + 0.5 * f64::from(j),
+                    f64::from(j),
+                    f64::from((i * j) % 3) * 0.2,
+                ));
+            }
+        }
+        let row = nx + 1;
+        for j in 0..ny {
+            for i in 0..nx {
+                let v = j * row + i;
+                mesh.add_face(&[v, v + 1, v + row + 1]);
+                mesh.add_face(&[v, v + row + 1, v + row]);
+            }
+        }
+        mesh
+    };
+    let mut creased = lattice(6, 6);
+    creased.add_crease(9, 17, 2.0);
+    for mesh in [
+        shapes::icosahedron(),
+        shapes::triangulate(&shapes::cube()),
+        creased,
+        lattice(8, 1),
+        shapes::octahedron(),
+        shapes::tetrahedron(),
+    ] {
+        for options in [
+            PatchOptions::new().max_isolation(2),
+            PatchOptions::new()
+                .max_isolation(3)
+                .end_caps(EndCapType::BSplineBasis),
+        ] {
+            let mut r = osd::TopologyRefiner::new(&mesh, &loop_options).unwrap();
+            r.refine_adaptive(options.refine_adaptive_options(), &[])
+                .unwrap();
+            check(&r.patch_table(&options, &[]).unwrap());
+        }
+    }
     for tri in [false, true] {
         let mut r = osd::TopologyRefiner::new(&shapes::pole(5), &Options::default()).unwrap();
         r.refine_uniform(UniformOptions::new(2)).unwrap();
@@ -640,14 +693,21 @@ fn native_basis_matches_opensubdiv() {
         PatchType::GregoryBasis,
         PatchType::Quads,
         PatchType::Triangles,
+        PatchType::Loop,
+        PatchType::GregoryTriangle,
     ] {
         assert!(types.contains(&ty), "{ty:?} not compared");
+    }
+    // Every kind of boundary mask of a Loop patch: edges, vertices, and
+    // edges with the opposite vertex.
+    for high in 0..3 {
+        assert!(loop_masks.iter().any(|m| m >> 3 == high), "{loop_masks:?}");
     }
     assert!(compared > 1000, "{compared}");
     // What the native basis refuses.
     let p = subdiv::patches::PatchParam::default();
     assert!(matches!(
-        evaluate_basis(PatchType::Loop, p, 0.5, 0.5, Derivatives::None),
+        evaluate_basis(PatchType::Gregory, p, 0.5, 0.5, Derivatives::None),
         Err(Error::NotYetSupported(_))
     ));
     assert!(matches!(

@@ -1,9 +1,9 @@
 //! Native basis functions of patches (`Far::PatchTable::EvaluateBasis`):
 //! the weights of a patch's control points at a location of its ptex face,
 //! with first and second derivatives, for bicubic B-spline patches (with
-//! the phantom points of boundary edges), 20-point Gregory patches and
-//! bilinear and linear patches. Loop box-spline and Gregory triangle patches
-//! are not native yet ([`Error::NotYetSupported`]).
+//! the phantom points of boundary edges), 20-point Gregory patches,
+//! bilinear and linear patches, and Loop's quartic box-spline and 18-point
+//! Gregory triangle patches (`triangle_basis.rs`).
 //!
 //! Parameterization, as OpenSubdiv's: a patch of depth `d` covers the square
 //! `[u, u + 1] × [v, v + 1] / 2^(d - n)` of its ptex face (`n` 1 under a
@@ -14,7 +14,7 @@
 //! upper half of their parent's square are rotated by 180°: their
 //! coordinates are reflected and their odd-order derivatives negated.
 
-use super::{Derivatives, Partials, PatchParam, PatchType};
+use super::{Derivatives, Partials, PatchParam, PatchType, triangle_basis};
 use crate::error::{Error, Result};
 
 /// The uniform cubic B-spline basis at `t` and its first and second
@@ -65,6 +65,9 @@ fn bezier(t: f64) -> [[f64; 4]; 3] {
 /// points; a table not asked for is empty.
 type Tables<'a> = [&'a mut [f64]; 6];
 
+/// The orders of derivative `(in s, in t)` of the six tables.
+const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+
 /// Room for the weights of any patch (20 points at most) in each table.
 pub(crate) type BasisBuffer = [[f64; 20]; 6];
 
@@ -101,8 +104,7 @@ fn fold_phantoms(boundary: u32, w: &mut [f64]) {
 fn regular(s: f64, t: f64, boundary: u32, out: &mut Tables) {
     let (bs, bt) = (bspline(s), bspline(t));
     // (order in s, order in t) of each table.
-    let orders = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
-    for (table, (os, ot)) in out.iter_mut().zip(orders) {
+    for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
         if table.is_empty() {
             continue;
         }
@@ -152,6 +154,16 @@ fn linear_triangle(s: f64, t: f64, out: &mut Tables) {
     }
 }
 
+/// Fills each table asked for with `basis(s, t, ds, dt, table)` at its
+/// order of derivative.
+fn triangles(s: f64, t: f64, out: &mut Tables, basis: impl Fn(f64, f64, usize, usize, &mut [f64])) {
+    for (table, (ds, dt)) in out.iter_mut().zip(ORDERS) {
+        if !table.is_empty() {
+            basis(s, t, ds, dt, table);
+        }
+    }
+}
+
 /// A 20-point Gregory patch. Its points come in groups of five per corner
 /// (corners counter-clockwise from `(0, 0)`): the corner point, the edge
 /// points after and before it (`e+`, `e-`), and the two face points (`f+`,
@@ -191,8 +203,7 @@ fn gregory(s: f64, t: f64, out: &mut Tables) {
         ((1, 2), [18, 19], blend(tc, s + tc)),
     ];
     let (bs, bt) = (bezier(s), bezier(t));
-    let orders = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
-    for (table, (os, ot)) in out.iter_mut().zip(orders) {
+    for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
         if table.is_empty() {
             continue;
         }
@@ -214,9 +225,8 @@ fn gregory(s: f64, t: f64, out: &mut Tables) {
 /// scales them; see the module documentation).
 ///
 /// Refused: u or v outside [0, 1] ([`Error::Location`]); a type without a
-/// native basis yet (Loop, Gregory triangle: [`Error::NotYetSupported`]) or
-/// without any (legacy Gregory, points, lines: [`Error::NotYetSupported`]
-/// too, naming it).
+/// basis (legacy Gregory, points, lines: [`Error::NotYetSupported`], naming
+/// it — OpenSubdiv has none either).
 ///
 /// ```
 /// use subdiv::patches::{evaluate_basis, Derivatives, PatchParam, PatchType};
@@ -304,10 +314,12 @@ pub(crate) fn evaluate_basis_into(
             PatchType::GregoryBasis => gregory(s, t, &mut tables),
             PatchType::Quads => bilinear(s, t, &mut tables),
             PatchType::Triangles => linear_triangle(s, t, &mut tables),
-            PatchType::Loop | PatchType::GregoryTriangle => {
-                return Err(Error::NotYetSupported(
-                    "the basis of Loop and Gregory triangle patches (use the osd engine's evaluate_basis)",
-                ));
+            PatchType::Loop => triangles(s, t, &mut tables, |s, t, ds, dt, w| {
+                triangle_basis::box_spline(s, t, ds, dt, w);
+                triangle_basis::fold_box_spline_phantoms(param.boundary(), w);
+            }),
+            PatchType::GregoryTriangle => {
+                triangles(s, t, &mut tables, triangle_basis::gregory_triangle)
             }
             _ => {
                 return Err(Error::NotYetSupported(

@@ -30,6 +30,7 @@ mod eval;
 mod limit_stencils;
 mod map;
 mod param;
+mod triangle_basis;
 
 use crate::stencil::StencilTable;
 
