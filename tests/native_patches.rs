@@ -2,12 +2,13 @@
 //! OpenSubdiv's `Far::PatchTableFactory`, over the corpus: every scheme ×
 //! boundary interpolation × adaptive and patch options × isolation levels ×
 //! selected faces. Arrays, types, control vertices, `PatchParam` words,
-//! sharpness, and the legacy Gregory quad-offset and valence tables must be
-//! identical; tables the native engine does not build yet (end caps with
-//! local points around irregular patches) must say so, and only those.
+//! sharpness, the legacy Gregory quad-offset and valence tables, and the
+//! local points' stencils (Catmull-Clark and Loop end caps of every type)
+//! must be identical; tables the native engine does not build yet
+//! (non-linear face-varying patches) must say so, and only those.
 #![cfg(feature = "osd")]
 
-use subdiv::patches::{EndCapType, PatchOptions, PatchTable};
+use subdiv::patches::{EndCapType, PatchOptions, PatchTable, PatchType};
 use subdiv::refiner::Refiner;
 use subdiv::{AdaptiveOptions, BoundaryInterpolation, Error, Mesh, Options, Scheme, osd, shapes};
 
@@ -16,7 +17,6 @@ use subdiv::{AdaptiveOptions, BoundaryInterpolation, Error, Mesh, Options, Schem
 struct Tally {
     identical: usize,
     patches: usize,
-    not_yet: usize,
     legacy_irregular: usize,
     single_crease: usize,
     refused_both: usize,
@@ -26,6 +26,12 @@ struct Tally {
     carried_boundary: usize,
     not_yet_fvar: usize,
     fvar_patches: usize,
+    /// Loop end caps compared: Gregory triangles, irregular box-spline
+    /// patches, linear triangles, and the local points of Loop tables.
+    loop_gregory: usize,
+    loop_box_spline: usize,
+    loop_linear: usize,
+    loop_local_points: usize,
 }
 
 fn compare(
@@ -80,6 +86,20 @@ fn compare_refined(
                 .map(|c| c.params.len())
                 .sum::<usize>();
             t.local_points += a.local_points;
+            if options.scheme == Scheme::Loop {
+                t.loop_local_points += a.local_points;
+                for arr in &a.arrays {
+                    match arr.patch_type {
+                        PatchType::GregoryTriangle => t.loop_gregory += arr.len(),
+                        PatchType::Loop => {
+                            t.loop_box_spline +=
+                                arr.params.iter().filter(|p| !p.is_regular()).count()
+                        }
+                        PatchType::Triangles => t.loop_linear += arr.len(),
+                        _ => {}
+                    }
+                }
+            }
             if !a.quad_offsets.is_empty() {
                 t.legacy_irregular += 1;
             }
@@ -106,18 +126,6 @@ fn compare_refined(
         {
             // Non-linear face-varying patches.
             t.not_yet_fvar += 1;
-        }
-        (Err(Error::NotYetSupported(_)), Ok(b)) => {
-            // Only end caps with local points around irregular patches.
-            let b = b.table();
-            assert!(options.scheme == Scheme::Loop, "{case}");
-            assert!(
-                b.arrays
-                    .iter()
-                    .any(|a| a.params.iter().any(|p| !p.is_regular())),
-                "{case}: refused a table of regular patches only"
-            );
-            t.not_yet += 1;
         }
         (Err(Error::PatchOptions { .. }), Err(Error::Osd(_))) => t.refused_both += 1,
         // Where OpenSubdiv would overrun its buffers (a face repeating a
@@ -293,6 +301,12 @@ fn corpus_tables_match_opensubdiv() {
     assert!(t.local_points > 100_000, "{t:?}");
     assert!(t.carried_sharpness > 0 && t.carried_boundary > 0, "{t:?}");
     assert!(t.fvar_patches > 10_000, "{t:?}");
+    // Loop's end caps of every type, with their local points.
+    assert!(t.loop_gregory > 1000 && t.loop_box_spline > 1000, "{t:?}");
+    assert!(
+        t.loop_linear > 1000 && t.loop_local_points > 10_000,
+        "{t:?}"
+    );
 }
 
 /// Face-varying patches in every face-varying interpolation mode: legacy

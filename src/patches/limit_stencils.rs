@@ -192,8 +192,7 @@ impl AdaptiveRefiner {
     /// channel's values (indices of the base level's values). Not yet
     /// native ([`Error::NotYetSupported`]; the bridge has them): face-varying
     /// stencils after a refinement that considered face-varying channels
-    /// (OpenSubdiv then builds the channel's own non-linear patches), and
-    /// Loop meshes with irregular patches.
+    /// (OpenSubdiv then builds the channel's own non-linear patches).
     ///
     /// ```
     /// use subdiv::patches::LimitStencilOptions;

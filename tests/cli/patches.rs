@@ -61,6 +61,27 @@ fn patches_summary_and_json_are_the_librarys_table() {
             assert_eq!(j["sharpness"].as_array().unwrap().len(), a.len());
         }
     }
+    // Loop end caps are native: the tetrahedron's table (every patch
+    // irregular, Gregory triangles with their local points) is
+    // OpenSubdiv's.
+    let tet = write(&dir, "tet.obj", &obj_text(&shapes::tetrahedron()));
+    let tables = ["native", "osd"].map(|engine| {
+        let json = dir.join(format!("tet-{engine}.json"));
+        let out = subdiv(&[
+            "patches",
+            tet.to_str().unwrap(),
+            "--scheme",
+            "loop",
+            "--engine",
+            engine,
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{engine}: {}", stderr(&out));
+        std::fs::read_to_string(&json).unwrap()
+    });
+    assert_eq!(tables[0], tables[1]);
+    assert!(tables[0].contains("GREGORY_TRIANGLE"), "{}", tables[0]);
 }
 
 #[test]
@@ -164,20 +185,32 @@ fn eval_refusals_name_the_line() {
         assert_eq!(out.status.code(), Some(1), "{text:?}");
         assert!(stderr(&out).contains(message), "{text:?}: {}", stderr(&out));
     }
-    // Loop end caps are not native yet: said so, with the exit code of
-    // what is unavailable.
+    // Loop's end caps and bases are native (no refusal any more): a
+    // tetrahedron, every vertex irregular, evaluates as OpenSubdiv
+    // evaluates it.
     let tet = write(&dir, "tet.obj", &obj_text(&shapes::tetrahedron()));
-    let at = write(&dir, "at.txt", "0 0.5 0.5\n");
-    let out = subdiv(&[
-        "eval",
-        tet.to_str().unwrap(),
-        "--at",
-        at.to_str().unwrap(),
-        "--scheme",
-        "loop",
-    ]);
-    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
-    assert!(stderr(&out).contains("not supported by the native engine yet: Loop end caps"));
+    let at = write(&dir, "at.txt", "0 0.5 0.25\n");
+    let [native, osd] = ["native", "osd"].map(|engine| {
+        let out = subdiv(&[
+            "eval",
+            tet.to_str().unwrap(),
+            "--at",
+            at.to_str().unwrap(),
+            "--scheme",
+            "loop",
+            "--engine",
+            engine,
+        ]);
+        assert!(out.status.success(), "{engine}: {}", stderr(&out));
+        stdout(&out)
+            .split_whitespace()
+            .map(|x| x.parse::<f64>().unwrap())
+            .collect::<Vec<_>>()
+    });
+    assert_eq!(native.len(), 3);
+    for (a, b) in native.iter().zip(&osd) {
+        assert!((a - b).abs() <= 1e-12, "{native:?} against {osd:?}");
+    }
     let out = subdiv(&["patches", input.to_str().unwrap(), "--end-caps", "round"]);
     assert_eq!(out.status.code(), Some(2));
     let out = subdiv(&["patches", input.to_str().unwrap(), "--precision", "f32"]);
@@ -187,7 +220,7 @@ fn eval_refusals_name_the_line() {
 /// `subdiv compare --patches`: identical tables and the same limit surface
 /// on a creased mesh with every end-cap type (text and JSON), its options
 /// passed through (`--adaptive N` the isolation, `--single-crease`), and
-/// a Loop mesh the native engine cannot build yet exits 4.
+/// a Loop mesh with Gregory-triangle end caps.
 #[test]
 fn compare_patches_reports_identical_tables() {
     let dir = scratch("cli-compare-patches");
@@ -234,7 +267,10 @@ fn compare_patches_reports_identical_tables() {
         "--scheme",
         "loop",
     ]);
-    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("GREGORY_TRIANGLE"), "{text}");
+    assert!(text.contains("the engines agree"), "{text}");
     // --end-caps needs --patches; --patches does not take --levels.
     let out = subdiv(&["compare", input.to_str().unwrap(), "--end-caps", "bspline"]);
     assert_eq!(out.status.code(), Some(2));

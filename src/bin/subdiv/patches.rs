@@ -41,7 +41,7 @@ pub(crate) struct PatchArgs {
     #[arg(long)]
     pub(crate) double: bool,
     /// The engine that builds and evaluates the table: native (identical tables to
-    /// OpenSubdiv's; Loop meshes with irregular patches not yet) or osd.
+    /// OpenSubdiv's, every scheme and end-cap type) or osd.
     #[arg(long, default_value = "native", value_parser = parse::<Engine>)]
     pub(crate) engine: Engine,
 }

@@ -2,8 +2,9 @@
 //! adaptive refinement): which faces of which levels are patches, in
 //! OpenSubdiv's order; regular patches with their control vertices,
 //! boundary masks and single-crease sharpness; the [`PatchParam`] words;
-//! end caps (Gregory, B-spline and bilinear basis) with their local points
-//! and stencils, and the legacy Gregory end caps with their quad-offset and
+//! end caps (Gregory, B-spline and bilinear basis; under Loop, Gregory
+//! triangles, box-spline and linear triangles) with their local points and
+//! stencils, and the legacy Gregory end caps with their quad-offset and
 //! valence tables — each as OpenSubdiv 3.5 builds it.
 //!
 //! # Files
@@ -12,17 +13,22 @@
 //!   boundary mask, single crease);
 //! * `points.rs`: the control vertices of regular patches;
 //! * `legacy.rs`: the legacy Gregory tables;
-//! * `source.rs`, `limits.rs`, `gregory.rs`, `bspline.rs`, `linear.rs`,
-//!   `matrix.rs`, `local.rs`: end caps and their local points;
+//! * `source.rs` (the source patch, quad or triangle), `matrix.rs`,
+//!   `local.rs`: what every end cap shares — its source points, its
+//!   change-of-basis matrix, its local points;
+//! * `limits.rs`, `gregory.rs`, `bspline.rs`: Catmull-Clark's limit
+//!   weights, Gregory and B-spline end caps;
+//! * `loop_limits.rs`, `loop_gregory.rs`, `box_spline.rs`: Loop's limit
+//!   weights, Gregory-triangle and box-spline end caps;
+//! * `linear.rs`: bilinear quads and linear triangles;
 //! * `uniform.rs`: tables of uniformly refined topologies;
 //! * `fvar.rs`: linear face-varying patches.
 //!
-//! Not yet native: Loop end caps (Gregory triangles, box-spline and linear
-//! triangles around irregular patches) and non-linear face-varying patches
+//! Not yet native: non-linear face-varying patches
 //! (`generateFVarLegacyLinearPatches` off, the channel not linear); a table
-//! that would need them is refused with [`Error::NotYetSupported`]. A Loop
-//! table whose patches are all regular needs no end caps.
+//! that would need them is refused with [`Error::NotYetSupported`].
 
+mod box_spline;
 mod bspline;
 mod corners;
 mod fvar;
@@ -31,6 +37,8 @@ mod legacy;
 mod limits;
 mod linear;
 mod local;
+mod loop_gregory;
+mod loop_limits;
 mod matrix;
 mod points;
 mod source;
@@ -83,15 +91,14 @@ impl AdaptiveRefiner {
     /// OpenSubdiv 3.5's, for the patches of `selected_faces` (every face
     /// when empty).
     ///
-    /// The native engine builds every table of Catmull-Clark and bilinear
-    /// topologies (every end-cap type, with the local points' vertex and
-    /// varying stencils in `f32` or `f64`) and of Loop topologies whose
-    /// patches are all regular, with face-varying patches of linear
-    /// channels (`generateFVarLegacyLinearPatches`, OpenSubdiv's default, or
-    /// a channel interpolated linearly everywhere: each patch's face in the
-    /// channel); Loop end caps around irregular patches and non-linear
-    /// face-varying patches are [`Error::NotYetSupported`] — the `osd`
-    /// engine builds them.
+    /// The native engine builds every table of Catmull-Clark, Loop and
+    /// bilinear topologies (every end-cap type — under Loop Gregory
+    /// triangles, box-spline or linear triangles —, with the local points'
+    /// vertex and varying stencils in `f32` or `f64`), with face-varying
+    /// patches of linear channels (`generateFVarLegacyLinearPatches`,
+    /// OpenSubdiv's default, or a channel interpolated linearly everywhere:
+    /// each patch's face in the channel); non-linear face-varying patches
+    /// are [`Error::NotYetSupported`] — the `osd` engine builds them.
     ///
     /// Refused: an isolation level beyond 10 ([`Error::Level`]), a selected
     /// face or face-varying channel that does not exist; and, as the `osd`
@@ -278,7 +285,6 @@ impl Builder<'_> {
             .iter()
             .map(|p| self.is_regular(p.level, p.face))
             .collect();
-        let irregular_count = regular.iter().filter(|&&r| !r).count();
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
         let (regular_type, linear_type) = match scheme {
             Scheme::Catmark => (PatchType::Regular, PatchType::Quads),
@@ -292,18 +298,6 @@ impl Builder<'_> {
             (EndCapType::LegacyGregory, _) => PatchType::Gregory,
             (EndCapType::BSplineBasis | EndCapType::None, _) => regular_type,
         };
-        if irregular_count > 0
-            && !legacy
-            && !(scheme == Scheme::Catmark
-                && matches!(
-                    irregular_type,
-                    PatchType::GregoryBasis | PatchType::Quads | PatchType::Regular
-                ))
-        {
-            return Err(Error::NotYetSupported(
-                "Loop end caps (Gregory triangle, box-spline, linear) around irregular patches",
-            ));
-        }
         let mut offsets = Vec::with_capacity(self.levels.len() + 1);
         offsets.push(0u32);
         for l in self.levels {
@@ -375,8 +369,14 @@ impl Builder<'_> {
                 let spans = self.corner_spans(p.level, p.face);
                 let source = self.source_patch(p.level, p.face, &spans);
                 match irregular_type {
-                    PatchType::Quads => linear::convert_into(&source, &mut matrix),
+                    PatchType::Quads | PatchType::Triangles => {
+                        linear::convert_into(&source, &mut matrix)
+                    }
                     PatchType::Regular => bspline::convert_into(&source, &mut matrix, &mut spare),
+                    PatchType::Loop => box_spline::convert_into(&source, &mut matrix, &mut spare),
+                    PatchType::GregoryTriangle => {
+                        loop_gregory::GregoryTriangle::<R>::new(&source).convert_into(&mut matrix)
+                    }
                     _ => gregory::Gregory::<R>::new(&source).convert_into(&mut matrix),
                 }
                 let sources = self.source_points(p.level, p.face, &spans, &source);

@@ -174,8 +174,8 @@ pub fn adaptive_rows(
 /// engines reading the same points (every level's vertices and the local
 /// points, computed once, not timed). The tables must be identical and the
 /// values agree to 1e-9 of the mesh's size before timing, or the rows are
-/// refused; a table the native engine does not build yet (Loop end caps)
-/// leaves both out, a basis it does not evaluate yet (Loop) the second.
+/// refused; a table or a basis the native engine does not build yet (none
+/// with these options) leaves both rows or the second out.
 fn limit_rows(
     pool: &rayon::ThreadPool,
     input: &BenchShape,
@@ -235,7 +235,7 @@ fn limit_rows(
             locations.push(location);
         }
     }
-    // Loop's box-spline basis is not native yet: no evaluation row.
+    // A basis not native (none with these options): no evaluation row.
     let mine = match patches::evaluate(&table, &points, 3, &locations, Derivatives::First) {
         Ok(m) => m,
         Err(subdiv::Error::NotYetSupported(_)) => return Ok(rows),
