@@ -7,7 +7,7 @@
 //! the edge points and the ring across the edge.
 
 use super::limits;
-use super::matrix::{Matrix, Row};
+use super::matrix::{Matrix, copy_row, set_all};
 use super::source::SourcePatch;
 use crate::real::Real;
 use std::f64::consts::PI;
@@ -496,19 +496,4 @@ fn isolated_sizes(c: usize, valence: usize) -> Vec<usize> {
     sizes[5 * ((c + 2) % 4)..][..5].copy_from_slice(&[9, 6, 6, 4, 4]);
     sizes[5 * ((c + 3) % 4)..][..5].copy_from_slice(&[9, 6, 6, 3 + ring, 4]);
     sizes
-}
-
-/// Sets a row's entries in order.
-fn set_all<R: Real>(row: &mut Row<R>, entries: &[(usize, R)]) {
-    for (i, &(column, weight)) in entries.iter().enumerate() {
-        row.set(i, column, weight);
-    }
-}
-
-/// Copies `from` into `to` over `to`'s size (`SparseMatrixRow::Copy`).
-fn copy_row<R: Real>(to: &mut Row<R>, from: &Row<R>) {
-    for i in 0..to.len().min(from.len()) {
-        to.columns[i] = from.columns[i];
-        to.weights[i] = from.weights[i];
-    }
 }

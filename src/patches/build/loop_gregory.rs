@@ -10,7 +10,7 @@
 //! the edge — and its edge points are then raised to quartic ones.
 
 use super::loop_limits;
-use super::matrix::{Matrix, Row};
+use super::matrix::{Matrix, Scratch, accumulate, combine, copy_row, set_all, write_row};
 use super::source::SourcePatch;
 use crate::real::Real;
 use std::f64::consts::PI;
@@ -36,10 +36,6 @@ struct Corner<R> {
     cos_angle: R,
     ring: Vec<usize>,
 }
-
-/// The full-row scratch space of the combinations: a weight per source
-/// point and whether it was touched.
-type Scratch<R> = (Vec<R>, Vec<bool>);
 
 /// A triangular source patch seen as a Gregory triangle.
 pub(super) struct GregoryTriangle<R> {
@@ -551,57 +547,6 @@ impl<R: Real> GregoryTriangle<R> {
     }
 }
 
-/// Adds `coefficient ×` each row of `terms` into the full-row scratch
-/// (`_addSparsePointToFullRow`); columns past the source points are
-/// dropped, as OpenSubdiv's output loop never reads them.
-fn accumulate<R: Real>(m: &Matrix<R>, terms: &[(usize, R)], weights: &mut [R], used: &mut [bool]) {
-    weights.iter_mut().for_each(|w| *w = R::ZERO);
-    used.iter_mut().for_each(|u| *u = false);
-    for &(row, s) in terms {
-        let row = &m.rows[row];
-        for (&i, &w) in row.columns.iter().zip(&row.weights) {
-            if let Some(x) = weights.get_mut(i) {
-                *x += s * w;
-                used[i] = true;
-            }
-        }
-    }
-}
-
-/// Writes the touched columns of the scratch into `row` in column order,
-/// over the row's size, padded with zero weights on column `pad` when
-/// given.
-fn write_row<R: Real>(row: &mut Row<R>, weights: &[R], used: &[bool], pad: Option<usize>) {
-    let size = row.len();
-    row.columns.clear();
-    row.weights.clear();
-    for (i, (&u, &w)) in used.iter().zip(weights).enumerate() {
-        if u && row.columns.len() < size {
-            row.columns.push(i);
-            row.weights.push(w);
-        }
-    }
-    if let Some(column) = pad {
-        while row.columns.len() < size {
-            row.columns.push(column);
-            row.weights.push(R::ZERO);
-        }
-    }
-}
-
-/// Row `out` as a combination of rows (`_combineSparsePointsInFullRow`;
-/// `out` may be one of them).
-fn combine<R: Real>(
-    m: &mut Matrix<R>,
-    out: usize,
-    terms: &[(usize, R)],
-    (weights, used): &mut Scratch<R>,
-    pad: Option<usize>,
-) {
-    accumulate(m, terms, weights, used);
-    write_row(&mut m.rows[out], weights, used, pad);
-}
-
 /// Row sizes with one isolated irregular interior corner `c` of `valence`
 /// (`resizeMatrixIsolatedIrregular`).
 fn isolated_sizes(c: usize, valence: usize) -> Vec<usize> {
@@ -615,19 +560,4 @@ fn isolated_sizes(c: usize, valence: usize) -> Vec<usize> {
     sizes[15 + plus] = 4;
     sizes[15 + minus] = 3 + ring;
     sizes
-}
-
-/// Sets a row's entries in order.
-fn set_all<R: Real>(row: &mut Row<R>, entries: &[(usize, R)]) {
-    for (i, &(column, weight)) in entries.iter().enumerate() {
-        row.set(i, column, weight);
-    }
-}
-
-/// Copies `from` into `to` over `to`'s size (`SparseMatrixRow::Copy`).
-fn copy_row<R: Real>(to: &mut Row<R>, from: &Row<R>) {
-    for i in 0..to.len().min(from.len()) {
-        to.columns[i] = from.columns[i];
-        to.weights[i] = from.weights[i];
-    }
 }

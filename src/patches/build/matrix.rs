@@ -74,3 +74,83 @@ impl<R: Real> Matrix<R> {
         }
     }
 }
+
+/// Sets a row's entries in order.
+pub(super) fn set_all<R: Real>(row: &mut Row<R>, entries: &[(usize, R)]) {
+    for (i, &(column, weight)) in entries.iter().enumerate() {
+        row.set(i, column, weight);
+    }
+}
+
+/// Copies `from` into `to` over `to`'s size (`SparseMatrixRow::Copy`).
+pub(super) fn copy_row<R: Real>(to: &mut Row<R>, from: &Row<R>) {
+    for i in 0..to.len().min(from.len()) {
+        to.columns[i] = from.columns[i];
+        to.weights[i] = from.weights[i];
+    }
+}
+
+/// The full-row scratch space of combinations of rows: a weight per source
+/// point and whether it was touched.
+pub(super) type Scratch<R> = (Vec<R>, Vec<bool>);
+
+/// Adds `coefficient ×` each row of `terms` into the full-row scratch
+/// (`_addSparsePointToFullRow`); columns past the source points are
+/// dropped, as OpenSubdiv's output loop never reads them.
+pub(super) fn accumulate<R: Real>(
+    m: &Matrix<R>,
+    terms: &[(usize, R)],
+    weights: &mut [R],
+    used: &mut [bool],
+) {
+    weights.iter_mut().for_each(|w| *w = R::ZERO);
+    used.iter_mut().for_each(|u| *u = false);
+    for &(row, s) in terms {
+        let row = &m.rows[row];
+        for (&i, &w) in row.columns.iter().zip(&row.weights) {
+            if let Some(x) = weights.get_mut(i) {
+                *x += s * w;
+                used[i] = true;
+            }
+        }
+    }
+}
+
+/// Writes the touched columns of the scratch into `row` in column order,
+/// over the row's size, padded with zero weights on column `pad` when
+/// given.
+pub(super) fn write_row<R: Real>(
+    row: &mut Row<R>,
+    weights: &[R],
+    used: &[bool],
+    pad: Option<usize>,
+) {
+    let size = row.len();
+    row.columns.clear();
+    row.weights.clear();
+    for (i, (&u, &w)) in used.iter().zip(weights).enumerate() {
+        if u && row.columns.len() < size {
+            row.columns.push(i);
+            row.weights.push(w);
+        }
+    }
+    if let Some(column) = pad {
+        while row.columns.len() < size {
+            row.columns.push(column);
+            row.weights.push(R::ZERO);
+        }
+    }
+}
+
+/// Row `out` as a combination of rows (`_combineSparsePointsInFullRow`;
+/// `out` may be one of them).
+pub(super) fn combine<R: Real>(
+    m: &mut Matrix<R>,
+    out: usize,
+    terms: &[(usize, R)],
+    (weights, used): &mut Scratch<R>,
+    pad: Option<usize>,
+) {
+    accumulate(m, terms, weights, used);
+    write_row(&mut m.rows[out], weights, used, pad);
+}
