@@ -230,13 +230,21 @@ pub fn refine<R: Children>(
     }
     let total = total as usize;
 
+    // A last level built for face-varying refinement keeps no vertex-faces:
+    // its face values come straight from the parent's faces, and it keeps no
+    // siblings (nothing refines it further).
+    let with_siblings = child.vertex_faces.len() == child.vertex_count;
     let mut fvar = ChannelLevel {
         mode,
         value_count: total,
         face_values: Vec::new(),
         edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), child.edge_count()),
         value_offsets,
-        face_siblings: crate::alloc::vec_or_unwind(0, child.vertex_faces.members.len()),
+        face_siblings: if with_siblings {
+            crate::alloc::vec_or_unwind(0, child.vertex_faces.members.len())
+        } else {
+            Vec::new()
+        },
         value_indices: Vec::new(),
         value_tags: crate::alloc::vec_or_unwind(ValueTag::default(), total),
         crease_ends: if mode.has_crease_ends() {
@@ -247,7 +255,7 @@ pub fn refine<R: Children>(
     };
 
     // Siblings of the faces around child vertices with several values.
-    for e in 0..ne {
+    for e in (0..ne).filter(|_| with_siblings) {
         let e_faces = parent.edge_faces_of(e);
         if !p.edge_tags[e].is_mismatch() || e_faces.len() < 2 {
             continue;
@@ -276,7 +284,7 @@ pub fn refine<R: Children>(
             continue;
         }
         let c = c as usize;
-        if counts[c] > 1 {
+        if counts[c] > 1 && with_siblings {
             let range = child.vertex_faces.range(c);
             fvar.face_siblings[range].copy_from_slice(p.vertex_face_siblings(parent, v));
         }
@@ -364,7 +372,9 @@ pub fn refine<R: Children>(
     }
 
     // Face values: each corner's vertex value, offset by its sibling.
-    fvar.face_values = if total > ncv {
+    fvar.face_values = if total > ncv && !with_siblings {
+        face_values_from_parent(parent, child, r, split, p, &fvar.value_offsets)
+    } else if total > ncv {
         let corners = &child.face_vertices.members;
         let mut values: Vec<u32> = crate::alloc::collect_n(
             corners.len(),
@@ -386,6 +396,92 @@ pub fn refine<R: Children>(
         crate::alloc::copied(&child.face_vertices.members)
     };
     fvar
+}
+
+/// The values of the corners of a uniformly split child level that keeps no
+/// vertex-faces, from its parent's: every corner takes its vertex's first
+/// value, but a vertex child takes the sibling its parent corner took (the
+/// child keeps its parent's faces and their siblings), and the point of a
+/// split edge in the children of the edge's face `i` takes sibling `i`
+/// (the last position of that face among the edge's faces, as
+/// [`refine`] numbers them through the child's vertex-faces).
+fn face_values_from_parent<R: Children>(
+    parent: &Level,
+    child: &Level,
+    r: &R,
+    split: FaceSplit,
+    p: &ChannelLevel,
+    offsets: &[u32],
+) -> Vec<u32> {
+    let corners = &child.face_vertices.members;
+    let mut values: Vec<u32> =
+        crate::alloc::collect_n(corners.len(), corners.iter().map(|&v| offsets[v as usize]));
+    // Where the children of parent face `f`'s corner `k` and of its edge
+    // `k` lie among the child corners: the vertex child's corner, and the
+    // (child corner) positions of the edge point.
+    let fv = &parent.face_vertices;
+    let vertex_corner = |f: usize, k: usize| -> usize {
+        match split {
+            FaceSplit::Quads => {
+                let n = fv.count(f);
+                let child_face = fv.start(f) + k;
+                4 * child_face + if n == 4 { k } else { 0 }
+            }
+            FaceSplit::Triangles => 3 * (4 * f + k) + k,
+        }
+    };
+    let edge_corners = |f: usize, k: usize| -> ([usize; 3], usize) {
+        match split {
+            FaceSplit::Quads => {
+                let n = fv.count(f);
+                let k1 = if k + 1 == n { 0 } else { k + 1 };
+                let (rot, rot1) = if n == 4 { (k, k1) } else { (0, 0) };
+                let (a, b) = (fv.start(f) + k, fv.start(f) + k1);
+                ([4 * a + (rot + 1) % 4, 4 * b + (rot1 + 3) % 4, 0], 2)
+            }
+            FaceSplit::Triangles => {
+                // Edge k's point in the corner children k and k + 1 and in
+                // the middle child ([E1, E2, E0]).
+                let t = 4 * f;
+                let at = match k {
+                    0 => [3 * t + 1, 3 * (t + 1), 3 * (t + 3) + 2],
+                    1 => [3 * (t + 1) + 2, 3 * (t + 2) + 1, 3 * (t + 3)],
+                    _ => [3 * t + 2, 3 * (t + 2), 3 * (t + 3) + 1],
+                };
+                (at, 3)
+            }
+        }
+    };
+    for v in 0..parent.vertex_count {
+        if p.vertex_value_count(v) < 2 {
+            continue;
+        }
+        let c = r.vertex_child(v) as usize;
+        let siblings = p.vertex_face_siblings(parent, v);
+        for ((&f, &k), &s) in parent
+            .vertex_faces_of(v)
+            .iter()
+            .zip(parent.vertex_face_locals(v))
+            .zip(siblings)
+        {
+            values[vertex_corner(f as usize, k as usize)] = offsets[c] + u32::from(s);
+        }
+    }
+    for e in 0..parent.edge_count() {
+        let faces = parent.edge_faces_of(e);
+        if !p.edge_tags[e].is_mismatch() || faces.len() < 2 {
+            continue;
+        }
+        let c = r.edge_child(e) as usize;
+        for (&f, &k) in faces.iter().zip(parent.edge_face_locals(e)) {
+            let j = faces.iter().rposition(|&g| g == f).unwrap_or(0) as u32;
+            let (at, n) = edge_corners(f as usize, k as usize);
+            for &corner in &at[..n] {
+                values[corner] = offsets[c] + j;
+            }
+        }
+    }
+    values
 }
 
 /// Turns semi-sharp values of vertex children into creases once no

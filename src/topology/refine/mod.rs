@@ -162,10 +162,11 @@ pub enum Build {
     /// level needs for interpolation, as OpenSubdiv builds it unless asked
     /// for full topology.
     Minimal,
-    /// A minimal last level with its vertex-faces (and their local indices)
-    /// and its edges' sharpness and tags: what refining face-varying
-    /// channels into it reads, as OpenSubdiv adds the vertex-faces to a
-    /// minimal level when the mesh has face-varying channels.
+    /// A minimal last level with its edges' sharpness and tags: what
+    /// refining face-varying channels into it reads. (OpenSubdiv adds the
+    /// vertex-faces to a minimal level when the mesh has face-varying
+    /// channels, to number each corner's sibling through them; the native
+    /// refinement reads the siblings from the parent's faces instead.)
     FaceVarying,
 }
 
@@ -184,14 +185,12 @@ impl Build {
     }
 
     /// Whether a level built so is minimal (face-vertices only, apart from
-    /// [`Build::FaceVarying`]'s vertex-faces), keeps local indices, and
-    /// keeps vertex-faces only.
-    fn parts(self) -> (bool, bool, bool) {
+    /// [`Build::FaceVarying`]'s edge tags), and keeps local indices.
+    fn parts(self) -> (bool, bool) {
         match self {
-            Build::Full => (false, true, false),
-            Build::Relations => (false, false, false),
-            Build::Minimal => (true, false, false),
-            Build::FaceVarying => (true, false, true),
+            Build::Full => (false, true),
+            Build::Relations => (false, false),
+            Build::Minimal | Build::FaceVarying => (true, false),
         }
     }
 }
@@ -248,23 +247,6 @@ struct ChildRelations {
     vertex_face_local: Table<u16>,
     vertex_edges: Relation,
     vertex_edge_local: Table<u16>,
-}
-
-/// The relations of a [`Build::FaceVarying`] level: its vertex-faces with
-/// their local indices (`members` in all, for `child_vertices` vertices),
-/// filled by `fill`, and nothing else.
-fn vertex_faces_only_relations(
-    child_vertices: usize,
-    members: usize,
-    fill: impl FnOnce(relations::TableWriter) -> ((Relation, Table<u16>), relations::Discard),
-) -> ChildRelations {
-    let vf = relations::TableWriter::new(child_vertices, members, None, true);
-    let ((vertex_faces, vertex_face_local), relations::Discard) = fill(vf);
-    ChildRelations {
-        vertex_faces,
-        vertex_face_local,
-        ..Default::default()
-    }
 }
 
 /// The tables of a child level built by a split, before tags and sharpness.

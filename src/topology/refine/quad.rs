@@ -5,14 +5,10 @@
 
 use super::derive::vertex_relations_derivable;
 use super::relations::{
-    Discard, Sink, TableWriter, fill_vertex_relations, vertex_child_relations,
-    vertex_relation_writers,
+    Sink, TableWriter, fill_vertex_relations, vertex_child_relations, vertex_relation_writers,
 };
 use super::tags::{ChildTags, child_holes};
-use super::{
-    Build, ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev,
-    vertex_faces_only_relations,
-};
+use super::{Build, ChildRelations, Parts, Split, assemble_child, carve_by_faces, next, prev};
 use crate::options::Options;
 use crate::topology::{Level, Relation, Table};
 use rayon::prelude::*;
@@ -28,7 +24,7 @@ pub(super) fn refine_quads(
     faces_first: bool,
     build: Build,
 ) -> (Split, Level) {
-    let (minimal, locals, vertex_faces_only) = build.parts();
+    let (minimal, locals) = build.parts();
     let r = Split::new(parent, faces_first, true);
     let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -71,13 +67,6 @@ pub(super) fn refine_quads(
     // Everything but the face-vertices is skipped for a minimal last level.
     // Edge relations and vertex relations are built side by side.
     let relations_part = || -> ChildRelations {
-        if vertex_faces_only {
-            let members =
-                parent.vertex_faces.members.len() + corners + 2 * parent.edge_faces.members.len();
-            return vertex_faces_only_relations(child_vertices, members, |vf| {
-                quad_vertex_relations(parent, &r, vf, Discard)
-            });
-        }
         if minimal {
             return Default::default();
         }

@@ -122,16 +122,6 @@ impl Sink for TableWriter {
     }
 }
 
-/// A sink that keeps nothing: the vertex-edges of a level built as
-/// [`Build::FaceVarying`](super::Build::FaceVarying), which keeps only
-/// vertex-faces.
-pub(super) struct Discard;
-
-impl Sink for Discard {
-    #[inline(always)]
-    fn push(&mut self, _: u32, _: u16) {}
-}
-
 impl Sink for Vec<u32> {
     #[inline(always)]
     fn push(&mut self, member: u32, _: u16) {
@@ -167,7 +157,7 @@ pub(super) fn vertex_relation_writers(
 /// one element of both writers per child, in the order of its parents — are
 /// written in the order of the child vertices' indices. The vertex-faces are
 /// returned finished, the vertex-edges' sink as it was filled (a
-/// [`TableWriter`] to finish, or [`Discard`]).
+/// [`TableWriter`] to finish, or another [`Sink`]).
 pub(super) fn fill_vertex_relations<E: Sink>(
     r: &Split,
     mut vf: TableWriter,

@@ -4,13 +4,10 @@
 
 use super::derive::vertex_relations_derivable;
 use super::relations::{
-    Discard, Sink, TableWriter, fill_vertex_relations, vertex_child_relations,
-    vertex_relation_writers,
+    Sink, TableWriter, fill_vertex_relations, vertex_child_relations, vertex_relation_writers,
 };
 use super::tags::{ChildTags, child_holes};
-use super::{
-    Build, ChildRelations, FACE_CHUNK, Parts, Split, assemble_child, vertex_faces_only_relations,
-};
+use super::{Build, ChildRelations, FACE_CHUNK, Parts, Split, assemble_child};
 use crate::options::Options;
 use crate::topology::{Level, Relation, Table};
 use rayon::prelude::*;
@@ -24,7 +21,7 @@ pub(super) fn refine_triangles(
     faces_first: bool,
     build: Build,
 ) -> (Split, Level) {
-    let (minimal, locals, vertex_faces_only) = build.parts();
+    let (minimal, locals) = build.parts();
     let r = Split::new(parent, faces_first, false);
     let derive = !minimal && !locals && vertex_relations_derivable(parent);
     let (ne, nf) = (parent.edge_count(), parent.face_count());
@@ -121,12 +118,6 @@ pub(super) fn refine_triangles(
 
     // Everything but the face-vertices is skipped for a minimal last level.
     let relations_part = || -> ChildRelations {
-        if vertex_faces_only {
-            let members = parent.vertex_faces.members.len() + 3 * parent.edge_faces.members.len();
-            return vertex_faces_only_relations(child_vertices, members, |vf| {
-                triangle_vertex_relations(parent, &r, vf, Discard)
-            });
-        }
         if minimal {
             return Default::default();
         }
