@@ -509,6 +509,93 @@ fn folded_triangles_with_bilinear_end_caps_match_opensubdiv() {
     assert!(t.local_points > 0, "{t:?}");
 }
 
+/// Loop end caps at the corners the corpus has few of: interior vertices
+/// of valence 2 (two triangles folded onto each other, whose source
+/// patches repeat points), single faces, a non-manifold edge, darts and
+/// infinitely sharp creases and corners, with every end-cap type, both
+/// precisions, shared points or not — identical to OpenSubdiv's tables
+/// (where the bridge builds them: not B-spline end caps around an interior
+/// vertex of valence 2).
+#[test]
+fn loop_end_caps_at_odd_corners_match_opensubdiv() {
+    use glam::DVec3;
+    use subdiv::{Corner, Crease};
+    let points = |n: usize| {
+        (0..n)
+            .map(|i| DVec3::new(i as f64, (i * i) as f64 * 0.5, 1.0 - i as f64))
+            .collect::<Vec<_>>()
+    };
+    let mut meshes = vec![
+        Mesh::from_faces(points(3), &[&[0, 1, 2], &[0, 2, 1]]),
+        Mesh::from_faces(points(4), &[&[0, 1, 2], &[0, 2, 1], &[1, 3, 2]]),
+        Mesh::from_faces(points(5), &[&[0, 1, 2], &[0, 3, 4]]),
+        Mesh::from_faces(points(3), &[&[0, 1, 2]]),
+        Mesh::from_faces(points(5), &[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]),
+    ];
+    let fan = |n: usize| {
+        let faces: Vec<[u32; 3]> = (0..n as u32)
+            .map(|i| [0, 1 + i, 1 + (i + 1) % n as u32])
+            .collect();
+        let faces: Vec<&[u32]> = faces.iter().map(|f| &f[..]).collect();
+        Mesh::from_faces(points(n + 1), &faces)
+    };
+    let mut creased = fan(4);
+    creased.creases.push(Crease {
+        vertices: [0, 2],
+        sharpness: 10.0,
+    });
+    creased.corners.push(Corner {
+        vertex: 0,
+        sharpness: 2.0,
+    });
+    let mut dart = fan(5);
+    dart.creases.push(Crease {
+        vertices: [0, 2],
+        sharpness: 10.0,
+    });
+    meshes.extend([creased, dart]);
+    let mut t = Tally::default();
+    for mesh in &meshes {
+        for boundary in [
+            BoundaryInterpolation::None,
+            BoundaryInterpolation::EdgeOnly,
+            BoundaryInterpolation::EdgeAndCorner,
+        ] {
+            let options = Options::shape_file_defaults()
+                .with_scheme(Scheme::Loop)
+                .with_boundary(boundary);
+            for isolation in [1, 3] {
+                for end_caps in [
+                    EndCapType::GregoryBasis,
+                    EndCapType::BSplineBasis,
+                    EndCapType::BilinearBasis,
+                    EndCapType::None,
+                ] {
+                    let o = PatchOptions::new()
+                        .max_isolation(isolation)
+                        .end_caps(end_caps);
+                    for po in [
+                        o.clone().inf_sharp_patch(true).single_crease_patch(true),
+                        PatchOptions {
+                            legacy_sharp_corner_patches: false,
+                            share_end_cap_points: false,
+                            ..o.clone().double_precision(true)
+                        },
+                    ] {
+                        compare(&format!("{mesh:?}"), mesh, &options, &po, &[], &mut t);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("{t:?}");
+    assert!(t.identical > 250 && t.osd_unsafe > 0, "{t:?}");
+    assert!(
+        t.loop_gregory > 0 && t.loop_box_spline > 0 && t.loop_linear > 0,
+        "{t:?}"
+    );
+}
+
 /// Uniform patch tables (`BuildUniformPolygons`): every scheme, levels 0-3,
 /// last or all levels, with or without the base level's indices, quads or
 /// triangulated — identical to OpenSubdiv's.
