@@ -2,7 +2,8 @@
 //! (`subdiv::osd::bfr::tessellate_mesh`) against the native mesher
 //! (`subdiv::bfr::tessellate` over `LimitSurfaces`): the same mesh, index
 //! for index, positions, normals and texture coordinates within 1e-9 of
-//! the bounding box's diagonal; Loop meshes (not native yet) watertight;
+//! the bounding box's diagonal (Catmull-Clark, bilinear and Loop), Loop
+//! meshes watertight;
 //! every refusal before OpenSubdiv sees the input. Run it under Valgrind:
 //! `valgrind --error-exitcode=1 target/debug/deps/osd_bfr_mesh-*`.
 #![cfg(feature = "osd")]
@@ -359,14 +360,26 @@ fn smooth_uvs_are_evaluated_by_bfr() {
     assert!(osd.uvs.iter().all(|x| x.is_finite()));
 }
 
+/// Loop meshes: the native mesher against Bfr's on the icosahedron and
+/// every all-triangle shape of the corpus (boundaries, creases, holes), and
+/// the icosahedron's tessellation counted and checked watertight.
 #[test]
-fn loop_meshes_tessellate_watertight() {
+fn loop_meshes_match_and_tessellate_watertight() {
     let mesh = shapes::icosahedron();
     let loop_ = Options::default().with_scheme(Scheme::Loop);
-    assert!(matches!(
-        LimitSurfaces::new(&mesh, &loop_, &SurfaceOptions::default()),
-        Err(Error::NotYetSupported(_))
-    ));
+    let mut done = compare("icosahedron, Loop", &mesh, &loop_);
+    for (name, mesh) in shapes::corpus() {
+        if mesh.faces().all(|f| f.len() == 3) {
+            for boundary in [
+                BoundaryInterpolation::EdgeOnly,
+                BoundaryInterpolation::EdgeAndCorner,
+            ] {
+                let options = loop_.with_boundary(boundary);
+                done += compare(&format!("{name}, Loop"), &mesh, &options);
+            }
+        }
+    }
+    assert!(done > 100, "{done} comparisons");
     for rate in [1u32, 3, 8] {
         for quads in [false, true] {
             let tess = TessellateOptions {

@@ -68,19 +68,14 @@ impl LimitSurfaces {
     /// The surfaces of `mesh`'s faces under `options`.
     ///
     /// Not native yet ([`Error::NotYetSupported`]): approximation levels of
-    /// 0 (Bfr then refines some faces once regardless), and Loop meshes
-    /// (the patch evaluation has no Loop basis yet).
+    /// 0 (Bfr then refines some faces once regardless). Loop meshes get
+    /// box-spline patches and Gregory triangles.
     pub fn new(mesh: &Mesh, options: &Options, surface: &SurfaceOptions) -> Result<Self> {
         let sharp = surface.approx_level_sharp;
         let smooth = surface.approx_level_smooth.min(sharp);
         if smooth == 0 {
             return Err(Error::NotYetSupported(
                 "Bfr surfaces with an approximation level of 0",
-            ));
-        }
-        if options.scheme == Scheme::Loop {
-            return Err(Error::NotYetSupported(
-                "Bfr surfaces of Loop meshes (the Loop box-spline and Gregory-triangle bases)",
             ));
         }
         let refiner = Refiner::new(mesh, options)?;

@@ -133,6 +133,41 @@ fn the_cube_tessellates_into_a_closed_mesh_on_every_engine() {
     }
 }
 
+/// A Loop mesh (the icosahedron): counts of the triangle patterns, closed,
+/// and the engines agree point by point at rates 1, 3 and 8.
+#[test]
+fn loop_meshes_tessellate_on_every_engine() {
+    let dir = scratch("cli-tessellate-loop");
+    let input = write(&dir, "ico.obj", &obj_text(&shapes::icosahedron()));
+    let input = input.to_str().unwrap();
+    for rate in ["1", "3", "8"] {
+        let r: usize = rate.parse().unwrap();
+        let mut first: Option<Obj> = None;
+        for &engine in engines() {
+            let obj = tessellate(input, engine, &["--scheme", "loop", "--rate", rate]);
+            // 12 vertices, r - 1 points inside each of 30 edges, the
+            // (r - 1)(r - 2) / 2 inside each of 20 triangles.
+            assert_eq!(
+                obj.v.len(),
+                12 + 30 * (r - 1) + 20 * (r - 1) * r.saturating_sub(2) / 2,
+                "{engine} rate {r}"
+            );
+            assert_eq!(obj.faces.len(), 20 * r * r);
+            assert_closed(&obj);
+            match &first {
+                None => first = Some(obj),
+                Some(f) => {
+                    for (a, b) in f.v.iter().zip(&obj.v) {
+                        for k in 0..3 {
+                            assert!((a[k] - b[k]).abs() < 1e-9, "{a:?} {b:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn uvs_come_with_every_corner_and_edge_lengths_set_rates() {
     let dir = scratch("cli-tessellate-uv");
