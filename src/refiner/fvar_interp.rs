@@ -747,8 +747,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
                         } else {
                             s
                         };
-                        let w =
-                            pf.fractional_weight((parent, child, r), v, from, c, options.creasing);
+                        let w = pf.fractional_weight((parent, child), v, from, c, options.creasing);
                         let corner = T::from_f32(w);
                         let crease = T::ONE - corner;
                         vw = crease * corner_weight + corner;

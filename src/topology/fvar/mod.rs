@@ -384,12 +384,11 @@ impl ChannelLevel {
     /// The weight of the corner mask when sibling `s` of parent vertex `v`
     /// turns from a semi-sharp corner into a crease: the fractional weight of
     /// the vertex's sharpness and of the edges inside the value's span, as
-    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child;
-    /// `r` the split between them). Only channels with smooth boundaries keep
-    /// crease spans.
-    pub fn fractional_weight<R: Children>(
+    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child).
+    /// Only channels with smooth boundaries keep crease spans.
+    pub fn fractional_weight(
         &self,
-        (parent, child, r): (&Level, &Level, &R),
+        (parent, child): (&Level, &Level),
         v: usize,
         s: usize,
         c: usize,
@@ -398,13 +397,13 @@ impl ChannelLevel {
         let [start, end] = self.crease_ends[self.value_offsets[v] as usize + s];
         let (start, end) = (start as usize, end as usize);
         let p_edges = parent.vertex_edges_of(v);
-        let c_edges = child_vertex_edges(parent, child, r, v, c);
+        let c_edges = child_vertex_edge_sharpness(parent, child, v, c, creasing);
         let mut p_sharpness = Vec::with_capacity(p_edges.len());
         let mut c_sharpness = Vec::with_capacity(p_edges.len());
         // The edges strictly inside the span: between its consecutive faces.
         let mut take = |i: usize| {
             p_sharpness.push(parent.edge_sharpness_at(p_edges[i] as usize));
-            c_sharpness.push(child.edge_sharpness_at(c_edges[i] as usize));
+            c_sharpness.push(c_edges[i]);
         };
         if end > start {
             (start + 1..=end).for_each(&mut take);
@@ -425,25 +424,39 @@ impl ChannelLevel {
     }
 }
 
-/// The edges of child vertex `c`, the child of parent vertex `v`, in the
-/// order of `v`'s edges: the child level's own list, or — in a last level
-/// built for face-varying refinement, which keeps no vertex-edges — the
-/// halves of `v`'s edges at `v`, as OpenSubdiv finds them then.
-pub(super) fn child_vertex_edges<'a, R: refine::Children>(
+/// The sharpness of the edges of child vertex `c`, the child of parent
+/// vertex `v`, in the order of `v`'s edges: read from a child level that
+/// keeps its vertex-edges, or — in a minimal last level, which keeps no
+/// edges — the halves of `v`'s edges at `v` decayed from the parent as the
+/// child's tags are (`refine::child_edge`).
+pub(super) fn child_vertex_edge_sharpness(
     parent: &Level,
-    child: &'a Level,
-    r: &R,
+    child: &Level,
     v: usize,
     c: usize,
-) -> std::borrow::Cow<'a, [u32]> {
+    creasing: CreasingMethod,
+) -> Vec<f32> {
     if child.vertex_edges.len() == child.vertex_count {
-        return child.vertex_edges_of(c).into();
+        return child
+            .vertex_edges_of(c)
+            .iter()
+            .map(|&e| child.edge_sharpness_at(e as usize))
+            .collect();
     }
+    let mut around = Vec::new();
     parent
         .vertex_edges_of(v)
         .iter()
         .zip(parent.vertex_edge_locals(v))
-        .map(|(&e, &end)| r.edge_child_edge(e as usize, end as usize))
-        .collect::<Vec<u32>>()
-        .into()
+        .map(|(&e, &end)| {
+            crate::topology::refine::child_edge(
+                parent,
+                e as usize,
+                end as usize,
+                creasing,
+                &mut around,
+            )
+            .0
+        })
+        .collect()
 }

@@ -3,8 +3,9 @@
 //! `Vtr::FVarRefinement` (`vtr/fvarRefinement.cpp`).
 
 use super::{ChannelLevel, FVarEdgeTag, ValueTag};
-use crate::options::{Options, Scheme};
+use crate::options::{CreasingMethod, Options, Scheme};
 use crate::output::INVALID_INDEX;
+use crate::rules::crease;
 use crate::topology::refine::sparse::SparseSplit;
 use crate::topology::{Level, Split};
 
@@ -368,7 +369,7 @@ pub fn refine<R: Children>(
                 }
             }
         }
-        reclassify_semi_sharp(parent, child, r, p, &mut fvar);
+        reclassify_semi_sharp(parent, child, r, p, &mut fvar, options.creasing);
     }
 
     // Face values: each corner's vertex value, offset by its sibling.
@@ -493,6 +494,7 @@ fn reclassify_semi_sharp<R: Children>(
     r: &R,
     p: &ChannelLevel,
     fvar: &mut ChannelLevel,
+    creasing: CreasingMethod,
 ) {
     for v in 0..parent.vertex_count {
         let c = r.vertex_child(v);
@@ -520,8 +522,8 @@ fn reclassify_semi_sharp<R: Children>(
             }
             continue;
         }
-        let c_edges = super::child_vertex_edges(parent, child, r, v, c);
-        let semi = |k: usize| child.edge_tag(c_edges[k] as usize).semi_sharp();
+        let c_edges = super::child_vertex_edge_sharpness(parent, child, v, c, creasing);
+        let semi = |k: usize| crease::is_semi_sharp(c_edges[k]);
         for i in range.clone() {
             let t = fvar.value_tags[i];
             if !t.is_semi_sharp() || t.is_dep_sharp() {

@@ -53,6 +53,7 @@ pub(crate) use derive::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
     derive_smooth_hood, derive_vertex_relations,
 };
+pub(crate) use tags::child_edge;
 pub use tags::child_edge_sharpness;
 
 use super::{Level, Relation, Table};
@@ -158,39 +159,37 @@ pub enum Build {
     /// are left out too and derived from the parent when interpolation reads
     /// them ([`Level::derived_relations`]).
     Relations,
-    /// Only the face-vertices (with sharpness, tags and holes): what a last
-    /// level needs for interpolation, as OpenSubdiv builds it unless asked
-    /// for full topology.
+    /// Only the face-vertices (with vertex sharpness, tags and holes): what
+    /// a last level needs for interpolation, as OpenSubdiv builds it unless
+    /// asked for full topology. Face-varying channels refine into it too:
+    /// OpenSubdiv adds the vertex-faces to a minimal level then, to number
+    /// each corner's sibling through them, and keeps its edges' sharpness;
+    /// the native refinement reads the siblings from the parent's faces and
+    /// decays the few edge sharpnesses it needs from the parent's.
     Minimal,
-    /// A minimal last level with its edges' sharpness and tags: what
-    /// refining face-varying channels into it reads. (OpenSubdiv adds the
-    /// vertex-faces to a minimal level when the mesh has face-varying
-    /// channels, to number each corner's sibling through them; the native
-    /// refinement reads the siblings from the parent's faces instead.)
-    FaceVarying,
 }
 
 impl Build {
     /// What level `level` of a refinement to `last` builds, when the last
     /// level is `minimal` or not, for a mesh with face-varying channels
-    /// (`fvar`: the last level keeps its vertex-faces, the one before all of
-    /// its relations) or without.
+    /// (`fvar`: the level before a minimal last one keeps all of its
+    /// relations and their local indices, which face-varying refinement and
+    /// interpolation read) or without.
     pub fn for_level(level: usize, last: usize, minimal: bool, fvar: bool) -> Build {
         match (minimal, fvar) {
-            (true, false) if level == last => Build::Minimal,
+            (true, _) if level == last => Build::Minimal,
             (true, false) if level + 1 == last => Build::Relations,
-            (true, true) if level == last => Build::FaceVarying,
             _ => Build::Full,
         }
     }
 
-    /// Whether a level built so is minimal (face-vertices only, apart from
-    /// [`Build::FaceVarying`]'s edge tags), and keeps local indices.
+    /// Whether a level built so is minimal (face-vertices only), and keeps
+    /// local indices.
     fn parts(self) -> (bool, bool) {
         match self {
             Build::Full => (false, true),
             Build::Relations => (false, false),
-            Build::Minimal | Build::FaceVarying => (true, false),
+            Build::Minimal => (true, false),
         }
     }
 }
