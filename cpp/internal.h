@@ -111,6 +111,7 @@ inline void check_cap(size_t cap, long long need_n, const char *what) {
 void check_channel(const sdv_refiner *r, int32_t channel);
 void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel);
 void check_no_repeated_vertices(Far::TopologyLevel const &base);
+void check_loop_folded_triangles(Far::TopologyRefiner const &tr);
 void check_unit(double x, const char *name);
 
 }  // namespace sdv_internal

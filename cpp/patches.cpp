@@ -38,6 +38,36 @@ void check_no_repeated_vertices(Far::TopologyLevel const &base) {
     }
 }
 
+// Loop end caps (every type) gather a triangle's source points corner by
+// corner; at a corner of two faces whose previous corner is an interior
+// vertex of valence 2 the patch's ring is one point longer than the ring
+// gathered from the level, and OpenSubdiv reads that point from
+// uninitialised memory (found by the adaptive_differential fuzz target: a
+// local-point stencil naming vertex 941292184, and LimitStencilTableFactory
+// reading out of bounds through it). Two such corners share a face only in
+// two triangles folded onto each other, in the base level (refinement
+// separates them): refused while such a face is left unrefined.
+void check_loop_folded_triangles(Far::TopologyRefiner const &tr) {
+    if (tr.GetSchemeType() != Sdc::SCHEME_LOOP || tr.IsUniform()) return;
+    Far::TopologyLevel const &base = tr.GetLevel(0);
+    auto folded = [&](Far::Index v) {
+        return base.GetVertexEdges(v).size() == 2 && base.GetVertexFaces(v).size() == 2 &&
+               !base.IsVertexBoundary(v);
+    };
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = base.GetFaceVertices(f);
+        int count = 0;
+        for (int k = 0; k < fv.size(); ++k) count += folded(fv[k]) ? 1 : 0;
+        if (count < 2) continue;
+        bool refined = tr.GetMaxLevel() > 0 && base.GetFaceChildFaces(f).size() > 0 &&
+                       Far::IndexIsValid(base.GetFaceChildFaces(f)[0]);
+        if (!refined)
+            fail_unsafe("Loop end caps are not available on base face " + str(f) +
+                        ", left unrefined with two interior vertices of valence 2 (OpenSubdiv reads its source "
+                        "points from uninitialised memory there)");
+    }
+}
+
 void check_unit(double x, const char *name) {
     if (!std::isfinite(x) || x < 0.0 || x > 1.0) fail(std::string(name) + " " + std::to_string(x) + " is not in [0, 1]");
 }
@@ -204,6 +234,7 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         // Uniform tables list faces; only adaptive ones run the patch
         // builders that overrun on repeated vertices.
         if (!tr.IsUniform()) check_no_repeated_vertices(tr.GetLevel(0));
+        if (!legacy) check_loop_folded_triangles(tr);
         if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS ||
             f.endCapType == Far::PatchTableFactory::Options::ENDCAP_NONE)
             check_bspline_end_caps(tr.GetLevel(0));

@@ -596,6 +596,55 @@ fn loop_end_caps_at_odd_corners_match_opensubdiv() {
     );
 }
 
+/// Found by fuzzing: two triangles folded onto each other, one a hole, left
+/// unrefined (secondary level 0). OpenSubdiv reads the end cap's source
+/// points from uninitialised memory there (a local-point stencil naming
+/// vertex 941292184, and its limit stencils reading out of bounds): the
+/// bridge refuses; the native engine builds every end-cap type from the
+/// level's points.
+#[test]
+fn folded_loop_triangles_left_unrefined_are_refused_by_the_bridge() {
+    use glam::DVec3;
+    use subdiv::patches::LimitStencilOptions;
+    let positions = vec![
+        DVec3::new(-1.4375, 0.0, 5.4375),
+        DVec3::new(-5.125, 6.0625, -5.0),
+        DVec3::new(-4.4375, 5.75, -2.6875),
+        DVec3::new(-1.4375, 0.0, -7.5),
+    ];
+    let mut mesh = Mesh::from_faces(positions, &[&[0, 3, 1], &[1, 3, 0]]);
+    mesh.holes.push(0);
+    let options = Options::shape_file_defaults().with_scheme(Scheme::Loop);
+    let ao = AdaptiveOptions::new(6).secondary(0);
+    let native = Refiner::new(&mesh, &options)
+        .unwrap()
+        .refine_adaptive(ao, &[])
+        .unwrap();
+    let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
+    theirs.refine_adaptive(ao, &[]).unwrap();
+    let unsafe_refusal =
+        |e: Error| matches!(e, Error::Osd(o) if o.kind == subdiv::OsdErrorKind::Unsafe);
+    for end_caps in [
+        EndCapType::GregoryBasis,
+        EndCapType::BSplineBasis,
+        EndCapType::BilinearBasis,
+    ] {
+        let po = PatchOptions::new().max_isolation(6).end_caps(end_caps);
+        let table = native.patch_table(&po, &[]).unwrap();
+        assert!(table.local_points > 0, "{end_caps:?}");
+        let Err(e) = theirs.patch_table(&po, &[]) else {
+            panic!("{end_caps:?}: the bridge built the table");
+        };
+        assert!(unsafe_refusal(e), "{end_caps:?}");
+    }
+    let at = [(1, 0.25, 0.5)];
+    let o = LimitStencilOptions::new();
+    assert_eq!(native.location_stencils(&at, &o).unwrap().len(), 1);
+    assert!(unsafe_refusal(
+        theirs.location_stencils(&at, &o).unwrap_err()
+    ));
+}
+
 /// Uniform patch tables (`BuildUniformPolygons`): every scheme, levels 0-3,
 /// last or all levels, with or without the base level's indices, quads or
 /// triangulated — identical to OpenSubdiv's.

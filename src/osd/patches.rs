@@ -60,9 +60,11 @@ impl TopologyRefiner {
     /// that adaptive refinement was not given (OpenSubdiv leaves its patches
     /// undefined), and the inputs OpenSubdiv 3.5 overruns its buffers on
     /// (kind `Unsafe`; docs/CONFORMANCE.md): a face repeating a vertex,
-    /// B-spline end caps at an interior vertex of valence 2, legacy Gregory
-    /// end caps with an irregular patch above the last level, a non-quad or
-    /// a non-manifold vertex in it.
+    /// B-spline end caps at an interior vertex of valence 2, Loop end caps
+    /// on a base triangle left unrefined with two interior vertices of
+    /// valence 2 (two triangles folded onto each other), legacy Gregory end
+    /// caps with an irregular patch above the last level, a non-quad or a
+    /// non-manifold vertex in it.
     ///
     /// ```
     /// use subdiv::{osd, patches::{PatchOptions, PatchType}, shapes, Options};

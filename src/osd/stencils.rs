@@ -298,7 +298,8 @@ impl TopologyRefiner {
     /// coordinate outside [0, 1], a face-varying channel the mesh lacks, a
     /// refiner adaptively refined around selected faces only (the other
     /// faces' patches are undefined), faces repeating a vertex after
-    /// adaptive refinement, face-varying stencils after adaptive refinement
+    /// adaptive refinement, a Loop base triangle left unrefined with two
+    /// interior vertices of valence 2 (as for patch tables), face-varying stencils after adaptive refinement
     /// that considered the face-varying channels (OpenSubdiv 3.5 reads
     /// uninitialised local-point weights there and returns wrong stencils:
     /// found by Valgrind), and the Catmull-Clark vertex masks that overflow
