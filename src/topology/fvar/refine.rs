@@ -190,12 +190,14 @@ pub fn refine<R: Children>(
     // Values per child vertex: one per face point; one per edge point, or one
     // per incident face across a split edge; as many per vertex child as its
     // parent had when mismatched.
-    let mut counts = crate::alloc::vec_or_unwind(0u32, ncv);
+    // Each child's count is written at `value_offsets[c + 1]`, then summed
+    // in place into the offsets (a child not created counts 0).
+    let mut value_offsets = crate::alloc::vec_or_unwind(0u32, ncv + 1);
     if r.has_face_points() {
         for f in 0..nf {
             let c = r.face_child(f);
             if !missing::<R>(c) {
-                counts[c as usize] = 1;
+                value_offsets[c as usize + 1] = 1;
             }
         }
     }
@@ -204,7 +206,7 @@ pub fn refine<R: Children>(
         if missing::<R>(c) {
             continue;
         }
-        counts[c as usize] = if p.edge_tags[e].is_mismatch() {
+        value_offsets[c as usize + 1] = if p.edge_tags[e].is_mismatch() {
             parent.edge_faces.count(e).max(1) as u32
         } else {
             1
@@ -216,30 +218,34 @@ pub fn refine<R: Children>(
             continue;
         }
         let matches = !p.value_tags[p.value_offsets[v] as usize].is_mismatch();
-        counts[c as usize] = if matches {
+        value_offsets[c as usize + 1] = if matches {
             1
         } else {
             p.vertex_value_count(v) as u32
         };
     }
-    let mut value_offsets = crate::alloc::with_capacity(ncv + 1);
     let mut total = 0u32;
-    value_offsets.push(0);
-    for &c in &counts {
-        total += c;
-        value_offsets.push(total);
+    for x in &mut value_offsets[1..] {
+        total += *x;
+        *x = total;
     }
     let total = total as usize;
+    let count = |offsets: &[u32], c: usize| (offsets[c + 1] - offsets[c]) as usize;
 
-    // A last level built for face-varying refinement keeps no vertex-faces:
-    // its face values come straight from the parent's faces, and it keeps no
-    // siblings (nothing refines it further).
+    // A minimal last level keeps no vertex-faces: its face values come
+    // straight from the parent's faces, and — nothing refines it further —
+    // it keeps no siblings, edge tags or crease spans.
     let with_siblings = child.vertex_faces.len() == child.vertex_count;
+    let last = !with_siblings;
     let mut fvar = ChannelLevel {
         mode,
         value_count: total,
         face_values: Vec::new(),
-        edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), child.edge_count()),
+        edge_tags: if last {
+            Vec::new()
+        } else {
+            crate::alloc::vec_or_unwind(FVarEdgeTag::default(), child.edge_count())
+        },
         value_offsets,
         face_siblings: if with_siblings {
             crate::alloc::vec_or_unwind(0, child.vertex_faces.members.len())
@@ -248,7 +254,7 @@ pub fn refine<R: Children>(
         },
         value_indices: Vec::new(),
         value_tags: crate::alloc::vec_or_unwind(ValueTag::default(), total),
-        crease_ends: if mode.has_crease_ends() {
+        crease_ends: if mode.has_crease_ends() && !last {
             crate::alloc::vec_or_unwind([0, 0], total)
         } else {
             Vec::new()
@@ -285,14 +291,14 @@ pub fn refine<R: Children>(
             continue;
         }
         let c = c as usize;
-        if counts[c] > 1 && with_siblings {
+        if count(&fvar.value_offsets, c) > 1 && with_siblings {
             let range = child.vertex_faces.range(c);
             fvar.face_siblings[range].copy_from_slice(p.vertex_face_siblings(parent, v));
         }
     }
 
     // Edge tags: edges inside faces are continuous, halves of an edge inherit.
-    for e in 0..ne {
+    for e in (0..ne).filter(|_| !last) {
         for j in 0..2 {
             let c = r.edge_child_edge(e, j);
             if !missing::<R>(c) {
@@ -326,12 +332,12 @@ pub fn refine<R: Children>(
         }
         let c = c as usize;
         let o = fvar.value_offsets[c] as usize;
-        let n = counts[c] as usize;
+        let n = count(&fvar.value_offsets, c);
         let po = p.value_offsets[v] as usize;
         fvar.value_tags[o..o + n].copy_from_slice(&p.value_tags[po..po + n]);
     }
 
-    if mode.has_crease_ends() {
+    if mode.has_crease_ends() && !last {
         // An edge point's value i spans the children of the edge's face i.
         let per_face = split.child_faces_per_edge_face();
         for e in 0..ne {
@@ -344,7 +350,7 @@ pub fn refine<R: Children>(
             if !fvar.value_tags[o].is_mismatch() {
                 continue;
             }
-            for i in 0..counts[c] as usize {
+            for i in 0..count(&fvar.value_offsets, c) {
                 if !fvar.value_tags[o + i].is_inf_sharp() {
                     let start = i * per_face;
                     fvar.crease_ends[o + i] = [start as u16, (start + per_face - 1) as u16];
@@ -363,12 +369,14 @@ pub fn refine<R: Children>(
                 continue;
             }
             let po = p.value_offsets[v] as usize;
-            for i in 0..counts[c] as usize {
+            for i in 0..count(&fvar.value_offsets, c) {
                 if !fvar.value_tags[o + i].is_inf_sharp() {
                     fvar.crease_ends[o + i] = p.crease_ends[po + i];
                 }
             }
         }
+    }
+    if mode.has_crease_ends() {
         reclassify_semi_sharp(parent, child, r, p, &mut fvar, options.creasing);
     }
 
@@ -381,7 +389,7 @@ pub fn refine<R: Children>(
             corners.len(),
             corners.iter().map(|&v| fvar.value_offsets[v as usize]),
         );
-        for (c, _) in counts.iter().enumerate().filter(|&(_, &n)| n > 1) {
+        for c in (0..ncv).filter(|&c| count(&fvar.value_offsets, c) > 1) {
             let range = child.vertex_faces.range(c);
             for i in range {
                 let s = fvar.face_siblings[i];
@@ -523,13 +531,15 @@ fn reclassify_semi_sharp<R: Children>(
             continue;
         }
         let c_edges = super::child_vertex_edge_sharpness(parent, child, v, c, creasing);
+        let p_first = p.value_offsets[v] as usize;
         let semi = |k: usize| crease::is_semi_sharp(c_edges[k]);
         for i in range.clone() {
             let t = fvar.value_tags[i];
             if !t.is_semi_sharp() || t.is_dep_sharp() {
                 continue;
             }
-            let [start, end] = fvar.crease_ends[i];
+            // The child's span is its parent value's (the same faces).
+            let [start, end] = p.crease_ends[p_first + (i - range.start)];
             let (start, end) = (start as usize, end as usize);
             let still = if end > start {
                 (start + 1..=end).any(semi)
