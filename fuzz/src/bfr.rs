@@ -4,8 +4,7 @@
 use crate::MeshCase;
 use arbitrary::Unstructured;
 use subdiv::bfr::{
-    FacetSize, LimitSurfaces, Parameterization, SurfaceOptions, Tessellation,
-    TessellationOptions,
+    FacetSize, LimitSurfaces, Parameterization, SurfaceOptions, Tessellation, TessellationOptions,
 };
 use subdiv::patches::Derivatives;
 use subdiv::{Error, Scheme, osd};
@@ -25,8 +24,14 @@ pub fn check_bfr_pattern(u: &mut Unstructured<'_>) {
     ) else {
         return;
     };
-    let rates: Vec<u32> = (0..count).map(|_| u.int_in_range(0u32..=40).unwrap_or(1)).collect();
-    let size = if four { FacetSize::Four } else { FacetSize::Three };
+    let rates: Vec<u32> = (0..count)
+        .map(|_| u.int_in_range(0u32..=40).unwrap_or(1))
+        .collect();
+    let size = if four {
+        FacetSize::Four
+    } else {
+        FacetSize::Three
+    };
     let options = TessellationOptions {
         preserve_quads: keep,
         facet_size: size,
@@ -45,9 +50,15 @@ pub fn check_bfr_pattern(u: &mut Unstructured<'_>) {
         }
         // A rate count beyond N + 2: natively the extra rates are ignored
         // (as by OpenSubdiv), the bridge refuses them.
-        (Ok(_), Err(_)) => assert!(count > n + 2, "{scheme} {n} {rates:?}: refused by the bridge only"),
+        (Ok(_), Err(_)) => assert!(
+            count > n + 2,
+            "{scheme} {n} {rates:?}: refused by the bridge only"
+        ),
         (Ok(_), Ok(o)) => panic!("{scheme} {n} {rates:?}: OpenSubdiv finds it invalid: {o:?}"),
-        (Err(e), Ok(o)) => assert!(!o.is_valid, "{scheme} {n} {rates:?}: refused natively only: {e}"),
+        (Err(e), Ok(o)) => assert!(
+            !o.is_valid,
+            "{scheme} {n} {rates:?}: refused natively only: {e}"
+        ),
         (Err(_), Err(_)) => {}
     }
 }
@@ -64,18 +75,25 @@ pub fn check_bfr_surfaces(case: &MeshCase, u: &mut Unstructured<'_>) {
     };
     let native = match LimitSurfaces::new(&case.mesh, &case.options, &so) {
         Ok(n) => n,
-        Err(Error::NotYetSupported(_)) => return,
         Err(e) => {
             // Whatever the native engine refuses, OpenSubdiv's refiner
             // refuses too (an invalid mesh, a refinement too large).
-            assert!(osd::bfr::Surfaces::new(&case.mesh, &case.options, &so).is_err(), "{e}");
+            assert!(
+                osd::bfr::Surfaces::new(&case.mesh, &case.options, &so).is_err(),
+                "{e}"
+            );
             return;
         }
     };
     let Ok(theirs) = osd::bfr::Surfaces::new(&case.mesh, &case.options, &so) else {
         return;
     };
-    let size = 1.0 + case.mesh.positions.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+    let size = 1.0
+        + case
+            .mesh
+            .positions
+            .iter()
+            .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
     for face in 0..case.mesh.face_count().min(8) {
         let info = theirs.face_info(face);
         let Ok(info) = info else {
@@ -95,7 +113,9 @@ pub fn check_bfr_surfaces(case: &MeshCase, u: &mut Unstructured<'_>) {
             .any(|f| f.iter().enumerate().any(|(i, v)| f[i + 1..].contains(v)));
         let coords: Vec<[f64; 2]> = (0..4)
             .map(|_| {
-                let c = |u: &mut Unstructured<'_>| f64::from(u.int_in_range(0u16..=1200).unwrap_or(0)) / 1000.0;
+                let c = |u: &mut Unstructured<'_>| {
+                    f64::from(u.int_in_range(0u16..=1200).unwrap_or(0)) / 1000.0
+                };
                 [c(u), c(u)]
             })
             .collect();
@@ -105,7 +125,10 @@ pub fn check_bfr_surfaces(case: &MeshCase, u: &mut Unstructured<'_>) {
             (Ok(_), Ok(_)) if degenerate => {}
             (Ok(a), Ok(b)) => {
                 for (x, y) in a.values.point.iter().zip(&b.values.point) {
-                    assert!((x - y).abs() <= 1e-9 * size, "face {face} {coords:?}: {x} against {y}");
+                    assert!(
+                        (x - y).abs() <= 1e-9 * size,
+                        "face {face} {coords:?}: {x} against {y}"
+                    );
                 }
             }
             (Err(_), Err(_)) => {}
