@@ -6,7 +6,7 @@
 
 use super::{ChannelLevel, FVarEdgeTag, Mode, ValueTag};
 use crate::options::{BoundaryInterpolation, FVarLinearInterpolation, Options};
-use crate::topology::Level;
+use crate::topology::{Level, Table};
 
 /// A run of faces around a vertex sharing one value, and what interrupts or
 /// crosses it.
@@ -54,7 +54,7 @@ pub fn build_base(
     let mut fvar = ChannelLevel {
         mode,
         value_count,
-        face_values: crate::alloc::copied(indices),
+        face_values: Table::from(crate::alloc::copied(indices)),
         edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), level.edge_count()),
         value_offsets: crate::alloc::with_capacity(nv + 1),
         face_siblings: crate::alloc::vec_or_unwind(0, level.vertex_faces.members.len()),

@@ -52,7 +52,7 @@ pub use base::build_base;
 pub(crate) use refine::missing;
 pub use refine::{Children, refine};
 
-use super::Level;
+use super::{Level, Table};
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
 use crate::rules::crease;
 
@@ -216,8 +216,10 @@ pub struct ChannelLevel {
     mode: Mode,
     /// Number of values of the channel at this level.
     value_count: usize,
-    /// The value of every face corner, parallel to the level's face-vertices.
-    face_values: Vec<u32>,
+    /// The value of every face corner, parallel to the level's face-vertices
+    /// (a [`Table`]: as large as the face-vertices, and like them written
+    /// into memory a dropped refinement left, when there is some).
+    face_values: Table<u32>,
     /// Per edge.
     edge_tags: Vec<FVarEdgeTag>,
     /// Vertex values of vertex `v`: `value_offsets[v]..value_offsets[v + 1]`.

@@ -7,7 +7,7 @@ use crate::options::{CreasingMethod, Options, Scheme};
 use crate::output::INVALID_INDEX;
 use crate::rules::crease;
 use crate::topology::refine::sparse::SparseSplit;
-use crate::topology::{Level, Split};
+use crate::topology::{Level, Split, Table};
 
 /// How a refinement step numbers the children of its parent: uniformly
 /// ([`Split`]: every child exists) or sparsely ([`SparseSplit`]: a child not
@@ -240,7 +240,7 @@ pub fn refine<R: Children>(
     let mut fvar = ChannelLevel {
         mode,
         value_count: total,
-        face_values: Vec::new(),
+        face_values: Table::new(),
         edge_tags: if last {
             Vec::new()
         } else {
@@ -384,11 +384,7 @@ pub fn refine<R: Children>(
     fvar.face_values = if total > ncv && !with_siblings {
         face_values_from_parent(parent, child, r, split, p, &fvar.value_offsets)
     } else if total > ncv {
-        let corners = &child.face_vertices.members;
-        let mut values: Vec<u32> = crate::alloc::collect_n(
-            corners.len(),
-            corners.iter().map(|&v| fvar.value_offsets[v as usize]),
-        );
+        let mut values = first_values(child, &fvar.value_offsets);
         for c in (0..ncv).filter(|&c| count(&fvar.value_offsets, c) > 1) {
             let range = child.vertex_faces.range(c);
             for i in range {
@@ -402,9 +398,22 @@ pub fn refine<R: Children>(
         }
         values
     } else {
-        crate::alloc::copied(&child.face_vertices.members)
+        let corners = &child.face_vertices.members;
+        let mut values = Table::for_overwrite(corners.len());
+        values.copy_from_slice(corners);
+        values
     };
     fvar
+}
+
+/// Every corner of `child` with its vertex's first value.
+fn first_values(child: &Level, offsets: &[u32]) -> Table<u32> {
+    let corners = &child.face_vertices.members;
+    let mut values = Table::for_overwrite(corners.len());
+    for (x, &v) in values.iter_mut().zip(corners.iter()) {
+        *x = offsets[v as usize];
+    }
+    values
 }
 
 /// The values of the corners of a uniformly split child level that keeps no
@@ -421,10 +430,8 @@ fn face_values_from_parent<R: Children>(
     split: FaceSplit,
     p: &ChannelLevel,
     offsets: &[u32],
-) -> Vec<u32> {
-    let corners = &child.face_vertices.members;
-    let mut values: Vec<u32> =
-        crate::alloc::collect_n(corners.len(), corners.iter().map(|&v| offsets[v as usize]));
+) -> Table<u32> {
+    let mut values = first_values(child, offsets);
     // Where the children of parent face `f`'s corner `k` and of its edge
     // `k` lie among the child corners: the vertex child's corner, and the
     // (child corner) positions of the edge point.
