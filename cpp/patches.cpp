@@ -403,6 +403,11 @@ int sdv_patches_local_stencils(const sdv_patches *p, int32_t kind, sdv_stencils 
                 *out = copy_stencils(t.GetLocalPointVaryingStencilTable<double>());
             else
                 *out = copy_stencils(t.GetLocalPointVaryingStencilTable<float>());
+        } else if (kind >= 2 && kind - 2 < t.GetNumFVarChannels()) {
+            if (t.LocalPointFaceVaryingStencilPrecisionMatchesType<double>())
+                *out = copy_stencils(t.GetLocalPointFaceVaryingStencilTable<double>(kind - 2));
+            else
+                *out = copy_stencils(t.GetLocalPointFaceVaryingStencilTable<float>(kind - 2));
         } else {
             fail("unknown local-point stencil kind " + str(kind));
         }

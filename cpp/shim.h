@@ -417,7 +417,9 @@ typedef struct sdv_fvar_patches {
 int sdv_patches_fvar(const sdv_patches *p, int32_t channel, sdv_fvar_patches *info, int32_t *values,
                      size_t values_cap, uint32_t *params, size_t params_cap, char *err, size_t err_len);
 
-/* Local-point stencils (0 vertex, 1 varying), weights as double. */
+/* Local-point stencils (0 vertex, 1 varying, 2 + k face-varying channel k of the
+ * table: GetLocalPointFaceVaryingStencilTable(k)), weights as double; empty
+ * where the table has none. */
 int sdv_patches_local_stencils(const sdv_patches *p, int32_t kind, sdv_stencils **out, char *err,
                                size_t err_len);
 

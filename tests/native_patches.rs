@@ -3,9 +3,9 @@
 //! boundary interpolation × adaptive and patch options × isolation levels ×
 //! selected faces. Arrays, types, control vertices, `PatchParam` words,
 //! sharpness, the legacy Gregory quad-offset and valence tables, and the
-//! local points' stencils (Catmull-Clark and Loop end caps of every type)
-//! must be identical; tables the native engine does not build yet
-//! (non-linear face-varying patches) must say so, and only those.
+//! local points' stencils (Catmull-Clark and Loop end caps of every type),
+//! and the face-varying patch channels — linear and non-linear, with their
+//! own local points' stencils — must be identical.
 #![cfg(feature = "osd")]
 
 use subdiv::patches::{EndCapType, PatchOptions, PatchTable, PatchType};
@@ -32,6 +32,16 @@ struct Tally {
     loop_box_spline: usize,
     loop_linear: usize,
     loop_local_points: usize,
+    /// Non-linear face-varying patches compared: regular ones, irregular
+    /// ones (end caps, with local points unless legacy Gregory), and the
+    /// channels' local points.
+    fvar_regular: usize,
+    fvar_irregular: usize,
+    fvar_local_points: usize,
+    /// Under Loop: non-linear face-varying irregular patches and local
+    /// points.
+    loop_fvar_irregular: usize,
+    loop_fvar_local_points: usize,
 }
 
 fn compare(
@@ -86,6 +96,17 @@ fn compare_refined(
                 .map(|c| c.params.len())
                 .sum::<usize>();
             t.local_points += a.local_points;
+            let nonlinear = !po.fvar_legacy_linear_patches;
+            for c in a.fvar_channels.iter().filter(|_| nonlinear) {
+                let irregular = c.params.iter().filter(|p| !p.is_regular()).count();
+                t.fvar_irregular += irregular;
+                t.fvar_regular += c.params.len() - irregular;
+                t.fvar_local_points += c.local_point_stencils.sizes.len();
+                if options.scheme == Scheme::Loop {
+                    t.loop_fvar_irregular += irregular;
+                    t.loop_fvar_local_points += c.local_point_stencils.sizes.len();
+                }
+            }
             if options.scheme == Scheme::Loop {
                 t.loop_local_points += a.local_points;
                 for arr in &a.arrays {
@@ -124,7 +145,7 @@ fn compare_refined(
                 && !po.fvar_legacy_linear_patches
                 && !b.table().fvar_channels.is_empty() =>
         {
-            // Non-linear face-varying patches.
+            // Non-linear face-varying patches (none left: asserted 0).
             t.not_yet_fvar += 1;
         }
         (Err(Error::PatchOptions { .. }), Err(Error::Osd(_))) => t.refused_both += 1,
@@ -201,6 +222,30 @@ fn same_table(a: &PatchTable, b: &PatchTable, case: &str) {
             );
         }
     }
+    assert_eq!(
+        a.fvar_channels.len(),
+        b.fvar_channels.len(),
+        "{case}: face-varying channels"
+    );
+    for (k, (x, y)) in a.fvar_channels.iter().zip(&b.fvar_channels).enumerate() {
+        let head = |c: &subdiv::patches::FVarPatches| {
+            (c.channel, c.regular_type, c.irregular_type, c.stride)
+        };
+        assert_eq!(head(x), head(y), "{case}: face-varying channel {k}");
+        assert_eq!(x.params, y.params, "{case}: params of channel {k}");
+        assert_eq!(x.values, y.values, "{case}: values of channel {k}");
+        let (xs, ys) = (&x.local_point_stencils, &y.local_point_stencils);
+        assert_eq!(xs.sizes, ys.sizes, "{case}: stencil sizes of channel {k}");
+        assert_eq!(xs.indices, ys.indices, "{case}: stencils of channel {k}");
+        if let Some(i) =
+            (0..xs.weights.len()).find(|&i| xs.weights[i].to_bits() != ys.weights[i].to_bits())
+        {
+            panic!(
+                "{case}: weight {i} of channel {k}'s local points: {} against {}",
+                xs.weights[i], ys.weights[i]
+            );
+        }
+    }
     assert_eq!(a.quad_offsets, b.quad_offsets, "{case}: quad offsets");
     assert_eq!(
         a.vertex_valences, b.vertex_valences,
@@ -244,8 +289,8 @@ fn patch_option_sets(isolation: u32) -> Vec<PatchOptions> {
             ..o.clone().double_precision(true)
         });
     }
-    // Face-varying patches: OpenSubdiv's default legacy linear ones (built
-    // natively), and its non-linear ones (not yet).
+    // Face-varying patches: OpenSubdiv's default legacy linear ones, and its
+    // non-linear ones.
     let fvar = PatchOptions {
         fvar_tables: true,
         ..o.clone()
@@ -301,6 +346,9 @@ fn corpus_tables_match_opensubdiv() {
     assert!(t.local_points > 100_000, "{t:?}");
     assert!(t.carried_sharpness > 0 && t.carried_boundary > 0, "{t:?}");
     assert!(t.fvar_patches > 10_000, "{t:?}");
+    // The shape files' channels are linear everywhere: the non-linear
+    // patches are compared in `face_varying_tables_match_opensubdiv`.
+    assert_eq!(t.not_yet_fvar, 0, "{t:?}");
     // Loop's end caps of every type, with their local points.
     assert!(t.loop_gregory > 1000 && t.loop_box_spline > 1000, "{t:?}");
     assert!(
@@ -309,41 +357,96 @@ fn corpus_tables_match_opensubdiv() {
     );
 }
 
-/// Face-varying patches in every face-varying interpolation mode: legacy
-/// linear ones identical to OpenSubdiv's; non-linear ones (a channel not
-/// interpolated linearly, legacy patches off) not native yet, and only
-/// those refused.
+/// Face-varying patches in every face-varying interpolation mode, legacy
+/// linear and non-linear (the channel's own regular patches and end caps
+/// of every type, with their local points), over meshes with UV seams:
+/// identical to OpenSubdiv's.
 #[test]
 fn face_varying_tables_match_opensubdiv() {
     use subdiv::FVarLinearInterpolation as F;
-    let mut t = Tally::default();
-    for (name, mesh) in shapes::corpus() {
-        if mesh.fvar_channels.is_empty() {
-            continue;
-        }
-        for fvar in [
-            F::None,
-            F::CornersOnly,
-            F::CornersPlus1,
-            F::CornersPlus2,
-            F::Boundaries,
-            F::All,
-        ] {
-            let options = Options::shape_file_defaults().with_fvar(fvar);
-            for legacy in [true, false] {
-                for isolation in [1, 3] {
-                    let po = PatchOptions {
-                        fvar_tables: true,
-                        fvar_legacy_linear_patches: legacy,
-                        ..PatchOptions::new().max_isolation(isolation)
-                    };
-                    compare(&name, &mesh, &options, &po, &[], &mut t);
+    let mut meshes: Vec<(String, Mesh)> = shapes::corpus()
+        .into_iter()
+        .filter(|(_, m)| !m.fvar_channels.is_empty())
+        .collect();
+    meshes.push(("cube with uvs".into(), shapes::cube_with_uvs()));
+    meshes.push((
+        "torus with uvs".into(),
+        shapes::with_torus_uvs(shapes::torus(6, 5), 6, 5),
+    ));
+    meshes.push(("production".into(), shapes::production(8, 6)));
+    meshes.push((
+        "mixed torus with uvs".into(),
+        shapes::with_torus_uvs(shapes::torus_mixed(6, 5), 6, 5),
+    ));
+    // Triangles, for Loop's face-varying patches.
+    meshes.push((
+        "triangle torus with uvs".into(),
+        shapes::with_torus_uvs(shapes::torus_triangles(6, 5), 6, 5),
+    ));
+    let mut total = Tally::default();
+    for fvar in [
+        F::None,
+        F::CornersOnly,
+        F::CornersPlus1,
+        F::CornersPlus2,
+        F::Boundaries,
+        F::All,
+    ] {
+        let mut t = Tally::default();
+        for (name, mesh) in &meshes {
+            for scheme in [Scheme::Catmark, Scheme::Loop] {
+                let options = Options::shape_file_defaults()
+                    .with_scheme(scheme)
+                    .with_fvar(fvar);
+                for legacy in [true, false] {
+                    for isolation in [1, 3] {
+                        let base = PatchOptions {
+                            fvar_tables: true,
+                            fvar_legacy_linear_patches: legacy,
+                            ..PatchOptions::new().max_isolation(isolation)
+                        };
+                        let mut sets = vec![base.clone()];
+                        if !legacy {
+                            for end_caps in [
+                                EndCapType::BSplineBasis,
+                                EndCapType::BilinearBasis,
+                                EndCapType::LegacyGregory,
+                            ] {
+                                sets.push(base.clone().end_caps(end_caps));
+                            }
+                            sets.push(base.clone().inf_sharp_patch(true).single_crease_patch(true));
+                            sets.push(PatchOptions {
+                                share_end_cap_points: false,
+                                legacy_sharp_corner_patches: false,
+                                fvar_patch_precision_double: true,
+                                ..base.clone()
+                            });
+                        }
+                        for po in sets {
+                            compare(name, mesh, &options, &po, &[], &mut t);
+                        }
+                    }
                 }
             }
         }
+        eprintln!("{fvar:?}: {t:?}");
+        assert_eq!(t.not_yet_fvar, 0, "{fvar:?}: {t:?}");
+        if fvar != F::All {
+            // Non-linear patches, regular and irregular, with local points.
+            assert!(
+                t.fvar_regular > 1000 && t.fvar_irregular > 100 && t.fvar_local_points > 1000,
+                "{fvar:?}: {t:?}"
+            );
+        }
+        total.fvar_patches += t.fvar_patches;
+        total.loop_fvar_irregular += t.loop_fvar_irregular;
+        total.loop_fvar_local_points += t.loop_fvar_local_points;
     }
-    eprintln!("{t:?}");
-    assert!(t.fvar_patches > 5_000 && t.not_yet_fvar > 0, "{t:?}");
+    assert!(total.fvar_patches > 50_000, "{total:?}");
+    assert!(
+        total.loop_fvar_irregular > 100 && total.loop_fvar_local_points > 1000,
+        "{total:?}"
+    );
 }
 
 /// Tables of selected faces, depth first under each face.

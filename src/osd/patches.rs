@@ -368,6 +368,7 @@ impl OsdPatchTable {
             regular_type: ty(info.regular_type)?,
             irregular_type: ty(info.irregular_type)?,
             stride: count(info.stride)?,
+            local_point_stencils: self.local_stencils(2 + channel)?,
             values: values.into_iter().map(|v| v as u32).collect(),
             params: params
                 .chunks_exact(2)

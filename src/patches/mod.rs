@@ -398,7 +398,11 @@ impl PatchTable {
 /// vertices) and its [`PatchParam`]. Linear channels (OpenSubdiv's default
 /// `generateFVarLegacyLinearPatches`, or a channel interpolated linearly
 /// everywhere) have a linear patch over each patch's face: its corner
-/// values, the vertex patch's parameter.
+/// values, the vertex patch's parameter. Other channels have patches over
+/// their own topology: regular where the channel is regular around the
+/// face, end caps of the table's end-cap type elsewhere (whose points are
+/// the channel's local points, after its values), each parameter with the
+/// channel's boundary and regular bits.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FVarPatches {
     /// The refiner's channel.
@@ -413,6 +417,12 @@ pub struct FVarPatches {
     pub values: Vec<u32>,
     /// The parameter of every patch (`GetFVarPatchParams`).
     pub params: Vec<PatchParam>,
+    /// The stencil of each of the channel's local points (the points of
+    /// its end caps, numbered after the channel's values of every level)
+    /// over those values (`GetLocalPointFaceVaryingStencilTable`), weights
+    /// widened to `f64` from `fvarPatchPrecisionDouble`'s precision; empty
+    /// for linear channels.
+    pub local_point_stencils: StencilTable,
 }
 
 impl FVarPatches {

@@ -3,12 +3,15 @@
 //! features together), whether the patch is regular, its boundary mask,
 //! whether it is a single-crease patch, and the spans of faces around a
 //! corner that a regular patch may use (`Far::PatchBuilder`'s topology
-//! inspections).
+//! inspections) — in the vertex topology, or in a face-varying channel's
+//! (`fv`: the channel at the patch's level), whose values see the vertex
+//! tags as `Vtr::Level::getFaceVTags` and `getFaceETags` combine them.
 
 use super::Builder;
 use crate::refiner::adaptive::{CORNER, CREASE, DART, Tag};
 use crate::rules::Rule;
 use crate::topology::Level;
+use crate::topology::fvar::{ChannelLevel, ValueTag};
 
 /// The tags of a patch's corners, without allocating.
 pub(super) struct Corners {
@@ -25,30 +28,58 @@ impl std::ops::Deref for Corners {
 
 /// The edges that end a span of faces around a corner: boundary and
 /// non-manifold edges, and infinitely sharp ones when asked.
+/// In a face-varying channel, an edge the channel is split across is a
+/// boundary too.
 #[derive(Clone, Copy)]
-pub(super) struct Singular {
+pub(super) struct Singular<'a> {
     pub inf_sharp: bool,
+    pub fv: Option<&'a ChannelLevel>,
 }
 
-impl Singular {
+impl Singular<'_> {
     fn test(self, level: &Level, e: u32) -> bool {
         let t = level.edge_tag(e as usize);
-        t.boundary() || t.non_manifold() || (self.inf_sharp && t.inf_sharp())
+        t.boundary()
+            || t.non_manifold()
+            || (self.inf_sharp && t.inf_sharp())
+            || self
+                .fv
+                .is_some_and(|c| c.edge_tag(e as usize).is_mismatch())
     }
+}
+
+/// The tag of the value at corner `k` of face `f` in channel `fv`
+/// (`FVarLevel::getFaceValueTags`); an untagged one without a channel.
+pub(super) fn value_tag(fv: Option<&ChannelLevel>, l: &Level, f: usize, k: usize) -> ValueTag {
+    let Some(c) = fv else {
+        return ValueTag::default();
+    };
+    let v = l.face_verts(f)[k] as usize;
+    let value = c.face_values_of(l, f)[k];
+    let tags = c.vertex_value_tags(v);
+    (0..tags.len())
+        .find(|&s| c.vertex_value(v, s) == value)
+        .map_or(ValueTag::default(), |s| tags[s])
+}
+
+/// Whether edge `e` is a boundary in the topology read (a channel's split
+/// edges included).
+fn edge_boundary(fv: Option<&ChannelLevel>, l: &Level, e: u32) -> bool {
+    l.edge_tag(e as usize).boundary() || fv.is_some_and(|c| c.edge_tag(e as usize).is_mismatch())
 }
 
 impl Builder<'_> {
     /// The tags of the corners of face `f` of `level` (a patch's face: its
-    /// first four corners at most).
-    pub(super) fn corner_tags(&self, level: usize, f: usize) -> Corners {
+    /// first four corners at most), as channel `fv` sees them if any.
+    pub(super) fn corner_tags(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> Corners {
         let l = &self.levels[level];
         let features = &self.features[level];
         let mut c = Corners {
             tags: [Tag::default(); 4],
             len: 0,
         };
-        for (slot, &v) in c.tags.iter_mut().zip(l.face_verts(f)) {
-            *slot = Tag::of(l, features, v as usize);
+        for (k, (slot, &v)) in c.tags.iter_mut().zip(l.face_verts(f)).enumerate() {
+            *slot = Tag::of(l, features, v as usize).with_value(value_tag(fv, l, f, k));
             c.len += 1;
         }
         c
@@ -65,13 +96,14 @@ impl Builder<'_> {
             .fold(Tag::default(), Tag::or)
     }
 
-    /// `PatchBuilder::IsPatchRegular` for the vertex topology.
-    pub(super) fn is_regular(&self, level: usize, f: usize) -> bool {
+    /// `PatchBuilder::IsPatchRegular` in the vertex topology or channel
+    /// `fv`'s.
+    pub(super) fn is_regular(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> bool {
         if self.linear {
             return true;
         }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f);
+        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp && !all.inf_sharp_edges {
             return !all.features.xordinary;
@@ -112,6 +144,7 @@ impl Builder<'_> {
                     i,
                     Singular {
                         inf_sharp: test_inf,
+                        fv,
                     },
                 );
                 let want = if tag.inf_sharp {
@@ -132,7 +165,7 @@ impl Builder<'_> {
                 if self.sharp_corners && tag.boundary && !tag.inf_sharp {
                     let edges = l.face_edges_of(f);
                     let prev = if i == 0 { self.reg - 1 } else { i - 1 };
-                    let boundary = |k: usize| l.edge_tag(edges[k] as usize).boundary();
+                    let boundary = |k: usize| edge_boundary(fv, l, edges[k]);
                     if boundary(i) && boundary(prev) {
                         continue;
                     }
@@ -146,7 +179,15 @@ impl Builder<'_> {
                     return false;
                 }
                 let n = self
-                    .manifold_span(level, f, i, Singular { inf_sharp: true })
+                    .manifold_span(
+                        level,
+                        f,
+                        i,
+                        Singular {
+                            inf_sharp: true,
+                            fv,
+                        },
+                    )
                     .faces;
                 let want = if tag.features.inf_sharp_crease {
                     regular_boundary_faces
@@ -161,15 +202,15 @@ impl Builder<'_> {
         true
     }
 
-    /// `PatchBuilder::GetRegularPatchBoundaryMask` for the vertex topology:
-    /// one bit per boundary edge of a quad, OpenSubdiv's 5-bit encoding of
-    /// boundary edges and vertices for a triangle.
-    pub(super) fn boundary_mask(&self, level: usize, f: usize) -> u16 {
+    /// `PatchBuilder::GetRegularPatchBoundaryMask` in the vertex topology
+    /// or channel `fv`'s: one bit per boundary edge of a quad, OpenSubdiv's
+    /// 5-bit encoding of boundary edges and vertices for a triangle.
+    pub(super) fn boundary_mask(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> u16 {
         if self.linear {
             return 0;
         }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f);
+        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp_edges {
             return 0;
@@ -182,7 +223,9 @@ impl Builder<'_> {
                 .enumerate()
                 .fold(0u16, |bits, (i, &e)| {
                     let t = l.edge_tag(e as usize);
-                    let on = t.boundary() || t.non_manifold() || (test_inf && t.inf_sharp());
+                    let mismatch = fv.is_some_and(|c| c.edge_tag(e as usize).is_mismatch());
+                    let on =
+                        t.boundary() || t.non_manifold() || (test_inf && t.inf_sharp()) || mismatch;
                     bits | ((on as u16) << i)
                 });
         if self.reg == 4 {
@@ -354,33 +397,42 @@ impl Builder<'_> {
         Some(span)
     }
 
-    /// `PatchBuilder::GetIrregularPatchCornerSpans` for the vertex topology:
-    /// for each corner, the span of its faces the patch uses where a
-    /// discontinuity cuts its ring (the whole ring, unassigned, elsewhere),
-    /// and whether the corner is sharp.
-    pub(super) fn corner_spans(&self, level: usize, f: usize) -> Vec<Span> {
+    /// `PatchBuilder::GetIrregularPatchCornerSpans` in the vertex topology
+    /// or channel `fv`'s: for each corner, the span of its faces the patch
+    /// uses where a discontinuity cuts its ring (the whole ring, unassigned,
+    /// elsewhere), and whether the corner is sharp.
+    pub(super) fn corner_spans(
+        &self,
+        level: usize,
+        f: usize,
+        fv: Option<&ChannelLevel>,
+    ) -> Vec<Span> {
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f);
+        let tags = self.corner_tags(level, f, fv);
         let test_inf = self.inf_sharp_patch;
         let singular = Singular {
             inf_sharp: test_inf,
+            fv,
         };
         let verts = l.face_verts(f);
         tags.iter()
             .enumerate()
             .map(|(i, tag)| {
-                let rule = l.vertex_tag(verts[i] as usize).rule();
-                let test_inf_edges = test_inf && tag.inf_sharp_edges && rule != Rule::Dart;
+                // The corner's rule as the topology read sees it.
+                let dart = tag.rule == DART;
+                let mismatch = value_tag(fv, l, f, i).is_mismatch();
+                let test_inf_edges = test_inf && tag.inf_sharp_edges && !dart;
                 let mut span = if tag.non_manifold {
                     self.non_manifold_span(level, f, i, singular)
                         .unwrap_or_default()
-                } else if test_inf_edges {
+                } else if test_inf_edges || mismatch {
                     self.manifold_span(level, f, i, singular)
                 } else {
                     Span::default()
                 };
                 if tag.corner {
-                    span.sharp = true;
+                    // A channel's corner needs its span to be one face.
+                    span.sharp = !mismatch || span.faces == 1 || tag.non_manifold;
                 } else if tag.non_manifold {
                     span.sharp = tag.inf_sharp;
                 } else if test_inf {

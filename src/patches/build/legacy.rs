@@ -96,7 +96,7 @@ impl Builder<'_> {
         let mut table = crate::alloc::vec_or_unwind(0i32, total * width);
         let max = self.max_level();
         for v in 0..self.levels[max].vertex_count {
-            let ring = self.quad_ring(max, v as u32);
+            let ring = self.quad_ring(max, v as u32, None);
             let entry = &mut table[(last_offset as usize + v) * width..][..width];
             for (slot, &r) in entry[1..].iter_mut().zip(&ring) {
                 *slot = (r + last_offset) as i32;

@@ -4,7 +4,9 @@
 //! varying stencil (the patch corner it follows). Neighbouring Gregory and
 //! bilinear end caps share the points of a common corner or edge when
 //! asked (`shareEndCapPatchPoints`): the first patch to need one creates
-//! it.
+//! it. A face-varying channel's end caps have local points of their own,
+//! numbered after the channel's values of every level, shared through the
+//! channel's corner values and the edges it is continuous across.
 
 use super::Builder;
 use super::matrix::Matrix;
@@ -12,6 +14,7 @@ use crate::patches::PatchType;
 use crate::real::Real;
 use crate::stencil::StencilTable;
 use crate::topology::Level;
+use crate::topology::fvar::ChannelLevel;
 
 /// Which corner or edge a patch point may be shared through: the corner's
 /// or edge's index in the face (low 4 bits), and whether it is a corner,
@@ -127,8 +130,8 @@ impl<R: Real> LocalPoints<R> {
     /// The points of one end cap (`AppendLocalPatchPoints`): a new local
     /// point per matrix row unless shared with a neighbour's (or, when
     /// reusing sources, a row that is one source point); `sources` are the
-    /// matrix's columns as vertices of `level`, `offset` that level's first
-    /// vertex.
+    /// matrix's columns as vertices of `level` (values of channel `fv`),
+    /// `offset` that level's first vertex (value).
     #[allow(clippy::too_many_arguments)]
     pub fn append(
         &mut self,
@@ -139,6 +142,7 @@ impl<R: Real> LocalPoints<R> {
         patch_type: PatchType,
         sources: &[u32],
         offset: u32,
+        fv: Option<&ChannelLevel>,
     ) -> Vec<u32> {
         let l = &builder.levels[level];
         let bits = if self.share {
@@ -156,7 +160,7 @@ impl<R: Real> LocalPoints<R> {
             }
             let next = self.first + self.count;
             let point = match bits.map(|b| b[i]) {
-                Some(b) if b != 0 => self.shared(l, level, face, b, next),
+                Some(b) if b != 0 => self.shared(l, level, face, b, next, fv),
                 _ => next,
             };
             if point == next {
@@ -179,8 +183,17 @@ impl<R: Real> LocalPoints<R> {
 
     /// The local point already made for the corner or edge `bits` names,
     /// or `next` (recorded for the next patch) (`findSharedCornerPoint`,
-    /// `findSharedEdgePoint`). Boundary edges share nothing.
-    fn shared(&mut self, l: &Level, level: usize, face: usize, bits: u8, next: u32) -> u32 {
+    /// `findSharedEdgePoint`). Boundary edges (and those channel `fv` is
+    /// split across) share nothing.
+    fn shared(
+        &mut self,
+        l: &Level,
+        level: usize,
+        face: usize,
+        bits: u8,
+        next: u32,
+        fv: Option<&ChannelLevel>,
+    ) -> u32 {
         let k = (bits & 0x0f) as usize;
         let invalid = u32::MAX;
         if bits & (CORNER | EDGE_BEGIN | EDGE_END) == 0 {
@@ -189,16 +202,18 @@ impl<R: Real> LocalPoints<R> {
         let slot = if bits & CORNER != 0 {
             let table = &mut self.shared_corners[level];
             if table.is_empty() {
-                *table = vec![invalid; l.vertex_count];
+                *table = vec![invalid; fv.map_or(l.vertex_count, ChannelLevel::value_count)];
             }
-            l.face_verts(face)
+            super::points::face_points(fv, l, face)
                 .get(k)
                 .and_then(|&v| table.get_mut(v as usize))
         } else {
             let Some(&e) = l.face_edges_of(face).get(k) else {
                 return next;
             };
-            if l.edge_tag(e as usize).boundary() {
+            if l.edge_tag(e as usize).boundary()
+                || fv.is_some_and(|c| c.edge_tag(e as usize).is_mismatch())
+            {
                 return next;
             }
             let reversed = l.edge_vertices[e as usize][0] != l.face_verts(face)[k];

@@ -8,7 +8,7 @@
 //! valence tables — each as OpenSubdiv 3.5 builds it.
 //!
 //! # Files
-//! * this file: options, the patches in order, the arrays and parameters;
+//! * this file: options, the patches in order, the arrays;
 //! * `corners.rs`: the corner tags and what they make of a patch (regular,
 //!   boundary mask, single crease);
 //! * `points.rs`: the control vertices of regular patches;
@@ -21,17 +21,20 @@
 //! * `loop_limits.rs`, `loop_gregory.rs`, `box_spline.rs`: Loop's limit
 //!   weights, Gregory-triangle and box-spline end caps;
 //! * `linear.rs`: bilinear quads and linear triangles;
+//! * `placement.rs`: the patches' parameters, ptex faces, maximum valence;
 //! * `uniform.rs`: tables of uniformly refined topologies;
-//! * `fvar.rs`: linear face-varying patches.
-//!
-//! Not yet native: non-linear face-varying patches
-//! (`generateFVarLegacyLinearPatches` off, the channel not linear); a table
-//! that would need them is refused with [`Error::NotYetSupported`].
+//! * `fvar.rs`: the face-varying channels of a table, linear face-varying
+//!   patches;
+//! * `fvar_patches.rs`: non-linear face-varying patches (regular patches
+//!   and end caps over each channel's own topology, with the channel's
+//!   local points) — the topology inspections above read a channel's
+//!   topology when given one.
 
 mod box_spline;
 mod bspline;
 mod corners;
 mod fvar;
+mod fvar_patches;
 mod gregory;
 mod legacy;
 mod limits;
@@ -40,6 +43,7 @@ mod local;
 mod loop_gregory;
 mod loop_limits;
 mod matrix;
+mod placement;
 mod points;
 mod source;
 mod uniform;
@@ -73,8 +77,10 @@ pub(super) struct Builder<'a> {
     sharp_corners: bool,
     /// Whether a base face is not of the regular size.
     irregular_base_faces: bool,
-    /// The face-varying channels to build (linear) patches for.
+    /// The face-varying channels to build patches for.
     fvar: Vec<fvar::Channel<'a>>,
+    /// Whether their patches are linear (`isFVarChannelLinear`).
+    fvar_linear: bool,
 }
 
 /// One patch: a face of a level.
@@ -95,13 +101,14 @@ impl AdaptiveRefiner {
     /// bilinear topologies (every end-cap type — under Loop Gregory
     /// triangles, box-spline or linear triangles —, with the local points'
     /// vertex and varying stencils in `f32` or `f64`), with face-varying
-    /// patches of linear channels (`generateFVarLegacyLinearPatches`,
-    /// OpenSubdiv's default, or a channel interpolated linearly everywhere:
-    /// each patch's face in the channel); non-linear face-varying patches
-    /// are [`Error::NotYetSupported`] — the `osd` engine builds them.
+    /// patches: linear ones (`generateFVarLegacyLinearPatches`, OpenSubdiv's
+    /// default, or a channel interpolated linearly everywhere: each patch's
+    /// face in the channel), or the channel's own regular patches and end
+    /// caps with their local points' stencils.
     ///
     /// Refused: an isolation level beyond 10 ([`Error::Level`]), a selected
-    /// face or face-varying channel that does not exist; and, as the `osd`
+    /// face or face-varying channel that does not exist, more face-varying
+    /// channels listed than the refiner has; and, as the `osd`
     /// engine refuses them, legacy Gregory end caps under another scheme
     /// than Catmull-Clark, or with an irregular patch above the last level,
     /// a face of the last level that is not a quad or a non-manifold vertex
@@ -142,8 +149,9 @@ impl AdaptiveRefiner {
         let base = &levels[0];
         crate::refiner::adaptive::check_selected_faces(base, selected_faces)?;
         let requested = fvar::requested(options, channels)?;
-        if !requested.is_empty() {
-            fvar::check_linear(options, self.options().fvar)?;
+        let fvar_linear = fvar::is_linear(options, self.options().fvar);
+        if !requested.is_empty() && !fvar_linear {
+            fvar::check_listed(options, channels)?;
         }
         let scheme = self.options().scheme;
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
@@ -165,8 +173,13 @@ impl AdaptiveRefiner {
                 .any(|f| base.face_vertices.count(f) != reg),
             fvar: requested
                 .iter()
-                .map(|&c| fvar::Channel::new(c, self.fvar_levels(c)))
+                .enumerate()
+                .map(|(k, &c)| {
+                    let regularity = (k < channels).then(|| self.fvar_levels(k));
+                    fvar::Channel::new(c, self.fvar_levels(c), regularity)
+                })
                 .collect(),
+            fvar_linear,
         };
         crate::alloc::guard(None, || b.build(options, selected_faces, scheme))
     }
@@ -283,7 +296,7 @@ impl Builder<'_> {
         let patches = self.identify(selected);
         let regular: Vec<bool> = patches
             .iter()
-            .map(|p| self.is_regular(p.level, p.face))
+            .map(|p| self.is_regular(p.level, p.face, None))
             .collect();
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
         let (regular_type, linear_type) = match scheme {
@@ -331,11 +344,14 @@ impl Builder<'_> {
         // legacy interior and boundary), put in table order at the end.
         let mut fvar_values: Vec<[Vec<u32>; 4]> =
             self.fvar.iter().map(|_| Default::default()).collect();
+        // Each patch's array and vertex parameter, for non-linear channels.
+        let mut slots = Vec::with_capacity(patches.len());
+        let mut vertex_params = Vec::with_capacity(patches.len());
         for (p, &is_regular) in patches.iter().zip(&regular) {
             let offset = offsets[p.level];
             let slot;
             let array = if is_regular {
-                let mask = self.boundary_mask(p.level, p.face);
+                let mask = self.boundary_mask(p.level, p.face, None);
                 param_boundary = mask;
                 sharpness = 0.0;
                 if options.single_crease_patch
@@ -346,7 +362,7 @@ impl Builder<'_> {
                     sharpness = s.min((options.max_isolation_level - p.level as u32) as f32);
                     param_boundary = 1 << edge;
                 }
-                let cvs = self.regular_points(p.level, p.face, mask);
+                let cvs = self.regular_points(p.level, p.face, mask, None);
                 reg_array
                     .control_vertices
                     .extend(cvs.iter().map(|&v| v + offset));
@@ -366,20 +382,10 @@ impl Builder<'_> {
                 a
             } else {
                 param_boundary = 0;
-                let spans = self.corner_spans(p.level, p.face);
+                let spans = self.corner_spans(p.level, p.face, None);
                 let source = self.source_patch(p.level, p.face, &spans);
-                match irregular_type {
-                    PatchType::Quads | PatchType::Triangles => {
-                        linear::convert_into(&source, &mut matrix)
-                    }
-                    PatchType::Regular => bspline::convert_into(&source, &mut matrix, &mut spare),
-                    PatchType::Loop => box_spline::convert_into(&source, &mut matrix, &mut spare),
-                    PatchType::GregoryTriangle => {
-                        loop_gregory::GregoryTriangle::<R>::new(&source).convert_into(&mut matrix)
-                    }
-                    _ => gregory::Gregory::<R>::new(&source).convert_into(&mut matrix),
-                }
-                let sources = self.source_points(p.level, p.face, &spans, &source);
+                Self::convert(irregular_type, &source, &mut matrix, &mut spare);
+                let sources = self.source_points(p.level, p.face, &spans, &source, None);
                 let cvs = local.append(
                     self,
                     p.level,
@@ -388,6 +394,7 @@ impl Builder<'_> {
                     irregular_type,
                     &sources,
                     offset,
+                    None,
                 );
                 // Irregular patches share the regular array when their
                 // types agree.
@@ -406,9 +413,10 @@ impl Builder<'_> {
             } else {
                 0.0
             });
-            array
-                .params
-                .push(self.param(p.level, p.face, &ptex, is_regular, param_boundary));
+            let param = self.param(p.level, p.face, &ptex, is_regular, param_boundary);
+            array.params.push(param);
+            slots.push(slot);
+            vertex_params.push(param);
             // The varying patch: the face's own vertices.
             let topology = &self.levels[p.level];
             if options.varying_tables {
@@ -418,9 +426,11 @@ impl Builder<'_> {
                     .extend(verts.iter().map(|&v| v + offset));
             }
             // The linear face-varying patches: the face in each channel.
-            for (ch, parts) in self.fvar.iter().zip(&mut fvar_values) {
-                let at = ch.offsets[p.level];
-                parts[slot].extend(ch.face(topology, p.level, p.face, at));
+            if self.fvar_linear {
+                for (ch, parts) in self.fvar.iter().zip(&mut fvar_values) {
+                    let at = ch.offsets[p.level];
+                    parts[slot].extend(ch.face(topology, p.level, p.face, at));
+                }
             }
         }
         let local_points = local.count();
@@ -449,6 +459,37 @@ impl Builder<'_> {
         }
         let all = [reg_array, irregular, interior, boundary];
         let kept: Vec<usize> = (0..all.len()).filter(|&i| !all[i].is_empty()).collect();
+        if !self.fvar_linear && !self.fvar.is_empty() {
+            // Each patch's index in the table: its array's first, then its
+            // place in the array.
+            let mut first = [0usize; 4];
+            let mut at = 0;
+            for &i in &kept {
+                first[i] = at;
+                at += all[i].len();
+            }
+            let index: Vec<usize> = slots
+                .iter()
+                .map(|&s| {
+                    let i = first[s];
+                    first[s] += 1;
+                    i
+                })
+                .collect();
+            let vertex = fvar_patches::VertexPatches {
+                patches: &patches,
+                regular: &regular,
+                params: &vertex_params,
+                index: &index,
+            };
+            let types = fvar_patches::Types {
+                regular: regular_type,
+                irregular: irregular_type,
+            };
+            table.fvar_channels = self.nonlinear_fvar(options, &vertex, types);
+            table.arrays = all.into_iter().filter(|a| !a.is_empty()).collect();
+            return Ok(table);
+        }
         table.fvar_channels = self
             .fvar
             .iter()
@@ -467,164 +508,6 @@ impl Builder<'_> {
             .collect();
         table.arrays = all.into_iter().filter(|a| !a.is_empty()).collect();
         Ok(table)
-    }
-
-    /// `TopologyRefiner::GetMaxValence`: the base level's largest valence
-    /// or face, then for each refined level OpenSubdiv's bound (at least
-    /// the regular valence, and two more than the most faces at an edge of
-    /// the parent, doubled for triangles) rather than the level's own.
-    fn max_valence(&self) -> usize {
-        let tri = self.reg == 3;
-        self.levels[..self.max_level()]
-            .iter()
-            .fold(self.levels[0].max_valence, |bound, parent| {
-                let edge = if tri {
-                    2 * parent.max_edge_faces
-                } else {
-                    parent.max_edge_faces
-                };
-                bound.max(if tri { 6 } else { 4 }).max(2 + edge)
-            })
-    }
-
-    /// The first ptex face of every base face, and the total last.
-    fn ptex_first(&self) -> Vec<u32> {
-        let base = &self.levels[0];
-        let mut first = Vec::with_capacity(base.face_count() + 1);
-        let mut id = 0u32;
-        for f in 0..base.face_count() {
-            first.push(id);
-            let n = base.face_vertices.count(f);
-            id += if n == self.reg { 1 } else { n as u32 };
-        }
-        first.push(id);
-        first
-    }
-
-    /// `PatchBuilder::ComputePatchParam`: the patch's place in its ptex
-    /// face, found by walking up to its base face.
-    fn param(
-        &self,
-        level: usize,
-        f: usize,
-        ptex: &[u32],
-        regular: bool,
-        boundary: u16,
-    ) -> PatchParam {
-        let parent_of = |l: usize, child: usize| {
-            let parent = self.steps[l - 1].child_face_parent[child] as usize;
-            let k = self
-                .child_faces(l - 1, parent)
-                .iter()
-                .position(|&c| c as usize == child)
-                .unwrap_or(0);
-            (parent, k)
-        };
-        let transition = if level < self.max_level() {
-            self.steps[level].face_transitional[f]
-        } else {
-            0
-        };
-        let place = Placement {
-            levels: self.levels,
-            reg: self.reg,
-            ptex,
-        };
-        place.param(
-            level,
-            f,
-            parent_of,
-            regular,
-            boundary,
-            u16::from(transition),
-        )
-    }
-}
-
-/// What locating a face in its ptex face needs: every level's faces, the
-/// scheme's regular face size and the first ptex face of each base face.
-pub(super) struct Placement<'a> {
-    pub levels: &'a [Level],
-    pub reg: usize,
-    pub ptex: &'a [u32],
-}
-
-impl Placement<'_> {
-    /// The [`PatchParam`] of face `f` of `level`, walking up through
-    /// `parent_of(level, face)` (the parent in the level above and the
-    /// face's place among its children): a quad's `k`-th child in its
-    /// `k`-th quadrant, a triangle's middle child turned over, a non-quad
-    /// base face's children its ptex faces.
-    pub fn param(
-        &self,
-        level: usize,
-        f: usize,
-        parent_of: impl Fn(usize, usize) -> (usize, usize),
-        regular: bool,
-        boundary: u16,
-        transition: u16,
-    ) -> PatchParam {
-        let (mut u, mut v, mut ofs) = (0i32, 0i32, 1i32);
-        let mut irregular_base = self.levels[level].face_vertices.count(f) != self.reg;
-        let mut rotated = false;
-        let mut child_in_parent = 0usize;
-        let mut child = f;
-        for i in (1..=level).rev() {
-            let (parent, k) = parent_of(i, child);
-            child_in_parent = k;
-            irregular_base = self.levels[i - 1].face_vertices.count(parent) != self.reg;
-            if self.reg == 3 {
-                // The middle triangle turns the parameterization over.
-                match (k, rotated) {
-                    (1, false) => u += ofs,
-                    (2, false) => v += ofs,
-                    (3, false) => {
-                        u -= ofs;
-                        v -= ofs;
-                        rotated = true;
-                    }
-                    (1, true) => u -= ofs,
-                    (2, true) => v -= ofs,
-                    (3, true) => {
-                        u += ofs;
-                        v += ofs;
-                        rotated = false;
-                    }
-                    _ => {}
-                }
-                ofs <<= 1;
-            } else if !irregular_base {
-                match k {
-                    1 => u += ofs,
-                    2 => {
-                        u += ofs;
-                        v += ofs;
-                    }
-                    3 => v += ofs,
-                    _ => {}
-                }
-                ofs <<= 1;
-            }
-            child = parent;
-        }
-        if rotated {
-            u += ofs;
-            v += ofs;
-        }
-        let mut ptex_face = self.ptex[child];
-        if irregular_base {
-            ptex_face += child_in_parent as u32;
-        }
-        PatchParam::new(
-            ptex_face,
-            u as u16,
-            v as u16,
-            level as u16,
-            irregular_base,
-            boundary,
-            transition,
-            regular,
-        )
     }
 }
 

@@ -3,11 +3,22 @@
 //! a quad, the 12 of a Loop box-spline patch around a triangle, taken from
 //! the faces around each corner in OpenSubdiv's order. Points a boundary
 //! patch lacks are filled with the face's first vertex, as OpenSubdiv's
-//! patch tables do (`fillMissingBoundaryPoints`).
+//! patch tables do (`fillMissingBoundaryPoints`). In a face-varying
+//! channel the points are the channel's values at the same corners.
 
 use super::Builder;
 use super::corners::decode_tri_boundary;
 use crate::topology::Level;
+use crate::topology::fvar::ChannelLevel;
+
+/// The points of face `f`: its vertices, or its values in channel `fv`
+/// (`getFacePoints`).
+pub(super) fn face_points<'a>(fv: Option<&'a ChannelLevel>, l: &'a Level, f: usize) -> &'a [u32] {
+    match fv {
+        Some(c) => c.face_values_of(l, f),
+        None => l.face_verts(f),
+    }
+}
 
 /// The faces around a vertex with the vertex's position in each.
 struct Ring<'a> {
@@ -81,27 +92,34 @@ fn prev_face(level: &Level, ring: &Ring, i: usize, manifold: bool) -> (usize, us
 
 impl Builder<'_> {
     /// The control vertices of the regular patch of face `f` of `level`
-    /// (indices within the level), with its boundary mask `mask`.
-    pub(super) fn regular_points(&self, level: usize, f: usize, mask: u16) -> PatchPoints {
+    /// (indices within the level, or of channel `fv`'s values there), with
+    /// its boundary mask `mask`.
+    pub(super) fn regular_points(
+        &self,
+        level: usize,
+        f: usize,
+        mask: u16,
+        fv: Option<&ChannelLevel>,
+    ) -> PatchPoints {
         let l = &self.levels[level];
         if self.linear {
             let mut p = PatchPoints {
                 points: [0; 16],
                 len: 0,
             };
-            for (slot, &v) in p.points.iter_mut().zip(l.face_verts(f)) {
+            for (slot, &v) in p.points.iter_mut().zip(face_points(fv, l, f)) {
                 *slot = v;
                 p.len += 1;
             }
             p
         } else if self.reg == 4 {
             PatchPoints {
-                points: quad_points(l, f, mask),
+                points: quad_points(l, f, mask, fv),
                 len: 16,
             }
         } else {
             let mut points = [0; 16];
-            points[..12].copy_from_slice(&tri_points(l, f, mask));
+            points[..12].copy_from_slice(&tri_points(l, f, mask, fv));
             PatchPoints { points, len: 12 }
         }
     }
@@ -123,12 +141,13 @@ impl std::ops::Deref for PatchPoints {
 /// The 16 points of a B-spline patch: for each corner, the corner and the
 /// three points of the face diagonally opposite, or of the faces beside it
 /// along a boundary.
-fn quad_points(l: &Level, f: usize, mask: u16) -> [u32; 16] {
+fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 16] {
     const PER_CORNER: [[usize; 4]; 4] =
         [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
     let verts = l.face_verts(f);
+    let own = face_points(fv, l, f);
     let interior = mask == 0;
-    let fill = if interior { u32::MAX } else { verts[0] };
+    let fill = if interior { u32::MAX } else { own[0] };
     let mut points = [0u32; 16];
     for (i, slots) in PER_CORNER.iter().enumerate() {
         let v = verts[i];
@@ -139,18 +158,18 @@ fn quad_points(l: &Level, f: usize, mask: u16) -> [u32; 16] {
         let manifold = !l.vertex_tag(v as usize).non_manifold();
         let outer: [u32; 3] = if interior || (!leading && !trailing) {
             let (opp, k) = ring.at((at + 2) % ring.faces.len());
-            let p = l.face_verts(opp);
+            let p = face_points(fv, l, opp);
             [p[(k + 1) % 4], p[(k + 2) % 4], p[(k + 3) % 4]]
         } else if leading && trailing {
             [fill; 3]
         } else if leading {
             let (next, k) = next_face(l, &ring, at, manifold);
-            [l.face_verts(next)[(k + 3) % 4], fill, fill]
+            [face_points(fv, l, next)[(k + 3) % 4], fill, fill]
         } else {
             let (prev, k) = prev_face(l, &ring, at, manifold);
-            [fill, fill, l.face_verts(prev)[(k + 1) % 4]]
+            [fill, fill, face_points(fv, l, prev)[(k + 1) % 4]]
         };
-        points[slots[0]] = v;
+        points[slots[0]] = own[i];
         points[slots[1]] = outer[0];
         points[slots[2]] = outer[1];
         points[slots[3]] = outer[2];
@@ -159,16 +178,17 @@ fn quad_points(l: &Level, f: usize, mask: u16) -> [u32; 16] {
 }
 
 /// The 12 points of a Loop box-spline patch.
-fn tri_points(l: &Level, f: usize, mask: u16) -> [u32; 12] {
+fn tri_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 12] {
     const PER_CORNER: [[usize; 4]; 3] = [[4, 7, 3, 0], [5, 1, 2, 6], [8, 9, 11, 10]];
     let verts = l.face_verts(f);
+    let own = face_points(fv, l, f);
     let interior = mask == 0;
     let (e_mask, v_mask) = if interior {
         (0, 0)
     } else {
         decode_tri_boundary(mask)
     };
-    let fill = if interior { u32::MAX } else { verts[0] };
+    let fill = if interior { u32::MAX } else { own[0] };
     let mut points = [0u32; 12];
     for (i, slots) in PER_CORNER.iter().enumerate() {
         let v = verts[i];
@@ -178,7 +198,7 @@ fn tri_points(l: &Level, f: usize, mask: u16) -> [u32; 12] {
         let manifold = !l.vertex_tag(v as usize).non_manifold();
         let leading = e_mask & (1 << i) != 0;
         let trailing = e_mask & (1 << ((i + 2) % 3)) != 0;
-        let corner = |face: usize, k: usize| l.face_verts(face)[k % 3];
+        let corner = |face: usize, k: usize| face_points(fv, l, face)[k % 3];
         let outer: [u32; 3] = if interior || v_mask & (1 << i) == 0 {
             let (f2, k2) = ring.at((at + 2) % n);
             let (f3, k3) = ring.at((at + 3) % n);
@@ -203,7 +223,7 @@ fn tri_points(l: &Level, f: usize, mask: u16) -> [u32; 12] {
             let (f2, k2) = next_face(l, &ring, at, manifold);
             [corner(f2, k2 + 2), fill, fill]
         };
-        points[slots[0]] = v;
+        points[slots[0]] = own[i];
         points[slots[1]] = outer[0];
         points[slots[2]] = outer[1];
         points[slots[3]] = outer[2];

@@ -7,7 +7,9 @@
 
 use super::Builder;
 use super::corners::Span;
+use super::points::face_points;
 use crate::rules::Rule;
+use crate::topology::fvar::ChannelLevel;
 
 /// One corner of a source patch.
 #[derive(Debug, Clone, Copy, Default)]
@@ -185,15 +187,16 @@ impl Builder<'_> {
         patch
     }
 
-    /// The vertex of the level behind each point of `patch`
-    /// (`gatherIrregularSourcePoints`): each corner's ring from the level,
-    /// laid over the same ring in the patch's numbering.
+    /// The vertex of the level (or value of channel `fv` there) behind each
+    /// point of `patch` (`gatherIrregularSourcePoints`): each corner's ring
+    /// from the level, laid over the same ring in the patch's numbering.
     pub(super) fn source_points(
         &self,
         level: usize,
         f: usize,
         spans: &[Span],
         patch: &SourcePatch,
+        fv: Option<&ChannelLevel>,
     ) -> Vec<u32> {
         let l = &self.levels[level];
         // Next to interior corners of valence 2 (a dart among them), a
@@ -209,11 +212,11 @@ impl Builder<'_> {
         let mut points = vec![0u32; len];
         for (c, &v) in l.face_verts(f).iter().enumerate().take(patch.size) {
             let from_level = if spans[c].is_assigned() {
-                self.partial_ring(level, v, &spans[c])
+                self.partial_ring(level, v, &spans[c], fv)
             } else if patch.size == 4 {
-                self.quad_ring(level, v)
+                self.quad_ring(level, v, fv)
             } else {
-                self.tri_ring(level, v)
+                self.tri_ring(level, v, fv)
             };
             for (&local, &vertex) in rings[c].iter().zip(&from_level) {
                 points[local] = vertex;
@@ -224,15 +227,15 @@ impl Builder<'_> {
 
     /// The ring around a vertex whose faces are all quads: the two points
     /// each face adds after the vertex, and the last boundary point
-    /// (`gatherQuadRegularRingAroundVertex`).
-    pub(super) fn quad_ring(&self, level: usize, v: u32) -> Vec<u32> {
+    /// (`gatherQuadRegularRingAroundVertex`); channel `fv`'s values if any.
+    pub(super) fn quad_ring(&self, level: usize, v: u32, fv: Option<&ChannelLevel>) -> Vec<u32> {
         let l = &self.levels[level];
         let faces = l.vertex_faces_of(v as usize);
         let locals = l.vertex_face_locals(v as usize);
         let boundary = l.vertex_edges_of(v as usize).len() > faces.len();
         let mut ring = Vec::with_capacity(2 * faces.len() + 1);
         for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
-            let p = l.face_verts(f as usize);
+            let p = face_points(fv, l, f as usize);
             let k = k as usize;
             ring.push(p[(k + 1) % 4]);
             ring.push(p[(k + 2) % 4]);
@@ -245,14 +248,14 @@ impl Builder<'_> {
 
     /// The ring around a vertex whose faces are all triangles
     /// (`gatherTriRegularRingAroundVertex`).
-    fn tri_ring(&self, level: usize, v: u32) -> Vec<u32> {
+    fn tri_ring(&self, level: usize, v: u32, fv: Option<&ChannelLevel>) -> Vec<u32> {
         let l = &self.levels[level];
         let faces = l.vertex_faces_of(v as usize);
         let locals = l.vertex_face_locals(v as usize);
         let boundary = l.vertex_edges_of(v as usize).len() > faces.len();
         let mut ring = Vec::with_capacity(faces.len() + 1);
         for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
-            let p = l.face_verts(f as usize);
+            let p = face_points(fv, l, f as usize);
             let k = k as usize;
             ring.push(p[(k + 1) % 3]);
             if boundary && i + 1 == faces.len() {
@@ -264,7 +267,13 @@ impl Builder<'_> {
 
     /// The ring of the faces of a span around vertex `v`
     /// (`gatherRegularPartialRingAroundVertex`).
-    fn partial_ring(&self, level: usize, v: u32, span: &Span) -> Vec<u32> {
+    fn partial_ring(
+        &self,
+        level: usize,
+        v: u32,
+        span: &Span,
+        fv: Option<&ChannelLevel>,
+    ) -> Vec<u32> {
         let l = &self.levels[level];
         let manifold = !l.vertex_tag(v as usize).non_manifold();
         let faces = l.vertex_faces_of(v as usize);
@@ -276,7 +285,7 @@ impl Builder<'_> {
         };
         let (mut face, mut k) = (first as usize, first_k as usize);
         for i in 0..span.faces {
-            let p = l.face_verts(face);
+            let p = face_points(fv, l, face);
             let n = p.len();
             let quad = n == 4;
             if quad {

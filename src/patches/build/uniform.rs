@@ -61,7 +61,7 @@ fn uniform_table(r: &Refiner, options: &PatchOptions, channels: &[usize]) -> Pat
     let max = levels.len() - 1;
     let first = if options.generate_all_levels { 1 } else { max };
     let ptex = ptex_first(&levels[0], reg);
-    let place = super::Placement {
+    let place = super::placement::Placement {
         levels,
         reg,
         ptex: &ptex,
@@ -77,7 +77,7 @@ fn uniform_table(r: &Refiner, options: &PatchOptions, channels: &[usize]) -> Pat
     let mut fvar: Vec<(Channel, Vec<u32>, u32)> = channels
         .iter()
         .map(|&c| {
-            let ch = Channel::new(c, &r.fvar[c]);
+            let ch = Channel::new(c, &r.fvar[c], None);
             let first = if options.include_fvar_base_level_indices {
                 ch.value_count(0) as u32
             } else {
