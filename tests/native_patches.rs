@@ -854,3 +854,100 @@ fn evaluation_with_a_prebuilt_map() {
         assert!(matches!(r, Ok(_) | Err(Error::NoSuchPatch { .. })), "{r:?}");
     }
 }
+
+/// Face-varying data evaluated over non-linear face-varying patches
+/// (`patches::evaluate_data` with `PatchData::FaceVarying` over
+/// `patch_data_points`, the channel's local points included): a channel
+/// that follows the vertex topology of a closed mesh has the vertex
+/// patches (OpenSubdiv reuses them), so positions given as its values
+/// evaluate as the vertex positions do; over a channel with seams, constant
+/// data stays constant.
+#[test]
+fn face_varying_data_over_nonlinear_patches() {
+    use subdiv::patches::{self, Derivatives, PatchData, PatchMap};
+    use subdiv::{FVarChannel, FVarLinearInterpolation};
+    let mut compared = 0;
+    for (name, mut mesh) in [
+        ("cube", shapes::cube()),
+        ("mixed torus", shapes::torus_mixed(6, 5)),
+        (
+            "seamed torus",
+            shapes::with_torus_uvs(shapes::torus(6, 5), 6, 5),
+        ),
+    ] {
+        let seams = !mesh.fvar_channels.is_empty();
+        if !seams {
+            mesh.fvar_channels.push(FVarChannel {
+                width: 3,
+                values: mesh.flat_positions::<f64>(),
+                indices: mesh.face_vertices.clone(),
+            });
+        }
+        let options =
+            Options::shape_file_defaults().with_fvar(FVarLinearInterpolation::CornersPlus1);
+        let po = PatchOptions {
+            fvar_tables: true,
+            fvar_legacy_linear_patches: false,
+            fvar_patch_precision_double: true,
+            ..PatchOptions::new().max_isolation(3).double_precision(true)
+        };
+        let r = Refiner::new(&mesh, &options)
+            .unwrap()
+            .refine_adaptive(po.refine_adaptive_options(), &[])
+            .unwrap();
+        let table = r.patch_table(&po, &[]).unwrap();
+        // End caps over the channel (the seamed torus has no extraordinary
+        // values: regular patches, boundaries and corners only).
+        assert_eq!(
+            table.fvar_channels[0].local_point_stencils.is_empty(),
+            seams,
+            "{name}"
+        );
+        let map = PatchMap::new(&table);
+        let locs: Vec<(u32, f64, f64)> = (0..table.ptex_faces as u32)
+            .flat_map(|f| {
+                [(0.0, 0.0), (0.3, 0.7), (0.5, 0.5), (1.0, 0.25), (0.9, 1.0)]
+                    .map(|(u, v)| (f, u, v))
+            })
+            .collect();
+        let eval = |data, width, base: &[f64]| {
+            let points = r.patch_data_points(&table, data, width, base).unwrap();
+            patches::evaluate_data(
+                &map,
+                &table,
+                data,
+                &points,
+                width,
+                &locs,
+                Derivatives::First,
+            )
+            .unwrap()
+            .values
+        };
+        if seams {
+            let uv = &mesh.fvar_channels[0];
+            let constant = vec![0.25; uv.values.len()];
+            let got = eval(PatchData::FaceVarying(0), uv.width, &constant);
+            for (&x, &d) in got.point.iter().zip(&got.du) {
+                assert!((x - 0.25).abs() < 1e-12 && d.abs() < 1e-12, "{name}");
+                compared += 1;
+            }
+        } else {
+            let base = mesh.flat_positions::<f64>();
+            let want = eval(PatchData::Vertex, 3, &base);
+            let got = eval(PatchData::FaceVarying(0), 3, &base);
+            for (what, x, y) in [
+                ("point", &got.point, &want.point),
+                ("du", &got.du, &want.du),
+                ("dv", &got.dv, &want.dv),
+            ] {
+                assert_eq!(x.len(), y.len(), "{name}");
+                for (p, q) in x.iter().zip(y) {
+                    assert!((p - q).abs() < 1e-12, "{name} {what}: {p} against {q}");
+                    compared += 1;
+                }
+            }
+        }
+    }
+    assert!(compared > 1000, "{compared}");
+}

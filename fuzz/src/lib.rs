@@ -1050,8 +1050,12 @@ fn check_osd_patches(
     let options = PatchOptions {
         share_end_cap_points: ao.order_vertices_from_faces_first,
         legacy_sharp_corner_patches: !ao.consider_fvar_channels,
-        // Linear face-varying patches (OpenSubdiv's default legacy ones).
+        // Face-varying patches: linear ones (OpenSubdiv's default legacy
+        // ones) or, every other odd level, the channels' own non-linear
+        // patches, their local points in either precision.
         fvar_tables: ao.isolation_level % 2 == 1,
+        fvar_legacy_linear_patches: ao.isolation_level % 4 == 1,
+        fvar_patch_precision_double: adaptive.faces.len() % 2 == 1,
         ..PatchOptions::new()
             .max_isolation(ao.isolation_level.min(10))
             .end_caps(end_caps)
@@ -1083,6 +1087,30 @@ fn check_osd_patches(
                 s.values.point.iter().all(|x| x.is_finite()),
                 "native limit surface not finite"
             );
+        }
+        // The first face-varying channel over its patches, local points
+        // included.
+        if let (Some(fv), Some(ch)) = (t.fvar_channels.first(), case.mesh.fvar_channels.first()) {
+            let data = subdiv::patches::PatchData::FaceVarying(0);
+            if fv.channel == 0
+                && let Ok(values) = native.patch_data_points(t, data, ch.width, &ch.values)
+            {
+                let map = subdiv::patches::PatchMap::new(t);
+                if let Ok(s) = subdiv::patches::evaluate_data(
+                    &map,
+                    t,
+                    data,
+                    &values,
+                    ch.width,
+                    &locations,
+                    Derivatives::First,
+                ) {
+                    assert!(
+                        s.values.point.iter().all(|x| x.is_finite()),
+                        "native face-varying limit not finite"
+                    );
+                }
+            }
         }
     }
     let patches = match theirs.patch_table(&options, &adaptive.faces) {

@@ -125,7 +125,9 @@ impl AdaptiveRefiner {
     /// [`AdaptiveRefiner::patch_points`]; for varying data every level's
     /// varying values (linear interpolation) and the varying local points;
     /// for face-varying channel `k` of the table every level's values of
-    /// the refiner's channel it holds, base first.
+    /// the refiner's channel it holds, base first, then the channel's local
+    /// points (non-linear face-varying patches' end caps) from their
+    /// stencils.
     pub fn patch_data_points(
         &self,
         table: &PatchTable,
@@ -179,8 +181,14 @@ impl AdaptiveRefiner {
             };
             points.extend_from_slice(&level);
         }
-        if channel.is_none() && !table.local_point_varying_stencils.is_empty() {
-            let local = table.local_point_varying_stencils.apply(width, &points)?;
+        let local = match data {
+            PatchData::FaceVarying(k) => {
+                table.fvar_channels.get(k).map(|c| &c.local_point_stencils)
+            }
+            _ => Some(&table.local_point_varying_stencils),
+        };
+        if let Some(stencils) = local.filter(|s| !s.is_empty()) {
+            let local = stencils.apply(width, &points)?;
             points.extend_from_slice(&local);
         }
         Ok(points)

@@ -19,7 +19,7 @@
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
 use super::eval::{PatchData, check_location, patch_of};
-use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable};
+use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable, PatchType};
 use crate::error::{Buffer, Error, Result, StencilFault};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
@@ -189,10 +189,13 @@ impl AdaptiveRefiner {
     /// the patch table refuses. Varying stencils use the table's varying
     /// patches (each patch's face, bilinear), as `EvaluateBasisVarying`
     /// does; face-varying ones the channel's linear patches over the
-    /// channel's values (indices of the base level's values). Not yet
-    /// native ([`Error::NotYetSupported`]; the bridge has them): face-varying
-    /// stencils after a refinement that considered face-varying channels
-    /// (OpenSubdiv then builds the channel's own non-linear patches).
+    /// channel's values (indices of the base level's values). Not native
+    /// ([`Error::NotYetSupported`]): face-varying stencils after a
+    /// refinement that considered face-varying channels, over the channel's
+    /// own non-linear patches with local points — OpenSubdiv 3.5 reads its
+    /// single-precision face-varying local points as double there
+    /// (uninitialised weights; the bridge refuses it), so there is nothing
+    /// to be identical to.
     ///
     /// ```
     /// use subdiv::patches::LimitStencilOptions;
@@ -456,6 +459,17 @@ fn build(
         StencilInterpolation::FaceVarying => PatchData::FaceVarying(0),
     };
     let none = StencilTable::default();
+    if let PatchData::FaceVarying(k) = data
+        && table
+            .fvar_channels
+            .get(k)
+            .is_some_and(|c| !matches!(c.regular_type, PatchType::Quads | PatchType::Triangles))
+    {
+        return Err(Error::NotYetSupported(
+            "face-varying location stencils over non-linear face-varying patches \
+             (OpenSubdiv 3.5 reads uninitialised local-point weights there)",
+        ));
+    }
     // The local points over the base vertices.
     let mut local = Builder::<1>::new(base);
     let lp = match data {
