@@ -291,8 +291,9 @@ fn holes_have_no_stencil_and_bad_locations_are_refused() {
         Err(Error::Osd(_))
     ));
     // Face-varying stencils after a refinement that considered the
-    // channels: OpenSubdiv's non-linear face-varying patches, not native
-    // yet, and said so.
+    // channels, over OpenSubdiv's non-linear face-varying patches: refused
+    // (OpenSubdiv 3.5 reads uninitialised weights there; the bridge
+    // refuses them too).
     let fvar = o.interpolation(StencilInterpolation::FaceVarying);
     assert!(!mesh.fvar_channels.is_empty());
     // (A channel interpolated linearly everywhere, OpenSubdiv's default,
