@@ -383,7 +383,31 @@ fn face_varying_tables_match_opensubdiv() {
         "triangle torus with uvs".into(),
         shapes::with_torus_uvs(shapes::torus_triangles(6, 5), 6, 5),
     ));
+    // Two channels, tables of some of them: OpenSubdiv's regularity test
+    // reads the refiner's channel numbered as the table's.
+    let mut two = shapes::with_torus_uvs(shapes::torus_mixed(6, 5), 6, 5);
+    two.fvar_channels.insert(
+        0,
+        subdiv::FVarChannel {
+            width: 3,
+            values: two.flat_positions::<f64>(),
+            indices: two.face_vertices.clone(),
+        },
+    );
     let mut total = Tally::default();
+    for fvar in [F::CornersOnly, F::Boundaries] {
+        let options = Options::shape_file_defaults().with_fvar(fvar);
+        for channels in [vec![1], vec![1, 0], vec![0, 1], vec![1, 1]] {
+            let po = PatchOptions {
+                fvar_tables: true,
+                fvar_legacy_linear_patches: false,
+                fvar_channels: channels,
+                ..PatchOptions::new().max_isolation(2)
+            };
+            compare("two channels", &two, &options, &po, &[], &mut total);
+        }
+    }
+    assert_eq!(total.identical, 8, "{total:?}");
     for fvar in [
         F::None,
         F::CornersOnly,
