@@ -1002,3 +1002,76 @@ fn large_channels_in_parallel_chunks() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Found by fuzzing (mesh_differential): degenerate faces (a vertex
+/// repeated around a face, faces of one vertex) make OpenSubdiv list one
+/// face twice among a vertex's faces at level 2 and miss another; the
+/// siblings it adds corner by corner then sum at that corner. The minimal
+/// last level, whose face values are read from the parent's faces, must
+/// number them the same (it assigned instead of adding, and read several
+/// values where the parent's first value passes one on).
+#[test]
+fn degenerate_faces_number_values_as_opensubdiv() {
+    let faces: [&[u32]; 7] = [
+        &[2, 3, 1],
+        &[0, 3, 4],
+        &[1, 3, 0, 4, 3, 2, 0, 0, 0],
+        &[0, 0, 0, 0, 0, 0],
+        &[0, 0, 0, 0, 0, 0],
+        &[0, 0, 0, 0, 0, 0],
+        &[0, 0, 0, 2, 2, 0],
+    ];
+    let positions = (0..5)
+        .map(|i| DVec3::new(i as f64, (i * i % 3) as f64, 0.5 * i as f64))
+        .collect();
+    let mut mesh = Mesh::from_faces(positions, &faces);
+    for (vertices, sharpness) in [
+        ([0, 0], 3.25),
+        ([2, 0], 4.75),
+        ([0, 0], -1.0),
+        ([0, 0], 4.75),
+        ([0, 0], 4.75),
+    ] {
+        mesh.creases.push(subdiv::Crease {
+            vertices,
+            sharpness,
+        });
+    }
+    for (vertex, sharpness) in [(3, 0.5), (0, 0.0)] {
+        mesh.corners.push(subdiv::Corner { vertex, sharpness });
+    }
+    mesh.holes.extend([1, 6]);
+    let indices: [&[u32]; 2] = [
+        &[
+            2, 3, 1, 0, 3, 3, 0, 4, 0, 0, 2, 2, 3, 5, 0, 1, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0,
+            2, 0, 0, 1, 1, 0, 0, 4, 0, 0,
+        ],
+        &[
+            2, 3, 1, 0, 3, 4, 1, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+        ],
+    ];
+    for (width, count, indices) in [(1, 6, indices[0]), (2, 9, indices[1])] {
+        mesh.fvar_channels.push(subdiv::FVarChannel {
+            width,
+            values: (0..width * count).map(|i| i as f64 * 0.25).collect(),
+            indices: indices.to_vec(),
+        });
+    }
+    let options = Options {
+        scheme: Scheme::Catmark,
+        boundary: BoundaryInterpolation::None,
+        fvar: FVarLinearInterpolation::None,
+        creasing: CreasingMethod::Uniform,
+        ..Options::default()
+    };
+    for full in [false, true] {
+        check(
+            "degenerate faces",
+            &mesh,
+            &options,
+            UniformOptions::new(3).full_topology(full),
+        )
+        .unwrap();
+    }
+}

@@ -96,6 +96,9 @@ fuzz_target!(|data: &[u8]| {
             assert!(again.meshes.is_empty());
             assert_eq!(again.skipped.len(), outs.len());
         }
-        Err(e) => panic!("what was written cannot be read: {e}\n{}", String::from_utf8_lossy(&text)),
+        Err(e) => panic!(
+            "what was written cannot be read: {e}\n{}",
+            String::from_utf8_lossy(&text)
+        ),
     }
 });

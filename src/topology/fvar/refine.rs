@@ -446,6 +446,10 @@ fn face_values_from_parent<R: Children>(
             FaceSplit::Triangles => 3 * (4 * f + k) + k,
         }
     };
+    // Siblings are added to the first value corner by corner, once per
+    // incidence, as OpenSubdiv numbers them through the child's
+    // vertex-faces: where a degenerate face makes a vertex list a face
+    // twice, the corner gets both siblings, as in OpenSubdiv.
     let edge_corners = |f: usize, k: usize| -> ([usize; 3], usize) {
         match split {
             FaceSplit::Quads => {
@@ -469,10 +473,13 @@ fn face_values_from_parent<R: Children>(
         }
     };
     for v in 0..parent.vertex_count {
-        if p.vertex_value_count(v) < 2 {
+        // Only a child with several values: a parent vertex whose first
+        // value is not tagged mismatched passes one value on, whatever its
+        // count (degenerate faces can give it several).
+        let c = r.vertex_child(v) as usize;
+        if offsets[c + 1] - offsets[c] < 2 {
             continue;
         }
-        let c = r.vertex_child(v) as usize;
         let siblings = p.vertex_face_siblings(parent, v);
         for ((&f, &k), &s) in parent
             .vertex_faces_of(v)
@@ -480,7 +487,7 @@ fn face_values_from_parent<R: Children>(
             .zip(parent.vertex_face_locals(v))
             .zip(siblings)
         {
-            values[vertex_corner(f as usize, k as usize)] = offsets[c] + u32::from(s);
+            values[vertex_corner(f as usize, k as usize)] += u32::from(s);
         }
     }
     for e in 0..parent.edge_count() {
@@ -488,12 +495,11 @@ fn face_values_from_parent<R: Children>(
         if !p.edge_tags[e].is_mismatch() || faces.len() < 2 {
             continue;
         }
-        let c = r.edge_child(e) as usize;
         for (&f, &k) in faces.iter().zip(parent.edge_face_locals(e)) {
             let j = faces.iter().rposition(|&g| g == f).unwrap_or(0) as u32;
             let (at, n) = edge_corners(f as usize, k as usize);
             for &corner in &at[..n] {
-                values[corner] = offsets[c] + j;
+                values[corner] += j;
             }
         }
     }
