@@ -48,6 +48,24 @@ fn deviation(a: &SurfaceSamples, b: &SurfaceSamples, scale: f64) -> [f64; 3] {
 /// Compares every face of `mesh` under `options`; returns the faces compared
 /// (0 when the native engine does not build these surfaces yet).
 fn compare(name: &str, mesh: &Mesh, options: &Options, so: &SurfaceOptions) -> usize {
+    let mut departures = Vec::new();
+    let n = compare_with(name, mesh, options, so, &mut departures);
+    assert!(departures.is_empty(), "{departures:?}");
+    n
+}
+
+/// A face-varying surface departing from Bfr's: the case, the face, and
+/// the deviation of values and of first derivatives.
+type Departure = (String, usize, f64, f64);
+
+/// As [`compare`], collecting face-varying departures instead of failing.
+fn compare_with(
+    name: &str,
+    mesh: &Mesh,
+    options: &Options,
+    so: &SurfaceOptions,
+    fvar_departures: &mut Vec<Departure>,
+) -> usize {
     let native = match LimitSurfaces::new(mesh, options, so) {
         Ok(n) => n,
         Err(Error::NotYetSupported(_)) => return 0,
@@ -75,11 +93,6 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, so: &SurfaceOptions) -> u
             "{label}: face {face}: {p:e} {d1:e} {d2:e}"
         );
         for channel in 0..mesh.fvar_channels.len() {
-            let linear =
-                options.scheme == Scheme::Bilinear || options.fvar == FVarLinearInterpolation::All;
-            if !linear {
-                continue;
-            }
             let a = native
                 .evaluate_fvar(face, channel, &coords, Derivatives::First)
                 .unwrap();
@@ -87,10 +100,9 @@ fn compare(name: &str, mesh: &Mesh, options: &Options, so: &SurfaceOptions) -> u
                 .evaluate_fvar(face, channel, &coords, Derivatives::First)
                 .unwrap();
             let [p, d1, _] = deviation(&a, &b, 1.0);
-            assert!(
-                p < 1e-9 && d1 < 1e-7,
-                "{label}: face {face} channel {channel}: {p:e} {d1:e}"
-            );
+            if !(p < 1e-9 && d1 < 1e-7) {
+                fvar_departures.push((label.clone(), face, p, d1));
+            }
         }
         compared += 1;
     }
@@ -252,4 +264,59 @@ fn with_chaikin_creasing_native_surfaces_are_far_s_and_bfr_departs() {
         worst.0, worst.1
     );
     assert!(worst.0 > 1e-6, "no departure found: {worst:?}");
+}
+
+/// Face-varying surfaces in every interpolation mode (smooth channels have
+/// surfaces of their own, over the non-linear face-varying patches of a
+/// refinement that isolated the channel's features): values and first
+/// derivatives at every coordinate of a rate-3 pattern within 1e-9 and
+/// 1e-7 of OpenSubdiv's `Bfr::Surface`s, on shapes with UV seams.
+#[test]
+fn smooth_face_varying_surfaces_equal_bfrs() {
+    let mut departures = Vec::new();
+    let mut shapes_with_uvs: Vec<(String, Mesh)> = shapes::corpus()
+        .into_iter()
+        .filter(|(_, m)| !m.fvar_channels.is_empty())
+        .collect();
+    shapes_with_uvs.push(("cube with uvs".into(), shapes::cube_with_uvs()));
+    shapes_with_uvs.push((
+        "mixed torus with uvs".into(),
+        shapes::with_torus_uvs(shapes::torus_mixed(6, 4), 6, 4),
+    ));
+    shapes_with_uvs.push(("production 8x6".into(), shapes::production(8, 6)));
+    let mut compared = 0;
+    for (name, mesh) in &shapes_with_uvs {
+        let schemes: &[Scheme] = if mesh.faces().all(|f| f.len() == 3) {
+            &[Scheme::Catmark, Scheme::Loop]
+        } else {
+            &[Scheme::Catmark]
+        };
+        for &scheme in schemes {
+            for &fvar in FVarLinearInterpolation::ALL {
+                let options = Options::default()
+                    .with_scheme(scheme)
+                    .with_boundary(BoundaryInterpolation::EdgeAndCorner)
+                    .with_fvar(fvar);
+                let so = SurfaceOptions::default();
+                compared += compare_with(name, mesh, &options, &so, &mut departures);
+            }
+        }
+    }
+    assert!(compared > 1000, "{compared}");
+    // The one known departure (docs/CONFORMANCE.md): at vertex 5 of the
+    // corpus' production shape, a corner of its UV channel, under
+    // CornersOnly and CornersPlus1 the patch at the corner differs —
+    // values agree at every sample, first derivatives at the corner itself
+    // (0.1 apart) — on the three faces around it, and nowhere else.
+    for (label, face, p, d1) in &departures {
+        assert!(
+            label.starts_with("production Options")
+                && (label.contains("CornersOnly") || label.contains("CornersPlus1"))
+                && [140, 141, 142].contains(face)
+                && *p < 1e-9
+                && *d1 < 0.2,
+            "{label}: face {face}: {p:e} {d1:e}"
+        );
+    }
+    assert!(departures.len() <= 6, "{departures:?}");
 }

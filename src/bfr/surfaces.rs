@@ -16,9 +16,12 @@
 //! approximated by sharp ones (Bfr's patch builder does not; the patch
 //! table's legacy sharp-corner patches are off).
 //!
-//! Face-varying data is evaluated as Bfr does for channels interpolated
-//! linearly (`FVarLinearInterpolation::All`, and every channel under the
-//! bilinear scheme); smooth face-varying surfaces are not native yet.
+//! Face-varying data is evaluated over the same patches where the channels
+//! are interpolated linearly (`FVarLinearInterpolation::All`, and every
+//! channel under the bilinear scheme); smooth channels get surfaces of their
+//! own, the non-linear face-varying patches of a second refinement that
+//! isolates their features too (`considerFVarChannels`), as Bfr builds a
+//! face-varying surface from the channel's topology.
 
 use crate::alloc;
 use crate::bfr::Parameterization;
@@ -59,9 +62,12 @@ pub struct LimitSurfaces {
     table: PatchTable,
     map: PatchMap,
     points: Vec<f64>,
-    /// Per face-varying channel: its patch points, when Bfr interpolates
-    /// it linearly (else `None`), and its width.
-    fvar: Vec<(Option<Vec<f64>>, usize)>,
+    /// Per face-varying channel: its patch points and its width.
+    fvar: Vec<(Vec<f64>, usize)>,
+    /// The patches of channels interpolated smoothly (a refinement that
+    /// isolated their features too), when the mesh has such channels; the
+    /// vertex patches serve linear ones.
+    fvar_map: Option<(PatchMap, PatchTable)>,
 }
 
 impl LimitSurfaces {
@@ -95,20 +101,36 @@ impl LimitSurfaces {
         let points = adaptive.patch_points(&table, 3, &mesh.flat_positions())?;
         let linear_fvar =
             options.scheme == Scheme::Bilinear || options.fvar == FVarLinearInterpolation::All;
+        // Channels interpolated smoothly have surfaces of their own: the
+        // patches of a refinement isolating their features too, as Bfr's
+        // face-varying surfaces are built from the channel's topology.
+        let smooth_fvar = if linear_fvar || mesh.fvar_channels.is_empty() {
+            None
+        } else {
+            let adaptive = Refiner::new(mesh, options)?
+                .refine_adaptive(adaptive_options.consider_fvar(true), &[])?;
+            let fvar_options = PatchOptions {
+                fvar_legacy_linear_patches: false,
+                ..patch_options.clone()
+            };
+            let table = adaptive.patch_table(&fvar_options, &[])?;
+            Some((adaptive, table))
+        };
         let mut fvar = Vec::new();
         for (k, channel) in mesh.fvar_channels.iter().enumerate() {
-            let values = if linear_fvar {
-                Some(adaptive.patch_data_points(
-                    &table,
-                    PatchData::FaceVarying(k),
-                    channel.width,
-                    &channel.values,
-                )?)
-            } else {
-                None
+            let (adaptive, table) = match &smooth_fvar {
+                Some((a, t)) => (a, t),
+                None => (&adaptive, &table),
             };
+            let values = adaptive.patch_data_points(
+                table,
+                PatchData::FaceVarying(k),
+                channel.width,
+                &channel.values,
+            )?;
             fvar.push((values, channel.width));
         }
+        let fvar_map = smooth_fvar.map(|(_, table)| (PatchMap::new(&table), table));
         let mut holes = alloc::try_vec(false, mesh.face_count())?;
         for &h in &mesh.holes {
             if let Some(slot) = holes.get_mut(h as usize) {
@@ -124,6 +146,7 @@ impl LimitSurfaces {
             table,
             points,
             fvar,
+            fvar_map,
         })
     }
 
@@ -199,12 +222,7 @@ impl LimitSurfaces {
         let param = self.parameterization(face)?;
         let (points, width) = match data {
             PatchData::FaceVarying(k) => match self.fvar.get(k) {
-                Some((Some(points), width)) => (&points[..], *width),
-                Some((None, _)) => {
-                    return Err(Error::NotYetSupported(
-                        "Bfr face-varying surfaces of channels not interpolated linearly",
-                    ));
-                }
+                Some((points, width)) => (&points[..], *width),
                 None => {
                     return Err(Error::NoSuchChannel {
                         channel: k,
@@ -234,14 +252,10 @@ impl LimitSurfaces {
             // Bfr's sub-face coordinates may stray just outside [0, 1].
             locations.push((first + sub as u32, s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
         }
-        patches::evaluate_data(
-            &self.map,
-            &self.table,
-            data,
-            points,
-            width,
-            &locations,
-            derivatives,
-        )
+        let (map, table) = match (&data, &self.fvar_map) {
+            (PatchData::FaceVarying(_), Some((map, table))) => (map, table),
+            _ => (&self.map, &self.table),
+        };
+        patches::evaluate_data(map, table, data, points, width, &locations, derivatives)
     }
 }

@@ -268,30 +268,20 @@ fn eval_bfr_gives_the_limit_points_of_the_base_vertices() {
     }
 }
 
+/// Smooth UVs (face-varying corners-plus-one) come from both engines, the
+/// same: every corner with its texture coordinate, 9 per face of the cube
+/// at rate 2.
 #[test]
-fn smooth_uvs_are_left_out_natively_with_a_warning() {
+fn smooth_uvs_come_from_every_engine() {
     let dir = scratch("cli-tessellate-smooth-uv");
     let input = write(&dir, "cube.obj", &obj_text(&shapes::cube_with_uvs()));
-    let out = dir.join("out.obj");
-    let o = subdiv(&[
-        "tessellate",
-        input.to_str().unwrap(),
-        "--fvar",
-        "corners-plus1",
-        "--rate",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("UVs left out"), "{}", stderr(&o));
-    assert_eq!(read_obj(&std::fs::read_to_string(&out).unwrap()).vt, 0);
-    if cfg!(feature = "osd") {
+    for &engine in engines() {
         let obj = tessellate(
             input.to_str().unwrap(),
-            "osd",
+            engine,
             &["--fvar", "corners-plus1", "--rate", "2"],
         );
-        assert_eq!(obj.vt, 6 * 9);
+        assert_eq!(obj.vt, 6 * 9, "{engine}");
+        assert_eq!(obj.corners_with_uv, obj.faces.len() * 3, "{engine}");
     }
 }

@@ -99,7 +99,7 @@ pub(crate) fn tessellate(args: &TessellateArgs) -> Result<(), Failure> {
         edge_length: args.edge_length,
         quads: args.quads,
         normals: args.normals,
-        uvs: uvs_available(args.engine, &mesh, &options, &name),
+        uvs: !mesh.fvar_channels.is_empty(),
     };
     let t = subdiv::bfr::tessellate(&mesh, surfaces.as_ref(), &tess_options).map_err(in_input)?;
     let elapsed = start.elapsed();
@@ -128,29 +128,4 @@ pub(crate) fn tessellate(args: &TessellateArgs) -> Result<(), Failure> {
         elapsed.as_secs_f64() * 1e3
     );
     Ok(())
-}
-
-/// Whether the UVs (face-varying channel 0) can be evaluated: the native
-/// engine evaluates linearly interpolated channels only; otherwise they are
-/// left out with a warning naming the way to get them.
-fn uvs_available(
-    engine: Engine,
-    mesh: &subdiv::Mesh,
-    options: &subdiv::Options,
-    name: &str,
-) -> bool {
-    if mesh.fvar_channels.is_empty() {
-        return false;
-    }
-    let linear = options.scheme == subdiv::Scheme::Bilinear
-        || options.fvar == subdiv::FVarLinearInterpolation::All;
-    if engine == Engine::Native && !linear {
-        eprintln!(
-            "subdiv: warning: {name}: UVs left out: the native engine evaluates face-varying data interpolated \
-             linearly everywhere only (--fvar all), not {} yet; --engine osd evaluates them",
-            options.fvar
-        );
-        return false;
-    }
-    true
 }
