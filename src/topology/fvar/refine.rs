@@ -237,6 +237,10 @@ pub fn refine<R: Children>(
     // it keeps no siblings, edge tags or crease spans.
     let with_siblings = child.vertex_faces.len() == child.vertex_count;
     let last = !with_siblings;
+    // Sparse levels are built whole; a minimal level's parent keeps its
+    // local indices (`Build::for_level` with face-varying channels).
+    debug_assert!(!(R::SPARSE && last));
+    debug_assert!(!last || parent.vertex_face_local.len() == parent.vertex_faces.members.len());
     let mut fvar = ChannelLevel {
         mode,
         value_count: total,
