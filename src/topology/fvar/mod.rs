@@ -33,7 +33,10 @@
 //! one value; an edge point one value, or one per incident face when the
 //! channel is split across the edge; a vertex's child as many values as the
 //! vertex, with the same tags, sibling assignment and crease spans. Semi-sharp
-//! values become creases once their sharpness has decayed.
+//! values become creases once their sharpness has decayed. Into a minimal
+//! last level (which keeps no vertex-faces) each corner's value is read from
+//! the parent's faces, and the level keeps no siblings, edge tags or spans:
+//! nothing refines it further.
 //!
 //! # Files
 //!
