@@ -17,11 +17,16 @@
 //! Both are OpenSubdiv's index by index and bit for bit (checked against it
 //! through the bridge in `tests/bfr_tessellation.rs`).
 
+mod corner;
+mod face_surface;
+mod hull;
 mod mesher;
 pub(crate) mod parameterization;
+mod regular;
 mod surfaces;
 mod tessellation;
 
+pub use face_surface::{Surface, SurfaceFactory};
 pub use mesher::{FaceSurfaces, TessellateOptions, TessellatedMesh, tessellate};
 pub use parameterization::{MAX_FACE_SIZE, Parameterization, ParameterizationType};
 pub use surfaces::{LimitSurfaces, SurfaceOptions};

@@ -223,13 +223,24 @@ impl AdaptiveRefiner {
             self.fvar_channel_count(),
         )?;
         let table = self.patch_table(&patch_options, &[])?;
+        self.location_stencils_over(&table, locations, options)
+    }
+
+    /// [`AdaptiveRefiner::location_stencils`] over a patch table of this
+    /// refinement built with options of the caller's choosing.
+    pub(crate) fn location_stencils_over(
+        &self,
+        table: &PatchTable,
+        locations: &[(u32, f64, f64)],
+        options: &LimitStencilOptions,
+    ) -> Result<LocationStencils> {
         let base = control_count(
             options,
             self.level_counts(0)?.vertices,
             (0..self.fvar_channel_count()).map(|c| self.fvar_levels(c)[0].value_count()),
         );
         let refined = || self.stencil_table_with(&refined_options(options, true));
-        at_locations(&table, base, refined, locations, options)
+        at_locations(table, base, refined, locations, options)
     }
 }
 

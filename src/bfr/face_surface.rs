@@ -1,0 +1,644 @@
+//! One base face's limit surface as an object, the way OpenSubdiv 3.5's
+//! `Bfr::RefinerSurfaceFactory` builds a `Bfr::Surface`
+//! ([`SurfaceFactory`], [`Surface`]): whether it is valid, regular or
+//! linear, its control points (the mesh vertices it depends on, in Bfr's
+//! order), its number of patch points, and its limit stencils — the weights
+//! of those control points at any (u, v) of the face's parameterization,
+//! with derivatives.
+//!
+//! How a surface is built, as Bfr builds it:
+//! - under the bilinear scheme, the face itself (linear: its corners; an
+//!   n-gon is split into quads at its centre and edge midpoints);
+//! - a face whose neighbourhood is regular (the refiner's tags say so, or
+//!   its corners' valences and sharpness do) is one B-spline patch (16
+//!   points) or box-spline patch (12 points, Loop);
+//! - any other face gets a control hull (see `hull.rs`): the vertices of
+//!   the faces around its corners, with the sharpness that matters, refined
+//!   adaptively about the face alone (`approx_level_sharp` around sharp
+//!   features, `approx_level_smooth` around smooth ones), and evaluated
+//!   through that refinement's patches — Gregory patches at the last level.
+//!
+//! Not native yet ([`Error::NotYetSupported`]): faces with a non-manifold
+//! corner vertex.
+
+use super::corner::{Corner, CornerTag, Subset};
+use super::hull::hull;
+use super::parameterization::Parameterization;
+use super::regular::{shortcut_points, subset_mask, subset_points};
+use super::surfaces::SurfaceOptions;
+use crate::alloc;
+use crate::error::{Element, Error, Result};
+use crate::mesh::Mesh;
+use crate::options::{
+    AdaptiveOptions, BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options,
+    Scheme, TriangleSubdivision,
+};
+use crate::patches::{
+    Derivatives, EndCapType, LimitStencilOptions, Partials, PatchOptions, PatchParam, PatchTable,
+    PatchType, SurfaceSamples, evaluate_basis,
+};
+use crate::refiner::adaptive::{Features, Tag, base_features};
+use crate::refiner::{AdaptiveRefiner, Refiner};
+use crate::rules::Rule;
+use crate::topology::Level;
+
+/// The deepest approximation level (OpenSubdiv's adaptive limit).
+const MAX_APPROX_LEVEL: u32 = 10;
+
+/// Builds the surfaces of a mesh's base faces (`Bfr::RefinerSurfaceFactory`,
+/// caching off).
+#[derive(Debug)]
+pub struct SurfaceFactory {
+    refiner: Refiner,
+    features: Vec<Features>,
+    surface: SurfaceOptions,
+}
+
+/// How a surface is represented.
+#[derive(Debug)]
+enum Form {
+    /// No limit surface.
+    Invalid,
+    /// The face itself, bilinear or split at its centre.
+    Linear,
+    /// One regular patch with this boundary mask.
+    Regular { patch: PatchType, mask: u16 },
+    /// The patches of an adaptive refinement of the face's control hull.
+    Irregular(Box<Irregular>),
+}
+
+#[derive(Debug)]
+struct Irregular {
+    refiner: AdaptiveRefiner,
+    table: PatchTable,
+}
+
+/// One base face's limit surface (`Bfr::Surface<double>`).
+#[derive(Debug)]
+pub struct Surface {
+    face: usize,
+    param: Parameterization,
+    control_points: Vec<u32>,
+    patch_points: usize,
+    form: Form,
+}
+
+impl SurfaceFactory {
+    /// The factory of `mesh`'s surfaces under `options`, with Bfr's
+    /// approximation levels from `surface` (levels beyond 10 are refused,
+    /// as OpenSubdiv's adaptive refinement goes no deeper).
+    pub fn new(mesh: &Mesh, options: &Options, surface: &SurfaceOptions) -> Result<Self> {
+        for level in [surface.approx_level_smooth, surface.approx_level_sharp] {
+            if level > MAX_APPROX_LEVEL {
+                return Err(Error::Level {
+                    level,
+                    reason: crate::error::LevelRefusal::TooDeep {
+                        max: MAX_APPROX_LEVEL,
+                    },
+                });
+            }
+        }
+        let refiner = Refiner::new(mesh, options)?;
+        let features = base_features(&refiner.levels[0], options.scheme);
+        Ok(SurfaceFactory {
+            refiner,
+            features,
+            surface: *surface,
+        })
+    }
+
+    /// The number of base faces.
+    pub fn face_count(&self) -> usize {
+        self.refiner.levels[0].face_count()
+    }
+
+    fn scheme(&self) -> Scheme {
+        self.refiner.options.scheme
+    }
+
+    fn reg_size(&self) -> usize {
+        if self.scheme() == Scheme::Loop { 3 } else { 4 }
+    }
+
+    /// The vertex surface of base face `face` (`InitVertexSurface`): holes
+    /// and faces without a limit surface give an invalid surface.
+    pub fn vertex_surface(&self, face: usize) -> Result<Surface> {
+        let base = &self.refiner.levels[0];
+        if face >= base.face_count() {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: face,
+                level: 0,
+                count: base.face_count(),
+            });
+        }
+        let verts = base.face_verts(face);
+        let size = verts.len();
+        let param = Parameterization::new(self.scheme(), size)?;
+        let invalid = |param| Surface {
+            face,
+            param,
+            control_points: Vec::new(),
+            patch_points: 0,
+            form: Form::Invalid,
+        };
+        if size < 3 || base.is_hole(face) {
+            return Ok(invalid(param));
+        }
+        if self.scheme() == Scheme::Bilinear {
+            let regular = size == 4;
+            return Ok(Surface {
+                face,
+                param,
+                control_points: verts.to_vec(),
+                patch_points: if regular { 4 } else { 2 * size + 1 },
+                form: Form::Linear,
+            });
+        }
+        let patch = if self.reg_size() == 4 {
+            PatchType::Regular
+        } else {
+            PatchType::Loop
+        };
+        if self.shortcut_regular(base, face) {
+            let (control_points, mask) = shortcut_points(base, face);
+            return Ok(Surface {
+                face,
+                param,
+                patch_points: control_points.len(),
+                control_points,
+                form: Form::Regular { patch, mask },
+            });
+        }
+        let mut corners = Vec::with_capacity(size);
+        for k in 0..size {
+            corners.push(Corner::new(base, face, k, self.reg_size()).ok_or(
+                Error::NotYetSupported(
+                    "native Bfr surfaces of faces with a non-manifold corner vertex",
+                ),
+            )?);
+        }
+        let options = self.refiner.options;
+        let topology = corners
+            .iter()
+            .fold(CornerTag::default(), |t, c| t.or(c.tag));
+        let reject_smooth_boundaries = options.boundary == BoundaryInterpolation::None;
+        let reject_irregular = self.reg_size() == 3;
+        if (reject_smooth_boundaries && topology.boundary_non_sharp)
+            || (reject_irregular && topology.irregular_sizes)
+        {
+            return Ok(invalid(param));
+        }
+        let subsets: Vec<Subset> = corners
+            .iter()
+            .map(|c| {
+                let mut s = c.subset();
+                if s.is_boundary()
+                    && !s.is_sharp()
+                    && options.boundary == BoundaryInterpolation::EdgeAndCorner
+                    && c.face_count() == 1
+                {
+                    s.sharpen();
+                }
+                s
+            })
+            .collect();
+        let tag = subsets
+            .iter()
+            .fold(CornerTag::default(), |t, s| t.or(s.tag));
+        if is_regular(&subsets, tag, self.reg_size()) {
+            let control_points = subset_points(&corners, &subsets);
+            return Ok(Surface {
+                face,
+                param,
+                patch_points: control_points.len(),
+                control_points,
+                form: Form::Regular {
+                    patch,
+                    mask: subset_mask(&subsets),
+                },
+            });
+        }
+        let hull = hull(&corners, &subsets, tag);
+        let local = Options {
+            boundary: BoundaryInterpolation::EdgeOnly,
+            fvar: FVarLinearInterpolation::All,
+            creasing: if tag.semi_sharp_edges || tag.semi_sharp {
+                options.creasing
+            } else {
+                CreasingMethod::Uniform
+            },
+            triangles: if options.scheme == Scheme::Catmark && tag.irregular_sizes {
+                options.triangles
+            } else {
+                TriangleSubdivision::Catmark
+            },
+            ..options
+        };
+        let irregular = self.irregular(&hull.mesh, &local)?;
+        let (base_count, refined) = {
+            let r = &irregular.refiner;
+            let mut refined = 0;
+            for l in 1..=r.max_level() {
+                refined += r.level_counts(l)?.vertices;
+            }
+            (r.level_counts(0)?.vertices, refined)
+        };
+        let end_caps = irregular
+            .table
+            .arrays
+            .iter()
+            .filter(|a| {
+                matches!(
+                    a.patch_type,
+                    PatchType::GregoryBasis | PatchType::GregoryTriangle
+                )
+            })
+            .map(|a| a.len() * a.patch_type.control_vertices())
+            .sum::<usize>();
+        Ok(Surface {
+            face,
+            param,
+            control_points: hull.control_points,
+            patch_points: base_count + refined + end_caps,
+            form: Form::Irregular(Box::new(irregular)),
+        })
+    }
+
+    /// The refiner's shortcut: a face whose corners' tags make its patch
+    /// regular (`getFaceNeighborhoodVertexIndicesIfRegular`).
+    fn shortcut_regular(&self, base: &Level, face: usize) -> bool {
+        let verts = base.face_verts(face);
+        if verts.len() != self.reg_size() {
+            return false;
+        }
+        let tags: Vec<Tag> = verts
+            .iter()
+            .map(|&v| Tag::of(base, &self.features, v as usize))
+            .collect();
+        let f = tags.iter().fold(Tag::default(), |a, &b| a.or(b));
+        if f.features.xordinary
+            || f.non_manifold
+            || f.features.incid_irreg_face
+            || f.semi_sharp
+            || f.semi_sharp_edges
+            || f.features.inf_irregular
+        {
+            return false;
+        }
+        if !f.boundary {
+            return !(f.inf_sharp || f.inf_sharp_edges);
+        }
+        verts.iter().zip(&tags).all(|(&v, t)| {
+            let rule = base.vertex_tag(v as usize).rule();
+            if !t.boundary {
+                rule == Rule::Smooth
+            } else if base.vertex_faces_of(v as usize).len() == 1 {
+                rule == Rule::Corner
+            } else {
+                rule == Rule::Crease
+            }
+        })
+    }
+
+    /// The adaptive refinement of a control hull about its first face and
+    /// its patches (`Bfr::PatchTreeBuilder`).
+    fn irregular(&self, hull: &Mesh, options: &Options) -> Result<Irregular> {
+        let refiner = Refiner::new(hull, options)?;
+        let mut primary = self.surface.approx_level_sharp;
+        let mut secondary = self.surface.approx_level_smooth.min(primary);
+        if secondary == 0 && root_needs_refinement(&refiner) {
+            primary = primary.max(1);
+            secondary = 1;
+        }
+        let adaptive = AdaptiveOptions::new(primary)
+            .secondary(secondary)
+            .inf_sharp_patch(true);
+        let refiner = refiner.refine_adaptive(adaptive, &[0])?;
+        let mut patch_options = PatchOptions::new()
+            .end_caps(EndCapType::GregoryBasis)
+            .inf_sharp_patch(true)
+            .max_isolation(primary)
+            .double_precision(true);
+        patch_options.legacy_sharp_corner_patches = false;
+        patch_options.share_end_cap_points = false;
+        let table = refiner.patch_table(&patch_options, &[0])?;
+        Ok(Irregular { refiner, table })
+    }
+}
+
+/// Whether the corners' subsets make one regular patch
+/// (`FaceSurface::isRegular`).
+fn is_regular(subsets: &[Subset], tag: CornerTag, reg_size: usize) -> bool {
+    if tag.sharp_edges() || tag.semi_sharp || tag.irregular_sizes {
+        return false;
+    }
+    let interior = if reg_size == 4 { 4 } else { 6 };
+    if !tag.boundary {
+        return !tag.inf_sharp && subsets.iter().all(|s| s.total == interior);
+    }
+    subsets.iter().all(|s| {
+        if s.is_sharp() {
+            s.total == 1
+        } else if s.is_boundary() {
+            s.total == interior / 2
+        } else {
+            s.total == interior
+        }
+    })
+}
+
+/// Whether the hull's face cannot be one patch of its base level
+/// (`PatchTreeBuilder::rootFaceNeedsRefinement`).
+fn root_needs_refinement(refiner: &Refiner) -> bool {
+    let level = &refiner.levels[0];
+    let features = base_features(level, refiner.options.scheme);
+    let verts = level.face_verts(0);
+    let tags: Vec<Tag> = verts
+        .iter()
+        .map(|&v| Tag::of(level, &features, v as usize))
+        .collect();
+    let f = tags.iter().fold(Tag::default(), |a, &b| a.or(b));
+    if f.features.incid_irreg_face {
+        return true;
+    }
+    let dart = crate::refiner::adaptive::DART;
+    if f.rule & dart != 0
+        && f.features.inf_irregular
+        && tags.iter().any(|t| t.rule & dart != 0 && t.inf_sharp_edges)
+    {
+        return true;
+    }
+    if f.features.xordinary {
+        let n = verts.len();
+        return verts.iter().zip(&tags).any(|(&v, t)| {
+            let valence = level.vertex_faces_of(v as usize).len();
+            t.features.xordinary
+                && !t.boundary
+                && !t.inf_sharp_edges
+                && (valence == 2 || (valence == 3 && n == 3))
+        });
+    }
+    false
+}
+
+/// The four weights of a sub-face of a split n-gon turned into the weights
+/// of the n-gon's vertices: origin, next, any other, previous
+/// (`transformLinearQuadWeightsToStencil`).
+fn split_weights(w: [f64; 4], n: usize) -> [f64; 4] {
+    let (origin, next, center, prev) = (w[0], w[1] * 0.5, w[2] / n as f64, w[3] * 0.5);
+    [
+        center + next + prev + origin,
+        center + next,
+        center,
+        center + prev,
+    ]
+}
+
+impl Surface {
+    /// The base face.
+    pub fn face(&self) -> usize {
+        self.face
+    }
+
+    /// `IsValid`: the face has a limit surface.
+    pub fn is_valid(&self) -> bool {
+        !matches!(self.form, Form::Invalid)
+    }
+
+    /// `IsRegular`: one regular patch (or a linear face of the scheme's
+    /// regular size).
+    pub fn is_regular(&self) -> bool {
+        match self.form {
+            Form::Regular { .. } => true,
+            Form::Linear => self.control_points.len() == 4,
+            _ => false,
+        }
+    }
+
+    /// `IsLinear`: the bilinear scheme's surface.
+    pub fn is_linear(&self) -> bool {
+        matches!(self.form, Form::Linear)
+    }
+
+    /// `GetControlPointIndices`: the mesh vertices the surface depends on,
+    /// in Bfr's order (empty for an invalid surface).
+    pub fn control_points(&self) -> &[u32] {
+        &self.control_points
+    }
+
+    /// `GetNumPatchPoints`: the control points and the points Bfr computes
+    /// from them to evaluate the surface (0 for an invalid surface).
+    pub fn patch_point_count(&self) -> usize {
+        self.patch_points
+    }
+
+    /// `GetParameterization`.
+    pub fn parameterization(&self) -> Parameterization {
+        self.param
+    }
+
+    /// `EvaluateStencil`: for each of `coords`, the weights of the control
+    /// points (in [`Surface::control_points`]' order) giving the surface's
+    /// value and the derivatives asked for there.
+    ///
+    /// Refused: an invalid surface ([`Error::NotYetSupported`] is not used:
+    /// [`Error::OffFace`] names the face for coordinates off its domain and
+    /// for surfaces without a limit).
+    pub fn evaluate_stencil(
+        &self,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<Vec<Partials>> {
+        let mut out = Vec::new();
+        alloc::reserve(&mut out, coords.len())?;
+        for &uv in coords {
+            if !self.is_valid() || !self.param.contains(uv, 1e-9) {
+                return Err(Error::OffFace {
+                    face: self.face,
+                    u: uv[0],
+                    v: uv[1],
+                    domain: if self.is_valid() {
+                        self.param.domain()
+                    } else {
+                        "no limit surface"
+                    },
+                });
+            }
+        }
+        match &self.form {
+            Form::Invalid => {}
+            Form::Linear if self.control_points.len() == 4 => {
+                for &[u, v] in coords {
+                    out.push(evaluate_basis(
+                        PatchType::Quads,
+                        PatchParam::default(),
+                        u.clamp(0.0, 1.0),
+                        v.clamp(0.0, 1.0),
+                        derivatives,
+                    )?);
+                }
+            }
+            Form::Linear => {
+                for &uv in coords {
+                    out.push(self.split_stencil(uv, derivatives)?);
+                }
+            }
+            Form::Regular { patch, mask } => {
+                let param = PatchParam::new(0, 0, 0, 0, false, *mask, 0, true);
+                for &uv in coords {
+                    let [u, v] = self.clamped(uv);
+                    out.push(evaluate_basis(*patch, param, u, v, derivatives)?);
+                }
+            }
+            Form::Irregular(irregular) => {
+                let mut locations = Vec::new();
+                alloc::reserve(&mut locations, coords.len())?;
+                for &uv in coords {
+                    let (sub, [s, t]) = if self.param.has_subfaces() {
+                        self.param.coord_to_subface(uv, true)?
+                    } else {
+                        (0, uv)
+                    };
+                    locations.push((sub as u32, s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
+                }
+                let options = LimitStencilOptions::new()
+                    .first_derivatives(derivatives != Derivatives::None)
+                    .second_derivatives(derivatives == Derivatives::Second);
+                let stencils = irregular.refiner.location_stencils_over(
+                    &irregular.table,
+                    &locations,
+                    &options,
+                )?;
+                let n = self.control_points.len();
+                for s in 0..stencils.len() {
+                    let range = stencils.offsets[s] as usize
+                        ..stencils.offsets[s] as usize + stencils.sizes[s] as usize;
+                    let w = &stencils.weights;
+                    let dense = |column: &[f64]| -> Result<Vec<f64>> {
+                        if column.is_empty() {
+                            return Ok(Vec::new());
+                        }
+                        let mut d = alloc::try_vec(0.0, n)?;
+                        for k in range.clone() {
+                            d[stencils.indices[k] as usize] += column[k];
+                        }
+                        Ok(d)
+                    };
+                    out.push(Partials {
+                        point: dense(&w.point)?,
+                        du: dense(&w.du)?,
+                        dv: dense(&w.dv)?,
+                        duu: dense(&w.duu)?,
+                        duv: dense(&w.duv)?,
+                        dvv: dense(&w.dvv)?,
+                    });
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn clamped(&self, [u, v]: [f64; 2]) -> [f64; 2] {
+        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+        if self.param.kind() == super::ParameterizationType::Triangle && u + v > 1.0 {
+            let excess = (u + v - 1.0) / 2.0;
+            [u - excess, v - excess]
+        } else {
+            [u, v]
+        }
+    }
+
+    /// The stencil of a split n-gon of the bilinear scheme
+    /// (`evalMultiLinearStencils`).
+    fn split_stencil(&self, uv: [f64; 2], derivatives: Derivatives) -> Result<Partials> {
+        let (sub, [s, t]) = self.param.coord_to_subface(uv, true)?;
+        let n = self.control_points.len();
+        let w = evaluate_basis(
+            PatchType::Quads,
+            PatchParam::default(),
+            s.clamp(0.0, 1.0),
+            t.clamp(0.0, 1.0),
+            derivatives,
+        )?;
+        let spread = |column: &[f64], scale: f64| -> Vec<f64> {
+            if column.is_empty() {
+                return Vec::new();
+            }
+            let q = split_weights(
+                [column[0], column[1], column[2], column[3]].map(|x| x * scale),
+                n,
+            );
+            (0..n)
+                .map(|i| {
+                    if i == sub {
+                        q[0]
+                    } else if i == (sub + 1) % n {
+                        q[1]
+                    } else if i == (sub + n - 1) % n {
+                        q[3]
+                    } else {
+                        q[2]
+                    }
+                })
+                .collect()
+        };
+        let zeros = |column: &[f64]| vec![0.0; if column.is_empty() { 0 } else { n }];
+        Ok(Partials {
+            point: spread(&w.point, 1.0),
+            du: spread(&w.du, 2.0),
+            dv: spread(&w.dv, 2.0),
+            duu: zeros(&w.duu),
+            duv: spread(&w.duv, 4.0),
+            dvv: zeros(&w.dvv),
+        })
+    }
+
+    /// `Evaluate` over the mesh's points (`width` values per mesh vertex):
+    /// the surface's values and the derivatives asked for at `coords`, its
+    /// stencils applied to its control points.
+    pub fn evaluate(
+        &self,
+        points: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        if let Some(&v) = self
+            .control_points
+            .iter()
+            .find(|&&v| (v as usize + 1).saturating_mul(width) > points.len())
+        {
+            return Err(Error::BufferLength {
+                buffer: crate::error::Buffer::Base,
+                expected: (v as usize + 1).saturating_mul(width),
+                got: points.len(),
+            });
+        }
+        let stencils = self.evaluate_stencil(coords, derivatives)?;
+        let mut columns: [Vec<f64>; 6] = Default::default();
+        for s in &stencils {
+            let parts = [&s.point, &s.du, &s.dv, &s.duu, &s.duv, &s.dvv];
+            for (col, weights) in columns.iter_mut().zip(parts) {
+                if weights.is_empty() {
+                    continue;
+                }
+                let start = col.len();
+                col.resize(start + width, 0.0);
+                for (&cv, &w) in self.control_points.iter().zip(weights) {
+                    let p = &points[cv as usize * width..(cv as usize + 1) * width];
+                    for (o, &x) in col[start..].iter_mut().zip(p) {
+                        *o += w * x;
+                    }
+                }
+            }
+        }
+        Ok(SurfaceSamples {
+            width,
+            values: Partials::from_columns(columns),
+        })
+    }
+}
