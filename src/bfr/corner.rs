@@ -4,8 +4,9 @@
 //! the sharpness of the edges around it, the tags summarising them, and the
 //! subset of those faces the face's limit surface depends on.
 //!
-//! Only manifold vertices (whose faces can be ordered around them) are
-//! described natively; the callers refuse the others.
+//! The faces of a non-manifold vertex come unordered; they are connected
+//! through the edges they share, and the subset is the fan of faces joined
+//! to the corner's face by manifold edges.
 
 use crate::rules::crease::{is_infinite, is_semi_sharp, is_sharp};
 use crate::topology::Level;
@@ -33,6 +34,11 @@ pub(crate) struct CornerTag {
     pub irregular_sizes: bool,
     /// A boundary whose boundary edges are not both infinitely sharp.
     pub boundary_non_sharp: bool,
+    /// Its faces were given unordered (the refiner found the vertex
+    /// non-manifold).
+    pub unordered: bool,
+    /// Its faces do not form one manifold fan.
+    pub non_manifold: bool,
 }
 
 impl CornerTag {
@@ -48,6 +54,8 @@ impl CornerTag {
             uncommon_sizes: self.uncommon_sizes | o.uncommon_sizes,
             irregular_sizes: self.irregular_sizes | o.irregular_sizes,
             boundary_non_sharp: self.boundary_non_sharp | o.boundary_non_sharp,
+            unordered: self.unordered | o.unordered,
+            non_manifold: self.non_manifold | o.non_manifold,
         }
     }
 
@@ -76,9 +84,22 @@ pub(crate) struct Subset {
     /// The corner's tags within the subset (sharpened by the boundary
     /// interpolation rules where they apply).
     pub tag: CornerTag,
+    /// A sharpness the subset's corner takes from outside it (0 if none).
+    pub local_sharpness: f32,
 }
 
 impl Subset {
+    /// The corner's face alone (`FaceVertexSubset::Initialize`).
+    fn new(tag: CornerTag) -> Subset {
+        Subset {
+            before: 0,
+            after: 0,
+            total: 1,
+            tag,
+            local_sharpness: 0.0,
+        }
+    }
+
     /// On a boundary.
     pub fn is_boundary(&self) -> bool {
         self.tag.boundary
@@ -94,6 +115,16 @@ impl Subset {
         self.tag.inf_sharp = true;
         self.tag.semi_sharp = false;
     }
+
+    /// Made at least `sharpness` sharp (`FaceVertex::SharpenSubset` with a
+    /// sharpness).
+    pub fn sharpen_to(&mut self, sharpness: f32) {
+        if sharpness > self.local_sharpness {
+            self.local_sharpness = sharpness;
+            self.tag.inf_sharp = is_infinite(sharpness);
+            self.tag.semi_sharp = is_semi_sharp(sharpness);
+        }
+    }
 }
 
 /// One corner of a face and the faces around its vertex.
@@ -106,6 +137,19 @@ pub(crate) struct Corner {
     /// The sharpness of each face's leading (`2i`) and trailing (`2i + 1`)
     /// edges at the vertex; empty when none is sharp.
     edge_sharpness: Vec<f32>,
+    /// For faces given unordered: the face across each face's leading
+    /// (`2i`) and trailing (`2i + 1`) edge, if the edge is manifold.
+    neighbours: Vec<Option<usize>>,
+    /// The size of every face when they are all one size, else 0.
+    common_size: usize,
+    /// The scheme's regular face size.
+    reg_size: usize,
+    /// The vertex's own sharpness is infinite.
+    explicit_inf: bool,
+    /// Its edges make it infinitely sharp.
+    implicit_inf: bool,
+    /// Its edges make it semi-sharp.
+    implicit_semi: bool,
     /// Where the base face is in the ring.
     pub face_in_ring: usize,
     /// The vertex's own sharpness.
@@ -116,51 +160,42 @@ pub(crate) struct Corner {
 
 impl Corner {
     /// Corner `corner` of base face `face` of `level`, under a scheme whose
-    /// regular faces have `reg_size` vertices; `None` when the corner's
-    /// vertex is non-manifold.
-    pub fn new(level: &Level, face: usize, corner: usize, reg_size: usize) -> Option<Corner> {
+    /// regular faces have `reg_size` vertices.
+    pub fn new(level: &Level, face: usize, corner: usize, reg_size: usize) -> Corner {
         let fverts = level.face_verts(face);
         let v = fverts[corner] as usize;
         let vtag = level.vertex_tag(v);
-        if vtag.non_manifold() {
-            return None;
-        }
+        let ordered = !vtag.non_manifold();
         let faces = level.vertex_faces_of(v);
+        let locals = level.vertex_face_locals(v);
         let n = faces.len();
-        let local = |i: usize| -> usize {
-            let f = faces[i] as usize;
-            if level.has_local_indices() {
-                usize::from(level.vertex_face_locals(v)[i])
-            } else {
-                level
-                    .face_verts(f)
-                    .iter()
-                    .position(|&x| x as usize == v)
-                    .unwrap_or(0)
-            }
-        };
-        let face_in_ring = faces.iter().position(|&f| f as usize == face)?;
+        // The face's own place in the ring: for a non-manifold vertex the
+        // instance at this corner (a face may touch the vertex twice).
+        let face_in_ring = faces
+            .iter()
+            .zip(locals)
+            .position(|(&f, &l)| f as usize == face && (ordered || usize::from(l) == corner))
+            .unwrap_or(0);
         let mut offsets = Vec::with_capacity(n + 1);
         let mut indices = Vec::new();
         offsets.push(0);
+        let first_size = level.face_verts(faces[0] as usize).len();
         let mut uncommon = false;
-        let mut irregular = false;
-        let base_size = fverts.len();
-        for (i, &f) in faces.iter().enumerate() {
+        for (&f, &l) in faces.iter().zip(locals) {
             let fv = level.face_verts(f as usize);
-            let start = local(i);
+            let start = usize::from(l);
             indices.extend(fv[start..].iter().chain(&fv[..start]));
             offsets.push(indices.len());
-            uncommon |= fv.len() != base_size;
-            irregular |= fv.len() != reg_size;
+            uncommon |= fv.len() != first_size;
         }
+        let common = if uncommon { 0 } else { first_size };
         let boundary = vtag.boundary();
         let mut edge_sharpness = Vec::new();
         if vtag.semi_sharp_edges() || vtag.inf_sharp_edges() {
             edge_sharpness.reserve(2 * n);
-            for (i, &f) in faces.iter().enumerate() {
+            for (&f, &l) in faces.iter().zip(locals) {
                 let fe = level.face_edges_of(f as usize);
-                let j = local(i);
+                let j = usize::from(l);
                 let lead = fe[j] as usize;
                 let trail = fe[(j + fe.len() - 1) % fe.len()] as usize;
                 edge_sharpness.push(level.edge_sharpness_at(lead));
@@ -172,45 +207,226 @@ impl Corner {
         } else {
             0.0
         };
-        let mut tag = CornerTag {
-            boundary,
-            inf_sharp: is_infinite(vertex_sharpness),
-            semi_sharp: is_semi_sharp(vertex_sharpness),
-            uncommon_sizes: uncommon,
-            irregular_sizes: irregular,
-            boundary_non_sharp: boundary,
-            ..CornerTag::default()
-        };
-        if !edge_sharpness.is_empty() {
-            let s = &edge_sharpness;
-            if boundary {
-                tag.boundary_non_sharp = !is_infinite(s[0]) || !is_infinite(s[2 * n - 1]);
-            }
-            let (mut inf, mut semi) = (0, 0);
-            for i in usize::from(boundary)..n {
-                if is_infinite(s[2 * i]) {
-                    inf += 1;
-                } else if is_sharp(s[2 * i]) {
-                    semi += 1;
-                }
-            }
-            tag.inf_sharp_edges = inf > 0;
-            tag.semi_sharp_edges = semi > 0;
-            tag.inf_sharp_dart = inf == 1 && !boundary;
-            let inf_total = inf + 2 * usize::from(boundary);
-            if inf_total > 2 && !tag.inf_sharp {
-                tag.inf_sharp = true;
-                tag.semi_sharp = false;
-            }
-        }
-        Some(Corner {
+        let mut c = Corner {
             offsets,
             indices,
             edge_sharpness,
+            neighbours: Vec::new(),
             face_in_ring,
             vertex_sharpness,
-            tag,
-        })
+            common_size: common,
+            reg_size,
+            explicit_inf: is_infinite(vertex_sharpness),
+            implicit_inf: false,
+            implicit_semi: false,
+            tag: CornerTag {
+                inf_sharp: is_infinite(vertex_sharpness),
+                semi_sharp: is_semi_sharp(vertex_sharpness),
+                uncommon_sizes: uncommon,
+                irregular_sizes: common != reg_size,
+                unordered: !ordered,
+                ..CornerTag::default()
+            },
+        };
+        if ordered {
+            c.finish_ordered(boundary);
+        } else {
+            c.connect_unordered();
+        }
+        c
+    }
+
+    /// The tags of an ordered ring (`FaceVertex::finalizeOrderedTags`).
+    fn finish_ordered(&mut self, boundary: bool) {
+        let n = self.face_count();
+        let tag = &mut self.tag;
+        tag.boundary = boundary;
+        tag.boundary_non_sharp = boundary;
+        if self.edge_sharpness.is_empty() {
+            return;
+        }
+        let s = &self.edge_sharpness;
+        if boundary {
+            tag.boundary_non_sharp = !is_infinite(s[0]) || !is_infinite(s[2 * n - 1]);
+        }
+        let (mut inf, mut semi) = (0, 0);
+        for i in usize::from(boundary)..n {
+            if is_infinite(s[2 * i]) {
+                inf += 1;
+            } else if is_sharp(s[2 * i]) {
+                semi += 1;
+            }
+        }
+        tag.inf_sharp_edges = inf > 0;
+        tag.semi_sharp_edges = semi > 0;
+        tag.inf_sharp_dart = inf == 1 && !boundary;
+        let inf_total = inf + 2 * usize::from(boundary);
+        if inf_total > 2 {
+            self.implicit_inf = true;
+        } else if inf_total + semi > 2 {
+            self.implicit_semi = true;
+        }
+        if !self.explicit_inf && self.implicit_inf {
+            tag.inf_sharp = true;
+            tag.semi_sharp = false;
+        }
+    }
+
+    /// Connects the faces of a vertex the refiner could not order, through
+    /// the edges they share, and sets the tags that depend on it
+    /// (`FaceVertex::ConnectUnOrderedFaces`).
+    fn connect_unordered(&mut self) {
+        let n = self.face_count();
+        let corner = self.indices[0];
+        let mut edges: Vec<RingEdge> = Vec::with_capacity(2 * n);
+        let mut face_edges = vec![0usize; 2 * n];
+        for (fe, slot) in face_edges.iter_mut().enumerate() {
+            let (f, trailing) = (fe / 2, fe % 2 == 1);
+            let v = if trailing {
+                self.trailing(f)
+            } else {
+                self.face(f)[1]
+            };
+            let e = if v == corner {
+                edges.push(RingEdge {
+                    end: v,
+                    state: EdgeState::NonManifold,
+                    degenerate: true,
+                    ..RingEdge::default()
+                });
+                edges.len() - 1
+            } else if let Some(e) = edges.iter().position(|e| e.end == v) {
+                edges[e].add_face(f, trailing);
+                e
+            } else {
+                let mut e = RingEdge {
+                    end: v,
+                    state: EdgeState::Boundary,
+                    ..RingEdge::default()
+                };
+                e.set_face(f, trailing);
+                if !self.edge_sharpness.is_empty() {
+                    let s = self.edge_sharpness[fe];
+                    e.inf_sharp = is_infinite(s);
+                    e.semi_sharp = s > 0.0 && !e.inf_sharp;
+                }
+                edges.push(e);
+                edges.len() - 1
+            };
+            *slot = e;
+        }
+        // Edges repeated within one face that the pass above missed.
+        if self.common_size != 3 {
+            for f in 0..n {
+                let fv = self.face(f);
+                let size = fv.len();
+                if size == 4 {
+                    if fv[2] == corner {
+                        edges[face_edges[2 * f]].duplicate();
+                        edges[face_edges[2 * f + 1]].duplicate();
+                    }
+                } else if self.common_size != 4 {
+                    for j in 2..size.saturating_sub(2) {
+                        if fv[j] == corner {
+                            if fv[j - 1] == fv[1] {
+                                edges[face_edges[2 * f]].duplicate();
+                            }
+                            if fv[j + 1] == fv[size - 1] {
+                                edges[face_edges[2 * f + 1]].duplicate();
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.neighbours = face_edges
+            .iter()
+            .enumerate()
+            .map(|(fe, &e)| {
+                let e = &edges[e];
+                match e.state {
+                    EdgeState::Interior if fe % 2 == 1 => e.next,
+                    EdgeState::Interior => e.prev,
+                    _ => None,
+                }
+            })
+            .collect();
+        let (mut non_manifold, mut inf, mut semi, mut singular) = (0, 0, 0, 0);
+        let (mut has_boundary, mut boundary_not_sharp) = (false, false);
+        let (mut degenerate, mut duplicate) = (false, false);
+        for e in &edges {
+            match e.state {
+                EdgeState::Interior => {
+                    inf += usize::from(e.inf_sharp);
+                    semi += usize::from(e.semi_sharp);
+                }
+                EdgeState::Boundary => {
+                    has_boundary = true;
+                    boundary_not_sharp |= !e.inf_sharp;
+                }
+                EdgeState::NonManifold => {
+                    non_manifold += 1;
+                    degenerate |= e.degenerate;
+                    duplicate |= e.duplicate;
+                }
+            }
+            singular += usize::from(e.state != EdgeState::Interior || e.inf_sharp);
+        }
+        let mut non_manifold_crease = false;
+        let is_non_manifold = if non_manifold > 0 {
+            if !degenerate && !duplicate && !has_boundary {
+                non_manifold_crease = non_manifold == 2 && n > edges.len();
+            }
+            true
+        } else {
+            edges.len() as i64 - n as i64 != i64::from(has_boundary)
+                || self.connected_extent().total < n
+        };
+        let tag = &mut self.tag;
+        tag.non_manifold = is_non_manifold;
+        tag.boundary = has_boundary;
+        tag.boundary_non_sharp = boundary_not_sharp;
+        tag.inf_sharp_edges = inf > 0;
+        tag.semi_sharp_edges = semi > 0;
+        tag.inf_sharp_dart = inf == 1 && !has_boundary;
+        if singular > 2 || (is_non_manifold && !non_manifold_crease) {
+            self.implicit_inf = true;
+        } else if singular + semi > 2 {
+            self.implicit_semi = true;
+        }
+        if !self.explicit_inf && self.implicit_inf {
+            tag.inf_sharp = true;
+            tag.semi_sharp = false;
+        }
+    }
+
+    /// The faces connected to the corner's face through manifold edges
+    /// (`FaceVertex::findConnectedSubsetExtent`).
+    fn connected_extent(&self) -> Subset {
+        let mut s = Subset::new(CornerTag {
+            non_manifold: false,
+            ..self.tag
+        });
+        let start = self.face_in_ring;
+        let n = self.face_count();
+        let mut f = self.next(start);
+        while let Some(g) = f.filter(|_| s.total <= n) {
+            if g == start {
+                s.tag.boundary = false;
+                return s;
+            }
+            s.after += 1;
+            s.total += 1;
+            f = self.next(g);
+        }
+        let mut f = self.prev(start);
+        while let Some(g) = f.filter(|_| s.total < n) {
+            s.before += 1;
+            s.total += 1;
+            f = self.prev(g);
+        }
+        s.tag.boundary = true;
+        s
     }
 
     /// The number of faces around the vertex.
@@ -230,6 +446,9 @@ impl Corner {
 
     /// The face after `f` in the ring (`GetFaceNext`).
     pub fn next(&self, f: usize) -> Option<usize> {
+        if self.tag.unordered {
+            return self.neighbours[2 * f + 1];
+        }
         let n = self.face_count();
         if f + 1 < n {
             Some(f + 1)
@@ -240,21 +459,45 @@ impl Corner {
         }
     }
 
-    /// The face after `f`, wrapping around the ring (`GetFaceNext` where
-    /// the ring goes on).
+    /// The face before `f` in the ring (`GetFacePrevious`).
+    pub fn prev(&self, f: usize) -> Option<usize> {
+        if self.tag.unordered {
+            return self.neighbours[2 * f];
+        }
+        if f > 0 {
+            Some(f - 1)
+        } else if self.tag.boundary {
+            None
+        } else {
+            Some(self.face_count() - 1)
+        }
+    }
+
+    /// The face after `f` where the ring goes on (the callers stay within
+    /// a subset), else `f`.
     pub fn after_face(&self, f: usize) -> usize {
-        (f + 1) % self.face_count()
+        if self.tag.unordered {
+            self.next(f).unwrap_or(f)
+        } else {
+            (f + 1) % self.face_count()
+        }
     }
 
     /// The face `step` after the corner's face (`GetFaceAfter`).
     pub fn after(&self, step: usize) -> usize {
-        (self.face_in_ring + step) % self.face_count()
+        if !self.tag.unordered {
+            return (self.face_in_ring + step) % self.face_count();
+        }
+        (0..step).fold(self.face_in_ring, |f, _| self.after_face(f))
     }
 
     /// The face `step` before the corner's face (`GetFaceBefore`).
     pub fn before(&self, step: usize) -> usize {
         let n = self.face_count();
-        (self.face_in_ring + n - step % n) % n
+        if !self.tag.unordered {
+            return (self.face_in_ring + n - step % n) % n;
+        }
+        (0..step).fold(self.face_in_ring, |f, _| self.prev(f).unwrap_or(f))
     }
 
     /// The first face of `subset` (`GetFaceFirst`).
@@ -275,20 +518,155 @@ impl Corner {
             .unwrap_or(0.0)
     }
 
-    /// The subset of a manifold vertex: all its faces
-    /// (`FaceVertex::GetVertexSubset`).
+    /// The faces the corner's face's limit surface depends on
+    /// (`FaceVertex::GetVertexSubset`): all of them around a manifold
+    /// vertex; around a non-manifold one, those connected to the face
+    /// through manifold edges, sharpened as the vertex's edges make it.
     pub fn subset(&self) -> Subset {
         let n = self.face_count();
-        let (before, after) = if self.tag.boundary {
-            (self.face_in_ring, n - 1 - self.face_in_ring)
-        } else {
-            (0, n - 1)
-        };
-        Subset {
-            before,
-            after,
-            total: n,
-            tag: self.tag,
+        if !self.tag.non_manifold {
+            let mut s = Subset::new(self.tag);
+            s.total = n;
+            if !self.tag.boundary {
+                s.after = n - 1;
+            } else if !self.tag.unordered {
+                s.before = self.face_in_ring;
+                s.after = n - 1 - s.before;
+            } else {
+                let mut f = self.next(self.face_in_ring);
+                while let Some(g) = f.filter(|_| s.after + 1 < n) {
+                    s.after += 1;
+                    f = self.next(g);
+                }
+                s.before = n - 1 - s.after;
+            }
+            return s;
         }
+        let mut s = self.connected_extent();
+        self.adjust_tags(&mut s);
+        if !s.is_sharp() && (self.implicit_inf || self.implicit_semi) {
+            s.sharpen_to(self.implicit_sharpness());
+        }
+        s
+    }
+
+    /// The sharpness the vertex's edges give it
+    /// (`FaceVertex::GetImplicitVertexSharpness`).
+    fn implicit_sharpness(&self) -> f32 {
+        if self.implicit_inf {
+            return crate::mesh::SHARPNESS_INFINITE;
+        }
+        (0..self.face_count())
+            .filter(|&f| self.prev(f).is_some())
+            .fold(self.vertex_sharpness, |m, f| {
+                m.max(self.edge_sharpness(f, false))
+            })
+    }
+
+    /// The faces of `s` from its first, in order.
+    fn subset_faces(&self, s: &Subset) -> impl Iterator<Item = usize> + '_ {
+        let first = self.first(s);
+        (0..s.total).scan(first, |f, _| {
+            let here = *f;
+            *f = self.after_face(here);
+            Some(here)
+        })
+    }
+
+    /// The tags of a proper subset, from its own faces and edges
+    /// (`FaceVertex::adjustSubsetTags`).
+    fn adjust_tags(&self, s: &mut Subset) {
+        if s.tag.boundary {
+            s.tag.inf_sharp_dart = false;
+        }
+        if s.tag.inf_sharp {
+            s.tag.semi_sharp = false;
+        }
+        if s.total >= self.face_count() && s.tag.boundary == self.tag.boundary {
+            return;
+        }
+        if s.tag.irregular_sizes && self.tag.uncommon_sizes {
+            s.tag.irregular_sizes = self
+                .subset_faces(s)
+                .any(|f| self.face_size(f) != self.reg_size);
+        }
+        // Trailing edges of the subset's faces but a boundary's last: its
+        // interior edges.
+        let trailing: Vec<f32> = if s.total > 1 {
+            self.subset_faces(s)
+                .take(s.total - usize::from(s.tag.boundary))
+                .map(|f| self.edge_sharpness(f, true))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        if s.tag.inf_sharp_edges {
+            s.tag.inf_sharp_edges = trailing.iter().any(|&x| is_infinite(x));
+            if s.tag.inf_sharp_edges && s.tag.boundary {
+                s.sharpen();
+            }
+        }
+        if s.tag.semi_sharp_edges {
+            s.tag.semi_sharp_edges = trailing.iter().any(|&x| is_semi_sharp(x));
+        }
+    }
+}
+
+/// How many faces share an edge around a corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+enum EdgeState {
+    #[default]
+    Boundary,
+    Interior,
+    NonManifold,
+}
+
+/// An edge at a corner's vertex, while its faces are connected
+/// (`FaceVertex::Edge`).
+#[derive(Debug, Clone, Copy, Default)]
+struct RingEdge {
+    /// Its other vertex.
+    end: u32,
+    state: EdgeState,
+    /// Whether the last face added has it as its trailing edge.
+    trailing: bool,
+    degenerate: bool,
+    duplicate: bool,
+    inf_sharp: bool,
+    semi_sharp: bool,
+    /// The face it trails and the face it leads.
+    prev: Option<usize>,
+    next: Option<usize>,
+}
+
+impl RingEdge {
+    fn set_face(&mut self, f: usize, trailing: bool) {
+        self.trailing = trailing;
+        if trailing {
+            self.prev = Some(f);
+        } else {
+            self.next = Some(f);
+        }
+    }
+
+    fn add_face(&mut self, f: usize, trailing: bool) {
+        match self.state {
+            EdgeState::Boundary => {
+                let other = if self.trailing { self.prev } else { self.next };
+                if trailing == self.trailing || other == Some(f) {
+                    self.state = EdgeState::NonManifold;
+                } else {
+                    self.state = EdgeState::Interior;
+                    self.set_face(f, trailing);
+                }
+            }
+            EdgeState::Interior => self.state = EdgeState::NonManifold,
+            EdgeState::NonManifold => {}
+        }
+    }
+
+    fn duplicate(&mut self) {
+        self.state = EdgeState::NonManifold;
+        self.duplicate = true;
     }
 }

@@ -17,9 +17,6 @@
 //!   adaptively about the face alone (`approx_level_sharp` around sharp
 //!   features, `approx_level_smooth` around smooth ones), and evaluated
 //!   through that refinement's patches — Gregory patches at the last level.
-//!
-//! Not native yet ([`Error::NotYetSupported`]): faces with a non-manifold
-//! corner vertex.
 
 use super::corner::{Corner, CornerTag, Subset};
 use super::hull::hull;
@@ -170,14 +167,9 @@ impl SurfaceFactory {
                 form: Form::Regular { patch, mask },
             });
         }
-        let mut corners = Vec::with_capacity(size);
-        for k in 0..size {
-            corners.push(Corner::new(base, face, k, self.reg_size()).ok_or(
-                Error::NotYetSupported(
-                    "native Bfr surfaces of faces with a non-manifold corner vertex",
-                ),
-            )?);
-        }
+        let corners: Vec<Corner> = (0..size)
+            .map(|k| Corner::new(base, face, k, self.reg_size()))
+            .collect();
         let options = self.refiner.options;
         let topology = corners
             .iter()

@@ -1,7 +1,7 @@
 //! What the integration tests share: running the `subdiv` binary, scratch
 //! directories, a deterministic random generator, OBJ text of generated
-//! meshes, random control grids, and the corpus of malformed files
-//! ([`malformed`]).
+//! meshes, random control grids, the corpus of malformed files
+//! ([`malformed`]) and random meshes for property tests ([`strategies`]).
 //!
 //! Each test crate includes it with `mod support;` (`#[path =
 //! "../support/mod.rs"] mod support;` from a crate in a folder, like
@@ -10,6 +10,7 @@
 #![allow(dead_code)]
 
 pub mod malformed;
+pub mod strategies;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
