@@ -557,7 +557,8 @@ impl Locator<'_> {
                 continue;
             };
             let (patch_type, param, cvs) = patch_of(self.table, self.data, h)?;
-            let count = evaluate_basis_into(patch_type, param, u, v, self.derivatives, &mut basis)?;
+            let count =
+                evaluate_basis_into(patch_type, param, u, v, self.derivatives, None, &mut basis)?;
             for (k, &cv) in cvs.iter().enumerate().take(count) {
                 let (indices, weights) = source(cv)?;
                 b.add_row(indices, weights, std::array::from_fn(|j| basis[j][k]));
