@@ -5,8 +5,8 @@
 //! under non-quad faces with respect to the ptex face.
 
 use subdiv::patches::{
-    self, Derivatives, Evaluation, PatchData, PatchMap, PatchOptions, PatchParam, PatchTable,
-    PatchType, SurfaceSamples,
+    self, Derivatives, Evaluation, LimitStencilOptions, PatchData, PatchMap, PatchOptions,
+    PatchParam, PatchTable, PatchType, SurfaceSamples,
 };
 use subdiv::refiner::Refiner;
 use subdiv::{Mesh, Options, shapes};
@@ -341,4 +341,51 @@ fn derivatives_under_non_quad_faces_are_the_ptex_faces() {
         }
         assert_eq!(default.values.point, exact.values.point);
     }
+}
+
+/// Limit stencils at locations with the exact option: their derivative
+/// weights under a non-quad face are half OpenSubdiv's (their tables have
+/// no single-crease patches), positions unchanged; under quads the same.
+#[test]
+fn location_stencils_take_the_option() {
+    let mesh = corpus("prism-5");
+    let adaptive = Refiner::new(&mesh, &Options::default())
+        .unwrap()
+        .refine_adaptive(subdiv::AdaptiveOptions::new(3), &[])
+        .unwrap();
+    let at = grid(
+        adaptive
+            .patch_table(&PatchOptions::new().max_isolation(3), &[])
+            .unwrap()
+            .ptex_faces,
+    );
+    let base = mesh.flat_positions::<f64>();
+    let [default, exact] = [Evaluation::OpenSubdiv, Evaluation::ExactLimit].map(|e| {
+        let o = LimitStencilOptions::new().evaluation(e);
+        let s = adaptive.location_stencils(&at, &o).unwrap();
+        assert_eq!(s.len(), at.len());
+        s.apply(3, &base).unwrap()
+    });
+    assert_eq!(default.point, exact.point);
+    let ptex =
+        subdiv::PtexIndices::new(&Refiner::new(&mesh, &Options::default()).unwrap()).unwrap();
+    let (mut halved, mut same) = (0, 0);
+    for (i, &(face, ..)) in at.iter().enumerate() {
+        // The pentagons' sub-faces are the ptex faces of the non-quad faces.
+        let non_quad = (0..mesh.face_count()).any(|f| {
+            ptex.face_ptex_count(f).unwrap() > 1
+                && (ptex.face_id(f).unwrap()..ptex.face_id(f).unwrap() + 5).contains(&face)
+        });
+        for k in 3 * i..3 * i + 3 {
+            for (d, e) in [(&default.du, &exact.du), (&default.dv, &exact.dv)] {
+                if non_quad {
+                    assert_eq!(d[k], 2.0 * e[k]);
+                } else {
+                    assert_eq!(d[k], e[k]);
+                }
+            }
+        }
+        if non_quad { halved += 1 } else { same += 1 }
+    }
+    assert_eq!((halved, same), (10 * 25, 5 * 25));
 }

@@ -6,6 +6,7 @@
 //! weighted sum of its control points ([`evaluate`]).
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
+use super::exact::exact_sharpness;
 use super::{
     Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
     SurfaceSamples,
@@ -365,18 +366,7 @@ pub fn evaluate_data_as(
         };
         // A map of another table names patches this one may not have.
         let (patch_type, param, cvs) = patch_of(table, data, handle)?;
-        // The exact limit reads a vertex patch's single-crease sharpness.
-        let exact = match (evaluation, data) {
-            (Evaluation::OpenSubdiv, _) => None,
-            (Evaluation::ExactLimit, PatchData::Vertex) => Some(
-                table.arrays[handle.array]
-                    .sharpness
-                    .get(handle.patch)
-                    .copied()
-                    .unwrap_or(0.0),
-            ),
-            (Evaluation::ExactLimit, _) => Some(0.0),
-        };
+        let exact = exact_sharpness(evaluation, table, data, handle);
         let n = evaluate_basis_into(patch_type, param, u, v, derivatives, exact, &mut buf)?;
         // Every control point's values, once per table asked for; points
         // of width 3 (positions) summed in registers, in the same order.

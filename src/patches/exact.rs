@@ -33,7 +33,9 @@
 //! smooth rules by `r`, which is linear in the points: the surface is `(1 -
 //! r)` times the `⌊S⌋` surface plus `r` times the `⌈S⌉` one.
 
-use super::{Derivatives, Partials, PatchParam, PatchType, basis};
+use super::{
+    Derivatives, Partials, PatchData, PatchHandle, PatchParam, PatchTable, PatchType, basis,
+};
 use crate::error::Result;
 
 /// How a patch table's patches are evaluated: as OpenSubdiv's
@@ -210,4 +212,29 @@ pub fn evaluate_basis_exact(
     derivatives: Derivatives,
 ) -> Result<Partials> {
     basis::evaluate_basis_partials(patch_type, param, u, v, derivatives, Some(sharpness))
+}
+
+/// What `evaluate_basis_into` is given for `evaluation` at patch `handle`
+/// of `table` for `data`: `None` for OpenSubdiv's basis; for the exact
+/// limit, the single-crease sharpness of a vertex patch (0 when the table
+/// has none, and for varying and face-varying patches, which are never
+/// single-crease patches). `handle` has been checked by `patch_of`.
+pub(crate) fn exact_sharpness(
+    evaluation: Evaluation,
+    table: &PatchTable,
+    data: PatchData,
+    handle: PatchHandle,
+) -> Option<f32> {
+    match (evaluation, data) {
+        (Evaluation::OpenSubdiv, _) => None,
+        (Evaluation::ExactLimit, PatchData::Vertex) => Some(
+            table
+                .arrays
+                .get(handle.array)
+                .and_then(|a| a.sharpness.get(handle.patch))
+                .copied()
+                .unwrap_or(0.0),
+        ),
+        (Evaluation::ExactLimit, _) => Some(0.0),
+    }
 }
