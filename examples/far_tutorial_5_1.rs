@@ -5,7 +5,8 @@
 //! patches in double precision, and 200 samples per ptex face at the
 //! tutorial's pseudo-random (s, t) — glibc's `rand()` after
 //! `srand(2147483647)` — printed as the same Maya MEL script, number for
-//! number.
+//! number (`tests/far_tutorials.rs` holds it to OpenSubdiv's program,
+//! `cpp/far_tutorials.cpp`).
 //!
 //! ```sh
 //! cargo run --example far_tutorial_5_1 > limit.mel
@@ -66,6 +67,13 @@ impl GlibcRand {
 }
 
 fn main() -> Result<(), subdiv::Error> {
+    print!("{}", run()?);
+    Ok(())
+}
+
+/// The tutorial's output (tests/far_tutorials.rs compares it with
+/// OpenSubdiv's program, `cpp/far_tutorials.cpp`).
+pub fn run() -> Result<String, subdiv::Error> {
     // The tutorial's mesh: a pyramid, base edges creased to 3.
     let positions = vec![
         DVec3::new(0.0, 0.0, 2.0),
@@ -147,6 +155,5 @@ fn main() -> Result<(), subdiv::Error> {
     }
     out.push_str("currentTime -edit `currentTime -q`;\n");
     out.push_str("select deriv1Shape deriv2Shape;\n");
-    print!("{out}");
-    Ok(())
+    Ok(out)
 }

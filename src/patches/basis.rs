@@ -14,13 +14,14 @@
 //! upper half of their parent's square are rotated by 180°: their
 //! coordinates are reflected and their odd-order derivatives negated.
 
+use super::exact::single_crease;
 use super::{Derivatives, Partials, PatchParam, PatchType, triangle_basis};
 use crate::error::{Error, Result};
 
 /// The uniform cubic B-spline basis at `t` and its first and second
 /// derivatives, each of the four functions `N_i` written as the polynomial
 /// in `t` that the knot intervals give it.
-fn bspline(t: f64) -> [[f64; 4]; 3] {
+pub(crate) fn bspline(t: f64) -> [[f64; 4]; 3] {
     let (t2, t3) = (t * t, t * t * t);
     let c = 1.0 - t;
     [
@@ -66,7 +67,7 @@ fn bezier(t: f64) -> [[f64; 4]; 3] {
 type Tables<'a> = [&'a mut [f64]; 6];
 
 /// The orders of derivative `(in s, in t)` of the six tables.
-const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+pub(crate) const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
 
 /// Room for the weights of any patch (20 points at most) in each table.
 pub(crate) type BasisBuffer = [[f64; 20]; 6];
@@ -245,8 +246,22 @@ pub fn evaluate_basis(
     v: f64,
     derivatives: Derivatives,
 ) -> Result<Partials> {
+    evaluate_basis_partials(patch_type, param, u, v, derivatives, None)
+}
+
+/// [`evaluate_basis`] as `Partials`, OpenSubdiv's way (`exact` `None`) or
+/// the exact limit's with the patch's single-crease sharpness
+/// ([`evaluate_basis_into`]).
+pub(crate) fn evaluate_basis_partials(
+    patch_type: PatchType,
+    param: PatchParam,
+    u: f64,
+    v: f64,
+    derivatives: Derivatives,
+    exact: Option<f32>,
+) -> Result<Partials> {
     let mut buf: BasisBuffer = [[0.0; 20]; 6];
-    let n = evaluate_basis_into(patch_type, param, u, v, derivatives, &mut buf)?;
+    let n = evaluate_basis_into(patch_type, param, u, v, derivatives, exact, &mut buf)?;
     let first = derivatives != Derivatives::None;
     let second = derivatives == Derivatives::Second;
     let take = |k: usize, on: bool| if on { buf[k][..n].to_vec() } else { Vec::new() };
@@ -262,13 +277,18 @@ pub fn evaluate_basis(
 
 /// [`evaluate_basis`] into `buf` (position, ∂u, ∂v, ∂uu, ∂uv, ∂vv: the
 /// first 1, 3 or 6 tables as `derivatives` asks), without allocating;
-/// returns the patch's number of control points.
+/// returns the patch's number of control points. `exact`: `None` for
+/// OpenSubdiv's basis, or the patch's single-crease sharpness (0 for
+/// patches that are not single-crease ones) for the exact limit's
+/// (`exact.rs`: the crease honoured, derivatives with respect to the ptex
+/// face even under non-quad faces).
 pub(crate) fn evaluate_basis_into(
     patch_type: PatchType,
     param: PatchParam,
     u: f64,
     v: f64,
     derivatives: Derivatives,
+    exact: Option<f32>,
     buf: &mut BasisBuffer,
 ) -> Result<usize> {
     for (coordinate, value) in [("u", u), ("v", v)] {
@@ -309,8 +329,16 @@ pub(crate) fn evaluate_basis_into(
             k += 1;
             if k <= kinds { &mut b[..n] } else { &mut b[..0] }
         });
+        // A single-crease patch (a positive sharpness) names its crease
+        // edge in its boundary mask.
+        let crease = exact
+            .filter(|&sharpness| sharpness > 0.0 && param.boundary().count_ones() == 1)
+            .map(|sharpness| (param.boundary().trailing_zeros(), f64::from(sharpness)));
         match patch_type {
-            PatchType::Regular => regular(s, t, param.boundary(), &mut tables),
+            PatchType::Regular => match crease {
+                Some((edge, sharpness)) => single_crease(s, t, edge, sharpness, &mut tables),
+                None => regular(s, t, param.boundary(), &mut tables),
+            },
             PatchType::GregoryBasis => gregory(s, t, &mut tables),
             PatchType::Quads => bilinear(s, t, &mut tables),
             PatchType::Triangles => linear_triangle(s, t, &mut tables),
@@ -328,10 +356,16 @@ pub(crate) fn evaluate_basis_into(
             }
         }
     }
-    // Derivatives with respect to the ptex face: 2^depth per order (the
-    // sign of a rotated triangle's odd orders flipped).
+    // Derivatives with respect to the ptex face: 2^depth per order as
+    // OpenSubdiv scales them, the patch's share of the ptex face for the
+    // exact limit (the sign of a rotated triangle's odd orders flipped).
     let sign = if rotated { -1.0 } else { 1.0 };
-    let d1 = sign * f64::from(1u32 << depth);
+    let d1 = sign
+        * if exact.is_some() {
+            scale
+        } else {
+            f64::from(1u32 << depth)
+        };
     let d2 = sign * d1 * d1;
     for (k, table) in buf.iter_mut().enumerate().take(kinds).skip(1) {
         let factor = if k < 3 { d1 } else { d2 };

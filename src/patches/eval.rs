@@ -6,8 +6,10 @@
 //! weighted sum of its control points ([`evaluate`]).
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
+use super::exact::exact_sharpness;
 use super::{
-    Derivatives, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType, SurfaceSamples,
+    Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
+    SurfaceSamples,
 };
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
@@ -289,6 +291,54 @@ pub fn evaluate_data(
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
 ) -> Result<SurfaceSamples> {
+    evaluate_data_as(
+        Evaluation::OpenSubdiv,
+        map,
+        table,
+        data,
+        points,
+        width,
+        locations,
+        derivatives,
+    )
+}
+
+/// [`evaluate_data`] as `evaluation` asks: OpenSubdiv's `EvaluateBasis`
+/// (what [`evaluate_data`] does) or the exact limit surface
+/// ([`Evaluation::ExactLimit`]: single-crease patches with their
+/// sharpness, derivatives under non-quad faces with respect to the ptex
+/// face; see [`evaluate_basis_exact`](super::evaluate_basis_exact)).
+/// Varying and face-varying patches are never single-crease patches: for
+/// them only the derivatives' scale differs.
+///
+/// ```
+/// use subdiv::patches::{self, Derivatives, Evaluation, PatchData, PatchMap, PatchOptions};
+/// use subdiv::{refiner::Refiner, shapes, Options};
+/// let mut mesh = shapes::cube();
+/// mesh.add_crease(0, 1, 2.5);
+/// let options = PatchOptions::new().max_isolation(3).single_crease_patch(true);
+/// let adaptive = Refiner::new(&mesh, &Options::default())?
+///     .refine_adaptive(options.refine_adaptive_options(), &[])?;
+/// let table = adaptive.patch_table(&options, &[])?;
+/// let points = adaptive.patch_points(&table, 3, &mesh.flat_positions())?;
+/// let map = PatchMap::new(&table);
+/// let at = [(0, 0.5, 0.5)];
+/// let s = patches::evaluate_data_as(Evaluation::ExactLimit, &map, &table, PatchData::Vertex,
+///     &points, 3, &at, Derivatives::First)?;
+/// assert_eq!(s.values.du.len(), 3);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn evaluate_data_as(
+    evaluation: Evaluation,
+    map: &PatchMap,
+    table: &PatchTable,
+    data: PatchData,
+    points: &[f64],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    derivatives: Derivatives,
+) -> Result<SurfaceSamples> {
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
@@ -316,7 +366,8 @@ pub fn evaluate_data(
         };
         // A map of another table names patches this one may not have.
         let (patch_type, param, cvs) = patch_of(table, data, handle)?;
-        let n = evaluate_basis_into(patch_type, param, u, v, derivatives, &mut buf)?;
+        let exact = exact_sharpness(evaluation, table, data, handle);
+        let n = evaluate_basis_into(patch_type, param, u, v, derivatives, exact, &mut buf)?;
         // Every control point's values, once per table asked for; points
         // of width 3 (positions) summed in registers, in the same order.
         if width == 3 {

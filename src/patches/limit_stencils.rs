@@ -19,7 +19,10 @@
 
 use super::basis::{BasisBuffer, evaluate_basis_into};
 use super::eval::{PatchData, check_location, patch_of};
-use super::{Derivatives, EndCapType, Partials, PatchMap, PatchOptions, PatchTable, PatchType};
+use super::exact::exact_sharpness;
+use super::{
+    Derivatives, EndCapType, Evaluation, Partials, PatchMap, PatchOptions, PatchTable, PatchType,
+};
 use crate::error::{Buffer, Error, Result, StencilFault};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
@@ -45,6 +48,12 @@ pub struct LimitStencilOptions {
     pub second_derivatives: bool,
     /// `fvarChannel` (0): the channel of face-varying stencils.
     pub fvar_channel: usize,
+    /// How the patches' bases are evaluated: OpenSubdiv's `EvaluateBasis`
+    /// (the default) or the exact limit ([`Evaluation::ExactLimit`]: the
+    /// derivative weights under non-quad faces with respect to the ptex
+    /// face, half OpenSubdiv's first and a quarter its second; the tables
+    /// these stencils are built over have no single-crease patches).
+    pub evaluation: Evaluation,
 }
 
 impl Default for LimitStencilOptions {
@@ -54,6 +63,7 @@ impl Default for LimitStencilOptions {
             first_derivatives: true,
             second_derivatives: false,
             fvar_channel: 0,
+            evaluation: Evaluation::OpenSubdiv,
         }
     }
 }
@@ -85,6 +95,13 @@ impl LimitStencilOptions {
     /// Sets `fvarChannel`.
     pub fn fvar_channel(mut self, channel: usize) -> Self {
         self.fvar_channel = channel;
+        self
+    }
+
+    /// Sets how the patches' bases are evaluated
+    /// ([`LimitStencilOptions::evaluation`]).
+    pub fn evaluation(mut self, evaluation: Evaluation) -> Self {
+        self.evaluation = evaluation;
         self
     }
 
@@ -511,6 +528,7 @@ fn build(
         map: PatchMap::new(table),
         derivatives: options.derivatives(),
         data,
+        evaluation: options.evaluation,
     };
     let (found, offsets, indices, weights) = match options.derivatives() {
         Derivatives::None => at.stencils::<1>(base, locations, &source)?,
@@ -540,6 +558,8 @@ struct Locator<'a> {
     derivatives: Derivatives,
     /// Which patches to evaluate.
     data: PatchData,
+    /// OpenSubdiv's basis or the exact limit's.
+    evaluation: Evaluation,
 }
 
 /// Which locations have a stencil, and the stencils' offsets, indices and
@@ -568,7 +588,9 @@ impl Locator<'_> {
                 continue;
             };
             let (patch_type, param, cvs) = patch_of(self.table, self.data, h)?;
-            let count = evaluate_basis_into(patch_type, param, u, v, self.derivatives, &mut basis)?;
+            let exact = exact_sharpness(self.evaluation, self.table, self.data, h);
+            let count =
+                evaluate_basis_into(patch_type, param, u, v, self.derivatives, exact, &mut basis)?;
             for (k, &cv) in cvs.iter().enumerate().take(count) {
                 let (indices, weights) = source(cv)?;
                 b.add_row(indices, weights, std::array::from_fn(|j| basis[j][k]));

@@ -21,12 +21,16 @@
 //! * `build/`: the native patch-table factory;
 //! * `param.rs`, `map.rs`, `basis.rs`, `eval.rs`: parameterization, patch
 //!   lookup, basis functions, evaluation at locations;
+//! * `exact.rs`: the exact limit where OpenSubdiv's evaluation departs
+//!   from it ([`Evaluation::ExactLimit`]: semi-sharp single-crease
+//!   patches, derivatives under non-quad faces);
 //! * `limit_stencils.rs`: limit stencils at locations
 //!   ([`LocationStencils`], `LimitStencilTableFactory`).
 
 mod basis;
 mod build;
 mod eval;
+mod exact;
 mod limit_stencils;
 mod map;
 mod param;
@@ -35,7 +39,8 @@ mod triangle_basis;
 use crate::stencil::StencilTable;
 
 pub use basis::evaluate_basis;
-pub use eval::{PatchData, evaluate, evaluate_data, evaluate_with};
+pub use eval::{PatchData, evaluate, evaluate_data, evaluate_data_as, evaluate_with};
+pub use exact::{Evaluation, evaluate_basis_exact};
 pub use limit_stencils::{LimitStencilOptions, LocationStencils};
 pub use map::PatchMap;
 pub use param::PatchParam;

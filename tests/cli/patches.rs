@@ -328,3 +328,69 @@ fn eval_double_uses_double_precision_local_points() {
             .all(|(a, b)| (a - b).abs() < 1e-6)
     );
 }
+
+/// `subdiv eval --exact-limit`: on a creased cube with single-crease
+/// patches, the semi-sharp crease the table without them isolates (where
+/// the default, OpenSubdiv's `EvaluateBasis`, evaluates it infinitely
+/// sharp); refused with the osd engine and with Bfr's surfaces.
+#[test]
+fn eval_exact_limit_honours_single_crease_sharpness() {
+    let dir = scratch("cli-eval-exact");
+    let mut cube = shapes::cube();
+    cube.add_crease(0, 1, 2.7);
+    cube.add_crease(1, 5, 2.7);
+    let input = write(&dir, "cube.obj", &obj_text(&cube));
+    let mut locations = String::new();
+    for face in 0..6 {
+        for (u, v) in [(0.1, 0.5), (0.5, 0.9), (0.95, 0.05), (0.5, 0.5)] {
+            locations.push_str(&format!("{face} {u} {v}\n"));
+        }
+    }
+    let at = write(&dir, "at.txt", &locations);
+    let run = |extra: &[&str]| -> Vec<f64> {
+        let mut args = vec![
+            "eval",
+            input.to_str().unwrap(),
+            "--at",
+            at.to_str().unwrap(),
+            "--derivatives",
+        ];
+        args.extend_from_slice(extra);
+        let out = subdiv(&args);
+        assert!(out.status.success(), "{extra:?}: {}", stderr(&out));
+        stdout(&out)
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let isolated = run(&[]);
+    let exact = run(&["--single-crease", "--exact-limit"]);
+    let default = run(&["--single-crease"]);
+    assert_eq!(isolated.len(), 24 * 9);
+    let largest = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    assert!(
+        largest(&exact, &isolated) < 1e-13,
+        "{exact:?}\n{isolated:?}"
+    );
+    assert!(largest(&default, &isolated) > 1e-3);
+    for (extra, code) in [
+        (&["--exact-limit", "--engine", "osd"][..], 2),
+        (&["--exact-limit", "--surface", "bfr"][..], 2),
+    ] {
+        let mut args = vec![
+            "eval",
+            input.to_str().unwrap(),
+            "--at",
+            at.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = subdiv(&args);
+        assert_eq!(out.status.code(), Some(code), "{extra:?}");
+        assert!(stderr(&out).contains("--exact-limit"), "{}", stderr(&out));
+    }
+}

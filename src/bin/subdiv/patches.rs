@@ -6,7 +6,10 @@
 use clap::Args;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use subdiv::patches::{Derivatives, EndCapType, PatchOptions, PatchTable, SurfaceSamples};
+use subdiv::patches::{
+    Derivatives, EndCapType, Evaluation, PatchData, PatchMap, PatchOptions, PatchTable,
+    SurfaceSamples,
+};
 use subdiv::{Engine, Precision};
 
 use crate::Failure;
@@ -69,6 +72,12 @@ pub(crate) struct EvalArgs {
     /// Also print the first derivatives: x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv.
     #[arg(long)]
     pub(crate) derivatives: bool,
+    /// Evaluate the exact limit surface where OpenSubdiv's EvaluateBasis departs from it:
+    /// single-crease patches with their sharpness (semi-sharp, as OpenSubdiv's GPU
+    /// shaders), derivatives under non-quad faces with respect to the ptex face's own
+    /// (u, v). Native engine, `--surface patches` only.
+    #[arg(long)]
+    pub(crate) exact_limit: bool,
     /// Where locations live: `patches` (ptex faces of the patch table) or `bfr` (base
     /// faces in Bfr's parameterization: FACE U V, U and V over the unit square, the
     /// unit triangle under Loop, or the sub-face tiles of an n-gon).
@@ -177,12 +186,22 @@ impl Built {
         &self,
         locations: &[Location],
         derivatives: Derivatives,
+        evaluation: Evaluation,
     ) -> Result<SurfaceSamples, subdiv::Error> {
         let base = self.mesh.flat_positions::<f64>();
         match &self.tables {
             Tables::Native { refiner, table } => {
                 let points = refiner.patch_points(table, 3, &base)?;
-                subdiv::patches::evaluate(table, &points, 3, locations, derivatives)
+                subdiv::patches::evaluate_data_as(
+                    evaluation,
+                    &PatchMap::new(table),
+                    table,
+                    PatchData::Vertex,
+                    &points,
+                    3,
+                    locations,
+                    derivatives,
+                )
             }
             #[cfg(feature = "osd")]
             Tables::Osd { refiner, table } => {
@@ -343,6 +362,20 @@ fn read_locations(path: &Path, unit: bool) -> Result<Vec<(usize, Location)>, Fai
 
 /// `subdiv eval`.
 pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
+    if args.exact_limit && args.surface == "bfr" {
+        return Err(Failure::Usage(
+            "--exact-limit: Bfr's surfaces are the limit already; the option is for \
+             --surface patches"
+                .into(),
+        ));
+    }
+    if args.exact_limit && args.patch.engine != Engine::Native {
+        return Err(Failure::Usage(
+            "--exact-limit: OpenSubdiv's EvaluateBasis has no exact-limit mode; \
+             use --engine native"
+                .into(),
+        ));
+    }
     if args.surface == "bfr" {
         return eval_bfr(args);
     }
@@ -371,7 +404,12 @@ pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
     } else {
         Derivatives::None
     };
-    let s = match b.evaluate(&points, derivatives) {
+    let evaluation = if args.exact_limit {
+        Evaluation::ExactLimit
+    } else {
+        Evaluation::OpenSubdiv
+    };
+    let s = match b.evaluate(&points, derivatives, evaluation) {
         Ok(s) => s,
         Err(subdiv::Error::NoPatchAt { face, u, v }) => {
             let line = locations
