@@ -377,6 +377,34 @@ void evaluate(const sdv_surfaces &s, int32_t face, const sdv_surface_eval &e) {
     }
 }
 
+// PreparePatchPoints of `face`'s surface from `points` (e's points, kind,
+// channel and width; its coordinates and outputs unused): the count always,
+// the points into `out` when it is not null (cap reals).
+void patch_points(const sdv_surfaces &s, int32_t face, const sdv_surface_eval &e, double *out, size_t cap,
+                  int32_t *count) {
+    check_face(s, face);
+    check_kind(s, e.kind, e.channel);
+    if (!count) fail("null patch point count");
+    if (e.width < 1) fail("width " + str(e.width) + " is not positive");
+    long long needed = point_count(s, e.kind, e.channel);
+    if ((long long)e.num_points < needed || e.num_points > (size_t)INT_MAX ||
+        (long long)e.num_points * e.width > INT_MAX)
+        fail(str((long long)e.num_points) + " points given, the " + kind_name(e.kind) + " surfaces read " +
+             str(needed) + " (OpenSubdiv indexes them in int)");
+    if (e.num_points && !e.points) fail("null points");
+    Surface surface = need_surface(s, face, e.kind, e.channel);
+    check_bfr_control_points(surface, needed, face);
+    long long n = surface.GetNumPatchPoints();
+    if (n < 1 || n * e.width > INT_MAX)
+        fail("face " + str(face) + "'s surface has " + str(n) + " patch points of " + str(e.width) +
+             " reals, which OpenSubdiv cannot index in int");
+    *count = (int32_t)n;
+    if (!out) return;
+    check_cap(cap, n * e.width, "patch point output");
+    Surface::PointDescriptor desc(e.width);
+    surface.PreparePatchPoints(e.points, desc, out, desc);
+}
+
 // The duv and dvv stencil weights of `surface` at `uv` computed as the
 // stencil's definition has them: the surface evaluated on the control
 // points' unit vectors (control point j has a 1 in component j).
@@ -501,6 +529,15 @@ int sdv_surface_evaluate(const sdv_surfaces *s, int32_t face, const sdv_surface_
         const sdv_surfaces &ss = need_surfaces(s);
         if (!e) fail("null evaluation");
         evaluate(ss, face, *e);
+    });
+}
+
+int sdv_surface_patch_points(const sdv_surfaces *s, int32_t face, const sdv_surface_eval *e, double *out,
+                             size_t cap, int32_t *count, char *err, size_t err_len) {
+    return guarded(err, err_len, [&] {
+        const sdv_surfaces &ss = need_surfaces(s);
+        if (!e) fail("null arguments");
+        patch_points(ss, face, *e, out, cap, count);
     });
 }
 

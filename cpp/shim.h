@@ -735,6 +735,16 @@ int sdv_surface_stencils(const sdv_surfaces *s, int32_t face, int32_t kind, int3
                          char *err, size_t err_len);
 
 /*
+ * Bfr::Surface::PreparePatchPoints of `face`'s surface of e->kind (and
+ * e->channel) from e->points (e->num_points of e->width reals; e's
+ * coordinates, derivatives and outputs are not read): *count is always
+ * written (GetNumPatchPoints); with out NULL nothing else is, else cap
+ * must hold *count * e->width.
+ */
+int sdv_surface_patch_points(const sdv_surfaces *s, int32_t face, const sdv_surface_eval *e, double *out,
+                             size_t cap, int32_t *count, char *err, size_t err_len);
+
+/*
  * A whole mesh tessellated with Bfr (cpp/bfr_mesh.cpp), as a C++ program
  * over OpenSubdiv does it (bfr tutorial 2_2's approach), in one call: one
  * Bfr::RefinerSurfaceFactory<> over the refiner's base level (options as

@@ -81,13 +81,25 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> (
             info.patch_points,
             "{what}: patch points"
         );
+        let coords = sample_coords(&s.parameterization());
+        patch_points_match_evaluation(&what, mesh, &osd, face, &s, &coords);
+        let varying = native.varying_surface(face).unwrap();
+        assert!(varying.is_linear(), "{what}");
+        let points = mesh.flat_positions::<f64>();
+        let ours = varying
+            .evaluate(&points, 3, &coords, Derivatives::None)
+            .unwrap();
+        let theirs = osd.evaluate_varying(face, &coords).unwrap();
+        let scale = points.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (p, q) in ours.values.point.iter().zip(&theirs.values.point) {
+            assert!((p - q).abs() <= 1e-12 * scale, "{what} varying: {p} vs {q}");
+        }
         if is_pillow(mesh, face) {
             // See CONFORMANCE.md: OpenSubdiv's Bfr departs from its own
             // Far patches there; the native surface follows Far.
             compared += 1;
             continue;
         }
-        let coords = sample_coords(&s.parameterization());
         let ours = s.evaluate_stencil(&coords, Derivatives::Second).unwrap();
         if !info.regular && info.patch_points == info.control_points.len() {
             // OpenSubdiv's fault (see CONFORMANCE.md): the stencils of one
@@ -126,6 +138,65 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> (
         compared += 1;
     }
     (compared, skipped)
+}
+
+/// The surface's patch points: as many as counted, the control points
+/// first, OpenSubdiv's `PreparePatchPoints` within 1e-12 (away from folded
+/// faces), and evaluating them gives what evaluating the mesh's points does
+/// — and, away from folded faces, OpenSubdiv's values.
+fn patch_points_match_evaluation(
+    what: &str,
+    mesh: &Mesh,
+    osd: &Surfaces,
+    face: usize,
+    s: &subdiv::bfr::Surface,
+    coords: &[[f64; 2]],
+) {
+    let points = mesh.flat_positions::<f64>();
+    let patch = s.patch_points(&points, 3).unwrap();
+    assert_eq!(patch.len(), 3 * s.patch_point_count(), "{what}");
+    let scale = points.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    if !is_pillow(mesh, face) {
+        let theirs = osd.patch_points(face).unwrap();
+        assert_eq!(patch.len(), theirs.len(), "{what}");
+        for (i, (p, q)) in patch.iter().zip(&theirs).enumerate() {
+            assert!(
+                (p - q).abs() <= 1e-12 * scale,
+                "{what}: patch point {} component {}: {p} vs {q}",
+                i / 3,
+                i % 3
+            );
+        }
+    }
+    for (k, &cv) in s.control_points().iter().enumerate() {
+        assert_eq!(
+            &patch[3 * k..3 * k + 3],
+            &points[3 * cv as usize..3 * cv as usize + 3]
+        );
+    }
+    let a = s
+        .evaluate_patch_points(&patch, 3, coords, Derivatives::Second)
+        .unwrap();
+    let b = s.evaluate(&points, 3, coords, Derivatives::Second).unwrap();
+    let theirs = osd.evaluate(face, coords, Derivatives::Second).unwrap();
+    let pillow = is_pillow(mesh, face);
+    for (c, ((x, y), z)) in columns(&a.values)
+        .iter()
+        .zip(columns(&b.values))
+        .zip(columns(&theirs.values))
+        .enumerate()
+    {
+        let tol = 1e-9 * scale * 4f64.powi([0, 1, 1, 2, 2, 2][c]);
+        for ((p, q), r) in x.iter().zip(y).zip(z) {
+            assert!((p - q).abs() <= tol, "{what} column {c}: {p} vs {q}");
+            if !pillow {
+                assert!(
+                    (p - r).abs() <= tol,
+                    "{what} column {c} vs OpenSubdiv: {p} vs {r}"
+                );
+            }
+        }
+    }
 }
 
 /// Whether every corner of `face` is a vertex of exactly two face corners

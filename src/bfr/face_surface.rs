@@ -31,8 +31,8 @@ use crate::options::{
     Scheme, TriangleSubdivision,
 };
 use crate::patches::{
-    Derivatives, EndCapType, LimitStencilOptions, Partials, PatchOptions, PatchParam, PatchTable,
-    PatchType, SurfaceSamples, evaluate_basis,
+    Derivatives, EndCapType, LimitStencilOptions, Partials, PatchData, PatchMap, PatchOptions,
+    PatchParam, PatchTable, PatchType, SurfaceSamples, evaluate_basis, evaluate_data,
 };
 use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
@@ -56,8 +56,9 @@ pub struct SurfaceFactory {
 enum Form {
     /// No limit surface.
     Invalid,
-    /// The face itself, bilinear or split at its centre.
-    Linear,
+    /// The face itself: bilinear (or linear, a triangle under Loop) when
+    /// `regular`, else split into quads at its centre.
+    Linear { regular: bool },
     /// One regular patch with this boundary mask.
     Regular { patch: PatchType, mask: u16 },
     /// The patches of an adaptive refinement of the face's control hull.
@@ -68,6 +69,11 @@ enum Form {
 struct Irregular {
     refiner: AdaptiveRefiner,
     table: PatchTable,
+    map: PatchMap,
+    /// For each of the table's local points, its place among Bfr's patch
+    /// points (Bfr numbers the end caps' points patch by patch, level by
+    /// level).
+    local_order: Vec<usize>,
 }
 
 /// One base face's limit surface (`Bfr::Surface<double>`).
@@ -143,14 +149,7 @@ impl SurfaceFactory {
             return Ok(invalid(param));
         }
         if self.scheme() == Scheme::Bilinear {
-            let regular = size == 4;
-            return Ok(Surface {
-                face,
-                param,
-                control_points: verts.to_vec(),
-                patch_points: if regular { 4 } else { 2 * size + 1 },
-                form: Form::Linear,
-            });
+            return Ok(self.linear(face, param, verts));
         }
         let patch = if self.reg_size() == 4 {
             PatchType::Regular
@@ -257,6 +256,33 @@ impl SurfaceFactory {
         })
     }
 
+    /// The varying surface of base face `face` (`InitVaryingSurface`):
+    /// linear over the face's vertices under every scheme.
+    pub fn varying_surface(&self, face: usize) -> Result<Surface> {
+        let base = &self.refiner.levels[0];
+        let surface = self.vertex_surface(face)?;
+        if !surface.is_valid() {
+            return Ok(surface);
+        }
+        Ok(self.linear(face, surface.param, base.face_verts(face)))
+    }
+
+    /// The linear surface of a face (`assignLinearSurface`).
+    fn linear(&self, face: usize, param: Parameterization, verts: &[u32]) -> Surface {
+        let regular = verts.len() == self.reg_size();
+        Surface {
+            face,
+            param,
+            control_points: verts.to_vec(),
+            patch_points: if regular {
+                verts.len()
+            } else {
+                2 * verts.len() + 1
+            },
+            form: Form::Linear { regular },
+        }
+    }
+
     /// The refiner's shortcut: a face whose corners' tags make its patch
     /// regular (`getFaceNeighborhoodVertexIndicesIfRegular`).
     fn shortcut_regular(&self, base: &Level, face: usize) -> bool {
@@ -315,8 +341,58 @@ impl SurfaceFactory {
         patch_options.legacy_sharp_corner_patches = false;
         patch_options.share_end_cap_points = false;
         let table = refiner.patch_table(&patch_options, &[0])?;
-        Ok(Irregular { refiner, table })
+        let map = PatchMap::new(&table);
+        let local_order = bfr_local_order(&refiner, &table)?;
+        Ok(Irregular {
+            refiner,
+            table,
+            map,
+            local_order,
+        })
     }
+}
+
+/// Where each local point of `table` (an end-capped table of the patches
+/// under one base face, unshared points) goes among Bfr's patch points:
+/// after the refinement's vertices, the end caps' points patch by patch in
+/// Bfr's order — level by level, faces in index order, which is the
+/// table's depth-first order sorted stably by depth.
+fn bfr_local_order(refiner: &AdaptiveRefiner, table: &PatchTable) -> Result<Vec<usize>> {
+    let mut vertices = 0;
+    for l in 0..=refiner.max_level() {
+        vertices += refiner.level_counts(l)?.vertices;
+    }
+    let mut caps: Vec<(u32, &[u32])> = Vec::new();
+    for array in &table.arrays {
+        if !matches!(
+            array.patch_type,
+            PatchType::GregoryBasis | PatchType::GregoryTriangle
+        ) {
+            continue;
+        }
+        let n = array.patch_type.control_vertices();
+        for (p, param) in array.params.iter().enumerate() {
+            caps.push((param.depth(), &array.control_vertices[p * n..(p + 1) * n]));
+        }
+    }
+    caps.sort_by_key(|&(depth, _)| depth);
+    // Unshared points: each belongs to exactly one patch, so every slot
+    // is written once (identity where none would be, defensively).
+    let mut order: Vec<usize> = (vertices..vertices + table.local_points).collect();
+    let mut next = vertices;
+    for (_, cvs) in caps {
+        for &cv in cvs {
+            if let Some(slot) = (cv as usize)
+                .checked_sub(vertices)
+                .and_then(|i| order.get_mut(i))
+            {
+                *slot = next;
+            }
+            next += 1;
+        }
+    }
+    debug_assert_eq!(next, vertices + table.local_points);
+    Ok(order)
 }
 
 /// Whether the corners' subsets make one regular patch
@@ -403,14 +479,14 @@ impl Surface {
     pub fn is_regular(&self) -> bool {
         match self.form {
             Form::Regular { .. } => true,
-            Form::Linear => self.control_points.len() == 4,
+            Form::Linear { regular } => regular,
             _ => false,
         }
     }
 
     /// `IsLinear`: the bilinear scheme's surface.
     pub fn is_linear(&self) -> bool {
-        matches!(self.form, Form::Linear)
+        matches!(self.form, Form::Linear { .. })
     }
 
     /// `GetControlPointIndices`: the mesh vertices the surface depends on,
@@ -434,9 +510,8 @@ impl Surface {
     /// points (in [`Surface::control_points`]' order) giving the surface's
     /// value and the derivatives asked for there.
     ///
-    /// Refused: an invalid surface ([`Error::NotYetSupported`] is not used:
-    /// [`Error::OffFace`] names the face for coordinates off its domain and
-    /// for surfaces without a limit).
+    /// Refused ([`Error::OffFace`], naming the face): coordinates off the
+    /// face's domain, and any coordinate of a surface without a limit.
     pub fn evaluate_stencil(
         &self,
         coords: &[[f64; 2]],
@@ -444,34 +519,32 @@ impl Surface {
     ) -> Result<Vec<Partials>> {
         let mut out = Vec::new();
         alloc::reserve(&mut out, coords.len())?;
-        for &uv in coords {
-            if !self.is_valid() || !self.param.contains(uv, 1e-9) {
-                return Err(Error::OffFace {
-                    face: self.face,
-                    u: uv[0],
-                    v: uv[1],
-                    domain: if self.is_valid() {
-                        self.param.domain()
-                    } else {
-                        "no limit surface"
-                    },
-                });
-            }
+        if let Some(&uv) = coords
+            .iter()
+            .find(|&&uv| !self.is_valid() || !self.param.contains(uv, 1e-9))
+        {
+            return Err(self.off_face(uv));
         }
         match &self.form {
             Form::Invalid => {}
-            Form::Linear if self.control_points.len() == 4 => {
-                for &[u, v] in coords {
+            Form::Linear { regular: true } => {
+                let patch = if self.control_points.len() == 4 {
+                    PatchType::Quads
+                } else {
+                    PatchType::Triangles
+                };
+                for &uv in coords {
+                    let [u, v] = self.clamped(uv);
                     out.push(evaluate_basis(
-                        PatchType::Quads,
+                        patch,
                         PatchParam::default(),
-                        u.clamp(0.0, 1.0),
-                        v.clamp(0.0, 1.0),
+                        u,
+                        v,
                         derivatives,
                     )?);
                 }
             }
-            Form::Linear => {
+            Form::Linear { regular: false } => {
                 for &uv in coords {
                     out.push(self.split_stencil(uv, derivatives)?);
                 }
@@ -484,16 +557,7 @@ impl Surface {
                 }
             }
             Form::Irregular(irregular) => {
-                let mut locations = Vec::new();
-                alloc::reserve(&mut locations, coords.len())?;
-                for &uv in coords {
-                    let (sub, [s, t]) = if self.param.has_subfaces() {
-                        self.param.coord_to_subface(uv, true)?
-                    } else {
-                        (0, uv)
-                    };
-                    locations.push((sub as u32, s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
-                }
+                let locations = self.locations(coords)?;
                 let options = LimitStencilOptions::new()
                     .first_derivatives(derivatives != Derivatives::None)
                     .second_derivatives(derivatives == Derivatives::Second);
@@ -586,16 +650,102 @@ impl Surface {
         })
     }
 
-    /// `Evaluate` over the mesh's points (`width` values per mesh vertex):
-    /// the surface's values and the derivatives asked for at `coords`, its
-    /// stencils applied to its control points.
-    pub fn evaluate(
+    /// `PreparePatchPoints` (with `GatherControlPoints`): the surface's
+    /// patch points from the mesh's points (`width` values per mesh
+    /// vertex), in Bfr's order — the control points, then for a split
+    /// n-gon its centre and edge midpoints, for an irregular surface every
+    /// vertex of its hull's refinement level by level and the points of its
+    /// end caps; [`Surface::patch_point_count`] of them.
+    pub fn patch_points(&self, points: &[f64], width: usize) -> Result<Vec<f64>> {
+        self.check_points(points, width)?;
+        let mut out = Vec::new();
+        alloc::reserve(&mut out, self.patch_points.saturating_mul(width))?;
+        for &cv in &self.control_points {
+            out.extend_from_slice(&points[cv as usize * width..(cv as usize + 1) * width]);
+        }
+        match &self.form {
+            Form::Linear { regular: false } => {
+                let n = self.control_points.len();
+                let mut centre = vec![0.0; width];
+                for i in 0..n {
+                    for (c, &x) in centre.iter_mut().zip(&out[i * width..(i + 1) * width]) {
+                        *c += x;
+                    }
+                }
+                centre.iter_mut().for_each(|c| *c /= n as f64);
+                out.extend_from_slice(&centre);
+                for i in 0..n {
+                    let j = (i + 1) % n;
+                    for k in 0..width {
+                        out.push(0.5 * (out[i * width + k] + out[j * width + k]));
+                    }
+                }
+            }
+            Form::Irregular(irregular) => {
+                let native = irregular
+                    .refiner
+                    .patch_points(&irregular.table, width, &out)?;
+                let vertices = native.len() / width - irregular.local_order.len();
+                out = native[..vertices * width].to_vec();
+                out.resize(native.len(), 0.0);
+                for (i, &to) in irregular.local_order.iter().enumerate() {
+                    let from = (vertices + i) * width;
+                    out[to * width..(to + 1) * width].copy_from_slice(&native[from..from + width]);
+                }
+            }
+            _ => {}
+        }
+        Ok(out)
+    }
+
+    /// `Evaluate` over patch points from [`Surface::patch_points`] (`width`
+    /// values each): the surface's values and the derivatives asked for at
+    /// `coords`.
+    pub fn evaluate_patch_points(
         &self,
-        points: &[f64],
+        patch_points: &[f64],
         width: usize,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let expected = self.patch_points.saturating_mul(width);
+        if patch_points.len() != expected {
+            return Err(Error::BufferLength {
+                buffer: crate::error::Buffer::Base,
+                expected,
+                got: patch_points.len(),
+            });
+        }
+        if let Form::Irregular(irregular) = &self.form {
+            let vertices = self.patch_points - irregular.local_order.len();
+            let mut native = patch_points[..vertices * width].to_vec();
+            native.resize(patch_points.len(), 0.0);
+            for (i, &from) in irregular.local_order.iter().enumerate() {
+                let to = (vertices + i) * width;
+                native[to..to + width]
+                    .copy_from_slice(&patch_points[from * width..(from + 1) * width]);
+            }
+            let locations = self.locations(coords)?;
+            return evaluate_data(
+                &irregular.map,
+                &irregular.table,
+                PatchData::Vertex,
+                &native,
+                width,
+                &locations,
+                derivatives,
+            );
+        }
+        // The other forms' stencils weigh the control points, which lead
+        // the patch points.
+        let identity: Vec<u32> = (0..self.control_points.len() as u32).collect();
+        self.apply_stencils(&identity, patch_points, width, coords, derivatives)
+    }
+
+    fn check_points(&self, points: &[f64], width: usize) -> Result<()> {
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
@@ -610,6 +760,64 @@ impl Surface {
                 got: points.len(),
             });
         }
+        Ok(())
+    }
+
+    /// The ptex locations of the hull's first face at `coords`.
+    fn locations(&self, coords: &[[f64; 2]]) -> Result<Vec<(u32, f64, f64)>> {
+        let mut locations = Vec::new();
+        alloc::reserve(&mut locations, coords.len())?;
+        for &uv in coords {
+            if !self.is_valid() || !self.param.contains(uv, 1e-9) {
+                return Err(self.off_face(uv));
+            }
+            let (sub, [s, t]) = if self.param.has_subfaces() {
+                self.param.coord_to_subface(uv, true)?
+            } else {
+                (0, uv)
+            };
+            locations.push((sub as u32, s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)));
+        }
+        Ok(locations)
+    }
+
+    fn off_face(&self, [u, v]: [f64; 2]) -> Error {
+        Error::OffFace {
+            face: self.face,
+            u,
+            v,
+            domain: if self.is_valid() {
+                self.param.domain()
+            } else {
+                "no limit surface"
+            },
+        }
+    }
+
+    /// `Evaluate` over the mesh's points (`width` values per mesh vertex):
+    /// the surface's values and the derivatives asked for at `coords`, its
+    /// stencils applied to its control points.
+    pub fn evaluate(
+        &self,
+        points: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        self.check_points(points, width)?;
+        self.apply_stencils(&self.control_points, points, width, coords, derivatives)
+    }
+
+    /// The stencils at `coords` applied to `points`, the stencils' weights
+    /// going to the points at `indices`.
+    fn apply_stencils(
+        &self,
+        indices: &[u32],
+        points: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
         let stencils = self.evaluate_stencil(coords, derivatives)?;
         let mut columns: [Vec<f64>; 6] = Default::default();
         for s in &stencils {
@@ -620,7 +828,7 @@ impl Surface {
                 }
                 let start = col.len();
                 col.resize(start + width, 0.0);
-                for (&cv, &w) in self.control_points.iter().zip(weights) {
+                for (&cv, &w) in indices.iter().zip(weights) {
                     let p = &points[cv as usize * width..(cv as usize + 1) * width];
                     for (o, &x) in col[start..].iter_mut().zip(p) {
                         *o += w * x;

@@ -422,6 +422,64 @@ impl Surfaces {
         )
     }
 
+    /// `PreparePatchPoints` of `face`'s vertex surface from the mesh's
+    /// positions: its `GetNumPatchPoints` points, 3 reals each, in Bfr's
+    /// order.
+    pub fn patch_points(&self, face: usize) -> Result<Vec<f64>> {
+        let eval = ffi::sdv_surface_eval {
+            kind: VERTEX,
+            channel: 0,
+            points: if self.positions.is_empty() {
+                null()
+            } else {
+                self.positions.as_ptr()
+            },
+            num_points: self.positions.len() / 3,
+            width: 3,
+            uv: null(),
+            n: 0,
+            derivatives: 0,
+            out: [null_mut(); 6],
+            cap: 0,
+        };
+        let call = |out: &mut [f64]| -> Result<usize> {
+            let mut count = 0i32;
+            let mut err = ErrBuf::new();
+            // SAFETY: the handle is live; `eval.points` holds num_points * 3
+            // reals; `out` is null (count only) or holds its length, which
+            // the shim checks against what it writes.
+            err.run(|e| unsafe {
+                ffi::sdv_surface_patch_points(
+                    self.handle.0.as_ptr(),
+                    index_i32(face),
+                    &eval,
+                    if out.is_empty() {
+                        null_mut()
+                    } else {
+                        out.as_mut_ptr()
+                    },
+                    out.len(),
+                    &mut count,
+                    e,
+                    ERR_LEN,
+                )
+            })?;
+            usize::try_from(count).map_err(|_| internal("negative patch point count"))
+        };
+        let n = call(&mut [])?;
+        let mut out = try_vec(
+            0.0,
+            n.checked_mul(3)
+                .ok_or_else(|| internal("too many patch points"))?,
+        )?;
+        if call(&mut out)? != n {
+            return Err(internal(
+                "the surface's patch point count changed between two calls",
+            ));
+        }
+        Ok(out)
+    }
+
     /// The limit stencils of `face`'s vertex surface at `coords`
     /// (`Surface::EvaluateStencil`): one [`Partials`] per coordinate, each
     /// column asked for holding one weight per control point, in the order
