@@ -1,8 +1,10 @@
 //! Native per-face Bfr surfaces (`subdiv::bfr::SurfaceFactory`) against
 //! OpenSubdiv's `Bfr::RefinerSurfaceFactory` through the bridge: for every
-//! face of every corpus shape under several options, the same validity,
-//! regularity, linearity, control points (index by index) and patch-point
-//! count, and limit stencils within 1e-12 of OpenSubdiv's.
+//! face of every corpus shape under several options, and of random grids
+//! and polygon soups, vertex, varying and face-varying surfaces with the
+//! same validity, regularity, linearity, control points (index by index)
+//! and patch-point count, patch points (`PreparePatchPoints`) and limit
+//! stencils within 1e-12 of OpenSubdiv's.
 #![cfg(feature = "osd")]
 
 mod support;
@@ -35,6 +37,18 @@ fn sample_coords(p: &Parameterization) -> Vec<[f64; 2]> {
 
 fn columns(p: &Partials) -> [&[f64]; 6] {
     [&p.point, &p.du, &p.dv, &p.duu, &p.duv, &p.dvv]
+}
+
+/// The tolerance of stencil column `column` whose weights are `weights`:
+/// 1e-12 of the largest weight (at least 1), times 2^(order × (depth − 4))
+/// past depth 4 — derivatives of patches deep in a refinement scale
+/// rounding by 2^depth per order (measured: 5.8e-11 relative for a second
+/// derivative at depth 10, 2.7e-12 and 3.6e-12 at depth 5).
+fn tolerance(weights: &[f64], column: usize, approx: SurfaceOptions) -> f64 {
+    let scale = weights.iter().fold(1.0f64, |m, w| m.max(w.abs()));
+    let order = [0, 1, 1, 2, 2, 2][column];
+    let depth = approx.approx_level_sharp.saturating_sub(4) as i32;
+    1e-12 * scale * 2f64.powi(order * depth)
 }
 
 /// Compares the faces of `mesh` under `opts`; returns how many faces were
@@ -116,13 +130,7 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> (
         for (k, (a, b)) in ours.iter().zip(&theirs).enumerate() {
             for (c, (x, y)) in columns(a).iter().zip(columns(b)).enumerate() {
                 assert_eq!(x.len(), y.len(), "{what} coord {k} column {c}");
-                let scale = y.iter().fold(1.0f64, |m, w| m.max(w.abs()));
-                // Derivatives of patches deep in a refinement scale rounding
-                // by 2^depth per order: measured at 5.8e-11 relative for a
-                // second derivative at depth 10, 2.7e-12 at depth 5.
-                let order = [0, 1, 1, 2, 2, 2][c];
-                let depth = approx.approx_level_sharp.saturating_sub(4) as i32;
-                let tol = 1e-12 * scale * 2f64.powi(order * depth);
+                let tol = tolerance(y, c, approx);
                 for (i, (p, q)) in x.iter().zip(y.iter()).enumerate() {
                     if std::env::var("SHOW").is_ok() && (p - q).abs() > 1e-12 * scale {
                         eprintln!("{what} c{c} {}", (p - q).abs() / scale);
@@ -364,5 +372,177 @@ proptest! {
         sharp in 0u32..7,
     ) {
         compare_random(mesh, opts, smooth, sharp);
+    }
+}
+
+/// Compares the face-varying surfaces of every channel of `mesh` under
+/// `opts`; returns the number of surfaces compared.
+fn compare_fvar(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> usize {
+    let (osd, native) = match (
+        Surfaces::new(mesh, opts, &approx),
+        SurfaceFactory::new(mesh, opts, &approx),
+    ) {
+        (Ok(o), Ok(n)) => (o, n),
+        (Err(_), Err(_)) => return 0,
+        (o, n) => panic!("{name}: osd {:?} vs native {:?}", o.err(), n.err()),
+    };
+    let mut compared = 0;
+    for (channel, c) in mesh.fvar_channels.iter().enumerate() {
+        for face in 0..mesh.face_count() {
+            let what = format!("{name} {opts:?} {approx:?} channel {channel} face {face}");
+            let Ok(info) = osd.fvar_face_info(face, channel) else {
+                continue;
+            };
+            let s = native
+                .fvar_surface(face, channel)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert_eq!(s.is_valid(), info.valid, "{what}: valid");
+            if !info.valid {
+                continue;
+            }
+            assert_eq!(s.is_regular(), info.regular, "{what}: regular");
+            assert_eq!(s.is_linear(), info.linear, "{what}: linear");
+            assert_eq!(
+                s.control_points(),
+                &info.control_points[..],
+                "{what}: control points"
+            );
+            assert_eq!(
+                s.patch_point_count(),
+                info.patch_points,
+                "{what}: patch points"
+            );
+            compared += 1;
+            if is_pillow(mesh, face)
+                || (!info.regular && info.patch_points == info.control_points.len())
+            {
+                continue;
+            }
+            let scale = c.values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let ours = s.patch_points(&c.values, c.width).unwrap();
+            let theirs = osd.fvar_patch_points(face, channel).unwrap();
+            assert_eq!(ours.len(), theirs.len(), "{what}");
+            for (i, (p, q)) in ours.iter().zip(&theirs).enumerate() {
+                assert!(
+                    (p - q).abs() <= 1e-12 * scale,
+                    "{what}: patch point value {i}: {p} vs {q}"
+                );
+            }
+            let coords = sample_coords(&s.parameterization());
+            let ours = s.evaluate_stencil(&coords, Derivatives::Second).unwrap();
+            let theirs = osd
+                .evaluate_fvar_stencil(face, channel, &coords, Derivatives::Second)
+                .unwrap();
+            for (k, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+                for (col, (x, y)) in columns(a).iter().zip(columns(b)).enumerate() {
+                    assert_eq!(x.len(), y.len(), "{what} coord {k} column {col}");
+                    let tol = tolerance(y, col, approx);
+                    for (p, q) in x.iter().zip(y.iter()) {
+                        assert!(
+                            (p - q).abs() <= tol,
+                            "{what} at {:?} column {col}: {p} vs {q}",
+                            coords[k]
+                        );
+                    }
+                }
+            }
+        }
+    }
+    compared
+}
+
+/// Face-varying surfaces of every corpus shape with a channel, in all six
+/// linear-interpolation modes, every boundary rule, Catmull-Clark, bilinear
+/// and Loop.
+#[test]
+fn face_varying_surfaces_match_opensubdiv() {
+    use subdiv::FVarLinearInterpolation as F;
+    let mut compared = 0;
+    for (name, mesh) in shapes::corpus() {
+        if mesh.fvar_channels.is_empty() {
+            continue;
+        }
+        let triangles = mesh.faces().all(|f| f.len() == 3);
+        for (i, fvar) in F::ALL.iter().enumerate() {
+            let boundary = BoundaryInterpolation::ALL[i % 3];
+            let mut schemes = vec![Scheme::Catmark];
+            if i == 0 {
+                schemes.push(Scheme::Bilinear);
+            }
+            if triangles {
+                schemes.push(Scheme::Loop);
+            }
+            for scheme in schemes {
+                let opts = Options::default()
+                    .with_scheme(scheme)
+                    .with_boundary(boundary)
+                    .with_fvar(*fvar);
+                compared += compare_fvar(&name, &mesh, &opts, SurfaceOptions::default());
+            }
+        }
+    }
+    eprintln!("{compared} face-varying surfaces compared");
+    assert!(compared > 1000, "{compared}");
+}
+
+/// `mesh` with a two-component channel whose seams split it into islands:
+/// face `f` takes island `islands[f % len]`, and a vertex has one value
+/// per island around it.
+fn with_seams(mut mesh: Mesh, islands: &[u8]) -> Mesh {
+    let nv = mesh.positions.len() as u32;
+    let mut indices = Vec::new();
+    for (f, face) in mesh.faces().enumerate() {
+        let island = u32::from(islands[f % islands.len()]);
+        indices.extend(face.iter().map(|&v| v + island * nv));
+    }
+    let values = (0..3 * nv)
+        .flat_map(|i| {
+            let p = mesh.positions[(i % nv) as usize];
+            [p.x + f64::from(i / nv), p.y * 0.5 - f64::from(i / nv)]
+        })
+        .collect();
+    mesh.fvar_channels.push(subdiv::FVarChannel {
+        width: 2,
+        values,
+        indices,
+    });
+    mesh
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 120, .. ProptestConfig::default() })]
+
+    /// Random grids (and soups) with a seamed channel, every
+    /// linear-interpolation mode.
+    #[test]
+    fn random_face_varying_surfaces_match_opensubdiv(
+        structured in support::strategies::structured(),
+        soup in support::strategies::soup(),
+        use_soup in any::<bool>(),
+        islands in prop::collection::vec(0u8..3, 1..7),
+        opts in support::strategies::options(),
+        fvar in prop::sample::select(subdiv::FVarLinearInterpolation::ALL),
+        smooth in 0u32..4,
+        sharp in 0u32..6,
+    ) {
+        let mesh = if use_soup { soup } else { structured };
+        let mesh = if opts.scheme == Scheme::Loop {
+            support::strategies::triangulated(mesh)
+        } else {
+            mesh
+        };
+        let mesh = with_seams(mesh, &islands);
+        let faces: Vec<&[u32]> = mesh.faces().collect();
+        let name = format!(
+            "random faces {faces:?} islands {islands:?} creases {:?} corners {:?} holes {:?}",
+            mesh.creases.iter().map(|c| (c.vertices, c.sharpness)).collect::<Vec<_>>(),
+            mesh.corners.iter().map(|c| (c.vertex, c.sharpness)).collect::<Vec<_>>(),
+            mesh.holes
+        );
+        let approx = SurfaceOptions {
+            approx_level_smooth: smooth,
+            approx_level_sharp: sharp,
+        };
+        compare_fvar(&name, &mesh, &opts.with_fvar(fvar), approx);
     }
 }

@@ -8,6 +8,7 @@
 //! through the edges they share, and the subset is the fan of faces joined
 //! to the corner's face by manifold edges.
 
+use crate::options::FVarLinearInterpolation;
 use crate::rules::crease::{is_infinite, is_semi_sharp, is_sharp};
 use crate::topology::Level;
 
@@ -137,6 +138,9 @@ pub(crate) struct Corner {
     /// The sharpness of each face's leading (`2i`) and trailing (`2i + 1`)
     /// edges at the vertex; empty when none is sharp.
     edge_sharpness: Vec<f32>,
+    /// The ring's faces and the corner's place in each.
+    faces: Vec<u32>,
+    locals: Vec<u16>,
     /// For faces given unordered: the face across each face's leading
     /// (`2i`) and trailing (`2i + 1`) edge, if the edge is manifold.
     neighbours: Vec<Option<usize>>,
@@ -146,6 +150,8 @@ pub(crate) struct Corner {
     reg_size: usize,
     /// The vertex's own sharpness is infinite.
     explicit_inf: bool,
+    /// The vertex's own sharpness is finite and not zero.
+    explicit_semi: bool,
     /// Its edges make it infinitely sharp.
     implicit_inf: bool,
     /// Its edges make it semi-sharp.
@@ -211,12 +217,15 @@ impl Corner {
             offsets,
             indices,
             edge_sharpness,
+            faces: faces.to_vec(),
+            locals: locals.to_vec(),
             neighbours: Vec::new(),
             face_in_ring,
             vertex_sharpness,
             common_size: common,
             reg_size,
             explicit_inf: is_infinite(vertex_sharpness),
+            explicit_semi: is_semi_sharp(vertex_sharpness),
             implicit_inf: false,
             implicit_semi: false,
             tag: CornerTag {
@@ -543,7 +552,7 @@ impl Corner {
             return s;
         }
         let mut s = self.connected_extent();
-        self.adjust_tags(&mut s);
+        self.adjust_tags(&mut s, None);
         if !s.is_sharp() && (self.implicit_inf || self.implicit_semi) {
             s.sharpen_to(self.implicit_sharpness());
         }
@@ -573,16 +582,20 @@ impl Corner {
         })
     }
 
-    /// The tags of a proper subset, from its own faces and edges
-    /// (`FaceVertex::adjustSubsetTags`).
-    fn adjust_tags(&self, s: &mut Subset) {
+    /// The tags of a proper subset of the ring or of `superset`, from its
+    /// own faces and edges (`FaceVertex::adjustSubsetTags`).
+    fn adjust_tags(&self, s: &mut Subset, superset: Option<&Subset>) {
         if s.tag.boundary {
             s.tag.inf_sharp_dart = false;
         }
         if s.tag.inf_sharp {
             s.tag.semi_sharp = false;
         }
-        if s.total >= self.face_count() && s.tag.boundary == self.tag.boundary {
+        let (total, boundary) = match superset {
+            Some(sup) => (sup.total, sup.tag.boundary),
+            None => (self.face_count(), self.tag.boundary),
+        };
+        if s.total >= total && s.tag.boundary == boundary {
             return;
         }
         if s.tag.irregular_sizes && self.tag.uncommon_sizes {
@@ -608,6 +621,181 @@ impl Corner {
         }
         if s.tag.semi_sharp_edges {
             s.tag.semi_sharp_edges = trailing.iter().any(|&x| is_semi_sharp(x));
+        }
+    }
+
+    /// This corner with its faces' indices replaced by the values of a
+    /// face-varying channel (`face_values(f)`: face `f`'s values), the
+    /// ring's order and connections kept.
+    pub fn with_values<'a>(&self, face_values: impl Fn(usize) -> &'a [u32]) -> Corner {
+        let mut c = self.clone();
+        c.indices.clear();
+        for (&f, &l) in self.faces.iter().zip(&self.locals) {
+            let fv = face_values(f as usize);
+            let start = usize::from(l);
+            c.indices.extend(fv[start..].iter().chain(&fv[..start]));
+        }
+        c
+    }
+
+    /// Whether faces `a` and `b` (b after a) share their values along the
+    /// edge between them (`FaceIndicesMatchAcrossEdge`).
+    fn values_match_across(&self, a: usize, b: usize) -> bool {
+        self.face(a)[0] == self.face(b)[0] && self.values_match_at_edge_end(a, b)
+    }
+
+    /// `FaceIndicesMatchAtEdgeEnd`.
+    fn values_match_at_edge_end(&self, a: usize, b: usize) -> bool {
+        self.trailing(a) == self.face(b)[1]
+    }
+
+    /// The subset of a face-varying channel within the vertex subset
+    /// `vertex`, `self` holding the channel's values
+    /// (`FaceVertex::FindFaceVaryingSubset`).
+    pub fn fvar_subset(&self, vertex: &Subset) -> Subset {
+        let mut s = Subset::new(vertex.tag);
+        s.tag.boundary = true;
+        if vertex.total > 1 {
+            self.fvar_extent(vertex, &mut s);
+        }
+        let matches = s.total == vertex.total && s.tag.boundary == vertex.tag.boundary;
+        if !matches {
+            if s.is_sharp() {
+                s.tag.inf_sharp = self.explicit_inf;
+                s.tag.semi_sharp = self.explicit_semi;
+            }
+            self.adjust_tags(&mut s, Some(vertex));
+        }
+        if !s.is_sharp() && self.tag.non_manifold {
+            s.sharpen();
+        }
+        if !s.is_sharp() && s.total < vertex.total {
+            // The corner's value used outside the subset: non-manifold.
+            let value = self.face(self.face_in_ring)[0];
+            let uses = (0..self.face_count())
+                .filter(|&f| self.face(f)[0] == value)
+                .count();
+            if uses > s.total {
+                s.sharpen();
+            }
+        }
+        s
+    }
+
+    /// `FaceVertex::findFVarSubsetExtent`.
+    fn fvar_extent(&self, vertex: &Subset, s: &mut Subset) {
+        let corner = self.face_in_ring;
+        if vertex.after > 0 {
+            let mut this = corner;
+            let mut next = self.next(this);
+            for _ in 0..vertex.after {
+                match next {
+                    Some(n) if self.values_match_across(this, n) => {
+                        s.after += 1;
+                        s.total += 1;
+                        this = n;
+                        next = self.next(n);
+                    }
+                    _ => break,
+                }
+            }
+            if next == Some(corner) {
+                if self.values_match_at_edge_end(this, corner) {
+                    s.tag.boundary = false;
+                }
+                return;
+            }
+        }
+        let mut before = vertex.before;
+        if !vertex.tag.boundary {
+            before += vertex.after - s.after;
+        }
+        let mut this = corner;
+        for _ in 0..before {
+            match self.prev(this) {
+                Some(p) if self.values_match_across(p, this) => {
+                    s.before += 1;
+                    s.total += 1;
+                    this = p;
+                }
+                _ => break,
+            }
+        }
+    }
+
+    /// Sharpens a face-varying subset on a boundary of its channel as the
+    /// linear-interpolation option says
+    /// (`FaceSurface::sharpenBySdcFVarLinearInterpolation`); `self` holds
+    /// the channel's values.
+    pub fn sharpen_fvar(&self, s: &mut Subset, vertex: &Subset, fvar: FVarLinearInterpolation) {
+        use FVarLinearInterpolation as F;
+        let sharp = match fvar {
+            F::None | F::All => false,
+            F::CornersOnly => s.total == 1,
+            F::Boundaries => true,
+            F::CornersPlus1 | F::CornersPlus2 => {
+                let mut sharp = s.total == 1 || self.more_than_two_subsets();
+                if !sharp {
+                    let others = vertex.total - s.total;
+                    if fvar == F::CornersPlus2 && others == 0 {
+                        sharp = !vertex.tag.boundary;
+                    } else if fvar == F::CornersPlus2 && others == 1 {
+                        sharp = true;
+                    } else if self.dependent_sharpness(s) {
+                        s.sharpen_to(self.dependent_sharpness_value(s));
+                    }
+                }
+                sharp
+            }
+        };
+        if sharp {
+            s.sharpen();
+        }
+    }
+
+    /// More than two face-varying subsets meet at the corner, or the one
+    /// other subset is broken more than twice
+    /// (`fvar_plus::hasMoreThanTwoFVarSubsets`).
+    fn more_than_two_subsets(&self) -> bool {
+        let corner = self.face(self.face_in_ring)[0];
+        let mut other = None;
+        let mut breaks = 1;
+        for f in 0..self.face_count() {
+            let value = self.face(f)[0];
+            if value == corner {
+                continue;
+            }
+            if other.is_some_and(|o| o != value) {
+                return true;
+            }
+            other = Some(value);
+            breaks += usize::from(self.next(f).is_none_or(|n| !self.values_match_across(f, n)));
+            if breaks > 2 {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// `fvar_plus::hasDependentSharpness`.
+    fn dependent_sharpness(&self, s: &Subset) -> bool {
+        self.face_count() - s.total > 1 && self.tag.sharp_edges() && !s.tag.sharp_edges()
+    }
+
+    /// `fvar_plus::getDependentSharpness`: the sharpest interior edge
+    /// outside the subset and off its seams, if sharper than the vertex.
+    fn dependent_sharpness_value(&self, s: &Subset) -> f32 {
+        let first = self.first(s);
+        let last = self.after(s.after);
+        let first = self.prev(first).map(|_| first);
+        let last = self.next(last);
+        let sharp = (0..self.face_count())
+            .filter(|&f| self.prev(f).is_some() && Some(f) != first && Some(f) != last)
+            .fold(0.0f32, |m, f| m.max(self.edge_sharpness(f, false)));
+        if sharp > self.vertex_sharpness {
+            sharp
+        } else {
+            0.0
         }
     }
 }

@@ -38,6 +38,7 @@ use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::rules::Rule;
 use crate::topology::Level;
+use crate::topology::fvar::ChannelLevel;
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
 const MAX_APPROX_LEVEL: u32 = 10;
@@ -49,6 +50,40 @@ pub struct SurfaceFactory {
     refiner: Refiner,
     features: Vec<Features>,
     surface: SurfaceOptions,
+}
+
+/// A face's neighbourhood as Bfr first sorts it.
+enum Neighbourhood {
+    /// No limit surface (a hole, a degenerate face, a smooth boundary under
+    /// boundary interpolation "none", a non-triangle next to a Loop face).
+    Invalid(Parameterization),
+    /// The bilinear scheme.
+    Linear(Parameterization),
+    /// Regular by the refiner's tags.
+    Shortcut(Parameterization),
+    /// Anything else: its corners and their vertex subsets.
+    Corners {
+        param: Parameterization,
+        corners: Vec<Corner>,
+        subsets: Vec<Subset>,
+    },
+}
+
+/// Whether channel `chan` has the vertex topology around base face `face`
+/// (`FVarLevel::doesFaceFVarTopologyMatch`: none of the face's values is
+/// on a seam, boundary or other mismatch).
+fn fvar_topology_matches(base: &Level, chan: &ChannelLevel, face: usize) -> bool {
+    let values = chan.face_values_of(base, face);
+    base.face_verts(face)
+        .iter()
+        .zip(values)
+        .all(|(&v, &value)| {
+            let v = v as usize;
+            let tags = chan.vertex_value_tags(v);
+            (0..chan.vertex_value_count(v))
+                .find(|&s| chan.vertex_value(v, s) == value)
+                .is_none_or(|s| !tags[s].is_mismatch())
+        })
 }
 
 /// How a surface is represented.
@@ -123,9 +158,10 @@ impl SurfaceFactory {
         if self.scheme() == Scheme::Loop { 3 } else { 4 }
     }
 
-    /// The vertex surface of base face `face` (`InitVertexSurface`): holes
-    /// and faces without a limit surface give an invalid surface.
-    pub fn vertex_surface(&self, face: usize) -> Result<Surface> {
+    /// What Bfr needs to know of a face's neighbourhood before building any
+    /// of its surfaces (`SurfaceFactory::populateAllSurfaces` up to the
+    /// surfaces themselves).
+    fn neighbourhood(&self, face: usize) -> Result<Neighbourhood> {
         let base = &self.refiner.levels[0];
         if face >= base.face_count() {
             return Err(Error::NoSuchElement {
@@ -135,37 +171,33 @@ impl SurfaceFactory {
                 count: base.face_count(),
             });
         }
-        let verts = base.face_verts(face);
-        let size = verts.len();
+        let size = base.face_verts(face).len();
         let param = Parameterization::new(self.scheme(), size)?;
-        let invalid = |param| Surface {
-            face,
-            param,
-            control_points: Vec::new(),
-            patch_points: 0,
-            form: Form::Invalid,
-        };
         if size < 3 || base.is_hole(face) {
-            return Ok(invalid(param));
+            return Ok(Neighbourhood::Invalid(param));
         }
         if self.scheme() == Scheme::Bilinear {
-            return Ok(self.linear(face, param, verts));
+            return Ok(Neighbourhood::Linear(param));
         }
-        let patch = if self.reg_size() == 4 {
-            PatchType::Regular
-        } else {
-            PatchType::Loop
-        };
         if self.shortcut_regular(base, face) {
-            let (control_points, mask) = shortcut_points(base, face);
-            return Ok(Surface {
-                face,
-                param,
-                patch_points: control_points.len(),
-                control_points,
-                form: Form::Regular { patch, mask },
-            });
+            return Ok(Neighbourhood::Shortcut(param));
         }
+        match self.corners(face) {
+            Some((corners, subsets)) => Ok(Neighbourhood::Corners {
+                param,
+                corners,
+                subsets,
+            }),
+            None => Ok(Neighbourhood::Invalid(param)),
+        }
+    }
+
+    /// The corners of a face and their vertex subsets, sharpened by the
+    /// boundary interpolation rule; `None` if the face has no limit surface
+    /// (`faceHasLimitNeighborhood`).
+    fn corners(&self, face: usize) -> Option<(Vec<Corner>, Vec<Subset>)> {
+        let base = &self.refiner.levels[0];
+        let size = base.face_verts(face).len();
         let corners: Vec<Corner> = (0..size)
             .map(|k| Corner::new(base, face, k, self.reg_size()))
             .collect();
@@ -178,9 +210,9 @@ impl SurfaceFactory {
         if (reject_smooth_boundaries && topology.boundary_non_sharp)
             || (reject_irregular && topology.irregular_sizes)
         {
-            return Ok(invalid(param));
+            return None;
         }
-        let subsets: Vec<Subset> = corners
+        let subsets = corners
             .iter()
             .map(|c| {
                 let mut s = c.subset();
@@ -194,23 +226,126 @@ impl SurfaceFactory {
                 s
             })
             .collect();
+        Some((corners, subsets))
+    }
+
+    /// The vertex surface of base face `face` (`InitVertexSurface`): holes
+    /// and faces without a limit surface give an invalid surface.
+    pub fn vertex_surface(&self, face: usize) -> Result<Surface> {
+        let base = &self.refiner.levels[0];
+        match self.neighbourhood(face)? {
+            Neighbourhood::Invalid(param) => Ok(Surface::invalid(face, param)),
+            Neighbourhood::Linear(param) => Ok(self.linear(face, param, base.face_verts(face))),
+            Neighbourhood::Shortcut(param) => {
+                let (control_points, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+                Ok(self.regular(face, param, control_points, mask))
+            }
+            Neighbourhood::Corners {
+                param,
+                corners,
+                subsets,
+            } => self.nonlinear(face, param, &corners, &subsets),
+        }
+    }
+
+    /// The surface of face-varying channel `channel` over base face `face`
+    /// (`InitFaceVaryingSurface`): linear where the channel is (the
+    /// bilinear scheme, `FVarLinearInterpolation::All`), else built as the
+    /// vertex surface is, over the channel's topology — its seams bound the
+    /// corners' subsets, sharpened by the channel's linear-interpolation
+    /// option. Control points are the channel's values.
+    pub fn fvar_surface(&self, face: usize, channel: usize) -> Result<Surface> {
+        let base = &self.refiner.levels[0];
+        let count = self.refiner.fvar.len();
+        let chan = self
+            .refiner
+            .fvar
+            .get(channel)
+            .and_then(|levels| levels.first())
+            .ok_or(Error::NoSuchChannel { channel, count })?;
+        let values = |f: usize| chan.face_values_of(base, f);
+        let neighbourhood = self.neighbourhood(face)?;
+        let linear = self.scheme() == Scheme::Bilinear
+            || self.refiner.options.fvar == FVarLinearInterpolation::All;
+        let (param, corners, subsets) = match neighbourhood {
+            Neighbourhood::Invalid(param) => return Ok(Surface::invalid(face, param)),
+            Neighbourhood::Linear(param) => return Ok(self.linear(face, param, values(face))),
+            Neighbourhood::Shortcut(param) | Neighbourhood::Corners { param, .. } if linear => {
+                return Ok(self.linear(face, param, values(face)));
+            }
+            Neighbourhood::Shortcut(param) => {
+                if fvar_topology_matches(base, chan, face) {
+                    let (control_points, mask) = shortcut_points(base, face, values);
+                    return Ok(self.regular(face, param, control_points, mask));
+                }
+                match self.corners(face) {
+                    Some((corners, subsets)) => (param, corners, subsets),
+                    None => return Ok(Surface::invalid(face, param)),
+                }
+            }
+            Neighbourhood::Corners {
+                param,
+                corners,
+                subsets,
+            } => (param, corners, subsets),
+        };
+        let fvar = self.refiner.options.fvar;
+        let fcorners: Vec<Corner> = corners.iter().map(|c| c.with_values(values)).collect();
+        let fsubsets: Vec<Subset> = fcorners
+            .iter()
+            .zip(&subsets)
+            .map(|(c, vertex)| {
+                let mut s = c.fvar_subset(vertex);
+                if s.is_boundary() && !s.is_sharp() {
+                    c.sharpen_fvar(&mut s, vertex, fvar);
+                }
+                s
+            })
+            .collect();
+        self.nonlinear(face, param, &fcorners, &fsubsets)
+    }
+
+    /// A regular patch's surface.
+    fn regular(
+        &self,
+        face: usize,
+        param: Parameterization,
+        control_points: Vec<u32>,
+        mask: u16,
+    ) -> Surface {
+        let patch = if self.reg_size() == 4 {
+            PatchType::Regular
+        } else {
+            PatchType::Loop
+        };
+        Surface {
+            face,
+            param,
+            patch_points: control_points.len(),
+            control_points,
+            form: Form::Regular { patch, mask },
+        }
+    }
+
+    /// The surface of a face from its corners (vertex indices or a
+    /// channel's values) and their subsets: one regular patch where they
+    /// allow it, else the patches of its control hull.
+    fn nonlinear(
+        &self,
+        face: usize,
+        param: Parameterization,
+        corners: &[Corner],
+        subsets: &[Subset],
+    ) -> Result<Surface> {
         let tag = subsets
             .iter()
             .fold(CornerTag::default(), |t, s| t.or(s.tag));
-        if is_regular(&subsets, tag, self.reg_size()) {
-            let control_points = subset_points(&corners, &subsets);
-            return Ok(Surface {
-                face,
-                param,
-                patch_points: control_points.len(),
-                control_points,
-                form: Form::Regular {
-                    patch,
-                    mask: subset_mask(&subsets),
-                },
-            });
+        if is_regular(subsets, tag, self.reg_size()) {
+            let control_points = subset_points(corners, subsets);
+            return Ok(self.regular(face, param, control_points, subset_mask(subsets)));
         }
-        let hull = hull(&corners, &subsets, tag);
+        let options = self.refiner.options;
+        let hull = hull(corners, subsets, tag);
         let local = Options {
             boundary: BoundaryInterpolation::EdgeOnly,
             fvar: FVarLinearInterpolation::All,
@@ -235,18 +370,7 @@ impl SurfaceFactory {
             }
             (r.level_counts(0)?.vertices, refined)
         };
-        let end_caps = irregular
-            .table
-            .arrays
-            .iter()
-            .filter(|a| {
-                matches!(
-                    a.patch_type,
-                    PatchType::GregoryBasis | PatchType::GregoryTriangle
-                )
-            })
-            .map(|a| a.len() * a.patch_type.control_vertices())
-            .sum::<usize>();
+        let end_caps = irregular.local_order.len();
         Ok(Surface {
             face,
             param,
@@ -260,11 +384,14 @@ impl SurfaceFactory {
     /// linear over the face's vertices under every scheme.
     pub fn varying_surface(&self, face: usize) -> Result<Surface> {
         let base = &self.refiner.levels[0];
-        let surface = self.vertex_surface(face)?;
-        if !surface.is_valid() {
-            return Ok(surface);
-        }
-        Ok(self.linear(face, surface.param, base.face_verts(face)))
+        Ok(match self.neighbourhood(face)? {
+            Neighbourhood::Invalid(param) => Surface::invalid(face, param),
+            Neighbourhood::Linear(param)
+            | Neighbourhood::Shortcut(param)
+            | Neighbourhood::Corners { param, .. } => {
+                self.linear(face, param, base.face_verts(face))
+            }
+        })
     }
 
     /// The linear surface of a face (`assignLinearSurface`).
@@ -464,6 +591,17 @@ fn split_weights(w: [f64; 4], n: usize) -> [f64; 4] {
 }
 
 impl Surface {
+    /// A surface without a limit.
+    fn invalid(face: usize, param: Parameterization) -> Surface {
+        Surface {
+            face,
+            param,
+            control_points: Vec::new(),
+            patch_points: 0,
+            form: Form::Invalid,
+        }
+    }
+
     /// The base face.
     pub fn face(&self) -> usize {
         self.face

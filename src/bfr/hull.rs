@@ -309,7 +309,12 @@ impl<'a> Builder<'a> {
             if s.tag.inf_sharp {
                 out.push((i as u32, SHARPNESS_INFINITE));
             } else if s.tag.semi_sharp {
-                out.push((i as u32, c.vertex_sharpness));
+                let sharpness = if s.local_sharpness > 0.0 {
+                    s.local_sharpness
+                } else {
+                    c.vertex_sharpness
+                };
+                out.push((i as u32, sharpness));
             }
         }
         out

@@ -47,7 +47,13 @@ fn mask_of(points: &[i64]) -> u16 {
 /// regular: the shortcut's points (missing ones replaced by point 5: the
 /// face's first vertex in a quad's patch, its second in a triangle's) and
 /// the boundary mask.
-pub(crate) fn shortcut_points(level: &Level, face: usize) -> (Vec<u32>, u16) {
+/// `values(f)` gives face `f`'s indices: its vertices, or a face-varying
+/// channel's values.
+pub(crate) fn shortcut_points<'a>(
+    level: &Level,
+    face: usize,
+    values: impl Fn(usize) -> &'a [u32],
+) -> (Vec<u32>, u16) {
     let fverts = level.face_verts(face);
     let quad = fverts.len() == 4;
     let mut p = vec![MISSING; if quad { 16 } else { 12 }];
@@ -59,7 +65,7 @@ pub(crate) fn shortcut_points(level: &Level, face: usize) -> (Vec<u32>, u16) {
         let corner = if quad { QUAD[i] } else { TRI[i] };
         let vfaces = level.vertex_faces_of(v);
         let locals = level.vertex_face_locals(v);
-        let fv = |k: usize| level.face_verts(vfaces[k] as usize);
+        let fv = |k: usize| values(vfaces[k] as usize);
         let at = |k: usize, d: usize| -> i64 {
             let f = fv(k);
             i64::from(f[(usize::from(locals[k]) + d) % n])
@@ -80,7 +86,7 @@ pub(crate) fn shortcut_points(level: &Level, face: usize) -> (Vec<u32>, u16) {
                 p[corner[3]] = at(next, 2);
             }
         } else if vfaces.len() == 1 {
-            p[corner[0]] = v as i64;
+            p[corner[0]] = at(0, 0);
         } else if quad {
             if mine == 0 {
                 p[corner[0]] = at(1, 0);

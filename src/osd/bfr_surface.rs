@@ -283,13 +283,36 @@ impl Surfaces {
     /// parameterization. A hole is `valid: false`; a face out of range and
     /// the faces refused (see the [module documentation](self)) are errors.
     pub fn face_info(&self, face: usize) -> Result<SurfaceInfo> {
+        self.surface_info(face, VERTEX, 0)
+    }
+
+    /// The surface of face-varying channel `channel` over `face`
+    /// (`InitFaceVaryingSurface`), as [`Surfaces::face_info`] describes the
+    /// vertex surface; its control points are the channel's values.
+    pub fn fvar_face_info(&self, face: usize, channel: usize) -> Result<SurfaceInfo> {
+        self.check_channel(channel)?;
+        self.surface_info(face, FACE_VARYING, index_i32(channel))
+    }
+
+    fn check_channel(&self, channel: usize) -> Result<()> {
+        if channel < self.fvar.len() {
+            Ok(())
+        } else {
+            Err(Error::NoSuchChannel {
+                channel,
+                count: self.fvar.len(),
+            })
+        }
+    }
+
+    fn surface_info(&self, face: usize, kind: i32, channel: i32) -> Result<SurfaceInfo> {
         let mut points = vec![0i32; 64];
-        let mut info = self.info(face, VERTEX, 0, &mut points)?;
+        let mut info = self.info(face, kind, channel, &mut points)?;
         let count = usize::try_from(info.num_control_points)
             .map_err(|_| internal("negative control point count"))?;
         if count > points.len() {
             points = try_vec(0i32, count)?;
-            info = self.info(face, VERTEX, 0, &mut points)?;
+            info = self.info(face, kind, channel, &mut points)?;
             if usize::try_from(info.num_control_points) != Ok(count) {
                 return Err(internal("the face's surface changed between two calls"));
             }
@@ -426,16 +449,35 @@ impl Surfaces {
     /// positions: its `GetNumPatchPoints` points, 3 reals each, in Bfr's
     /// order.
     pub fn patch_points(&self, face: usize) -> Result<Vec<f64>> {
+        self.prepared(face, VERTEX, 0, &self.positions, 3)
+    }
+
+    /// `PreparePatchPoints` of face-varying channel `channel`'s surface
+    /// over `face` from the channel's values: the channel's width each.
+    pub fn fvar_patch_points(&self, face: usize, channel: usize) -> Result<Vec<f64>> {
+        self.check_channel(channel)?;
+        let (values, width) = &self.fvar[channel];
+        self.prepared(face, FACE_VARYING, index_i32(channel), values, *width)
+    }
+
+    fn prepared(
+        &self,
+        face: usize,
+        kind: i32,
+        channel: i32,
+        points: &[f64],
+        width: usize,
+    ) -> Result<Vec<f64>> {
         let eval = ffi::sdv_surface_eval {
-            kind: VERTEX,
-            channel: 0,
-            points: if self.positions.is_empty() {
+            kind,
+            channel,
+            points: if points.is_empty() {
                 null()
             } else {
-                self.positions.as_ptr()
+                points.as_ptr()
             },
-            num_points: self.positions.len() / 3,
-            width: 3,
+            num_points: points.len() / width.max(1),
+            width: i32::try_from(width).unwrap_or(i32::MAX),
             uv: null(),
             n: 0,
             derivatives: 0,
@@ -445,9 +487,9 @@ impl Surfaces {
         let call = |out: &mut [f64]| -> Result<usize> {
             let mut count = 0i32;
             let mut err = ErrBuf::new();
-            // SAFETY: the handle is live; `eval.points` holds num_points * 3
-            // reals; `out` is null (count only) or holds its length, which
-            // the shim checks against what it writes.
+            // SAFETY: the handle is live; `eval.points` holds num_points *
+            // width reals; `out` is null (count only) or holds its length,
+            // which the shim checks against what it writes.
             err.run(|e| unsafe {
                 ffi::sdv_surface_patch_points(
                     self.handle.0.as_ptr(),
@@ -469,7 +511,7 @@ impl Surfaces {
         let n = call(&mut [])?;
         let mut out = try_vec(
             0.0,
-            n.checked_mul(3)
+            n.checked_mul(width)
                 .ok_or_else(|| internal("too many patch points"))?,
         )?;
         if call(&mut out)? != n {
@@ -491,6 +533,31 @@ impl Surfaces {
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<Vec<Partials>> {
+        self.stencils(face, VERTEX, 0, coords, derivatives)
+    }
+
+    /// The limit stencils of face-varying channel `channel`'s surface over
+    /// `face` at `coords`: weights of its control points (the channel's
+    /// values, in the order of [`Surfaces::fvar_face_info`]).
+    pub fn evaluate_fvar_stencil(
+        &self,
+        face: usize,
+        channel: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<Vec<Partials>> {
+        self.check_channel(channel)?;
+        self.stencils(face, FACE_VARYING, index_i32(channel), coords, derivatives)
+    }
+
+    fn stencils(
+        &self,
+        face: usize,
+        kind: i32,
+        channel: i32,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<Vec<Partials>> {
         let (ncols, code) = columns(derivatives);
         let call = |out: &mut [f64]| -> Result<usize> {
             let mut count = 0i32;
@@ -502,8 +569,8 @@ impl Surfaces {
                 ffi::sdv_surface_stencils(
                     self.handle.0.as_ptr(),
                     index_i32(face),
-                    VERTEX,
-                    0,
+                    kind,
+                    channel,
                     flat(coords),
                     coords.len(),
                     code,
