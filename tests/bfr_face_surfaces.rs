@@ -546,3 +546,47 @@ proptest! {
         compare_fvar(&name, &mesh, &opts.with_fvar(fvar), approx);
     }
 }
+
+/// Where the whole-mesh `LimitSurfaces` depart from OpenSubdiv's Bfr (the
+/// production shape's UV corner at vertex 5 under CornersOnly and
+/// CornersPlus1, docs/CONFORMANCE.md), the per-face `MeshSurfaces` agree:
+/// values and first derivatives of the channel within 1e-12.
+#[test]
+fn mesh_surfaces_agree_where_the_global_ones_depart() {
+    use subdiv::FVarLinearInterpolation as F;
+    let (_, mesh) = shapes::corpus()
+        .into_iter()
+        .find(|(n, _)| n == "production")
+        .expect("the corpus' production shape");
+    for fvar in [F::CornersOnly, F::CornersPlus1] {
+        let opts = Options::default()
+            .with_boundary(BoundaryInterpolation::EdgeAndCorner)
+            .with_fvar(fvar);
+        let so = SurfaceOptions::default();
+        let ours = subdiv::bfr::MeshSurfaces::new(&mesh, &opts, &so).unwrap();
+        let theirs = Surfaces::new(&mesh, &opts, &so).unwrap();
+        for face in [140, 141, 142] {
+            let p = ours.parameterization(face).unwrap();
+            let coords = sample_coords(&p);
+            let a = ours
+                .evaluate_fvar(face, 0, &coords, Derivatives::First)
+                .unwrap();
+            let b = theirs
+                .evaluate_fvar(face, 0, &coords, Derivatives::First)
+                .unwrap();
+            for (c, (x, y)) in columns(&a.values)
+                .iter()
+                .zip(columns(&b.values))
+                .enumerate()
+            {
+                assert_eq!(x.len(), y.len());
+                for (p, q) in x.iter().zip(y) {
+                    assert!(
+                        (p - q).abs() < 1e-12,
+                        "{fvar:?} face {face} column {c}: {p} vs {q}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -150,6 +150,19 @@ impl SurfaceFactory {
         self.refiner.levels[0].face_count()
     }
 
+    /// Whether base face `face` has a limit surface
+    /// (`FaceHasLimitSurface`: not a hole nor degenerate, no smooth
+    /// boundary under boundary interpolation "none", no non-triangle next
+    /// to a Loop face); false for faces that do not exist.
+    pub fn has_limit_surface(&self, face: usize) -> bool {
+        matches!(
+            self.neighbourhood(face),
+            Ok(Neighbourhood::Linear(_)
+                | Neighbourhood::Shortcut(_)
+                | Neighbourhood::Corners { .. })
+        )
+    }
+
     fn scheme(&self) -> Scheme {
         self.refiner.options.scheme
     }

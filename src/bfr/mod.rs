@@ -20,6 +20,7 @@
 mod corner;
 mod face_surface;
 mod hull;
+mod mesh_surfaces;
 mod mesher;
 pub(crate) mod parameterization;
 mod regular;
@@ -27,6 +28,7 @@ mod surfaces;
 mod tessellation;
 
 pub use face_surface::{Surface, SurfaceFactory};
+pub use mesh_surfaces::MeshSurfaces;
 pub use mesher::{FaceSurfaces, TessellateOptions, TessellatedMesh, tessellate};
 pub use parameterization::{MAX_FACE_SIZE, Parameterization, ParameterizationType};
 pub use surfaces::{LimitSurfaces, SurfaceOptions};

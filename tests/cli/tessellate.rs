@@ -131,6 +131,16 @@ fn the_cube_tessellates_into_a_closed_mesh_on_every_engine() {
             }
         }
     }
+    // Native surfaces built face by face, as Bfr builds them, agree too.
+    let obj = tessellate(input, "native", &["--rate", "3", "--normals", "--per-face"]);
+    assert_closed(&obj);
+    let f = first.unwrap();
+    assert_eq!(f.v.len(), obj.v.len());
+    for (a, b) in f.v.iter().zip(&obj.v) {
+        for k in 0..3 {
+            assert!((a[k] - b[k]).abs() < 1e-12, "{a:?} {b:?}");
+        }
+    }
 }
 
 /// A Loop mesh (the icosahedron): counts of the triangle patterns, closed,

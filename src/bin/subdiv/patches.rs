@@ -449,7 +449,13 @@ fn write_samples(args: &EvalArgs, s: &SurfaceSamples) -> Result<(), Failure> {
 fn eval_bfr(args: &EvalArgs) -> Result<(), Failure> {
     let locations = read_locations(&args.at, false)?;
     let (name, mesh, options) = crate::args::load(&args.patch.mesh)?;
-    let surfaces = args.bfr.build(args.patch.engine, &name, &mesh, &options)?;
+    // Locations are evaluated on the surfaces Bfr itself builds, face by
+    // face (index-exact with OpenSubdiv's Bfr).
+    let per_face = crate::tessellate::SurfaceArgs {
+        per_face: true,
+        ..args.bfr
+    };
+    let surfaces = per_face.build(args.patch.engine, &name, &mesh, &options)?;
     let derivatives = if args.derivatives {
         Derivatives::First
     } else {

@@ -5,7 +5,7 @@
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::bfr::{FaceSurfaces, LimitSurfaces, SurfaceOptions, TessellateOptions};
+use subdiv::bfr::{FaceSurfaces, LimitSurfaces, MeshSurfaces, SurfaceOptions, TessellateOptions};
 use subdiv::io::{ObjOutput, UvOutput};
 use subdiv::{Engine, Precision};
 
@@ -50,6 +50,12 @@ pub(crate) struct SurfaceArgs {
     /// Bfr's approximation level for sharp features (approxLevelSharp).
     #[arg(long, value_name = "N", default_value = "6")]
     pub(crate) level_sharp: u32,
+    /// Native engine: build each face's surface as Bfr does (its control
+    /// hull refined alone: index-exact with OpenSubdiv's Bfr, slower on
+    /// irregular meshes) rather than from one adaptive refinement of the
+    /// whole mesh. Always so for `eval --surface bfr`.
+    #[arg(long)]
+    pub(crate) per_face: bool,
 }
 
 impl SurfaceArgs {
@@ -72,6 +78,9 @@ impl SurfaceArgs {
         };
         let in_input = |e: subdiv::Error| Failure::from(e).in_input(name);
         Ok(match engine {
+            Engine::Native if self.per_face => {
+                Box::new(MeshSurfaces::new(mesh, options, &surface).map_err(in_input)?)
+            }
             Engine::Native => {
                 Box::new(LimitSurfaces::new(mesh, options, &surface).map_err(in_input)?)
             }

@@ -1,0 +1,123 @@
+//! Every base face's limit surface the way OpenSubdiv's Bfr builds it, one
+//! face at a time ([`MeshSurfaces`]): a [`SurfaceFactory`] with the mesh's
+//! positions and face-varying values, each face's [`Surface`] built when
+//! it is evaluated — index-exact with `Bfr::RefinerSurfaceFactory`
+//! (control points, patch points, stencils), where [`LimitSurfaces`]
+//! evaluates one adaptive refinement of the whole mesh instead.
+//!
+//! [`LimitSurfaces`]: crate::bfr::LimitSurfaces
+
+use super::face_surface::{Surface, SurfaceFactory};
+use super::mesher::FaceSurfaces;
+use super::parameterization::Parameterization;
+use super::surfaces::SurfaceOptions;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::options::{Options, Scheme};
+use crate::patches::{Derivatives, SurfaceSamples};
+
+/// The surfaces of a mesh's base faces, built face by face as Bfr builds
+/// them, with the data to evaluate them on.
+#[derive(Debug)]
+pub struct MeshSurfaces {
+    factory: SurfaceFactory,
+    scheme: Scheme,
+    points: Vec<f64>,
+    /// Per face-varying channel: its values and width.
+    fvar: Vec<(Vec<f64>, usize)>,
+}
+
+impl MeshSurfaces {
+    /// The surfaces of `mesh`'s faces under `options`, approximated as
+    /// `surface` says (approximation levels 0 to 10).
+    pub fn new(mesh: &Mesh, options: &Options, surface: &SurfaceOptions) -> Result<Self> {
+        Ok(MeshSurfaces {
+            factory: SurfaceFactory::new(mesh, options, surface)?,
+            scheme: options.scheme,
+            points: mesh.flat_positions(),
+            fvar: mesh
+                .fvar_channels
+                .iter()
+                .map(|c| (c.values.clone(), c.width))
+                .collect(),
+        })
+    }
+
+    /// The factory the surfaces come from.
+    pub fn factory(&self) -> &SurfaceFactory {
+        &self.factory
+    }
+
+    /// The subdivision scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
+    /// The number of base faces.
+    pub fn face_count(&self) -> usize {
+        self.factory.face_count()
+    }
+
+    /// Whether base face `face` has a limit surface.
+    pub fn has_surface(&self, face: usize) -> bool {
+        self.factory.has_limit_surface(face)
+    }
+
+    /// The parameterization of base face `face`.
+    pub fn parameterization(&self, face: usize) -> Result<Parameterization> {
+        Ok(self.factory.vertex_surface(face)?.parameterization())
+    }
+
+    /// The positions (3 components each) of `face`'s limit surface at
+    /// `coords` in its parameterization, with the derivatives asked for.
+    pub fn evaluate(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        let surface = self.factory.vertex_surface(face)?;
+        surface.evaluate(&self.points, 3, coords, derivatives)
+    }
+
+    /// Face-varying channel `channel`'s values over `face` at `coords`.
+    pub fn evaluate_fvar(
+        &self,
+        face: usize,
+        channel: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        let (values, width) = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            channel,
+            count: self.fvar.len(),
+        })?;
+        let surface: Surface = self.factory.fvar_surface(face, channel)?;
+        surface.evaluate(values, *width, coords, derivatives)
+    }
+}
+
+impl FaceSurfaces for MeshSurfaces {
+    fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+    fn has_surface(&self, face: usize) -> bool {
+        MeshSurfaces::has_surface(self, face)
+    }
+    fn evaluate(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        MeshSurfaces::evaluate(self, face, coords, derivatives)
+    }
+    fn evaluate_fvar(
+        &self,
+        face: usize,
+        channel: usize,
+        coords: &[[f64; 2]],
+    ) -> Result<SurfaceSamples> {
+        MeshSurfaces::evaluate_fvar(self, face, channel, coords, Derivatives::None)
+    }
+}
