@@ -37,7 +37,9 @@
 //! bridge. The evaluation is in `f64` (the regression's `-double`; its
 //! default is `float`, which only loosens agreement). Second derivatives
 //! are measured too (the regression's `-d2`, 25 times the tolerance) and
-//! reported, not asserted: the CTest entry does not compare them.
+//! reported, not asserted: the CTest entry does not compare them. A
+//! second test runs the regression at Bfr's default approximation levels
+//! (6 and 2), as it runs without `-l`.
 #![cfg(feature = "osd")]
 
 use std::time::Instant;
@@ -52,8 +54,12 @@ use subdiv::{
     PtexIndices, Scheme, TriangleSubdivision, shapes,
 };
 
-/// The regression's approximation levels (`-l 3`): sharp and smooth.
-const LEVEL: u32 = 3;
+/// The regression's approximation levels as its CTest entry sets them
+/// (`-l 3`): sharp and smooth.
+const LEVELS: SurfaceOptions = SurfaceOptions {
+    approx_level_smooth: 3,
+    approx_level_sharp: 3,
+};
 /// Its uniform tessellation rate (`-res`, 3 by default).
 const RATE: u32 = 3;
 
@@ -191,16 +197,8 @@ impl ShapeResult {
     }
 }
 
-fn surface_options() -> SurfaceOptions {
-    SurfaceOptions {
-        approx_level_smooth: LEVEL,
-        approx_level_sharp: LEVEL,
-    }
-}
-
 /// `FarPatchEvaluator`'s options: the adaptive refinement and the table.
-fn far_options() -> (AdaptiveOptions, PatchOptions) {
-    let so = surface_options();
+fn far_options(so: SurfaceOptions) -> (AdaptiveOptions, PatchOptions) {
     let mut table = PatchOptions::new()
         .max_isolation(so.approx_level_sharp)
         .inf_sharp_patch(true)
@@ -289,12 +287,12 @@ fn split(all: &SurfaceSamples, counts: &[usize]) -> Vec<SurfaceSamples> {
 
 /// The native engine: `bfr::SurfaceFactory` (`PreparePatchPoints`, then
 /// `Evaluate` on them) against the native adaptive patch table.
-fn native(case: &Case) -> Option<ShapeResult> {
+fn native(case: &Case, so: SurfaceOptions) -> Option<ShapeResult> {
     let (mesh, options) = (&case.mesh, &case.options);
     let tol = position_tolerance(mesh);
     let points: Vec<f64> = mesh.flat_positions();
 
-    let (refine, table_options) = far_options();
+    let (refine, table_options) = far_options(so);
     let refiner = Refiner::new(mesh, options).unwrap();
     let ptex = PtexIndices::new(&refiner).unwrap();
     let holes = refiner.faces(0).unwrap().holes.unwrap_or(&[]).to_vec();
@@ -317,7 +315,7 @@ fn native(case: &Case) -> Option<ShapeResult> {
     let counts: Vec<usize> = coords.iter().flatten().map(|(_, c)| c.len()).collect();
     let mut far = split(&far, &counts).into_iter();
 
-    let factory = SurfaceFactory::new(mesh, options, &surface_options()).unwrap();
+    let factory = SurfaceFactory::new(mesh, options, &so).unwrap();
     let mut result = ShapeResult::default();
     for (face, c) in coords.iter().enumerate() {
         let surface = factory.vertex_surface(face).unwrap();
@@ -340,12 +338,12 @@ fn native(case: &Case) -> Option<ShapeResult> {
 
 /// OpenSubdiv through the bridge: `Bfr::RefinerSurfaceFactory` against
 /// `Far::PatchTableFactory` over `RefineAdaptive`.
-fn opensubdiv(case: &Case) -> Option<ShapeResult> {
+fn opensubdiv(case: &Case, so: SurfaceOptions) -> Option<ShapeResult> {
     let (mesh, options) = (&case.mesh, &case.options);
     let tol = position_tolerance(mesh);
     let points: Vec<f64> = mesh.flat_positions();
 
-    let (refine, table_options) = far_options();
+    let (refine, table_options) = far_options(so);
     let mut refiner = osd::TopologyRefiner::new(mesh, options).unwrap();
     let ptex = refiner.ptex_indices().unwrap();
     let holes = refiner.level(0).unwrap().face_holes;
@@ -371,7 +369,7 @@ fn opensubdiv(case: &Case) -> Option<ShapeResult> {
     let counts: Vec<usize> = coords.iter().flatten().map(|(_, c)| c.len()).collect();
     let mut far = split(&far, &counts).into_iter();
 
-    let surfaces = Surfaces::new(mesh, options, &surface_options()).unwrap();
+    let surfaces = Surfaces::new(mesh, options, &so).unwrap();
     let mut result = ShapeResult::default();
     for (face, c) in coords.iter().enumerate() {
         let far_face = c.as_ref().map(|_| far.next().unwrap());
@@ -489,8 +487,36 @@ fn cases() -> Vec<Case> {
 /// (s = 4.25) for a tolerance of 5e-5 — both engines alike, to 1e-15.
 const EXPECTED_FAILURES: &[&str] = &["cube-crease-3 chaikin", "cube-crease-4.25 chaikin"];
 
+/// The cases expected to fail at Bfr's default approximation levels: the
+/// same two (`cube-crease-4.25` in first derivatives only, 4.5e-4 for a
+/// tolerance of 2.5e-4). OpenSubdiv 3.5.0's regression run so (`-all -d1
+/// -double`) fails its two Chaikin shapes and, in first derivatives, three
+/// non-manifold shapes (`catmark_fan` 0.77, `catmark_nonman_edges` 0.26,
+/// `loop_nonman_edges` 0.095) that the project's non-manifold shapes (fin,
+/// bowtie, books) do not reproduce.
+const EXPECTED_FAILURES_AT_DEFAULTS: &[&str] = EXPECTED_FAILURES;
+
 #[test]
 fn bfr_against_far_patches_as_the_regression() {
+    let faces = regression(LEVELS, EXPECTED_FAILURES);
+    assert!(faces > 5000, "{faces}");
+}
+
+/// The regression run with Bfr's default approximation levels (sharp 6,
+/// smooth 2; Far isolates to 6 with secondary level 2), as it runs without
+/// `-l` (not a CTest entry): the same two cases fail.
+#[test]
+fn bfr_against_far_patches_at_default_levels() {
+    let faces = regression(SurfaceOptions::default(), EXPECTED_FAILURES_AT_DEFAULTS);
+    assert!(faces > 5000, "{faces}");
+}
+
+/// Runs every case with both engines at approximation levels `so`,
+/// prints the regression's kind of report, checks that exactly `expected`
+/// fail in each engine and that the engines' differences are the same;
+/// returns the number of faces compared natively.
+fn regression(so: SurfaceOptions, expected: &[&str]) -> usize {
+    println!("approximation levels: {so:?}");
     let start = Instant::now();
     let cases = cases();
     let mut failures: [Vec<String>; 2] = Default::default();
@@ -498,12 +524,15 @@ fn bfr_against_far_patches_as_the_regression() {
     let mut not_compared: [Vec<String>; 2] = Default::default();
     for case in &cases {
         let mut per_engine: [Option<ShapeResult>; 2] = Default::default();
-        for (e, run) in [native as fn(&Case) -> Option<ShapeResult>, opensubdiv]
-            .into_iter()
-            .enumerate()
+        for (e, run) in [
+            native as fn(&Case, SurfaceOptions) -> Option<ShapeResult>,
+            opensubdiv,
+        ]
+        .into_iter()
+        .enumerate()
         {
             let engine = ["native", "osd"][e];
-            let Some(r) = run(case) else {
+            let Some(r) = run(case, so) else {
                 not_compared[e].push(case.name.clone());
                 continue;
             };
@@ -580,9 +609,9 @@ fn bfr_against_far_patches_as_the_regression() {
     println!("{:.1} s", start.elapsed().as_secs_f64());
     for (e, engine) in ["native", "osd"].into_iter().enumerate() {
         assert_eq!(
-            failures[e], EXPECTED_FAILURES,
+            failures[e], expected,
             "{engine}: the failing cases are not the expected ones"
         );
     }
-    assert!(totals[0].faces > 5000, "{}", totals[0].faces);
+    totals[0].faces
 }
