@@ -39,19 +39,20 @@
 //! are measured too (the regression's `-d2`, 25 times the tolerance) and
 //! reported, not asserted: the CTest entry does not compare them. A
 //! second test runs the regression at Bfr's default approximation levels
-//! (6 and 2), as it runs without `-l`.
+//! (6 and 2), as it runs without `-l`; a third its `-uv` entries (UVs
+//! only, 1e-4 absolute, linear modes 1 and 5, no shape failing).
 #![cfg(feature = "osd")]
 
 use std::time::Instant;
-use subdiv::bfr::{Parameterization, SurfaceFactory, SurfaceOptions, Tessellation};
+use subdiv::bfr::{LimitSurfaces, Parameterization, SurfaceFactory, SurfaceOptions, Tessellation};
 use subdiv::osd::{self, bfr_surface::Surfaces};
 use subdiv::patches::{
     self, Derivatives, EndCapType, PatchData, PatchMap, PatchOptions, SurfaceSamples,
 };
 use subdiv::refiner::Refiner;
 use subdiv::{
-    AdaptiveOptions, BoundaryInterpolation, CreasingMethod, Error, Mesh, Options, OsdErrorKind,
-    PtexIndices, Scheme, TriangleSubdivision, shapes,
+    AdaptiveOptions, BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh,
+    Options, OsdErrorKind, PtexIndices, Scheme, TriangleSubdivision, shapes,
 };
 
 /// The regression's approximation levels as its CTest entry sets them
@@ -93,9 +94,13 @@ struct Delta {
 
 impl Delta {
     fn compare(a: &[f64], b: &[f64], tol: f64) -> Delta {
+        Delta::compare_width(a, b, tol, 3)
+    }
+
+    fn compare_width(a: &[f64], b: &[f64], tol: f64, width: usize) -> Delta {
         assert_eq!(a.len(), b.len());
         let mut d = Delta::default();
-        for (x, y) in a.chunks(3).zip(b.chunks(3)) {
+        for (x, y) in a.chunks(width).zip(b.chunks(width)) {
             let worst = x
                 .iter()
                 .zip(y)
@@ -614,4 +619,217 @@ fn regression(so: SurfaceOptions, expected: &[&str]) -> usize {
         );
     }
     totals[0].faces
+}
+
+/// The regression's `-uv` tolerance: absolute, per component.
+const UV_TOLERANCE: f64 = 0.0001;
+
+/// The cases of the regression's `-uv` entries: the shapes with a UV
+/// channel, under its linear interpolation modes 1 (corners only) and 5
+/// (all).
+fn uv_cases() -> Vec<Case> {
+    let mut shapes: Vec<(String, Mesh)> = shapes::corpus()
+        .into_iter()
+        .filter(|(_, m)| !m.fvar_channels.is_empty())
+        .collect();
+    shapes.push((
+        "torus-uv".into(),
+        shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6),
+    ));
+    let tri = shapes::triangulate_with_uvs(&shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6));
+    let mut out = Vec::new();
+    for (name, mesh) in shapes
+        .into_iter()
+        .chain([("tri-torus-uv".to_string(), tri)])
+    {
+        let triangles = mesh.faces().all(|f| f.len() == 3);
+        for (mode, fvar) in [
+            ("uvint 1", FVarLinearInterpolation::CornersOnly),
+            ("uvint 5", FVarLinearInterpolation::All),
+        ] {
+            let options = Options::shape_file_defaults().with_fvar(fvar);
+            out.push(Case {
+                name: format!("{name} {mode}"),
+                mesh: mesh.clone(),
+                options,
+            });
+            if triangles {
+                out.push(Case {
+                    name: format!("{name} loop {mode}"),
+                    mesh: mesh.clone(),
+                    options: options.with_scheme(Scheme::Loop),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// `FarPatchEvaluator`'s options with UVs: face-varying tables of channel
+/// 0, not legacy linear, so that refinement considers the channel.
+fn far_uv_options(so: SurfaceOptions) -> (AdaptiveOptions, PatchOptions) {
+    let (_, mut table) = far_options(so);
+    table.fvar_tables = true;
+    table.fvar_channels = vec![0];
+    table.fvar_legacy_linear_patches = false;
+    let refine = table
+        .refine_adaptive_options()
+        .secondary(so.approx_level_smooth);
+    assert!(refine.consider_fvar_channels);
+    (refine, table)
+}
+
+/// The UV differences of one case: (faces compared, faces with
+/// differences, the largest difference).
+fn uv_compare(
+    case: &Case,
+    bfr: impl Fn(usize, &[[f64; 2]]) -> Option<SurfaceSamples>,
+    far: &SurfaceSamples,
+    coords: &[FaceCoords],
+) -> (usize, usize, f64) {
+    let width = case.mesh.fvar_channels[0].width;
+    let (mut faces, mut differing, mut max) = (0, 0, 0.0f64);
+    let mut at = 0;
+    for (face, c) in coords.iter().enumerate() {
+        let Some((_, uvs)) = c else { continue };
+        let theirs = &far.values.point[at * width..(at + uvs.len()) * width];
+        at += uvs.len();
+        let Some(ours) = bfr(face, uvs) else { continue };
+        let d = Delta::compare_width(&ours.values.point, theirs, UV_TOLERANCE, width);
+        faces += 1;
+        differing += usize::from(d.count > 0);
+        max = max.max(d.max);
+    }
+    (faces, differing, max)
+}
+
+/// Native: `LimitSurfaces::evaluate_fvar` against the native table's
+/// face-varying patches.
+fn native_uv(case: &Case, so: SurfaceOptions) -> (usize, usize, f64) {
+    let (mesh, options) = (&case.mesh, &case.options);
+    let channel = &mesh.fvar_channels[0];
+    let (refine, table_options) = far_uv_options(so);
+    let refiner = Refiner::new(mesh, options).unwrap();
+    let ptex = PtexIndices::new(&refiner).unwrap();
+    let holes = refiner.faces(0).unwrap().holes.unwrap_or(&[]).to_vec();
+    let coords = face_coords(mesh, options.scheme, &holes);
+    let adaptive = refiner.refine_adaptive(refine, &[]).unwrap();
+    let table = adaptive.patch_table(&table_options, &[]).unwrap();
+    let uvs = PatchData::FaceVarying(0);
+    let points = adaptive
+        .patch_data_points(&table, uvs, channel.width, &channel.values)
+        .unwrap();
+    let far = patches::evaluate_data(
+        &PatchMap::new(&table),
+        &table,
+        uvs,
+        &points,
+        channel.width,
+        &far_locations(&ptex, &coords),
+        Derivatives::None,
+    )
+    .unwrap_or_else(|e| panic!("{}: native Far: {e}", case.name));
+    let surfaces = LimitSurfaces::new(mesh, options, &so).unwrap();
+    uv_compare(
+        case,
+        |face, uvs| {
+            assert!(surfaces.has_surface(face), "{}: face {face}", case.name);
+            Some(
+                surfaces
+                    .evaluate_fvar(face, 0, uvs, Derivatives::None)
+                    .unwrap(),
+            )
+        },
+        &far,
+        &coords,
+    )
+}
+
+/// OpenSubdiv: its Bfr's face-varying surfaces against its Far table's
+/// face-varying patches (the table, its local-point stencils and the
+/// refined values from OpenSubdiv; `EvaluateBasisFaceVarying` by the
+/// native basis, which `tests/native_patches.rs` holds to OpenSubdiv's).
+fn opensubdiv_uv(case: &Case, so: SurfaceOptions) -> (usize, usize, f64) {
+    let (mesh, options) = (&case.mesh, &case.options);
+    let channel = &mesh.fvar_channels[0];
+    let (refine, table_options) = far_uv_options(so);
+    let mut refiner = osd::TopologyRefiner::new(mesh, options).unwrap();
+    let ptex = refiner.ptex_indices().unwrap();
+    let holes = refiner.level(0).unwrap().face_holes;
+    let coords = face_coords(mesh, options.scheme, &holes);
+    refiner.refine_adaptive(refine, &[]).unwrap();
+    let osd_table = refiner.patch_table(&table_options, &[]).unwrap();
+    let table = osd_table.table();
+    let mut points = channel.values.clone();
+    let mut level = channel.values.clone();
+    for l in 1..=refiner.max_level() {
+        level = refiner
+            .interpolate_face_varying(0, l, channel.width, &level)
+            .unwrap();
+        points.extend_from_slice(&level);
+    }
+    let stencils = &table.fvar_channels[0].local_point_stencils;
+    if !stencils.is_empty() {
+        let local = stencils.apply(channel.width, &points).unwrap();
+        points.extend_from_slice(&local);
+    }
+    let far = patches::evaluate_data(
+        &PatchMap::new(table),
+        table,
+        PatchData::FaceVarying(0),
+        &points,
+        channel.width,
+        &far_locations(&ptex, &coords),
+        Derivatives::None,
+    )
+    .unwrap_or_else(|e| panic!("{}: OpenSubdiv's Far: {e}", case.name));
+    let surfaces = Surfaces::new(mesh, options, &so).unwrap();
+    uv_compare(
+        case,
+        // Faces the bridge refuses (OpenSubdiv 3.5.0 faults) are skipped.
+        |face, uvs| surfaces.evaluate_fvar(face, 0, uvs, Derivatives::None).ok(),
+        &far,
+        &coords,
+    )
+}
+
+/// The regression's `bfr_evaluate_uv1` and `bfr_evaluate_uv5` entries
+/// (`-all -l 3 -skippos -uv -uvint 1|5 -pass 0`): UVs only, within 1e-4
+/// absolute, no shape failing.
+#[test]
+fn face_varying_bfr_against_far_patches_as_the_regression() {
+    let mut failures = Vec::new();
+    let mut totals = [(0, 0.0f64); 2];
+    let cases = uv_cases();
+    for case in &cases {
+        for (e, run) in [
+            native_uv as fn(&Case, SurfaceOptions) -> (usize, usize, f64),
+            opensubdiv_uv,
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let (faces, differing, max) = run(case, LEVELS);
+            let engine = ["native", "osd"][e];
+            if differing > 0 {
+                println!(
+                    "'{}' ({engine}): UV {differing} faces (max {max:e})",
+                    case.name
+                );
+                failures.push(format!("{} ({engine})", case.name));
+            }
+            totals[e].0 += faces;
+            totals[e].1 = totals[e].1.max(max);
+        }
+    }
+    for (e, engine) in ["native", "osd"].into_iter().enumerate() {
+        println!(
+            "{engine} UVs: {} cases, {} faces, largest difference {:e}",
+            cases.len(),
+            totals[e].0,
+            totals[e].1
+        );
+    }
+    assert!(failures.is_empty(), "{failures:?}");
+    assert!(totals[0].0 > 800 && totals[1].0 > 800, "{totals:?}");
 }
