@@ -30,8 +30,9 @@
 //! non-manifold "edge100" shapes), under the scheme and options the
 //! regression's shape kinds use (edge-only boundaries by default, the
 //! other boundary rules, Chaikin creasing, smooth triangles, Loop on
-//! triangle meshes, bilinear). The expected failures are the Chaikin
-//! cases whose creases meet; every other case must pass. Both engines run
+//! triangle meshes, bilinear). Exactly two cases are expected to fail,
+//! both under Chaikin creasing (`EXPECTED_FAILURES`); every other case
+//! must pass. Both engines run
 //! it: the native `bfr::SurfaceFactory` against the native adaptive patch
 //! table, and OpenSubdiv's Bfr against OpenSubdiv's Far through the
 //! bridge. The evaluation is in `f64` (the regression's `-double`; its
