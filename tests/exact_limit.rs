@@ -389,3 +389,64 @@ fn location_stencils_take_the_option() {
     }
     assert_eq!((halved, same), (10 * 25, 5 * 25));
 }
+
+/// On Loop patches the exact limit's second derivatives are those of the
+/// positions (central differences), rotated sub-triangles included — where
+/// OpenSubdiv's `EvaluatePatchBasis` (the default) negates them.
+#[test]
+fn second_derivatives_on_rotated_triangles_are_the_positions() {
+    let mesh = shapes::icosahedron();
+    let options = PatchOptions::new().max_isolation(3);
+    let opts = Options::default().with_scheme(subdiv::Scheme::Loop);
+    let adaptive = Refiner::new(&mesh, &opts)
+        .unwrap()
+        .refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    let table = adaptive.patch_table(&options, &[]).unwrap();
+    let points = adaptive
+        .patch_points(&table, 3, &mesh.flat_positions())
+        .unwrap();
+    let t = (table, points);
+    let h = 1e-4;
+    let (mut rotated_seen, mut worst) = (0, 0.0f64);
+    for face in 0..mesh.face_count() as u32 {
+        for &(u, v) in &[(0.3, 0.4), (0.45, 0.3), (0.2, 0.2), (0.35, 0.35)] {
+            let at = |du: f64, dv: f64| {
+                eval(
+                    &t,
+                    Evaluation::ExactLimit,
+                    &[(face, u + du, v + dv)],
+                    Derivatives::First,
+                )
+            };
+            let exact = eval(
+                &t,
+                Evaluation::ExactLimit,
+                &[(face, u, v)],
+                Derivatives::Second,
+            );
+            let default = eval(
+                &t,
+                Evaluation::OpenSubdiv,
+                &[(face, u, v)],
+                Derivatives::Second,
+            );
+            let (up, um) = (at(h, 0.0), at(-h, 0.0));
+            let (vp, vm) = (at(0.0, h), at(0.0, -h));
+            for k in 0..3 {
+                let duu = (up.values.du[k] - um.values.du[k]) / (2.0 * h);
+                let dvv = (vp.values.dv[k] - vm.values.dv[k]) / (2.0 * h);
+                worst = worst
+                    .max((exact.values.duu[k] - duu).abs())
+                    .max((exact.values.dvv[k] - dvv).abs());
+                if (default.values.duu[k] + exact.values.duu[k]).abs() < 1e-9
+                    && exact.values.duu[k].abs() > 1e-3
+                {
+                    rotated_seen += 1;
+                }
+            }
+        }
+    }
+    assert!(worst < 1e-5, "second derivatives off by {worst:e}");
+    assert!(rotated_seen > 0, "no rotated sub-triangle sampled");
+}

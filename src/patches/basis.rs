@@ -358,7 +358,11 @@ pub(crate) fn evaluate_basis_into(
     }
     // Derivatives with respect to the ptex face: 2^depth per order as
     // OpenSubdiv scales them, the patch's share of the ptex face for the
-    // exact limit (the sign of a rotated triangle's odd orders flipped).
+    // exact limit; a rotated triangle flips the sign of odd orders.
+    // OpenSubdiv's EvaluatePatchBasis multiplies its second orders by the
+    // sign as well (`derivSign * d1Scale * d1Scale`, d1Scale signed
+    // already), negating them on rotated triangles: reproduced by default,
+    // not in the exact limit.
     let sign = if rotated { -1.0 } else { 1.0 };
     let d1 = sign
         * if exact.is_some() {
@@ -366,7 +370,11 @@ pub(crate) fn evaluate_basis_into(
         } else {
             f64::from(1u32 << depth)
         };
-    let d2 = sign * d1 * d1;
+    let d2 = if exact.is_some() {
+        d1 * d1
+    } else {
+        sign * d1 * d1
+    };
     for (k, table) in buf.iter_mut().enumerate().take(kinds).skip(1) {
         let factor = if k < 3 { d1 } else { d2 };
         table[..n].iter_mut().for_each(|x| *x *= factor);
