@@ -177,22 +177,30 @@ impl Refiner {
                 .iter()
                 .map(|c| c.last().expect("the parent level's channel"))
                 .collect();
+            let selects = |f: usize| {
+                !parent.is_hole(f)
+                    && if nonlinear {
+                        face_is_selected(parent, &features[i as usize - 1], &channels, f, mask, reg)
+                    } else {
+                        parent.face_vertices.count(f) != reg
+                    }
+            };
             let mut selection = Selection::new(parent);
             let mut consider = |f: usize| {
-                if parent.is_hole(f) {
-                    return;
-                }
-                let select = if nonlinear {
-                    face_is_selected(parent, &features[i as usize - 1], &channels, f, mask, reg)
-                } else {
-                    parent.face_vertices.count(f) != reg
-                };
-                if select {
+                if selects(f) {
                     selection.select_face(parent, f);
                 }
             };
             if i == 1 && !selected.is_empty() {
                 selected.iter().for_each(|&f| consider(f as usize));
+            } else if let Some(prev) = steps.last().filter(|s: &&SparseSplit| !s.triangles) {
+                // Past the first level of the quad split, only the children
+                // of selected faces can have features to isolate.
+                select::children_of_selected(prev).for_each(consider);
+                debug_assert!(
+                    (0..parent.face_count()).all(|f| selection.face(f) || !selects(f)),
+                    "a face outside the children of selected faces has features"
+                );
             } else {
                 (0..parent.face_count()).for_each(consider);
             }

@@ -8,6 +8,7 @@ use super::vtag::{CORNER, CREASE, DART, SMOOTH, Tag};
 use crate::options::AdaptiveOptions;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
+use crate::topology::refine::sparse::SparseSplit;
 
 /// The features to isolate at one level (`Far::internal::FeatureMask`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -263,4 +264,21 @@ pub(crate) fn face_has_features(
         return inf_sharp_face_has_features(composite, corners, mask);
     }
     false
+}
+
+/// The faces of a quad split's child level that may have features to
+/// isolate: the children of the faces `split` selected, in index order. A
+/// child of a face that was not selected holds that face's point, which is
+/// incomplete, and a face with an incomplete corner is never selected
+/// (`doesFaceHaveFeatures`; its face-varying features likewise): every
+/// child face is a quad, so no irregular face selects itself either. Not
+/// for Loop's split, whose middle children have no face point.
+pub(crate) fn children_of_selected(split: &SparseSplit) -> impl Iterator<Item = usize> + '_ {
+    debug_assert!(!split.triangles);
+    split
+        .child_face_parent
+        .iter()
+        .enumerate()
+        .filter(|&(_, &p)| split.selection.face(p as usize))
+        .map(|(c, _)| c)
 }
