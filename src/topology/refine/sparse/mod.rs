@@ -187,6 +187,45 @@ fn valid(i: u32) -> bool {
     i != INVALID
 }
 
+/// The parent's faces as a split walks them: with `QUADS`, every face is a
+/// quad with implicit offsets (each level the quad split made), so a face's
+/// corners are found without reading offsets and its size is a constant.
+#[derive(Clone, Copy)]
+struct Faces<'a, const QUADS: bool> {
+    relation: &'a Relation,
+    /// The face-vertices, concatenated.
+    verts: &'a [u32],
+    /// The face-edges, concatenated.
+    edges: &'a [u32],
+}
+
+impl<'a, const QUADS: bool> Faces<'a, QUADS> {
+    fn of(parent: &'a Level) -> Self {
+        debug_assert!(!QUADS || parent.face_vertices.uniform_size() == Some(4));
+        Faces {
+            relation: &parent.face_vertices,
+            verts: &parent.face_vertices.members,
+            edges: &parent.face_edges,
+        }
+    }
+
+    /// Where face `f`'s corners are in the concatenated tables.
+    #[inline(always)]
+    fn range(&self, f: usize) -> std::ops::Range<usize> {
+        if QUADS {
+            4 * f..4 * f + 4
+        } else {
+            self.relation.range(f)
+        }
+    }
+
+    /// Corner `k`'s vertex of face `f`.
+    #[inline(always)]
+    fn corner(&self, f: usize, k: usize) -> u32 {
+        self.verts[self.range(f).start + k]
+    }
+}
+
 /// Which children of the parent's faces are marked: the child faces, the
 /// child edges inside faces, the face points, and the transitional mask of
 /// each face (see [`SparseSplit`]'s fields).
@@ -229,13 +268,14 @@ fn number_children(
                 }
             }
         }
-        let faces = parent.edge_faces_of(e);
-        edge_transitional[e] = match faces {
-            [] | [_] => false,
-            [f0, rest @ ..] => rest
-                .iter()
-                .any(|&f| sel.face(f as usize) != sel.face(*f0 as usize)),
-        };
+        // Only a selected edge has a selected face on either side.
+        edge_transitional[e] = sel.edge(e)
+            && match parent.edge_faces_of(e) {
+                [] | [_] => false,
+                [f0, rest @ ..] => rest
+                    .iter()
+                    .any(|&f| sel.face(f as usize) != sel.face(*f0 as usize)),
+            };
     }
 
     let FaceMarks {
@@ -465,39 +505,45 @@ pub fn refine_sparse(
 }
 
 /// The halves of the parent's edges, in child index order: their vertices
-/// and their faces. `child_face(pf, k, end)` is the child face of parent face
-/// `pf` beside its edge `k` at the edge's end `end` (as the face runs), and
-/// that child's local index of the half.
+/// and their faces. `corner(pf, k)` is corner `k` of parent face `pf`;
+/// `child_face(pf, k, end)` is the child face of parent face `pf` beside its
+/// edge `k` at the edge's end `end` (as the face runs), and that child's
+/// local index of the half.
 fn edge_halves(
     parent: &Level,
     s: &SparseSplit,
     edge_vertices: &mut Table<[u32; 2]>,
     edge_faces: &mut Filler,
+    corner: impl Fn(usize, usize) -> u32,
     child_face: impl Fn(usize, usize, usize) -> (u32, usize),
 ) {
-    for e in 0..parent.edge_count() {
-        let ends = parent.edge_vertices[e];
-        for j in 0..2 {
-            let c = s.edge_child_edges[e][j];
+    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
+    let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
+    for (e, (&halves, &ends)) in s
+        .edge_child_edges
+        .iter()
+        .zip(parent_edge_vertices)
+        .enumerate()
+    {
+        if !valid(halves[0]) && !valid(halves[1]) {
+            continue;
+        }
+        let point = s.edge_child_vertex[e];
+        let faces = parent.edge_faces_of(e);
+        let locals = parent.edge_face_locals(e);
+        for (j, &c) in halves.iter().enumerate() {
             if !valid(c) {
                 continue;
             }
-            edge_vertices[c as usize] = [
-                s.edge_child_vertex[e],
-                s.vertex_child_vertex[ends[j] as usize],
-            ];
-            for (&pf, &k) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-            {
+            child_edge_vertices[c as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
+            for (&pf, &k) in faces.iter().zip(locals) {
                 let (pf, k) = (pf as usize, k as usize);
                 // Which child of the face the half lies in (a degenerate
                 // edge: by the half's own end).
                 let end = if ends[0] == ends[1] {
                     j
                 } else {
-                    (parent.face_verts(pf)[k] != ends[j]) as usize
+                    (corner(pf, k) != ends[j]) as usize
                 };
                 let (cf, local) = child_face(pf, k, end);
                 if valid(cf) {

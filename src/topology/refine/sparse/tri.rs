@@ -119,6 +119,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
         s,
         &mut edge_vertices,
         &mut edge_faces,
+        |pf, in_face| parent.face_verts(pf)[in_face],
         |pf, in_face, of_edge| {
             (
                 s.face_child_faces[4 * pf + (in_face + of_edge) % 3],
