@@ -385,11 +385,18 @@ fn number_children(
 }
 
 /// A relation filled element by element in index order, with a local index
-/// per member.
+/// per member, in [`Table`]s: memory recycled from the tables of a previous
+/// refinement where there is some (large tables are pooled maps), so a
+/// level's relations do not fault fresh pages in.
 struct Filler {
-    offsets: Vec<u32>,
-    members: Vec<u32>,
-    locals: Vec<u16>,
+    offsets: Table<u32>,
+    members: Table<u32>,
+    locals: Table<u16>,
+    /// Elements ended so far.
+    elements: usize,
+    /// Members pushed so far, also those past the room (not written: see
+    /// [`Filler::overflow`]).
+    len: usize,
 }
 
 impl Filler {
@@ -397,38 +404,71 @@ impl Filler {
     /// relation here is the transpose of one whose size is known: the
     /// faces of the edges are the edges of the faces, and so on).
     fn new(elements: usize, members: usize) -> Self {
-        let mut offsets = Vec::with_capacity(elements + 1);
-        offsets.push(0);
+        let mut offsets = Table::for_overwrite(elements + 1);
+        offsets[0] = 0;
         Filler {
             offsets,
-            members: Vec::with_capacity(members),
-            locals: Vec::with_capacity(members),
+            members: Table::for_overwrite(members),
+            locals: Table::for_overwrite(members),
+            elements: 0,
+            len: 0,
         }
     }
 
     #[inline]
     fn push(&mut self, member: u32, local: usize) {
-        self.members.push(member);
-        self.locals.push(local as u16);
+        if self.len < self.members.len() {
+            self.members[self.len] = member;
+            self.locals[self.len] = local as u16;
+        }
+        self.len += 1;
+    }
+
+    /// Members pushed so far.
+    #[inline]
+    fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Swaps members `i` and `j` (and their local indices).
+    #[inline]
+    fn swap(&mut self, i: usize, j: usize) {
+        if i.max(j) < self.members.len() {
+            self.members.swap(i, j);
+            self.locals.swap(i, j);
+        }
     }
 
     /// Ends the current element.
     #[inline]
     fn end(&mut self) {
-        self.offsets.push(self.members.len() as u32);
+        self.elements += 1;
+        if let Some(o) = self.offsets.get_mut(self.elements) {
+            *o = self.len as u32;
+        }
+    }
+
+    /// The room a second attempt needs when more members were pushed than
+    /// there was room for (a topology that is not its own transpose).
+    fn overflow(&self) -> Option<usize> {
+        (self.len > self.members.len()).then_some(self.len)
     }
 
     /// The relation, its local indices and its largest element.
-    fn finish(self) -> (Relation, Table<u16>, usize) {
+    fn finish(mut self) -> (Relation, Table<u16>, usize) {
+        debug_assert!(self.overflow().is_none());
+        debug_assert_eq!(self.elements + 1, self.offsets.len());
         let max = self
             .offsets
             .windows(2)
             .map(|w| (w[1] - w[0]) as usize)
             .max()
             .unwrap_or(0);
+        self.members.truncate(self.len);
+        self.locals.truncate(self.len);
         (
-            Relation::from_parts(self.offsets.into(), self.members.into()),
-            self.locals.into(),
+            Relation::from_parts(self.offsets, self.members),
+            self.locals,
             max,
         )
     }
@@ -442,6 +482,42 @@ struct Topology {
     edge_faces: Filler,
     vertex_faces: Filler,
     vertex_edges: Filler,
+}
+
+impl Topology {
+    /// The room each relation of [`Room`] needs when one overflowed.
+    fn overflow(&self) -> Option<Room> {
+        let [a, b, c] =
+            [&self.edge_faces, &self.vertex_faces, &self.vertex_edges].map(Filler::overflow);
+        (a.is_some() || b.is_some() || c.is_some()).then(|| Room {
+            edge_faces: a.unwrap_or(self.edge_faces.len),
+            vertex_faces: b.unwrap_or(self.vertex_faces.len),
+            vertex_edges: c.unwrap_or(self.vertex_edges.len),
+        })
+    }
+}
+
+/// Room for the members of a child level's edge-faces, vertex-faces and
+/// vertex-edges: by default what a topology that is its own transpose needs
+/// (every face's corners, every edge's two ends), or what an attempt that
+/// overflowed it counted.
+#[derive(Debug, Clone, Copy)]
+struct Room {
+    edge_faces: usize,
+    vertex_faces: usize,
+    vertex_edges: usize,
+}
+
+impl Room {
+    /// The default room of a child level of `faces` faces of `size` corners
+    /// and `edges` edges.
+    fn transposes(faces: usize, size: usize, edges: usize) -> Self {
+        Room {
+            edge_faces: faces * size,
+            vertex_faces: faces * size,
+            vertex_edges: 2 * edges,
+        }
+    }
 }
 
 /// Splits the selected part of `parent` — into quads (Catmull-Clark,
@@ -463,11 +539,17 @@ pub fn refine_sparse(
         let (_, child) = super::refine_level(parent, options, faces_first, super::Build::Full);
         return (s, child);
     }
-    let t = if triangles {
-        tri::topology(parent, &s)
-    } else {
-        quad::topology(parent, &s)
+    let topology = |room: Option<Room>| {
+        if triangles {
+            tri::topology(parent, &s, room)
+        } else {
+            quad::topology(parent, &s, room)
+        }
     };
+    let mut t = topology(None);
+    if let Some(room) = t.overflow() {
+        t = topology(Some(room));
+    }
     let (edge_faces, edge_face_local, max_edge_faces) = t.edge_faces.finish();
     let (vertex_faces, vertex_face_local, max_vf) = t.vertex_faces.finish();
     let (vertex_edges, vertex_edge_local, max_ve) = t.vertex_edges.finish();

@@ -4,7 +4,7 @@
 //! were not created left out.
 
 use super::{
-    FaceMarks, Faces, Filler, MARKED, Selection, SparseSplit, Topology, VertexParent, valid,
+    FaceMarks, Faces, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
 };
 use crate::topology::refine::{next, prev};
 use crate::topology::{Level, Relation, Table};
@@ -77,22 +77,23 @@ fn mark_faces_of<const QUADS: bool>(
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
     if parent.face_vertices.uniform_size() == Some(4) {
-        topology_of::<true>(parent, s)
+        topology_of::<true>(parent, s, room)
     } else {
-        topology_of::<false>(parent, s)
+        topology_of::<false>(parent, s, room)
     }
 }
 
 /// [`topology`], `QUADS` when every parent face is a quad with implicit
 /// offsets: a face's corners without its offsets, its size a constant.
-fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit) -> Topology {
+fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
     let faces = Faces::<QUADS>::of(parent);
     let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
+    let room = room.unwrap_or(Room::transposes(nf, 4, ne));
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
     let mut face_edges = Table::zeroed(4 * nf);
@@ -145,7 +146,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit) -> Topology {
     // Edge-vertices and edge-faces, child edges in index order: those
     // inside faces, then the halves of edges.
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne, 4 * nf);
+    let mut edge_faces = Filler::new(ne, room.edge_faces);
     for f in 0..parent.face_count() {
         let range = faces.range(f);
         let n = range.len();
@@ -197,10 +198,10 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, 4 * nf);
-    let mut vertex_edges = Filler::new(nv, 2 * ne);
+    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
+    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     for (c, &p) in s.child_vertex_parent.iter().enumerate() {
-        debug_assert_eq!(vertex_faces.offsets.len(), c + 1);
+        debug_assert_eq!(vertex_faces.elements, c);
         match p {
             VertexParent::Face(f) => {
                 let range = faces.range(f as usize);
@@ -221,7 +222,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit) -> Topology {
             VertexParent::Edge(e) => {
                 let e = e as usize;
                 let ends = parent_edge_vertices[e];
-                let first = vertex_edges.members.len();
+                let first = vertex_edges.len();
                 for &half in &s.edge_child_edges[e] {
                     if valid(half) {
                         vertex_edges.push(half, 0);
@@ -251,17 +252,11 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit) -> Topology {
                         vertex_edges.push(inner, 1);
                         // Order [half, inner edge of the first face, half, ...],
                         // the halves as the edge runs in that face.
-                        if i == 0 && vertex_edges.members.len() - first == 3 {
-                            let (m, l) = (
-                                &mut vertex_edges.members[first..],
-                                &mut vertex_edges.locals[first..],
-                            );
+                        if i == 0 && vertex_edges.len() - first == 3 {
                             if ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0] {
-                                m.swap(0, 1);
-                                l.swap(0, 1);
+                                vertex_edges.swap(first, first + 1);
                             }
-                            m.swap(1, 2);
-                            l.swap(1, 2);
+                            vertex_edges.swap(first + 1, first + 2);
                         }
                     }
                 }

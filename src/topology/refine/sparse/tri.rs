@@ -5,7 +5,9 @@
 //! `j`) and a middle one (child 3); its three inner edges are the middle
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
-use super::{FaceMarks, Filler, MARKED, Selection, SparseSplit, Topology, VertexParent, valid};
+use super::{
+    FaceMarks, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
+};
 use crate::topology::{Level, Relation, Table};
 
 /// Everything of a selected triangle; of any other with a selected corner,
@@ -54,14 +56,15 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
+    let room = room.unwrap_or(Room::transposes(nf, 3, ne));
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne, 3 * nf);
+    let mut edge_faces = Filler::new(ne, room.edge_faces);
 
     // Faces, and the inner edges in index order (parent face order).
     for f in 0..parent.face_count() {
@@ -129,8 +132,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, 3 * nf);
-    let mut vertex_edges = Filler::new(nv, 2 * ne);
+    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
+    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     for &p in &s.child_vertex_parent {
         match p {
             VertexParent::Edge(e) => {
