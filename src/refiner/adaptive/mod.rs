@@ -401,20 +401,20 @@ impl AdaptiveRefiner {
             offsets.clone()
         };
         Ok(ChildMaps {
-            face_child_faces: s.face_child_faces.clone(),
+            face_child_faces: s.face_child_faces.to_vec(),
             face_child_face_offsets: face_offsets,
-            face_child_edges: s.face_child_edges.clone(),
+            face_child_edges: s.face_child_edges.to_vec(),
             face_child_edge_offsets: offsets,
-            edge_child_edges: s.edge_child_edges.clone(),
+            edge_child_edges: s.edge_child_edges.to_vec(),
             // Loop's split has no face points: every one is invalid.
             face_child_vertex: if s.triangles {
                 vec![crate::INVALID_INDEX; parent.face_count()]
             } else {
-                s.face_child_vertex.clone()
+                s.face_child_vertex.to_vec()
             },
-            edge_child_vertex: s.edge_child_vertex.clone(),
-            vertex_child_vertex: s.vertex_child_vertex.clone(),
-            child_face_parent_face: s.child_face_parent.clone(),
+            edge_child_vertex: s.edge_child_vertex.to_vec(),
+            vertex_child_vertex: s.vertex_child_vertex.to_vec(),
+            child_face_parent_face: s.child_face_parent.to_vec(),
         })
     }
 

@@ -124,25 +124,25 @@ pub struct SparseSplit {
     /// The child faces of each parent face: one at each corner, parallel to
     /// the parent's face-vertices (quad split), or four per triangle, the
     /// middle one last (Loop).
-    pub face_child_faces: Vec<u32>,
+    pub face_child_faces: Table<u32>,
     /// The child edges inside each parent face, parallel to the parent's
     /// face-vertices: from the face point towards the point of face-edge `j`
     /// (quad split), or the edge of the middle triangle opposite corner `j`
     /// (Loop).
-    pub face_child_edges: Vec<u32>,
+    pub face_child_edges: Table<u32>,
     /// The two halves of each parent edge, the one at its end 0 first.
-    pub edge_child_edges: Vec<[u32; 2]>,
+    pub edge_child_edges: Table<[u32; 2]>,
     /// The face point of each parent face (empty under Loop, which has none).
-    pub face_child_vertex: Vec<u32>,
+    pub face_child_vertex: Table<u32>,
     /// The edge point of each parent edge.
-    pub edge_child_vertex: Vec<u32>,
+    pub edge_child_vertex: Table<u32>,
     /// The vertex point of each parent vertex.
-    pub vertex_child_vertex: Vec<u32>,
+    pub vertex_child_vertex: Table<u32>,
     /// The parent face of each child face.
-    pub child_face_parent: Vec<u32>,
+    pub child_face_parent: Table<u32>,
     /// The parent of each child edge: a face for the first
     /// [`SparseSplit::edges_from_faces`] child edges, an edge after them.
-    pub child_edge_parent: Vec<u32>,
+    pub child_edge_parent: Table<u32>,
     /// For a child edge of a parent edge, the end of the parent it touches
     /// (0 or 1); for a child edge of a face, its corner in the face.
     pub child_edge_in_parent: Vec<u8>,
@@ -230,9 +230,9 @@ impl<'a, const QUADS: bool> Faces<'a, QUADS> {
 /// child edges inside faces, the face points, and the transitional mask of
 /// each face (see [`SparseSplit`]'s fields).
 struct FaceMarks {
-    child_faces: Vec<u32>,
-    child_edges: Vec<u32>,
-    child_vertex: Vec<u32>,
+    child_faces: Table<u32>,
+    child_edges: Table<u32>,
+    child_vertex: Table<u32>,
     transitional: Vec<u8>,
 }
 
@@ -249,12 +249,15 @@ fn number_children(
     let sel = &selection;
 
     // Vertices: the child of each selected vertex.
-    let mut vertex_child_vertex: Vec<u32> = (0..nv).map(|v| sel.vertex(v) as u32).collect();
+    let mut vertex_child_vertex = Table::<u32>::for_overwrite(nv);
+    for (v, c) in vertex_child_vertex.iter_mut().enumerate() {
+        *c = sel.vertex(v) as u32;
+    }
 
     // Edges: both halves and the edge point of a selected edge; the half at
     // a selected end of any other edge, and its edge point.
-    let mut edge_child_edges = vec![[0u32; 2]; ne];
-    let mut edge_child_vertex = vec![0u32; ne];
+    let mut edge_child_edges = Table::<[u32; 2]>::zeroed(ne);
+    let mut edge_child_vertex = Table::<u32>::zeroed(ne);
     let mut edge_transitional = vec![false; ne];
     for e in 0..ne {
         if sel.edge(e) {
@@ -291,9 +294,9 @@ fn number_children(
     // Numbering, as OpenSubdiv sequences the marks.
     let child_faces = sequence(&mut face_child_faces, 0);
     let edges_from_faces = sequence(&mut face_child_edges, 0);
-    let edge_halves = bytemuck::cast_slice_mut::<[u32; 2], u32>(&mut edge_child_edges);
+    let edge_halves = bytemuck::cast_slice_mut::<[u32; 2], u32>(&mut edge_child_edges[..]);
     let edges_from_edges = sequence(edge_halves, edges_from_faces as u32);
-    let blocks: [&mut Vec<u32>; 3] = if faces_first {
+    let blocks: [&mut Table<u32>; 3] = if faces_first {
         [
             &mut face_child_vertex,
             &mut edge_child_vertex,
@@ -313,8 +316,8 @@ fn number_children(
     let child_vertices = first as usize;
 
     // Children to parents.
-    let mut child_face_parent = vec![0u32; child_faces];
-    let mut child_edge_parent = vec![0u32; edges_from_faces + edges_from_edges];
+    let mut child_face_parent = Table::<u32>::zeroed(child_faces);
+    let mut child_edge_parent = Table::<u32>::zeroed(edges_from_faces + edges_from_edges);
     let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
     for f in 0..parent.face_count() {
         let children = if triangles {

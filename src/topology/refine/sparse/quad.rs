@@ -30,9 +30,9 @@ fn mark_faces_of<const QUADS: bool>(
     let (nf, corners) = (parent.face_count(), parent.face_vertices.members.len());
     // Faces: everything of a selected face; of any other, the child face at
     // each selected corner, the two inner edges beside it and the face point.
-    let mut face_child_faces = vec![0u32; corners];
-    let mut face_child_edges = vec![0u32; corners];
-    let mut face_child_vertex = vec![0u32; nf];
+    let mut face_child_faces = Table::<u32>::zeroed(corners);
+    let mut face_child_edges = Table::<u32>::zeroed(corners);
+    let mut face_child_vertex = Table::<u32>::zeroed(nf);
     let mut face_transitional = vec![0u8; nf];
     for f in 0..nf {
         let range = faces.range(f);
@@ -96,7 +96,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
     let room = room.unwrap_or(Room::transposes(nf, 4, ne));
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
-    let mut face_edges = Table::zeroed(4 * nf);
+    let mut face_edges = Table::for_overwrite(4 * nf);
     {
         let child_verts: &mut [u32] = &mut face_vertices.members;
         let child_edges: &mut [u32] = &mut face_edges;
@@ -145,7 +145,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
 
     // Edge-vertices and edge-faces, child edges in index order: those
     // inside faces, then the halves of edges.
-    let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
+    let mut edge_vertices = Table::<[u32; 2]>::for_overwrite(ne);
     let mut edge_faces = Filler::new(ne, room.edge_faces);
     for f in 0..parent.face_count() {
         let range = faces.range(f);

@@ -16,8 +16,8 @@ use crate::topology::{Level, Relation, Table};
 /// its edges is transitional.
 pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[bool]) -> FaceMarks {
     let nf = parent.face_count();
-    let mut child_faces = vec![0u32; 4 * nf];
-    let mut child_edges = vec![0u32; parent.face_vertices.members.len()];
+    let mut child_faces = Table::<u32>::zeroed(4 * nf);
+    let mut child_edges = Table::<u32>::zeroed(parent.face_vertices.members.len());
     let mut transitional = vec![0u8; nf];
     for f in 0..nf {
         let edges = parent.face_vertices.range(f);
@@ -50,7 +50,7 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
     FaceMarks {
         child_faces,
         child_edges,
-        child_vertex: Vec::new(),
+        child_vertex: Table::new(),
         transitional,
     }
 }
