@@ -319,24 +319,31 @@ fn number_children(
     let mut child_face_parent = Table::<u32>::zeroed(child_faces);
     let mut child_edge_parent = Table::<u32>::zeroed(edges_from_faces + edges_from_edges);
     let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
-    for f in 0..parent.face_count() {
-        let children = if triangles {
-            4 * f..4 * f + 4
-        } else {
-            parent.face_vertices.range(f)
-        };
-        for &c in &face_child_faces[children] {
+    if !triangles && parent.face_vertices.uniform_size() == Some(4) {
+        // Every parent face a quad: corner `i` is corner `i % 4` of face
+        // `i / 4`, a flat pass over the corners.
+        for (i, &c) in face_child_faces.iter().enumerate() {
             if valid(c) {
-                child_face_parent[c as usize] = f as u32;
+                child_face_parent[c as usize] = (i >> 2) as u32;
             }
         }
-        for (j, i) in parent.face_vertices.range(f).enumerate() {
-            let c = face_child_edges[i];
+        for (i, &c) in face_child_edges.iter().enumerate() {
             if valid(c) {
-                child_edge_parent[c as usize] = f as u32;
-                child_edge_in_parent[c as usize] = j.min(255) as u8;
+                child_edge_parent[c as usize] = (i >> 2) as u32;
+                child_edge_in_parent[c as usize] = (i & 3) as u8;
             }
         }
+    } else {
+        face_parents(
+            parent,
+            triangles,
+            (&face_child_faces, &face_child_edges),
+            (
+                &mut child_face_parent,
+                &mut child_edge_parent,
+                &mut child_edge_in_parent,
+            ),
+        );
     }
     for (e, halves) in edge_child_edges.iter().enumerate() {
         for (j, &c) in halves.iter().enumerate() {
@@ -384,6 +391,39 @@ fn number_children(
         face_transitional,
         edge_transitional,
         triangles,
+    }
+}
+
+/// The parent face of each child face and of each child edge inside a
+/// face, with the edge's corner in the face.
+fn face_parents(
+    parent: &Level,
+    triangles: bool,
+    (face_child_faces, face_child_edges): (&[u32], &[u32]),
+    (child_face_parent, child_edge_parent, child_edge_in_parent): (
+        &mut [u32],
+        &mut [u32],
+        &mut [u8],
+    ),
+) {
+    for f in 0..parent.face_count() {
+        let children = if triangles {
+            4 * f..4 * f + 4
+        } else {
+            parent.face_vertices.range(f)
+        };
+        for &c in &face_child_faces[children] {
+            if valid(c) {
+                child_face_parent[c as usize] = f as u32;
+            }
+        }
+        for (j, i) in parent.face_vertices.range(f).enumerate() {
+            let c = face_child_edges[i];
+            if valid(c) {
+                child_edge_parent[c as usize] = f as u32;
+                child_edge_in_parent[c as usize] = j.min(255) as u8;
+            }
+        }
     }
 }
 
