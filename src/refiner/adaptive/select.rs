@@ -6,9 +6,9 @@
 use super::features::Features;
 use super::vtag::{CORNER, CREASE, DART, SMOOTH, Tag};
 use crate::options::AdaptiveOptions;
-use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use crate::topology::refine::sparse::SparseSplit;
+use crate::topology::{Level, VertexTag};
 
 /// The features to isolate at one level (`Far::internal::FeatureMask`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -219,6 +219,22 @@ pub(crate) fn face_has_features(
     // Irregular faces are always isolated.
     if verts.len() != regular_face_size {
         return true;
+    }
+    // Corners with refinement's default tags (smooth, nothing sharp, not on
+    // a boundary, manifold), the most common face: the steps below reduce to
+    // the adaptive features alone.
+    if verts
+        .iter()
+        .all(|&v| level.vertex_tag(v as usize) == VertexTag::default())
+    {
+        let (mut xordinary, mut incomplete, mut irregular) = (false, false, false);
+        for &v in verts {
+            let f = features[v as usize];
+            xordinary |= f.xordinary;
+            incomplete |= f.incomplete;
+            irregular |= f.incid_irreg_face;
+        }
+        return irregular || (!incomplete && xordinary && mask.xordinary_interior);
     }
     let mut corners = [Tag::default(); 4];
     for (slot, &v) in corners.iter_mut().zip(verts) {
