@@ -178,22 +178,30 @@ impl Refiner {
                 .iter()
                 .map(|c| c.last().expect("the parent level's channel"))
                 .collect();
+            let selects = |f: usize| {
+                !parent.is_hole(f)
+                    && if nonlinear {
+                        face_is_selected(parent, &features[i as usize - 1], &channels, f, mask, reg)
+                    } else {
+                        parent.face_vertices.count(f) != reg
+                    }
+            };
             let mut selection = Selection::new(parent);
             let mut consider = |f: usize| {
-                if parent.is_hole(f) {
-                    return;
-                }
-                let select = if nonlinear {
-                    face_is_selected(parent, &features[i as usize - 1], &channels, f, mask, reg)
-                } else {
-                    parent.face_vertices.count(f) != reg
-                };
-                if select {
+                if selects(f) {
                     selection.select_face(parent, f);
                 }
             };
             if i == 1 && !selected.is_empty() {
                 selected.iter().for_each(|&f| consider(f as usize));
+            } else if let Some(prev) = steps.last().filter(|s: &&SparseSplit| !s.triangles) {
+                // Past the first level of the quad split, only the children
+                // of selected faces can have features to isolate.
+                select::children_of_selected(prev).for_each(consider);
+                debug_assert!(
+                    (0..parent.face_count()).all(|f| selection.face(f) || !selects(f)),
+                    "a face outside the children of selected faces has features"
+                );
             } else {
                 (0..parent.face_count()).for_each(consider);
             }
@@ -394,20 +402,20 @@ impl AdaptiveRefiner {
             offsets.clone()
         };
         Ok(ChildMaps {
-            face_child_faces: s.face_child_faces.clone(),
+            face_child_faces: s.face_child_faces.to_vec(),
             face_child_face_offsets: face_offsets,
-            face_child_edges: s.face_child_edges.clone(),
+            face_child_edges: s.face_child_edges.to_vec(),
             face_child_edge_offsets: offsets,
-            edge_child_edges: s.edge_child_edges.clone(),
+            edge_child_edges: s.edge_child_edges.to_vec(),
             // Loop's split has no face points: every one is invalid.
             face_child_vertex: if s.triangles {
                 vec![crate::INVALID_INDEX; parent.face_count()]
             } else {
-                s.face_child_vertex.clone()
+                s.face_child_vertex.to_vec()
             },
-            edge_child_vertex: s.edge_child_vertex.clone(),
-            vertex_child_vertex: s.vertex_child_vertex.clone(),
-            child_face_parent_face: s.child_face_parent.clone(),
+            edge_child_vertex: s.edge_child_vertex.to_vec(),
+            vertex_child_vertex: s.vertex_child_vertex.to_vec(),
+            child_face_parent_face: s.child_face_parent.to_vec(),
         })
     }
 

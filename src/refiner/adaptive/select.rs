@@ -6,8 +6,9 @@
 use super::features::Features;
 use super::vtag::{CORNER, CREASE, DART, SMOOTH, Tag};
 use crate::options::AdaptiveOptions;
-use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
+use crate::topology::refine::sparse::SparseSplit;
+use crate::topology::{Level, VertexTag};
 
 /// The features to isolate at one level (`Far::internal::FeatureMask`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -219,6 +220,22 @@ pub(crate) fn face_has_features(
     if verts.len() != regular_face_size {
         return true;
     }
+    // Corners with refinement's default tags (smooth, nothing sharp, not on
+    // a boundary, manifold), the most common face: the steps below reduce to
+    // the adaptive features alone.
+    if verts
+        .iter()
+        .all(|&v| level.vertex_tag(v as usize) == VertexTag::default())
+    {
+        let (mut xordinary, mut incomplete, mut irregular) = (false, false, false);
+        for &v in verts {
+            let f = features[v as usize];
+            xordinary |= f.xordinary;
+            incomplete |= f.incomplete;
+            irregular |= f.incid_irreg_face;
+        }
+        return irregular || (!incomplete && xordinary && mask.xordinary_interior);
+    }
     let mut corners = [Tag::default(); 4];
     for (slot, &v) in corners.iter_mut().zip(verts) {
         *slot = Tag::of(level, features, v as usize);
@@ -263,4 +280,21 @@ pub(crate) fn face_has_features(
         return inf_sharp_face_has_features(composite, corners, mask);
     }
     false
+}
+
+/// The faces of a quad split's child level that may have features to
+/// isolate: the children of the faces `split` selected, in index order. A
+/// child of a face that was not selected holds that face's point, which is
+/// incomplete, and a face with an incomplete corner is never selected
+/// (`doesFaceHaveFeatures`; its face-varying features likewise): every
+/// child face is a quad, so no irregular face selects itself either. Not
+/// for Loop's split, whose middle children have no face point.
+pub(crate) fn children_of_selected(split: &SparseSplit) -> impl Iterator<Item = usize> + '_ {
+    debug_assert!(!split.triangles);
+    split
+        .child_face_parent
+        .iter()
+        .enumerate()
+        .filter(|&(_, &p)| split.selection.face(p as usize))
+        .map(|(c, _)| c)
 }

@@ -124,25 +124,25 @@ pub struct SparseSplit {
     /// The child faces of each parent face: one at each corner, parallel to
     /// the parent's face-vertices (quad split), or four per triangle, the
     /// middle one last (Loop).
-    pub face_child_faces: Vec<u32>,
+    pub face_child_faces: Table<u32>,
     /// The child edges inside each parent face, parallel to the parent's
     /// face-vertices: from the face point towards the point of face-edge `j`
     /// (quad split), or the edge of the middle triangle opposite corner `j`
     /// (Loop).
-    pub face_child_edges: Vec<u32>,
+    pub face_child_edges: Table<u32>,
     /// The two halves of each parent edge, the one at its end 0 first.
-    pub edge_child_edges: Vec<[u32; 2]>,
+    pub edge_child_edges: Table<[u32; 2]>,
     /// The face point of each parent face (empty under Loop, which has none).
-    pub face_child_vertex: Vec<u32>,
+    pub face_child_vertex: Table<u32>,
     /// The edge point of each parent edge.
-    pub edge_child_vertex: Vec<u32>,
+    pub edge_child_vertex: Table<u32>,
     /// The vertex point of each parent vertex.
-    pub vertex_child_vertex: Vec<u32>,
+    pub vertex_child_vertex: Table<u32>,
     /// The parent face of each child face.
-    pub child_face_parent: Vec<u32>,
+    pub child_face_parent: Table<u32>,
     /// The parent of each child edge: a face for the first
     /// [`SparseSplit::edges_from_faces`] child edges, an edge after them.
-    pub child_edge_parent: Vec<u32>,
+    pub child_edge_parent: Table<u32>,
     /// For a child edge of a parent edge, the end of the parent it touches
     /// (0 or 1); for a child edge of a face, its corner in the face.
     pub child_edge_in_parent: Vec<u8>,
@@ -187,13 +187,52 @@ fn valid(i: u32) -> bool {
     i != INVALID
 }
 
+/// The parent's faces as a split walks them: with `QUADS`, every face is a
+/// quad with implicit offsets (each level the quad split made), so a face's
+/// corners are found without reading offsets and its size is a constant.
+#[derive(Clone, Copy)]
+struct Faces<'a, const QUADS: bool> {
+    relation: &'a Relation,
+    /// The face-vertices, concatenated.
+    verts: &'a [u32],
+    /// The face-edges, concatenated.
+    edges: &'a [u32],
+}
+
+impl<'a, const QUADS: bool> Faces<'a, QUADS> {
+    fn of(parent: &'a Level) -> Self {
+        debug_assert!(!QUADS || parent.face_vertices.uniform_size() == Some(4));
+        Faces {
+            relation: &parent.face_vertices,
+            verts: &parent.face_vertices.members,
+            edges: &parent.face_edges,
+        }
+    }
+
+    /// Where face `f`'s corners are in the concatenated tables.
+    #[inline(always)]
+    fn range(&self, f: usize) -> std::ops::Range<usize> {
+        if QUADS {
+            4 * f..4 * f + 4
+        } else {
+            self.relation.range(f)
+        }
+    }
+
+    /// Corner `k`'s vertex of face `f`.
+    #[inline(always)]
+    fn corner(&self, f: usize, k: usize) -> u32 {
+        self.verts[self.range(f).start + k]
+    }
+}
+
 /// Which children of the parent's faces are marked: the child faces, the
 /// child edges inside faces, the face points, and the transitional mask of
 /// each face (see [`SparseSplit`]'s fields).
 struct FaceMarks {
-    child_faces: Vec<u32>,
-    child_edges: Vec<u32>,
-    child_vertex: Vec<u32>,
+    child_faces: Table<u32>,
+    child_edges: Table<u32>,
+    child_vertex: Table<u32>,
     transitional: Vec<u8>,
 }
 
@@ -210,12 +249,15 @@ fn number_children(
     let sel = &selection;
 
     // Vertices: the child of each selected vertex.
-    let mut vertex_child_vertex: Vec<u32> = (0..nv).map(|v| sel.vertex(v) as u32).collect();
+    let mut vertex_child_vertex = Table::<u32>::for_overwrite(nv);
+    for (v, c) in vertex_child_vertex.iter_mut().enumerate() {
+        *c = sel.vertex(v) as u32;
+    }
 
     // Edges: both halves and the edge point of a selected edge; the half at
     // a selected end of any other edge, and its edge point.
-    let mut edge_child_edges = vec![[0u32; 2]; ne];
-    let mut edge_child_vertex = vec![0u32; ne];
+    let mut edge_child_edges = Table::<[u32; 2]>::zeroed(ne);
+    let mut edge_child_vertex = Table::<u32>::zeroed(ne);
     let mut edge_transitional = vec![false; ne];
     for e in 0..ne {
         if sel.edge(e) {
@@ -229,13 +271,14 @@ fn number_children(
                 }
             }
         }
-        let faces = parent.edge_faces_of(e);
-        edge_transitional[e] = match faces {
-            [] | [_] => false,
-            [f0, rest @ ..] => rest
-                .iter()
-                .any(|&f| sel.face(f as usize) != sel.face(*f0 as usize)),
-        };
+        // Only a selected edge has a selected face on either side.
+        edge_transitional[e] = sel.edge(e)
+            && match parent.edge_faces_of(e) {
+                [] | [_] => false,
+                [f0, rest @ ..] => rest
+                    .iter()
+                    .any(|&f| sel.face(f as usize) != sel.face(*f0 as usize)),
+            };
     }
 
     let FaceMarks {
@@ -251,9 +294,9 @@ fn number_children(
     // Numbering, as OpenSubdiv sequences the marks.
     let child_faces = sequence(&mut face_child_faces, 0);
     let edges_from_faces = sequence(&mut face_child_edges, 0);
-    let edge_halves = bytemuck::cast_slice_mut::<[u32; 2], u32>(&mut edge_child_edges);
+    let edge_halves = bytemuck::cast_slice_mut::<[u32; 2], u32>(&mut edge_child_edges[..]);
     let edges_from_edges = sequence(edge_halves, edges_from_faces as u32);
-    let blocks: [&mut Vec<u32>; 3] = if faces_first {
+    let blocks: [&mut Table<u32>; 3] = if faces_first {
         [
             &mut face_child_vertex,
             &mut edge_child_vertex,
@@ -273,27 +316,34 @@ fn number_children(
     let child_vertices = first as usize;
 
     // Children to parents.
-    let mut child_face_parent = vec![0u32; child_faces];
-    let mut child_edge_parent = vec![0u32; edges_from_faces + edges_from_edges];
+    let mut child_face_parent = Table::<u32>::zeroed(child_faces);
+    let mut child_edge_parent = Table::<u32>::zeroed(edges_from_faces + edges_from_edges);
     let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
-    for f in 0..parent.face_count() {
-        let children = if triangles {
-            4 * f..4 * f + 4
-        } else {
-            parent.face_vertices.range(f)
-        };
-        for &c in &face_child_faces[children] {
+    if !triangles && parent.face_vertices.uniform_size() == Some(4) {
+        // Every parent face a quad: corner `i` is corner `i % 4` of face
+        // `i / 4`, a flat pass over the corners.
+        for (i, &c) in face_child_faces.iter().enumerate() {
             if valid(c) {
-                child_face_parent[c as usize] = f as u32;
+                child_face_parent[c as usize] = (i >> 2) as u32;
             }
         }
-        for (j, i) in parent.face_vertices.range(f).enumerate() {
-            let c = face_child_edges[i];
+        for (i, &c) in face_child_edges.iter().enumerate() {
             if valid(c) {
-                child_edge_parent[c as usize] = f as u32;
-                child_edge_in_parent[c as usize] = j.min(255) as u8;
+                child_edge_parent[c as usize] = (i >> 2) as u32;
+                child_edge_in_parent[c as usize] = (i & 3) as u8;
             }
         }
+    } else {
+        face_parents(
+            parent,
+            triangles,
+            (&face_child_faces, &face_child_edges),
+            (
+                &mut child_face_parent,
+                &mut child_edge_parent,
+                &mut child_edge_in_parent,
+            ),
+        );
     }
     for (e, halves) in edge_child_edges.iter().enumerate() {
         for (j, &c) in halves.iter().enumerate() {
@@ -344,12 +394,52 @@ fn number_children(
     }
 }
 
+/// The parent face of each child face and of each child edge inside a
+/// face, with the edge's corner in the face.
+fn face_parents(
+    parent: &Level,
+    triangles: bool,
+    (face_child_faces, face_child_edges): (&[u32], &[u32]),
+    (child_face_parent, child_edge_parent, child_edge_in_parent): (
+        &mut [u32],
+        &mut [u32],
+        &mut [u8],
+    ),
+) {
+    for f in 0..parent.face_count() {
+        let children = if triangles {
+            4 * f..4 * f + 4
+        } else {
+            parent.face_vertices.range(f)
+        };
+        for &c in &face_child_faces[children] {
+            if valid(c) {
+                child_face_parent[c as usize] = f as u32;
+            }
+        }
+        for (j, i) in parent.face_vertices.range(f).enumerate() {
+            let c = face_child_edges[i];
+            if valid(c) {
+                child_edge_parent[c as usize] = f as u32;
+                child_edge_in_parent[c as usize] = j.min(255) as u8;
+            }
+        }
+    }
+}
+
 /// A relation filled element by element in index order, with a local index
-/// per member.
+/// per member, in [`Table`]s: memory recycled from the tables of a previous
+/// refinement where there is some (large tables are pooled maps), so a
+/// level's relations do not fault fresh pages in.
 struct Filler {
-    offsets: Vec<u32>,
-    members: Vec<u32>,
-    locals: Vec<u16>,
+    offsets: Table<u32>,
+    members: Table<u32>,
+    locals: Table<u16>,
+    /// Elements ended so far.
+    elements: usize,
+    /// Members pushed so far, also those past the room (not written: see
+    /// [`Filler::overflow`]).
+    len: usize,
 }
 
 impl Filler {
@@ -357,38 +447,71 @@ impl Filler {
     /// relation here is the transpose of one whose size is known: the
     /// faces of the edges are the edges of the faces, and so on).
     fn new(elements: usize, members: usize) -> Self {
-        let mut offsets = Vec::with_capacity(elements + 1);
-        offsets.push(0);
+        let mut offsets = Table::for_overwrite(elements + 1);
+        offsets[0] = 0;
         Filler {
             offsets,
-            members: Vec::with_capacity(members),
-            locals: Vec::with_capacity(members),
+            members: Table::for_overwrite(members),
+            locals: Table::for_overwrite(members),
+            elements: 0,
+            len: 0,
         }
     }
 
     #[inline]
     fn push(&mut self, member: u32, local: usize) {
-        self.members.push(member);
-        self.locals.push(local as u16);
+        if self.len < self.members.len() {
+            self.members[self.len] = member;
+            self.locals[self.len] = local as u16;
+        }
+        self.len += 1;
+    }
+
+    /// Members pushed so far.
+    #[inline]
+    fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Swaps members `i` and `j` (and their local indices).
+    #[inline]
+    fn swap(&mut self, i: usize, j: usize) {
+        if i.max(j) < self.members.len() {
+            self.members.swap(i, j);
+            self.locals.swap(i, j);
+        }
     }
 
     /// Ends the current element.
     #[inline]
     fn end(&mut self) {
-        self.offsets.push(self.members.len() as u32);
+        self.elements += 1;
+        if let Some(o) = self.offsets.get_mut(self.elements) {
+            *o = self.len as u32;
+        }
+    }
+
+    /// The room a second attempt needs when more members were pushed than
+    /// there was room for (a topology that is not its own transpose).
+    fn overflow(&self) -> Option<usize> {
+        (self.len > self.members.len()).then_some(self.len)
     }
 
     /// The relation, its local indices and its largest element.
-    fn finish(self) -> (Relation, Table<u16>, usize) {
+    fn finish(mut self) -> (Relation, Table<u16>, usize) {
+        debug_assert!(self.overflow().is_none());
+        debug_assert_eq!(self.elements + 1, self.offsets.len());
         let max = self
             .offsets
             .windows(2)
             .map(|w| (w[1] - w[0]) as usize)
             .max()
             .unwrap_or(0);
+        self.members.truncate(self.len);
+        self.locals.truncate(self.len);
         (
-            Relation::from_parts(self.offsets.into(), self.members.into()),
-            self.locals.into(),
+            Relation::from_parts(self.offsets, self.members),
+            self.locals,
             max,
         )
     }
@@ -402,6 +525,42 @@ struct Topology {
     edge_faces: Filler,
     vertex_faces: Filler,
     vertex_edges: Filler,
+}
+
+impl Topology {
+    /// The room each relation of [`Room`] needs when one overflowed.
+    fn overflow(&self) -> Option<Room> {
+        let [a, b, c] =
+            [&self.edge_faces, &self.vertex_faces, &self.vertex_edges].map(Filler::overflow);
+        (a.is_some() || b.is_some() || c.is_some()).then(|| Room {
+            edge_faces: a.unwrap_or(self.edge_faces.len),
+            vertex_faces: b.unwrap_or(self.vertex_faces.len),
+            vertex_edges: c.unwrap_or(self.vertex_edges.len),
+        })
+    }
+}
+
+/// Room for the members of a child level's edge-faces, vertex-faces and
+/// vertex-edges: by default what a topology that is its own transpose needs
+/// (every face's corners, every edge's two ends), or what an attempt that
+/// overflowed it counted.
+#[derive(Debug, Clone, Copy)]
+struct Room {
+    edge_faces: usize,
+    vertex_faces: usize,
+    vertex_edges: usize,
+}
+
+impl Room {
+    /// The default room of a child level of `faces` faces of `size` corners
+    /// and `edges` edges.
+    fn transposes(faces: usize, size: usize, edges: usize) -> Self {
+        Room {
+            edge_faces: faces * size,
+            vertex_faces: faces * size,
+            vertex_edges: 2 * edges,
+        }
+    }
 }
 
 /// Splits the selected part of `parent` — into quads (Catmull-Clark,
@@ -423,11 +582,17 @@ pub fn refine_sparse(
         let (_, child) = super::refine_level(parent, options, faces_first, super::Build::Full);
         return (s, child);
     }
-    let t = if triangles {
-        tri::topology(parent, &s)
-    } else {
-        quad::topology(parent, &s)
+    let topology = |room: Option<Room>| {
+        if triangles {
+            tri::topology(parent, &s, room)
+        } else {
+            quad::topology(parent, &s, room)
+        }
     };
+    let mut t = topology(None);
+    if let Some(room) = t.overflow() {
+        t = topology(Some(room));
+    }
     let (edge_faces, edge_face_local, max_edge_faces) = t.edge_faces.finish();
     let (vertex_faces, vertex_face_local, max_vf) = t.vertex_faces.finish();
     let (vertex_edges, vertex_edge_local, max_ve) = t.vertex_edges.finish();
@@ -465,39 +630,45 @@ pub fn refine_sparse(
 }
 
 /// The halves of the parent's edges, in child index order: their vertices
-/// and their faces. `child_face(pf, k, end)` is the child face of parent face
-/// `pf` beside its edge `k` at the edge's end `end` (as the face runs), and
-/// that child's local index of the half.
+/// and their faces. `corner(pf, k)` is corner `k` of parent face `pf`;
+/// `child_face(pf, k, end)` is the child face of parent face `pf` beside its
+/// edge `k` at the edge's end `end` (as the face runs), and that child's
+/// local index of the half.
 fn edge_halves(
     parent: &Level,
     s: &SparseSplit,
     edge_vertices: &mut Table<[u32; 2]>,
     edge_faces: &mut Filler,
+    corner: impl Fn(usize, usize) -> u32,
     child_face: impl Fn(usize, usize, usize) -> (u32, usize),
 ) {
-    for e in 0..parent.edge_count() {
-        let ends = parent.edge_vertices[e];
-        for j in 0..2 {
-            let c = s.edge_child_edges[e][j];
+    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
+    let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
+    for (e, (&halves, &ends)) in s
+        .edge_child_edges
+        .iter()
+        .zip(parent_edge_vertices)
+        .enumerate()
+    {
+        if !valid(halves[0]) && !valid(halves[1]) {
+            continue;
+        }
+        let point = s.edge_child_vertex[e];
+        let faces = parent.edge_faces_of(e);
+        let locals = parent.edge_face_locals(e);
+        for (j, &c) in halves.iter().enumerate() {
             if !valid(c) {
                 continue;
             }
-            edge_vertices[c as usize] = [
-                s.edge_child_vertex[e],
-                s.vertex_child_vertex[ends[j] as usize],
-            ];
-            for (&pf, &k) in parent
-                .edge_faces_of(e)
-                .iter()
-                .zip(parent.edge_face_locals(e))
-            {
+            child_edge_vertices[c as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
+            for (&pf, &k) in faces.iter().zip(locals) {
                 let (pf, k) = (pf as usize, k as usize);
                 // Which child of the face the half lies in (a degenerate
                 // edge: by the half's own end).
                 let end = if ends[0] == ends[1] {
                     j
                 } else {
-                    (parent.face_verts(pf)[k] != ends[j]) as usize
+                    (corner(pf, k) != ends[j]) as usize
                 };
                 let (cf, local) = child_face(pf, k, end);
                 if valid(cf) {

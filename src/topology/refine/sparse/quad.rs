@@ -3,24 +3,41 @@
 //! level's relations (`QuadRefinement::populate*Relation`), children that
 //! were not created left out.
 
-use super::{FaceMarks, Filler, MARKED, Selection, SparseSplit, Topology, VertexParent, valid};
+use super::{
+    FaceMarks, Faces, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
+};
 use crate::topology::refine::{next, prev};
 use crate::topology::{Level, Relation, Table};
 
 /// Everything of a selected face; of any other, the child face at each
 /// selected corner, the two inner edges beside it and the face point.
 pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[bool]) -> FaceMarks {
+    if parent.face_vertices.uniform_size() == Some(4) {
+        mark_faces_of::<true>(parent, sel, edge_transitional)
+    } else {
+        mark_faces_of::<false>(parent, sel, edge_transitional)
+    }
+}
+
+/// [`mark_faces`], `QUADS` when every parent face is a quad with implicit
+/// offsets (every level the quad split refined).
+fn mark_faces_of<const QUADS: bool>(
+    parent: &Level,
+    sel: &Selection,
+    edge_transitional: &[bool],
+) -> FaceMarks {
+    let faces = Faces::<QUADS>::of(parent);
     let (nf, corners) = (parent.face_count(), parent.face_vertices.members.len());
     // Faces: everything of a selected face; of any other, the child face at
     // each selected corner, the two inner edges beside it and the face point.
-    let mut face_child_faces = vec![0u32; corners];
-    let mut face_child_edges = vec![0u32; corners];
-    let mut face_child_vertex = vec![0u32; nf];
+    let mut face_child_faces = Table::<u32>::zeroed(corners);
+    let mut face_child_edges = Table::<u32>::zeroed(corners);
+    let mut face_child_vertex = Table::<u32>::zeroed(nf);
     let mut face_transitional = vec![0u8; nf];
     for f in 0..nf {
-        let range = parent.face_vertices.range(f);
+        let range = faces.range(f);
         let n = range.len();
-        let verts = parent.face_verts(f);
+        let verts = &faces.verts[range.clone()];
         if sel.face(f) {
             face_child_faces[range.clone()].fill(MARKED);
             face_child_edges[range].fill(MARKED);
@@ -38,7 +55,7 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
         }
         if marked {
             face_child_vertex[f] = MARKED;
-            let edges = parent.face_edges_of(f);
+            let edges = &faces.edges[range];
             face_transitional[f] = if n <= 4 {
                 edges
                     .iter()
@@ -60,73 +77,95 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
+    if parent.face_vertices.uniform_size() == Some(4) {
+        topology_of::<true>(parent, s, room)
+    } else {
+        topology_of::<false>(parent, s, room)
+    }
+}
+
+/// [`topology`], `QUADS` when every parent face is a quad with implicit
+/// offsets: a face's corners without its offsets, its size a constant.
+fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
+    let faces = Faces::<QUADS>::of(parent);
+    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
+    let room = room.unwrap_or(Room::transposes(nf, 4, ne));
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
-    let mut face_edges = Table::zeroed(4 * nf);
-    for f in 0..parent.face_count() {
-        let range = parent.face_vertices.range(f);
-        let n = range.len();
-        let (verts, edges) = (parent.face_verts(f), parent.face_edges_of(f));
-        for j in 0..n {
-            let c = s.face_child_faces[range.start + j];
-            if !valid(c) {
-                continue;
-            }
-            let jp = prev(j, n);
-            let (e_prev, e_next) = (edges[jp] as usize, edges[j] as usize);
-            let corner = verts[j];
-            let vs = [
-                s.vertex_child_vertex[corner as usize],
-                s.edge_child_vertex[e_next],
-                s.face_child_vertex[f],
-                s.edge_child_vertex[e_prev],
-            ];
-            let [p0, p1] = parent.edge_vertices[e_prev];
-            let in_prev = if p0 != p1 { (p0 != corner) as usize } else { 1 };
-            let [n0, n1] = parent.edge_vertices[e_next];
-            let in_next = if n0 != n1 { (n0 != corner) as usize } else { 0 };
-            let es = [
-                s.edge_child_edges[e_next][in_next],
-                s.face_child_edges[range.start + j],
-                s.face_child_edges[range.start + jp],
-                s.edge_child_edges[e_prev][in_prev],
-            ];
-            // A quad's children keep its orientation: the corner's child
-            // sits at position j.
-            let rot = if n == 4 { j } else { 0 };
-            let (cv, ce) = (c as usize * 4, c as usize * 4);
-            for k in 0..4 {
-                face_vertices.members[cv + (rot + k) % 4] = vs[k];
-                face_edges[ce + (rot + k) % 4] = es[k];
+    let mut face_edges = Table::for_overwrite(4 * nf);
+    {
+        let child_verts: &mut [u32] = &mut face_vertices.members;
+        let child_edges: &mut [u32] = &mut face_edges;
+        for f in 0..parent.face_count() {
+            let range = faces.range(f);
+            let n = range.len();
+            let (verts, edges) = (&faces.verts[range.clone()], &faces.edges[range.clone()]);
+            let children = &s.face_child_faces[range.clone()];
+            let inner = &s.face_child_edges[range];
+            for j in 0..n {
+                let c = children[j];
+                if !valid(c) {
+                    continue;
+                }
+                let jp = prev(j, n);
+                let (e_prev, e_next) = (edges[jp] as usize, edges[j] as usize);
+                let corner = verts[j];
+                let vs = [
+                    s.vertex_child_vertex[corner as usize],
+                    s.edge_child_vertex[e_next],
+                    s.face_child_vertex[f],
+                    s.edge_child_vertex[e_prev],
+                ];
+                let [p0, p1] = parent_edge_vertices[e_prev];
+                let in_prev = if p0 != p1 { (p0 != corner) as usize } else { 1 };
+                let [n0, n1] = parent_edge_vertices[e_next];
+                let in_next = if n0 != n1 { (n0 != corner) as usize } else { 0 };
+                let es = [
+                    s.edge_child_edges[e_next][in_next],
+                    inner[j],
+                    inner[jp],
+                    s.edge_child_edges[e_prev][in_prev],
+                ];
+                // A quad's children keep its orientation: the corner's child
+                // sits at position j.
+                let rot = if n == 4 { j } else { 0 };
+                let cv = &mut child_verts[c as usize * 4..c as usize * 4 + 4];
+                let ce = &mut child_edges[c as usize * 4..c as usize * 4 + 4];
+                for k in 0..4 {
+                    cv[(rot + k) & 3] = vs[k];
+                    ce[(rot + k) & 3] = es[k];
+                }
             }
         }
     }
 
     // Edge-vertices and edge-faces, child edges in index order: those
     // inside faces, then the halves of edges.
-    let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne, 4 * nf);
+    let mut edge_vertices = Table::<[u32; 2]>::for_overwrite(ne);
+    let mut edge_faces = Filler::new(ne, room.edge_faces);
     for f in 0..parent.face_count() {
-        let range = parent.face_vertices.range(f);
+        let range = faces.range(f);
         let n = range.len();
-        let edges = parent.face_edges_of(f);
+        let edges = &faces.edges[range.clone()];
+        let children = &s.face_child_faces[range.clone()];
+        let inner = &s.face_child_edges[range];
         for (j, &edge) in edges.iter().enumerate() {
-            let c = s.face_child_edges[range.start + j];
+            let c = inner[j];
             if !valid(c) {
                 continue;
             }
             edge_vertices[c as usize] =
                 [s.face_child_vertex[f], s.edge_child_vertex[edge as usize]];
             let jn = next(j, n);
-            let here = s.face_child_faces[range.start + j];
+            let here = children[j];
             if valid(here) {
                 edge_faces.push(here, if n == 4 { jn } else { 1 });
             }
-            let there = s.face_child_faces[range.start + jn];
+            let there = children[jn];
             if valid(there) {
                 edge_faces.push(there, if n == 4 { (jn + 2) & 3 } else { 2 });
             }
@@ -138,8 +177,9 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
         s,
         &mut edge_vertices,
         &mut edge_faces,
+        |pf, in_face| faces.corner(pf, in_face),
         |pf, in_face, of_edge| {
-            let range = parent.face_vertices.range(pf);
+            let range = faces.range(pf);
             let n = range.len();
             let local = if n == 4 {
                 in_face
@@ -148,28 +188,32 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
             } else {
                 0
             };
-            (
-                s.face_child_faces[range.start + (in_face + of_edge) % n],
-                local,
-            )
+            let corner = if of_edge == 0 {
+                in_face
+            } else {
+                next(in_face, n)
+            };
+            (s.face_child_faces[range.start + corner], local)
         },
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, 4 * nf);
-    let mut vertex_edges = Filler::new(nv, 2 * ne);
+    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
+    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     for (c, &p) in s.child_vertex_parent.iter().enumerate() {
-        debug_assert_eq!(vertex_faces.offsets.len(), c + 1);
+        debug_assert_eq!(vertex_faces.elements, c);
         match p {
             VertexParent::Face(f) => {
-                let range = parent.face_vertices.range(f as usize);
+                let range = faces.range(f as usize);
                 let n = range.len();
+                let children = &s.face_child_faces[range.clone()];
+                let inner = &s.face_child_edges[range];
                 for j in 0..n {
-                    let cf = s.face_child_faces[range.start + j];
+                    let cf = children[j];
                     if valid(cf) {
                         vertex_faces.push(cf, if n == 4 { (j + 2) & 3 } else { 2 });
                     }
-                    let lead = s.face_child_edges[range.start + prev(j, n)];
+                    let lead = inner[prev(j, n)];
                     if valid(lead) {
                         vertex_edges.push(lead, 0);
                     }
@@ -177,25 +221,29 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
             }
             VertexParent::Edge(e) => {
                 let e = e as usize;
-                let ends = parent.edge_vertices[e];
+                let ends = parent_edge_vertices[e];
+                let first = vertex_edges.len();
                 for &half in &s.edge_child_edges[e] {
                     if valid(half) {
                         vertex_edges.push(half, 0);
                     }
                 }
-                let first = vertex_edges.offsets[c] as usize;
-                let faces = parent.edge_faces_of(e);
-                for (i, (&pf, &in_face)) in faces.iter().zip(parent.edge_face_locals(e)).enumerate()
+                let edge_faces = parent.edge_faces_of(e);
+                for (i, (&pf, &in_face)) in edge_faces
+                    .iter()
+                    .zip(parent.edge_face_locals(e))
+                    .enumerate()
                 {
                     let (pf, in_face) = (pf as usize, in_face as usize);
-                    let range = parent.face_vertices.range(pf);
+                    let range = faces.range(pf);
                     let n = range.len();
                     let (c0, c1) = (in_face, next(in_face, n));
-                    let f1 = s.face_child_faces[range.start + c1];
+                    let children = &s.face_child_faces[range.clone()];
+                    let f1 = children[c1];
                     if valid(f1) {
                         vertex_faces.push(f1, if n == 4 { c0 } else { 3 });
                     }
-                    let f0 = s.face_child_faces[range.start + c0];
+                    let f0 = children[c0];
                     if valid(f0) {
                         vertex_faces.push(f0, if n == 4 { c1 } else { 1 });
                     }
@@ -204,15 +252,11 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
                         vertex_edges.push(inner, 1);
                         // Order [half, inner edge of the first face, half, ...],
                         // the halves as the edge runs in that face.
-                        if i == 0 && vertex_edges.members.len() - first == 3 {
-                            let m = &mut vertex_edges.members[first..];
-                            let l = &mut vertex_edges.locals[first..];
-                            if ends[0] != ends[1] && parent.face_verts(pf)[in_face] == ends[0] {
-                                m.swap(0, 1);
-                                l.swap(0, 1);
+                        if i == 0 && vertex_edges.len() - first == 3 {
+                            if ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0] {
+                                vertex_edges.swap(first, first + 1);
                             }
-                            m.swap(1, 2);
-                            l.swap(1, 2);
+                            vertex_edges.swap(first + 1, first + 2);
                         }
                     }
                 }
@@ -224,7 +268,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
                     v as usize,
                     (&mut vertex_faces, &mut vertex_edges),
                     |pf, k| {
-                        let range = parent.face_vertices.range(pf);
+                        let range = faces.range(pf);
                         let local = if range.len() == 4 { k } else { 0 };
                         (s.face_child_faces[range.start + k], local)
                     },

@@ -5,7 +5,9 @@
 //! `j`) and a middle one (child 3); its three inner edges are the middle
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
-use super::{FaceMarks, Filler, MARKED, Selection, SparseSplit, Topology, VertexParent, valid};
+use super::{
+    FaceMarks, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
+};
 use crate::topology::{Level, Relation, Table};
 
 /// Everything of a selected triangle; of any other with a selected corner,
@@ -14,8 +16,8 @@ use crate::topology::{Level, Relation, Table};
 /// its edges is transitional.
 pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[bool]) -> FaceMarks {
     let nf = parent.face_count();
-    let mut child_faces = vec![0u32; 4 * nf];
-    let mut child_edges = vec![0u32; parent.face_vertices.members.len()];
+    let mut child_faces = Table::<u32>::zeroed(4 * nf);
+    let mut child_edges = Table::<u32>::zeroed(parent.face_vertices.members.len());
     let mut transitional = vec![0u8; nf];
     for f in 0..nf {
         let edges = parent.face_vertices.range(f);
@@ -48,20 +50,21 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
     FaceMarks {
         child_faces,
         child_edges,
-        child_vertex: Vec::new(),
+        child_vertex: Table::new(),
         transitional,
     }
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
+    let room = room.unwrap_or(Room::transposes(nf, 3, ne));
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne, 3 * nf);
+    let mut edge_faces = Filler::new(ne, room.edge_faces);
 
     // Faces, and the inner edges in index order (parent face order).
     for f in 0..parent.face_count() {
@@ -119,6 +122,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
         s,
         &mut edge_vertices,
         &mut edge_faces,
+        |pf, in_face| parent.face_verts(pf)[in_face],
         |pf, in_face, of_edge| {
             (
                 s.face_child_faces[4 * pf + (in_face + of_edge) % 3],
@@ -128,8 +132,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, 3 * nf);
-    let mut vertex_edges = Filler::new(nv, 2 * ne);
+    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
+    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     for &p in &s.child_vertex_parent {
         match p {
             VertexParent::Edge(e) => {
