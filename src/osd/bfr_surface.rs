@@ -167,6 +167,15 @@ fn columns(derivatives: Derivatives) -> (usize, i32) {
     }
 }
 
+/// `out`'s pointer for the shim: null when empty (a count-only call).
+fn out_ptr(out: &mut [f64]) -> *mut f64 {
+    if out.is_empty() {
+        null_mut()
+    } else {
+        out.as_mut_ptr()
+    }
+}
+
 fn flat(coords: &[[f64; 2]]) -> *const f64 {
     let flat: &[f64] = bytemuck::cast_slice(coords);
     if flat.is_empty() {
@@ -495,11 +504,7 @@ impl Surfaces {
                     self.handle.0.as_ptr(),
                     index_i32(face),
                     &eval,
-                    if out.is_empty() {
-                        null_mut()
-                    } else {
-                        out.as_mut_ptr()
-                    },
+                    out_ptr(out),
                     out.len(),
                     &mut count,
                     e,
@@ -574,11 +579,7 @@ impl Surfaces {
                     flat(coords),
                     coords.len(),
                     code,
-                    if out.is_empty() {
-                        null_mut()
-                    } else {
-                        out.as_mut_ptr()
-                    },
+                    out_ptr(out),
                     out.len(),
                     &mut count,
                     e,

@@ -43,7 +43,7 @@ pub(crate) fn bspline(t: f64) -> [[f64; 4]; 3] {
 
 /// The cubic Bernstein polynomials at `t` and their first and second
 /// derivatives.
-fn bezier(t: f64) -> [[f64; 4]; 3] {
+pub(crate) fn bezier(t: f64) -> [[f64; 4]; 3] {
     let c = 1.0 - t;
     [
         [c * c * c, 3.0 * t * c * c, 3.0 * t * t * c, t * t * t],

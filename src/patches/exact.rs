@@ -33,6 +33,7 @@
 //! smooth rules by `r`, which is linear in the points: the surface is `(1 -
 //! r)` times the `⌊S⌋` surface plus `r` times the `⌈S⌉` one.
 
+use super::basis::bezier;
 use super::{
     Derivatives, Partials, PatchData, PatchHandle, PatchParam, PatchTable, PatchType, basis,
 };
@@ -94,27 +95,6 @@ fn mix(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4], r: f64) -> [[f64; 4]; 4] {
     std::array::from_fn(|i| std::array::from_fn(|k| (1.0 - r) * a[i][k] + r * b[i][k]))
 }
 
-/// The cubic Bernstein polynomials at `t` and their first and second
-/// derivatives.
-fn bernstein(t: f64) -> [[f64; 4]; 3] {
-    let c = 1.0 - t;
-    [
-        [c * c * c, 3.0 * t * c * c, 3.0 * t * t * c, t * t * t],
-        [
-            -3.0 * c * c,
-            3.0 * c * (c - 2.0 * t),
-            3.0 * t * (2.0 * c - t),
-            3.0 * t * t,
-        ],
-        [
-            6.0 * c,
-            6.0 * (3.0 * t - 2.0),
-            6.0 * (1.0 - 3.0 * t),
-            6.0 * t,
-        ],
-    ]
-}
-
 /// The weights of four B-spline points across a crease of sharpness
 /// `sharpness` at the far end (`x = 1`), at `x`, with their first and
 /// second derivatives. Sharpness 0 (or less) is the uniform B-spline.
@@ -133,7 +113,7 @@ pub(crate) fn across_crease(x: f64, sharpness: f64) -> [[f64; 4]; 3] {
     } else {
         semi_sharp(0.0)
     };
-    let b = bernstein(x);
+    let b = bezier(x);
     std::array::from_fn(|order| {
         std::array::from_fn(|k| (0..4).map(|i| b[order][i] * matrix[i][k]).sum())
     })
