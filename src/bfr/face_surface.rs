@@ -30,6 +30,7 @@ use crate::options::{
     AdaptiveOptions, BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options,
     Scheme, TriangleSubdivision,
 };
+use crate::patches::limit_stencils::stencils_at;
 use crate::patches::{
     Derivatives, EndCapType, LimitStencilOptions, Partials, PatchData, PatchMap, PatchOptions,
     PatchParam, PatchTable, PatchType, SurfaceSamples, evaluate_basis, evaluate_data,
@@ -37,8 +38,11 @@ use crate::patches::{
 use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::rules::Rule;
+use crate::stencil::StencilTable;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
+use rustc_hash::FxHashMap;
+use std::sync::{Arc, Mutex};
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
 const MAX_APPROX_LEVEL: u32 = 10;
@@ -50,6 +54,40 @@ pub struct SurfaceFactory {
     refiner: Refiner,
     features: Vec<Features>,
     surface: SurfaceOptions,
+    /// The refined hulls built so far, by topology (Bfr's topology cache:
+    /// faces whose hulls match share one refinement).
+    cache: Mutex<FxHashMap<HullKey, Arc<Irregular>>>,
+}
+
+/// What makes two control hulls refine alike: their faces, sharpness and
+/// options.
+#[derive(Debug, PartialEq, Eq, Hash)]
+struct HullKey {
+    offsets: Vec<u32>,
+    faces: Vec<u32>,
+    creases: Vec<([u32; 2], u32)>,
+    corners: Vec<(u32, u32)>,
+    options: Options,
+}
+
+impl HullKey {
+    fn new(mesh: &Mesh, options: &Options) -> HullKey {
+        HullKey {
+            offsets: mesh.face_offsets.clone(),
+            faces: mesh.face_vertices.clone(),
+            creases: mesh
+                .creases
+                .iter()
+                .map(|c| (c.vertices, c.sharpness.to_bits()))
+                .collect(),
+            corners: mesh
+                .corners
+                .iter()
+                .map(|c| (c.vertex, c.sharpness.to_bits()))
+                .collect(),
+            options: *options,
+        }
+    }
 }
 
 /// A face's neighbourhood as Bfr first sorts it.
@@ -96,8 +134,9 @@ enum Form {
     Linear { regular: bool },
     /// One regular patch with this boundary mask.
     Regular { patch: PatchType, mask: u16 },
-    /// The patches of an adaptive refinement of the face's control hull.
-    Irregular(Box<Irregular>),
+    /// The patches of an adaptive refinement of the face's control hull
+    /// (shared by the faces whose hulls have the same topology).
+    Irregular(Arc<Irregular>),
 }
 
 #[derive(Debug)]
@@ -105,6 +144,10 @@ struct Irregular {
     refiner: AdaptiveRefiner,
     table: PatchTable,
     map: PatchMap,
+    /// The refined vertices' stencils over the hull's vertices.
+    refined: StencilTable,
+    /// The hull's vertices.
+    base: usize,
     /// For each of the table's local points, its place among Bfr's patch
     /// points (Bfr numbers the end caps' points patch by patch, level by
     /// level).
@@ -142,6 +185,7 @@ impl SurfaceFactory {
             refiner,
             features,
             surface: *surface,
+            cache: Mutex::new(FxHashMap::default()),
         })
     }
 
@@ -374,7 +418,25 @@ impl SurfaceFactory {
             },
             ..options
         };
-        let irregular = self.irregular(&hull.mesh, &local)?;
+        let key = HullKey::new(&hull.mesh, &local);
+        let cached = self
+            .cache
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .get(&key)
+            .cloned();
+        let irregular = match cached {
+            Some(irregular) => irregular,
+            None => {
+                let built = Arc::new(self.irregular(&hull.mesh, &local)?);
+                self.cache
+                    .lock()
+                    .unwrap_or_else(|poisoned| poisoned.into_inner())
+                    .entry(key)
+                    .or_insert(built)
+                    .clone()
+            }
+        };
         let (base_count, refined) = {
             let r = &irregular.refiner;
             let mut refined = 0;
@@ -389,7 +451,7 @@ impl SurfaceFactory {
             param,
             control_points: hull.control_points,
             patch_points: base_count + refined + end_caps,
-            form: Form::Irregular(Box::new(irregular)),
+            form: Form::Irregular(irregular),
         })
     }
 
@@ -483,10 +545,14 @@ impl SurfaceFactory {
         let table = refiner.patch_table(&patch_options, &[0])?;
         let map = PatchMap::new(&table);
         let local_order = bfr_local_order(&refiner, &table)?;
+        let refined = refiner.refined_vertex_stencils()?;
+        let base = refiner.level_counts(0)?.vertices;
         Ok(Irregular {
             refiner,
             table,
             map,
+            refined,
+            base,
             local_order,
         })
     }
@@ -712,8 +778,10 @@ impl Surface {
                 let options = LimitStencilOptions::new()
                     .first_derivatives(derivatives != Derivatives::None)
                     .second_derivatives(derivatives == Derivatives::Second);
-                let stencils = irregular.refiner.location_stencils_over(
+                let stencils = stencils_at(
                     &irregular.table,
+                    irregular.base,
+                    &irregular.refined,
                     &locations,
                     &options,
                 )?;

@@ -322,6 +322,31 @@ fn at_locations(
     crate::alloc::guard(None, || build(&refined()?, table, base, locations, options))
 }
 
+/// Vertex limit stencils at `locations` from `table` over a refinement of
+/// `base` base vertices whose refined vertices' stencils (intermediate
+/// levels, control vertices included: [`AdaptiveRefiner::refined_vertex_stencils`])
+/// are `refined` — for callers evaluating one table many times.
+pub(crate) fn stencils_at(
+    table: &PatchTable,
+    base: usize,
+    refined: &StencilTable,
+    locations: &[(u32, f64, f64)],
+    options: &LimitStencilOptions,
+) -> Result<LocationStencils> {
+    for &(face, u, v) in locations {
+        check_location(table, face, u, v)?;
+    }
+    crate::alloc::guard(None, || build(refined, table, base, locations, options))
+}
+
+impl AdaptiveRefiner {
+    /// The stencils of every refined vertex over the base vertices, as
+    /// vertex limit stencils at locations use them.
+    pub(crate) fn refined_vertex_stencils(&self) -> Result<StencilTable> {
+        self.stencil_table_with(&refined_options(&LimitStencilOptions::new(), true))
+    }
+}
+
 /// The refusal of limit stencils on an unrefined uniform refiner.
 pub(crate) fn unrefined() -> Error {
     Error::PatchOptions {

@@ -31,7 +31,7 @@ mod basis;
 mod build;
 mod eval;
 mod exact;
-mod limit_stencils;
+pub(crate) mod limit_stencils;
 mod map;
 mod param;
 mod triangle_basis;

@@ -281,7 +281,7 @@ pub struct Faces<'a> {
 fn uniform_child_maps(parent: &Level, split: &Split) -> ChildMaps {
     let nf = parent.face_count();
     let corners = parent.face_vertices.members.len() as u32;
-    let corner_offsets = parent.face_vertices.offsets_slice().into_owned();
+    let corner_offsets = parent.face_vertices.offsets_vec();
     // Loop: four child faces per triangle, no face points.
     let triangles = !split.has_face_points() && nf > 0;
     let (child_faces, face_offsets) = if triangles {
@@ -342,7 +342,7 @@ pub(crate) fn topology_of(
     LevelTopology {
         vertex_count: l.vertex_count,
         edge_count: l.edge_count(),
-        face_offsets: copied(&l.face_vertices.offsets_slice()),
+        face_offsets: l.face_vertices.offsets_vec(),
         face_vertices: copied(&l.face_vertices.members),
         edge_vertices: if full {
             copied(&l.edge_vertices)

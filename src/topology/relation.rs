@@ -172,11 +172,21 @@ impl Relation {
     /// The offsets as a slice: borrowed when stored, built when implicit.
     pub fn offsets_slice(&self) -> std::borrow::Cow<'_, [u32]> {
         match &self.offsets {
-            Offsets::Uniform { len, size } => (0..=*len)
-                .map(|i| (i * size) as u32)
-                .collect::<Vec<_>>()
-                .into(),
+            // Allocated fallibly (unwinding to `alloc::guard`): a level's
+            // offsets are as large as its faces.
+            Offsets::Uniform { len, size } => {
+                crate::alloc::collect_n(*len + 1, (0..=*len).map(|i| (i * size) as u32)).into()
+            }
             Offsets::Table(t) => std::borrow::Cow::Borrowed(&t[..]),
+        }
+    }
+
+    /// The offsets as an owned vector, allocated fallibly (unwinding to
+    /// `alloc::guard`).
+    pub fn offsets_vec(&self) -> Vec<u32> {
+        match self.offsets_slice() {
+            std::borrow::Cow::Owned(v) => v,
+            std::borrow::Cow::Borrowed(s) => crate::alloc::copied(s),
         }
     }
 }

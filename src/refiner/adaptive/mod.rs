@@ -352,7 +352,7 @@ impl AdaptiveRefiner {
         let l = self.internal_level(level)?;
         let features = &self.features[level as usize];
         crate::alloc::guard(Some(level), || {
-            let offsets = |r: &crate::topology::Relation| r.offsets_slice().into_owned();
+            let offsets = |r: &crate::topology::Relation| r.offsets_vec();
             let vertex = |f: &dyn Fn(usize) -> bool| (0..l.vertex_count).map(f).collect();
             let edge = |f: &dyn Fn(usize) -> bool| (0..l.edge_count()).map(f).collect();
             Ok(LevelRelations {
@@ -395,7 +395,7 @@ impl AdaptiveRefiner {
             last: self.max_level().saturating_sub(1),
         })?;
         let parent = &self.levels[level as usize];
-        let offsets = parent.face_vertices.offsets_slice().into_owned();
+        let offsets = parent.face_vertices.offsets_vec();
         let face_offsets = if s.triangles {
             (0..=parent.face_count() as u32).map(|f| 4 * f).collect()
         } else {
