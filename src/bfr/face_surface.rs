@@ -30,6 +30,7 @@ use crate::options::{
     AdaptiveOptions, BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options,
     Scheme, TriangleSubdivision,
 };
+use crate::patches::basis::{BasisBuffer, evaluate_basis_into};
 use crate::patches::limit_stencils::stencils_at;
 use crate::patches::{
     Derivatives, EndCapType, LimitStencilOptions, Partials, PatchData, PatchMap, PatchOptions,
@@ -1024,7 +1025,64 @@ impl Surface {
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
         self.check_points(points, width)?;
-        self.apply_stencils(&self.control_points, points, width, coords, derivatives)
+        match self.form {
+            Form::Irregular(_) => {
+                // Through the patch points: cheaper than a stencil per
+                // coordinate once there are more than a few.
+                let patch_points = self.patch_points(points, width)?;
+                self.evaluate_patch_points(&patch_points, width, coords, derivatives)
+            }
+            Form::Regular { patch, mask } => {
+                self.evaluate_regular(patch, mask, points, width, coords, derivatives)
+            }
+            _ => self.apply_stencils(&self.control_points, points, width, coords, derivatives),
+        }
+    }
+
+    /// A regular patch evaluated coordinate by coordinate, its basis
+    /// weights applied to its control points without a stencil per
+    /// coordinate.
+    fn evaluate_regular(
+        &self,
+        patch: PatchType,
+        mask: u16,
+        points: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        if let Some(&uv) = coords.iter().find(|&&uv| !self.param.contains(uv, 1e-9)) {
+            return Err(self.off_face(uv));
+        }
+        let kinds = match derivatives {
+            Derivatives::None => 1,
+            Derivatives::First => 3,
+            Derivatives::Second => 6,
+        };
+        let len = coords.len().saturating_mul(width);
+        let mut columns: [Vec<f64>; 6] = Default::default();
+        for column in columns.iter_mut().take(kinds) {
+            *column = alloc::try_vec(0.0, len)?;
+        }
+        let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
+        let mut buf: BasisBuffer = [[0.0; 20]; 6];
+        for (i, &uv) in coords.iter().enumerate() {
+            let [u, v] = self.clamped(uv);
+            let n = evaluate_basis_into(patch, param, u, v, derivatives, None, &mut buf)?;
+            for (column, weights) in columns.iter_mut().zip(&buf).take(kinds) {
+                let out = &mut column[i * width..(i + 1) * width];
+                for (&cv, &w) in self.control_points.iter().zip(&weights[..n]) {
+                    let p = &points[cv as usize * width..(cv as usize + 1) * width];
+                    for (o, &x) in out.iter_mut().zip(p) {
+                        *o += w * x;
+                    }
+                }
+            }
+        }
+        Ok(SurfaceSamples {
+            width,
+            values: Partials::from_columns(columns),
+        })
     }
 
     /// The stencils at `coords` applied to `points`, the stencils' weights

@@ -27,7 +27,7 @@
 //! * `limit_stencils.rs`: limit stencils at locations
 //!   ([`LocationStencils`], `LimitStencilTableFactory`).
 
-mod basis;
+pub(crate) mod basis;
 mod build;
 mod eval;
 mod exact;
