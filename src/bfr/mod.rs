@@ -24,6 +24,7 @@ mod mesh_surfaces;
 mod mesher;
 pub(crate) mod parameterization;
 mod regular;
+mod surface_eval;
 mod surfaces;
 mod tessellation;
 
