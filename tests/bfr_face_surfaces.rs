@@ -10,30 +10,10 @@
 mod support;
 
 use proptest::prelude::*;
-use subdiv::bfr::{Parameterization, Surface, SurfaceFactory, SurfaceOptions};
+use subdiv::bfr::{Surface, SurfaceFactory, SurfaceOptions};
 use subdiv::osd::bfr_surface::{SurfaceInfo, Surfaces};
 use subdiv::patches::{Derivatives, Partials};
 use subdiv::{BoundaryInterpolation, Mesh, Options, Scheme, shapes};
-
-fn sample_coords(p: &Parameterization) -> Vec<[f64; 2]> {
-    let n = p.face_size();
-    let mut c = Vec::new();
-    for k in 0..n {
-        c.push(p.vertex_coord::<f64>(k));
-        c.push(p.edge_coord::<f64>(k, 0.3));
-    }
-    c.push(p.center_coord::<f64>());
-    if p.has_subfaces() {
-        for k in 0..n {
-            for st in [[0.37, 0.61], [0.9, 0.05]] {
-                c.push(p.subface_to_coord(k, st, true).unwrap());
-            }
-        }
-    } else {
-        c.extend([[0.37, 0.21], [0.21, 0.37], [1e-3, 1e-3]]);
-    }
-    c
-}
 
 fn columns(p: &Partials) -> [&[f64]; 6] {
     [&p.point, &p.du, &p.dv, &p.duu, &p.duv, &p.dvv]
@@ -136,7 +116,7 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> u
         if !same_description(&what, &s, &info) {
             continue;
         }
-        let coords = sample_coords(&s.parameterization());
+        let coords = support::bfr_sample_coords(&s.parameterization());
         patch_points_match_evaluation(&what, mesh, &osd, face, &s, &coords);
         let varying = native.varying_surface(face).unwrap();
         assert!(varying.is_linear(), "{what}");
@@ -340,6 +320,26 @@ fn options_and_approximation_levels_match_opensubdiv() {
     assert!(compared > 2000, "{compared}");
 }
 
+/// A generated mesh named compactly for failure messages: its faces,
+/// creases, corners and holes.
+fn describe(mesh: &Mesh) -> String {
+    let faces: Vec<&[u32]> = mesh.faces().collect();
+    let creases: Vec<_> = mesh
+        .creases
+        .iter()
+        .map(|c| (c.vertices, c.sharpness))
+        .collect();
+    let corners: Vec<_> = mesh
+        .corners
+        .iter()
+        .map(|c| (c.vertex, c.sharpness))
+        .collect();
+    format!(
+        "faces {faces:?} creases {creases:?} corners {corners:?} holes {:?}",
+        mesh.holes
+    )
+}
+
 /// Compares a random mesh's faces, triangulated for Loop, naming the mesh
 /// compactly in failures.
 fn compare_random(mesh: Mesh, opts: Options, smooth: u32, sharp: u32) {
@@ -352,19 +352,7 @@ fn compare_random(mesh: Mesh, opts: Options, smooth: u32, sharp: u32) {
         approx_level_smooth: smooth,
         approx_level_sharp: sharp,
     };
-    let faces: Vec<&[u32]> = mesh.faces().collect();
-    let name = format!(
-        "random faces {faces:?} creases {:?} corners {:?} holes {:?}",
-        mesh.creases
-            .iter()
-            .map(|c| (c.vertices, c.sharpness))
-            .collect::<Vec<_>>(),
-        mesh.corners
-            .iter()
-            .map(|c| (c.vertex, c.sharpness))
-            .collect::<Vec<_>>(),
-        mesh.holes
-    );
+    let name = format!("random {}", describe(&mesh));
     compare(&name, &mesh, &opts, approx);
 }
 
@@ -431,7 +419,7 @@ fn compare_fvar(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions)
                     "{what}: patch point value {i}: {p} vs {q}"
                 );
             }
-            let coords = sample_coords(&s.parameterization());
+            let coords = support::bfr_sample_coords(&s.parameterization());
             let ours = s.evaluate_stencil(&coords, Derivatives::Second).unwrap();
             let theirs = osd
                 .evaluate_fvar_stencil(face, channel, &coords, Derivatives::Second)
@@ -523,13 +511,7 @@ proptest! {
             mesh
         };
         let mesh = with_seams(mesh, &islands);
-        let faces: Vec<&[u32]> = mesh.faces().collect();
-        let name = format!(
-            "random faces {faces:?} islands {islands:?} creases {:?} corners {:?} holes {:?}",
-            mesh.creases.iter().map(|c| (c.vertices, c.sharpness)).collect::<Vec<_>>(),
-            mesh.corners.iter().map(|c| (c.vertex, c.sharpness)).collect::<Vec<_>>(),
-            mesh.holes
-        );
+        let name = format!("random islands {islands:?} {}", describe(&mesh));
         let approx = SurfaceOptions {
             approx_level_smooth: smooth,
             approx_level_sharp: sharp,
@@ -558,7 +540,7 @@ fn mesh_surfaces_agree_where_the_global_ones_depart() {
         let theirs = Surfaces::new(&mesh, &opts, &so).unwrap();
         for face in [140, 141, 142] {
             let p = ours.parameterization(face).unwrap();
-            let coords = sample_coords(&p);
+            let coords = support::bfr_sample_coords(&p);
             let a = ours
                 .evaluate_fvar(face, 0, &coords, Derivatives::First)
                 .unwrap();

@@ -6,6 +6,8 @@
 //! `valgrind --error-exitcode=1 target/debug/deps/osd_bfr_surface-*`).
 #![cfg(feature = "osd")]
 
+mod support;
+
 use glam::DVec3;
 use subdiv::bfr::{FaceSurfaces, Parameterization, ParameterizationType, SurfaceOptions};
 use subdiv::osd::bfr_surface::{SurfaceInfo, Surfaces};
@@ -741,28 +743,6 @@ fn surfaces_are_send_and_sync_and_agree_across_threads() {
     });
 }
 
-/// Coordinates spread over a face's domain: its vertices, points on its
-/// edges, its centre and points inside every sub-face.
-fn sample_coords(p: &Parameterization) -> Vec<[f64; 2]> {
-    let n = p.face_size();
-    let mut c = Vec::new();
-    for k in 0..n {
-        c.push(p.vertex_coord::<f64>(k));
-        c.push(p.edge_coord::<f64>(k, 0.3));
-    }
-    c.push(p.center_coord::<f64>());
-    if p.has_subfaces() {
-        for k in 0..n {
-            for st in [[0.37, 0.61], [1.0, 0.0], [1.0, 1.0]] {
-                c.push(p.subface_to_coord(k, st, true).unwrap());
-            }
-        }
-    } else {
-        c.extend([[0.37, 0.21], [0.21, 0.37], [1e-3, 1e-3]]);
-    }
-    c
-}
-
 fn finite(samples: &Partials) -> bool {
     [
         &samples.point,
@@ -809,7 +789,7 @@ fn corpus_sweep() {
                     continue;
                 }
                 faces += 1;
-                let coords = sample_coords(&param);
+                let coords = support::bfr_sample_coords(&param);
                 let eval = s
                     .evaluate(face, &coords, Derivatives::Second)
                     .unwrap_or_else(|e| panic!("{what}: {e}"));

@@ -149,3 +149,26 @@ pub fn wavy(nu: usize, nv: usize, degree: usize, cu: bool, cv: bool, seed: u64) 
     })
     .unwrap()
 }
+
+/// Coordinates spread over a face's Bfr domain: its vertices, points on
+/// its edges, its centre and points inside (and on the edges of) every
+/// sub-face.
+pub fn bfr_sample_coords(p: &subdiv::bfr::Parameterization) -> Vec<[f64; 2]> {
+    let n = p.face_size();
+    let mut c = Vec::new();
+    for k in 0..n {
+        c.push(p.vertex_coord::<f64>(k));
+        c.push(p.edge_coord::<f64>(k, 0.3));
+    }
+    c.push(p.center_coord::<f64>());
+    if p.has_subfaces() {
+        for k in 0..n {
+            for st in [[0.37, 0.61], [1.0, 0.0], [1.0, 1.0]] {
+                c.push(p.subface_to_coord(k, st, true).unwrap());
+            }
+        }
+    } else {
+        c.extend([[0.37, 0.21], [0.21, 0.37], [1e-3, 1e-3]]);
+    }
+    c
+}
