@@ -192,6 +192,21 @@ impl SurfaceFactory {
         self.refiner.levels[0].face_count()
     }
 
+    /// The parameterization of base face `face` (`GetFaceParameterization`),
+    /// without building its surface.
+    pub fn parameterization(&self, face: usize) -> Result<Parameterization> {
+        let base = &self.refiner.levels[0];
+        if face >= base.face_count() {
+            return Err(Error::NoSuchElement {
+                element: Element::Face,
+                index: face,
+                level: 0,
+                count: base.face_count(),
+            });
+        }
+        Parameterization::new(self.scheme(), base.face_verts(face).len())
+    }
+
     /// Whether base face `face` has a limit surface
     /// (`FaceHasLimitSurface`: not a hole nor degenerate, no smooth
     /// boundary under boundary interpolation "none", no non-triangle next
@@ -226,9 +241,8 @@ impl SurfaceFactory {
                 count: base.face_count(),
             });
         }
-        let size = base.face_verts(face).len();
-        let param = Parameterization::new(self.scheme(), size)?;
-        if size < 3 || base.is_hole(face) {
+        let param = self.parameterization(face)?;
+        if param.face_size() < 3 || base.is_hole(face) {
             return Ok(Neighbourhood::Invalid(param));
         }
         if self.scheme() == Scheme::Bilinear {

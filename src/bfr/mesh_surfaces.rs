@@ -65,7 +65,7 @@ impl MeshSurfaces {
 
     /// The parameterization of base face `face`.
     pub fn parameterization(&self, face: usize) -> Result<Parameterization> {
-        Ok(self.factory.vertex_surface(face)?.parameterization())
+        self.factory.parameterization(face)
     }
 
     /// The positions (3 components each) of `face`'s limit surface at
