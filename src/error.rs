@@ -146,6 +146,15 @@ pub enum Error {
     /// A primvar width of zero.
     #[error("primvar width must be at least 1")]
     ZeroWidth,
+    /// A point descriptor whose stride is smaller than its size
+    /// ([`crate::bfr::PointDescriptor`]): its points would overlap.
+    #[error("point stride {stride} is smaller than the point size {size}")]
+    Stride {
+        /// Values per point.
+        size: usize,
+        /// Values from one point to the next.
+        stride: usize,
+    },
     /// A buffer whose length does not fit the call.
     #[error("{buffer} buffer has {got} values, expected {expected}")]
     BufferLength {

@@ -10,7 +10,7 @@
 mod support;
 
 use proptest::prelude::*;
-use subdiv::bfr::{Surface, SurfaceFactory, SurfaceOptions};
+use subdiv::bfr::{PointDescriptor, Surface, SurfaceFactory, SurfaceOptions};
 use subdiv::osd::bfr_surface::{SurfaceInfo, Surfaces};
 use subdiv::patches::{Derivatives, Partials};
 use subdiv::{BoundaryInterpolation, Mesh, Options, Scheme, shapes};
@@ -191,6 +191,7 @@ fn patch_points_match_evaluation(
         .evaluate_patch_points(&patch, 3, coords, Derivatives::Second)
         .unwrap();
     let b = s.evaluate(&points, 3, coords, Derivatives::Second).unwrap();
+    interleaved_data_evaluates_alike(what, s, &points, &patch, coords, &b);
     let theirs = osd.evaluate(face, coords, Derivatives::Second).unwrap();
     let pillow = is_pillow(mesh, face);
     for (c, ((x, y), z)) in columns(&a.values)
@@ -209,6 +210,69 @@ fn patch_points_match_evaluation(
                 );
             }
         }
+    }
+}
+
+/// The mesh's points and the patch points interleaved with other data (a
+/// point descriptor with a stride, `Bfr::Surface::PointDescriptor`): the
+/// same patch points and values, bit for bit, as packed ones give; a stride
+/// below the size and a buffer too short for the last control point
+/// refused.
+fn interleaved_data_evaluates_alike(
+    what: &str,
+    s: &Surface,
+    points: &[f64],
+    patch: &[f64],
+    coords: &[[f64; 2]],
+    packed: &subdiv::patches::SurfaceSamples,
+) {
+    // Records of 5 values, the point at 1..4: [id, x, y, z, weight].
+    let interleave = |points: &[f64], stride: usize| -> Vec<f64> {
+        points
+            .chunks_exact(3)
+            .enumerate()
+            .flat_map(|(i, p)| {
+                let mut r = vec![-(i as f64); stride];
+                r[1..4].copy_from_slice(p);
+                r
+            })
+            .collect()
+    };
+    let records = interleave(points, 5);
+    let layout = PointDescriptor::with_stride(3, 5);
+    let ours = s
+        .evaluate(&records[1..], layout, coords, Derivatives::Second)
+        .unwrap();
+    assert_eq!(&ours, packed, "{what}: interleaved points");
+    assert_eq!(
+        s.patch_points(&records[1..], layout).unwrap(),
+        patch,
+        "{what}"
+    );
+    let patch_records = interleave(patch, 6);
+    let ours = s
+        .evaluate_patch_points(
+            &patch_records[1..patch_records.len() - 2],
+            PointDescriptor::with_stride(3, 6),
+            coords,
+            Derivatives::Second,
+        )
+        .unwrap();
+    let from_patch = s
+        .evaluate_patch_points(patch, 3, coords, Derivatives::Second)
+        .unwrap();
+    assert_eq!(ours, from_patch, "{what}: interleaved patch points");
+    let overlapping = PointDescriptor::with_stride(3, 2);
+    assert!(matches!(
+        s.evaluate(points, overlapping, coords, Derivatives::None),
+        Err(subdiv::Error::Stride { size: 3, stride: 2 })
+    ));
+    if let Some(&last) = s.control_points().iter().max() {
+        let short = &records[1..5 * last as usize + 3];
+        assert!(matches!(
+            s.evaluate(short, layout, coords, Derivatives::None),
+            Err(subdiv::Error::BufferLength { .. })
+        ));
     }
 }
 

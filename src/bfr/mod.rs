@@ -17,6 +17,7 @@
 //! Both are OpenSubdiv's index by index and bit for bit (checked against it
 //! through the bridge in `tests/bfr_tessellation.rs`).
 
+mod bspline_eval;
 mod corner;
 mod face_surface;
 mod hull;
@@ -32,5 +33,6 @@ pub use face_surface::{Surface, SurfaceFactory};
 pub use mesh_surfaces::MeshSurfaces;
 pub use mesher::{FaceSurfaces, TessellateOptions, TessellatedMesh, tessellate};
 pub use parameterization::{MAX_FACE_SIZE, Parameterization, ParameterizationType};
+pub use surface_eval::PointDescriptor;
 pub use surfaces::{LimitSurfaces, SurfaceOptions};
 pub use tessellation::{CoordIndexMap, FacetSize, MAX_RATE, Tessellation, TessellationOptions};

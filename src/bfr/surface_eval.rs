@@ -5,7 +5,8 @@
 //! patches of its control hull's refinement.
 
 use super::ParameterizationType;
-use super::face_surface::{Form, Surface};
+use super::bspline_eval;
+use super::face_surface::{Form, Irregular, Surface};
 use super::parameterization::Parameterization;
 use crate::alloc;
 use crate::error::{Error, Result};
@@ -230,17 +231,24 @@ impl Surface {
     }
 
     /// `PreparePatchPoints` (with `GatherControlPoints`): the surface's
-    /// patch points from the mesh's points (`width` values per mesh
-    /// vertex), in Bfr's order — the control points, then for a split
-    /// n-gon its centre and edge midpoints, for an irregular surface every
-    /// vertex of its hull's refinement level by level and the points of its
-    /// end caps; [`Surface::patch_point_count`] of them.
-    pub fn patch_points(&self, points: &[f64], width: usize) -> Result<Vec<f64>> {
-        self.check_points(points, width)?;
+    /// patch points from the mesh's points (laid out as `points` says: a
+    /// width, or a [`PointDescriptor`] for interleaved data), in Bfr's order
+    /// — the control points, then for a split n-gon its centre and edge
+    /// midpoints, for an irregular surface every vertex of its hull's
+    /// refinement level by level and the points of its end caps;
+    /// [`Surface::patch_point_count`] of them, packed (`size` values each).
+    pub fn patch_points(
+        &self,
+        points: &[f64],
+        layout: impl Into<PointDescriptor>,
+    ) -> Result<Vec<f64>> {
+        let layout = layout.into();
+        self.check_points(points, layout)?;
+        let width = layout.size;
         let mut out = Vec::new();
         alloc::reserve(&mut out, self.patch_points.saturating_mul(width))?;
         for &cv in &self.control_points {
-            out.extend_from_slice(&points[cv as usize * width..(cv as usize + 1) * width]);
+            out.extend_from_slice(layout.point(points, cv as usize));
         }
         match &self.form {
             Form::Linear { regular: false } => {
@@ -261,9 +269,7 @@ impl Surface {
                 }
             }
             Form::Irregular(irregular) => {
-                let native = irregular
-                    .refiner
-                    .patch_points(&irregular.table, width, &out)?;
+                let native = native_patch_points(irregular, width, &out)?;
                 let vertices = native.len() / width - irregular.local_order.len();
                 out = native[..vertices * width].to_vec();
                 out.resize(native.len(), 0.0);
@@ -277,21 +283,22 @@ impl Surface {
         Ok(out)
     }
 
-    /// `Evaluate` over patch points from [`Surface::patch_points`] (`width`
-    /// values each): the surface's values and the derivatives asked for at
-    /// `coords`.
+    /// `Evaluate` over patch points from [`Surface::patch_points`] (laid
+    /// out as `patch_points` says): the surface's values and the
+    /// derivatives asked for at `coords`, `size` values each.
     pub fn evaluate_patch_points(
         &self,
         patch_points: &[f64],
-        width: usize,
+        layout: impl Into<PointDescriptor>,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        let expected = self.patch_points.saturating_mul(width);
-        if patch_points.len() != expected {
+        let layout = layout.into();
+        layout.check()?;
+        let expected = layout.span(self.patch_points);
+        if patch_points.len() < expected
+            || (layout.stride == layout.size && patch_points.len() != expected)
+        {
             return Err(Error::BufferLength {
                 buffer: crate::error::Buffer::Base,
                 expected,
@@ -299,13 +306,15 @@ impl Surface {
             });
         }
         if let Form::Irregular(irregular) = &self.form {
+            let width = layout.size;
             let vertices = self.patch_points - irregular.local_order.len();
-            let mut native = patch_points[..vertices * width].to_vec();
-            native.resize(patch_points.len(), 0.0);
-            for (i, &from) in irregular.local_order.iter().enumerate() {
-                let to = (vertices + i) * width;
-                native[to..to + width]
-                    .copy_from_slice(&patch_points[from * width..(from + 1) * width]);
+            let mut native = Vec::new();
+            alloc::reserve(&mut native, self.patch_points.saturating_mul(width))?;
+            for i in 0..vertices {
+                native.extend_from_slice(layout.point(patch_points, i));
+            }
+            for &from in &irregular.local_order {
+                native.extend_from_slice(layout.point(patch_points, from));
             }
             let locations = self.locations(coords)?;
             return evaluate_data(
@@ -321,21 +330,28 @@ impl Surface {
         // The other forms' stencils weigh the control points, which lead
         // the patch points.
         let identity: Vec<u32> = (0..self.control_points.len() as u32).collect();
-        self.apply_stencils(&identity, patch_points, width, coords, derivatives)
+        match self.form {
+            Form::Regular { patch, mask } => self.evaluate_regular(
+                patch,
+                mask,
+                &identity,
+                patch_points,
+                layout,
+                coords,
+                derivatives,
+            ),
+            _ => self.apply_stencils(&identity, patch_points, layout, coords, derivatives),
+        }
     }
 
-    fn check_points(&self, points: &[f64], width: usize) -> Result<()> {
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        if let Some(&v) = self
-            .control_points
-            .iter()
-            .find(|&&v| (v as usize + 1).saturating_mul(width) > points.len())
+    fn check_points(&self, points: &[f64], layout: PointDescriptor) -> Result<()> {
+        layout.check()?;
+        if let Some(&v) = self.control_points.iter().max()
+            && layout.span(v as usize + 1) > points.len()
         {
             return Err(Error::BufferLength {
                 buffer: crate::error::Buffer::Base,
-                expected: (v as usize + 1).saturating_mul(width),
+                expected: layout.span(v as usize + 1),
                 got: points.len(),
             });
         }
@@ -373,46 +389,93 @@ impl Surface {
         }
     }
 
-    /// `Evaluate` over the mesh's points (`width` values per mesh vertex):
-    /// the surface's values and the derivatives asked for at `coords`, its
-    /// stencils applied to its control points.
+    /// `Evaluate` over the mesh's points (laid out as `points` says: a
+    /// width, or a [`PointDescriptor`] for interleaved data): the surface's
+    /// values and the derivatives asked for at `coords`, `size` values
+    /// each, its stencils applied to its control points.
     pub fn evaluate(
         &self,
         points: &[f64],
-        width: usize,
+        layout: impl Into<PointDescriptor>,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
-        self.check_points(points, width)?;
-        match self.form {
-            Form::Irregular(_) => {
-                // Through the patch points: cheaper than a stencil per
-                // coordinate once there are more than a few.
-                let patch_points = self.patch_points(points, width)?;
-                self.evaluate_patch_points(&patch_points, width, coords, derivatives)
+        let layout = layout.into();
+        self.check_points(points, layout)?;
+        match &self.form {
+            Form::Irregular(irregular) => {
+                // Through the patch points (in the table's order): cheaper
+                // than a stencil per coordinate once there are more than a
+                // few.
+                let width = layout.size;
+                let mut control = Vec::new();
+                alloc::reserve(
+                    &mut control,
+                    self.control_points.len().saturating_mul(width),
+                )?;
+                for &cv in &self.control_points {
+                    control.extend_from_slice(layout.point(points, cv as usize));
+                }
+                let native = native_patch_points(irregular, width, &control)?;
+                let locations = self.locations(coords)?;
+                evaluate_data(
+                    &irregular.map,
+                    &irregular.table,
+                    PatchData::Vertex,
+                    &native,
+                    width,
+                    &locations,
+                    derivatives,
+                )
             }
-            Form::Regular { patch, mask } => {
-                self.evaluate_regular(patch, mask, points, width, coords, derivatives)
+            &Form::Regular { patch, mask } => self.evaluate_regular(
+                patch,
+                mask,
+                &self.control_points,
+                points,
+                layout,
+                coords,
+                derivatives,
+            ),
+            Form::Linear { regular: true } => {
+                let patch = if self.control_points.len() == 4 {
+                    PatchType::Quads
+                } else {
+                    PatchType::Triangles
+                };
+                self.evaluate_regular(
+                    patch,
+                    0,
+                    &self.control_points,
+                    points,
+                    layout,
+                    coords,
+                    derivatives,
+                )
             }
-            _ => self.apply_stencils(&self.control_points, points, width, coords, derivatives),
+            _ => self.apply_stencils(&self.control_points, points, layout, coords, derivatives),
         }
     }
 
-    /// A regular patch evaluated coordinate by coordinate, its basis
-    /// weights applied to its control points without a stencil per
-    /// coordinate.
+    /// A single patch (`patch`, boundary `mask`) over the points at
+    /// `indices`, evaluated coordinate by coordinate without a stencil per
+    /// coordinate: a B-spline patch as a tensor product
+    /// (`bspline_eval.rs`), any other through its basis weights.
+    #[allow(clippy::too_many_arguments)]
     fn evaluate_regular(
         &self,
         patch: PatchType,
         mask: u16,
+        indices: &[u32],
         points: &[f64],
-        width: usize,
+        layout: PointDescriptor,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
         if let Some(&uv) = coords.iter().find(|&&uv| !self.param.contains(uv, 1e-9)) {
             return Err(self.off_face(uv));
         }
+        let width = layout.size;
         let kinds = match derivatives {
             Derivatives::None => 1,
             Derivatives::First => 3,
@@ -423,17 +486,50 @@ impl Surface {
         for column in columns.iter_mut().take(kinds) {
             *column = alloc::try_vec(0.0, len)?;
         }
-        let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
-        let mut buf: BasisBuffer = [[0.0; 20]; 6];
-        for (i, &uv) in coords.iter().enumerate() {
-            let [u, v] = self.clamped(uv);
-            let n = evaluate_basis_into(patch, param, u, v, derivatives, None, &mut buf)?;
-            for (column, weights) in columns.iter_mut().zip(&buf).take(kinds) {
-                let out = &mut column[i * width..(i + 1) * width];
-                for (&cv, &w) in self.control_points.iter().zip(&weights[..n]) {
-                    let p = &points[cv as usize * width..(cv as usize + 1) * width];
-                    for (o, &x) in out.iter_mut().zip(p) {
-                        *o += w * x;
+        if patch == PatchType::Regular && indices.len() == 16 {
+            let mut gathered = alloc::try_vec(0.0, 16 * width)?;
+            for (dst, &cv) in gathered.chunks_exact_mut(width).zip(indices) {
+                dst.copy_from_slice(layout.point(points, cv as usize));
+            }
+            let mut clamped = Vec::new();
+            alloc::reserve(&mut clamped, coords.len())?;
+            clamped.extend(coords.iter().map(|&uv| self.clamped(uv)));
+            bspline_eval::evaluate(&gathered, width, mask, &clamped, &mut columns[..kinds]);
+        } else if patch == PatchType::Quads && indices.len() == 4 {
+            let p = |i: usize| layout.point(points, indices[i] as usize);
+            let (p0, p1, p2, p3) = (p(0), p(1), p(2), p(3));
+            for (i, &uv) in coords.iter().enumerate() {
+                let [u, v] = self.clamped(uv);
+                let (uc, vc) = (1.0 - u, 1.0 - v);
+                // Weights of the corners for the value, ∂u, ∂v and ∂uv
+                // (the second derivatives in one direction are 0).
+                let weights = [
+                    [uc * vc, u * vc, u * v, uc * v],
+                    [-vc, vc, v, -v],
+                    [-uc, -u, u, uc],
+                    [0.0; 4],
+                    [1.0, -1.0, 1.0, -1.0],
+                    [0.0; 4],
+                ];
+                for (column, w) in columns.iter_mut().zip(&weights).take(kinds) {
+                    let out = &mut column[i * width..(i + 1) * width];
+                    for (k, o) in out.iter_mut().enumerate() {
+                        *o = w[0] * p0[k] + w[1] * p1[k] + w[2] * p2[k] + w[3] * p3[k];
+                    }
+                }
+            }
+        } else {
+            let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
+            let mut buf: BasisBuffer = [[0.0; 20]; 6];
+            for (i, &uv) in coords.iter().enumerate() {
+                let [u, v] = self.clamped(uv);
+                let n = evaluate_basis_into(patch, param, u, v, derivatives, None, &mut buf)?;
+                for (column, weights) in columns.iter_mut().zip(&buf).take(kinds) {
+                    let out = &mut column[i * width..(i + 1) * width];
+                    for (&cv, &w) in indices.iter().zip(&weights[..n]) {
+                        for (o, &x) in out.iter_mut().zip(layout.point(points, cv as usize)) {
+                            *o += w * x;
+                        }
                     }
                 }
             }
@@ -450,10 +546,11 @@ impl Surface {
         &self,
         indices: &[u32],
         points: &[f64],
-        width: usize,
+        layout: PointDescriptor,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
+        let width = layout.size;
         let stencils = self.evaluate_stencil(coords, derivatives)?;
         let mut columns: [Vec<f64>; 6] = Default::default();
         for s in &stencils {
@@ -465,8 +562,10 @@ impl Surface {
                 let start = col.len();
                 col.resize(start + width, 0.0);
                 for (&cv, &w) in indices.iter().zip(weights) {
-                    let p = &points[cv as usize * width..(cv as usize + 1) * width];
-                    for (o, &x) in col[start..].iter_mut().zip(p) {
+                    for (o, &x) in col[start..]
+                        .iter_mut()
+                        .zip(layout.point(points, cv as usize))
+                    {
                         *o += w * x;
                     }
                 }
@@ -476,5 +575,87 @@ impl Surface {
             width,
             values: Partials::from_columns(columns),
         })
+    }
+}
+
+/// The points an irregular surface's patch table indexes — its hull's
+/// vertices, every refined vertex level by level, then the table's local
+/// points — from the hull's control points (`width` values each): the
+/// stencils of all of them over the control points applied, as Bfr's patch
+/// tree applies its stencil matrix.
+fn native_patch_points(irregular: &Irregular, width: usize, control: &[f64]) -> Result<Vec<f64>> {
+    let (refined, locals) = (&irregular.refined, &irregular.locals);
+    let mut out = alloc::try_vec(0.0, (refined.len() + locals.len()).saturating_mul(width))?;
+    let rows = (0..refined.len())
+        .map(|i| refined.row(i))
+        .chain((0..locals.len()).map(|i| locals.row(i)));
+    for (dst, (indices, weights)) in out.chunks_exact_mut(width).zip(rows) {
+        for (&i, &w) in indices.iter().zip(weights) {
+            let p = &control[i as usize * width..][..width];
+            for (d, &x) in dst.iter_mut().zip(p) {
+                *d += w * x;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// How a buffer of points is laid out (`Bfr::Surface::PointDescriptor`):
+/// `size` values per point, the first values of consecutive points
+/// `stride` apart — interleaved data (a position inside a larger vertex
+/// record) without copying it out. A width converts into a packed
+/// descriptor (stride = size).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PointDescriptor {
+    /// Values per point (at least 1).
+    pub size: usize,
+    /// Values from one point to the next (at least `size`).
+    pub stride: usize,
+}
+
+impl PointDescriptor {
+    /// Packed points of `size` values.
+    pub const fn new(size: usize) -> Self {
+        PointDescriptor { size, stride: size }
+    }
+
+    /// Points of `size` values, `stride` apart.
+    pub const fn with_stride(size: usize, stride: usize) -> Self {
+        PointDescriptor { size, stride }
+    }
+
+    /// Refuses a size of 0 and a stride smaller than the size.
+    fn check(self) -> Result<()> {
+        if self.size == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        if self.stride < self.size {
+            return Err(Error::Stride {
+                size: self.size,
+                stride: self.stride,
+            });
+        }
+        Ok(())
+    }
+
+    /// The values `count` points span (the last one's stride not needed).
+    fn span(self, count: usize) -> usize {
+        match count {
+            0 => 0,
+            n => (n - 1)
+                .saturating_mul(self.stride)
+                .saturating_add(self.size),
+        }
+    }
+
+    /// Point `i` of `points` (which [`PointDescriptor::span`] covers).
+    fn point(self, points: &[f64], i: usize) -> &[f64] {
+        &points[i * self.stride..][..self.size]
+    }
+}
+
+impl From<usize> for PointDescriptor {
+    fn from(size: usize) -> Self {
+        PointDescriptor::new(size)
     }
 }
