@@ -146,6 +146,11 @@ pub(super) struct Irregular {
     pub(super) refined: StencilTable,
     /// The hull's vertices.
     pub(super) base: usize,
+    /// The table's local points' stencils over the hull's vertices (the
+    /// local points' own stencils composed with `refined`): with `refined`,
+    /// every patch point as a stencil of the control points, as Bfr's
+    /// patch tree holds them.
+    pub(super) locals: StencilTable,
     /// For each of the table's local points, its place among Bfr's patch
     /// points (Bfr numbers the end caps' points patch by patch, level by
     /// level).
@@ -559,15 +564,53 @@ impl SurfaceFactory {
         let local_order = bfr_local_order(&refiner, &table)?;
         let refined = refiner.refined_vertex_stencils()?;
         let base = refiner.level_counts(0)?.vertices;
+        let locals = over_base(&table.local_point_stencils, &refined, base)?;
         Ok(Irregular {
             refiner,
             table,
             map,
             refined,
             base,
+            locals,
             local_order,
         })
     }
+}
+
+/// The stencils of `stencils` (over points whose own stencils over `base`
+/// control points are `points`) over the control points themselves.
+fn over_base(stencils: &StencilTable, points: &StencilTable, base: usize) -> Result<StencilTable> {
+    let mut out = StencilTable::default();
+    let mut dense = vec![0.0; base];
+    for s in 0..stencils.len() {
+        let (indices, weights) = stencils.row(s);
+        for (&i, &w) in indices.iter().zip(weights) {
+            if (i as usize) >= points.len() {
+                return Err(Error::StencilOutOfRange {
+                    index: i as usize,
+                    count: points.len(),
+                });
+            }
+            let (pi, pw) = points.row(i as usize);
+            for (&j, &x) in pi.iter().zip(pw) {
+                let d = dense.get_mut(j as usize).ok_or(Error::StencilOutOfRange {
+                    index: j as usize,
+                    count: base,
+                })?;
+                *d += w * x;
+            }
+        }
+        out.offsets.push(out.indices.len() as u32);
+        for (j, x) in dense.iter_mut().enumerate() {
+            if *x != 0.0 {
+                out.indices.push(j as u32);
+                out.weights.push(*x);
+                *x = 0.0;
+            }
+        }
+        out.sizes.push(out.indices.len() as u32 - out.offsets[s]);
+    }
+    Ok(out)
 }
 
 /// Where each local point of `table` (an end-capped table of the patches

@@ -13,7 +13,7 @@
 //! parallel once every point has its face.
 
 use crate::alloc;
-use crate::bfr::{CoordIndexMap, FacetSize, Parameterization, Tessellation, TessellationOptions};
+use crate::bfr::{FacetSize, Parameterization, Tessellation, TessellationOptions};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
@@ -123,10 +123,22 @@ pub struct TessellatedMesh {
     pub facet_faces: Vec<u32>,
 }
 
+/// A tessellation pattern shared by every face of the same size and rates:
+/// its coordinates and facets (pattern indices, `-1` padding a short
+/// facet), computed once.
+struct Pattern {
+    tess: Tessellation,
+    coords: Vec<[f64; 2]>,
+    facets: Vec<i32>,
+    /// Facet corners that are not padding.
+    corners: usize,
+}
+
 /// One face's share of the work.
 struct FacePlan {
     face: usize,
-    tess: Tessellation,
+    /// Index of its pattern.
+    pattern: u32,
     /// Mesh point of each of the pattern's coordinates.
     points: Vec<u32>,
     /// The coordinates (indices into the pattern) this face evaluates.
@@ -200,29 +212,48 @@ pub fn tessellate(
     let mut edge_points: Vec<(u32, u32)> = alloc::try_vec((u32::MAX, 0), edge_rate.len())?;
     let mut next: u64 = 0;
     let mut plans = Vec::new();
+    let mut patterns: Vec<Pattern> = Vec::new();
+    let mut pattern_of: FxHashMap<(usize, Vec<u32>), u32> = FxHashMap::default();
     let mut take = |count: usize| -> Result<u32> {
         let first = next;
         next += count as u64;
-        // Facets hold the points as `i32` while they are renumbered.
-        if next > i32::MAX as u64 {
+        if next > u32::MAX as u64 {
             return Err(Error::TooLarge {
                 what: "tessellated points",
                 count: next as usize,
-                bits: 31,
+                bits: 32,
             });
         }
         Ok(first as u32)
     };
+    let mut rates: Vec<u32> = Vec::new();
     for f in 0..mesh.face_count() {
         if !surfaces.has_surface(f) {
             continue;
         }
         let fv = mesh.face(f);
         let n = fv.len();
-        let param = Parameterization::new(scheme, n)?;
         let face_edges = &corner_edge[mesh.face_offsets[f] as usize..][..n];
-        let rates: Vec<u32> = face_edges.iter().map(|&e| edge_rate[e as usize]).collect();
-        let tess = Tessellation::new(param, &rates, tess_options)?;
+        rates.clear();
+        rates.extend(face_edges.iter().map(|&e| edge_rate[e as usize]));
+        let pattern = match pattern_of.get(&(n, rates.clone())) {
+            Some(&p) => p,
+            None => {
+                let param = Parameterization::new(scheme, n)?;
+                let tess = Tessellation::new(param, &rates, tess_options)?;
+                let facets = tess.facets()?;
+                patterns.push(Pattern {
+                    coords: tess.coords::<f64>()?,
+                    corners: facets.iter().filter(|&&c| c >= 0).count(),
+                    facets,
+                    tess,
+                });
+                let p = (patterns.len() - 1) as u32;
+                pattern_of.insert((n, rates.clone()), p);
+                p
+            }
+        };
+        let tess = &patterns[pattern as usize].tess;
         let mut points = Vec::new();
         alloc::reserve(&mut points, tess.num_coords())?;
         let mut owned = Vec::new();
@@ -251,12 +282,13 @@ pub fn tessellate(
         points.extend((0..tess.num_interior_coords() as u32).map(|k| interior + k));
         plans.push(FacePlan {
             face: f,
-            tess,
+            pattern,
             points,
             owned,
         });
     }
     let total = next as usize;
+    let pattern = |p: &FacePlan| &patterns[p.pattern as usize];
 
     // Evaluate each face's own points, in parallel. They are a contiguous
     // range (taken in order while planning that face), so the outputs split
@@ -277,7 +309,7 @@ pub fn tessellate(
     // Each face's own texture coordinates: one per pattern coordinate.
     let uv_counts: Vec<usize> = plans
         .iter()
-        .map(|p| if uvs { p.tess.num_coords() } else { 0 })
+        .map(|p| if uvs { pattern(p).coords.len() } else { 0 })
         .collect();
     let mut positions = alloc::try_vec(DVec3::ZERO, total)?;
     let mut normals = alloc::try_vec(DVec3::ZERO, if options.normals { total } else { 0 })?;
@@ -296,63 +328,107 @@ pub fn tessellate(
         .zip(pos_chunks)
         .zip(normal_chunks)
         .zip(uv_chunks)
-        .try_for_each(|(((plan, pos), nrm), uv_out)| -> Result<()> {
-            let coords = plan.tess.coords::<f64>()?;
-            let own: Vec<[f64; 2]> = plan.owned.iter().map(|&k| coords[k as usize]).collect();
-            let s = surfaces.evaluate(plan.face, &own, derivs)?;
-            let v = &s.values;
-            for (i, p) in pos.iter_mut().enumerate() {
-                *p = DVec3::from_slice(&v.point[3 * i..3 * i + 3]);
-            }
-            for (i, n) in nrm.iter_mut().enumerate() {
-                let du = DVec3::from_slice(&v.du[3 * i..3 * i + 3]);
-                let dv = DVec3::from_slice(&v.dv[3 * i..3 * i + 3]);
-                *n = du.cross(dv).normalize_or_zero();
-            }
-            if uvs {
-                // Texture coordinates are 2D: the first two components.
-                let uv = surfaces.evaluate_fvar(plan.face, 0, &coords)?.values.point;
-                for (value, dst) in uv.chunks(uv_width).zip(uv_out.chunks_mut(2)) {
-                    dst[0] = value[0];
-                    dst[1] = value.get(1).copied().unwrap_or(0.0);
+        .try_for_each_init(
+            Vec::new,
+            |own: &mut Vec<[f64; 2]>, (((plan, pos), nrm), uv_out)| -> Result<()> {
+                let coords = &pattern(plan).coords;
+                // Every coordinate when the face owns them all (from the
+                // first face on, most faces own their interior only).
+                let own: &[[f64; 2]] = if plan.owned.len() == coords.len() {
+                    coords
+                } else {
+                    own.clear();
+                    own.extend(plan.owned.iter().map(|&k| coords[k as usize]));
+                    own
+                };
+                let s = surfaces.evaluate(plan.face, own, derivs)?;
+                let v = &s.values;
+                for (p, x) in pos.iter_mut().zip(v.point.chunks_exact(3)) {
+                    *p = DVec3::from_slice(x);
                 }
-            }
-            Ok(())
-        })?;
+                for ((n, du), dv) in nrm
+                    .iter_mut()
+                    .zip(v.du.chunks_exact(3))
+                    .zip(v.dv.chunks_exact(3))
+                {
+                    *n = DVec3::from_slice(du)
+                        .cross(DVec3::from_slice(dv))
+                        .normalize_or_zero();
+                }
+                if uvs {
+                    // Texture coordinates are 2D: the first two components.
+                    let uv = surfaces.evaluate_fvar(plan.face, 0, coords)?.values.point;
+                    for (value, dst) in uv.chunks(uv_width).zip(uv_out.chunks_mut(2)) {
+                        dst[0] = value[0];
+                        dst[1] = value.get(1).copied().unwrap_or(0.0);
+                    }
+                }
+                Ok(())
+            },
+        )?;
 
+    // The facets: each pattern's, its coordinates replaced by the face's
+    // points (and by the face's own texture coordinates).
+    let facets: usize = plans.iter().map(|p| pattern(p).tess.num_facets()).sum();
+    let corners: usize = plans.iter().map(|p| pattern(p).corners).sum();
+    fn room<T>(n: usize) -> Result<Vec<T>> {
+        let mut v = Vec::new();
+        alloc::reserve(&mut v, n)?;
+        Ok(v)
+    }
     let mut out = TessellatedMesh {
         positions,
         normals,
         uvs: uv_values,
-        face_offsets: vec![0],
-        ..TessellatedMesh::default()
+        face_offsets: room(facets + 1)?,
+        face_vertices: room(corners)?,
+        uv_indices: room(if uvs { corners } else { 0 })?,
+        facet_faces: room(facets)?,
     };
-    let mut uv_base = 0i64;
+    out.face_offsets.push(0);
+    let mut uv_base = 0usize;
     for (plan, &uv_count) in plans.iter().zip(&uv_counts) {
-        let mut facets = plan.tess.facets()?;
-        let nb = plan.tess.num_boundary_coords();
-        let original = facets.clone();
-        let as_i32 = |v: &[u32]| v.iter().map(|&p| p as i32).collect::<Vec<i32>>();
-        let (boundary, interior) = (as_i32(&plan.points[..nb]), as_i32(&plan.points[nb..]));
-        plan.tess.transform_facet_coord_indices(
-            &mut facets,
-            CoordIndexMap::Explicit {
-                boundary: &boundary,
-                interior: &interior,
-            },
-        )?;
-        let size = plan.tess.facet_size();
-        for (facet, coords) in facets.chunks(size).zip(original.chunks(size)) {
-            for (&p, &c) in facet.iter().zip(coords).filter(|(p, _)| **p >= 0) {
-                out.face_vertices.push(p as u32);
+        let pattern = pattern(plan);
+        let size = pattern.tess.facet_size();
+        if pattern.corners == pattern.facets.len() {
+            // No padding: every facet has `size` corners.
+            let first = out.face_vertices.len();
+            out.face_vertices
+                .extend(pattern.facets.iter().map(|&c| plan.points[c as usize]));
+            if uvs {
+                out.uv_indices.extend(
+                    pattern
+                        .facets
+                        .iter()
+                        .map(|&c| (uv_base + c as usize) as u32),
+                );
+            }
+            let facets = pattern.facets.len() / size;
+            out.face_offsets
+                .extend((1..=facets).map(|k| (first + k * size) as u32));
+            out.facet_faces
+                .extend(std::iter::repeat_n(plan.face as u32, facets));
+            uv_base += uv_count;
+            continue;
+        }
+        for facet in pattern.facets.chunks_exact(size) {
+            for &c in facet.iter().filter(|&&c| c >= 0) {
+                out.face_vertices.push(plan.points[c as usize]);
                 if uvs {
-                    out.uv_indices.push((uv_base + i64::from(c)) as u32);
+                    out.uv_indices.push((uv_base + c as usize) as u32);
                 }
             }
             out.face_offsets.push(out.face_vertices.len() as u32);
             out.facet_faces.push(plan.face as u32);
         }
-        uv_base += uv_count as i64;
+        uv_base += uv_count;
+    }
+    if out.face_vertices.len() > u32::MAX as usize || uv_base > u32::MAX as usize {
+        return Err(Error::TooLarge {
+            what: "tessellated facet corners",
+            count: out.face_vertices.len().max(uv_base),
+            bits: 32,
+        });
     }
     Ok(out)
 }
