@@ -131,8 +131,8 @@ fn the_cube_tessellates_into_a_closed_mesh_on_every_engine() {
             }
         }
     }
-    // Native surfaces built face by face, as Bfr builds them, agree too.
-    let obj = tessellate(input, "native", &["--rate", "3", "--normals", "--per-face"]);
+    // Native surfaces from one refinement of the whole mesh agree too.
+    let obj = tessellate(input, "native", &["--rate", "3", "--normals", "--global"]);
     assert_closed(&obj);
     let f = first.unwrap();
     assert_eq!(f.v.len(), obj.v.len());
@@ -229,6 +229,19 @@ fn refusals_name_the_option_or_line() {
         assert_eq!(o.status.code(), Some(1), "{text:?}");
         assert!(stderr(&o).contains(message), "{text:?}: {}", stderr(&o));
     }
+    // `--global` (the whole mesh's refinement) is for tessellation only.
+    let at = write(&dir, "at.txt", "0 0.5 0.5\n");
+    let o = subdiv(&[
+        "eval",
+        input,
+        "--surface",
+        "bfr",
+        "--global",
+        "--at",
+        at.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--global"), "{}", stderr(&o));
 }
 
 #[test]

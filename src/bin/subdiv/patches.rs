@@ -362,6 +362,13 @@ fn read_locations(path: &Path, unit: bool) -> Result<Vec<(usize, Location)>, Fai
 
 /// `subdiv eval`.
 pub(crate) fn eval(args: &EvalArgs) -> Result<(), Failure> {
+    if args.bfr.global {
+        return Err(Failure::Usage(
+            "--global is for `subdiv tessellate`: `eval --surface bfr` evaluates each \
+             face's own surface, as Bfr builds it"
+                .into(),
+        ));
+    }
     if args.exact_limit && args.surface == "bfr" {
         return Err(Failure::Usage(
             "--exact-limit: Bfr's surfaces are the limit already; the option is for \
@@ -450,12 +457,8 @@ fn eval_bfr(args: &EvalArgs) -> Result<(), Failure> {
     let locations = read_locations(&args.at, false)?;
     let (name, mesh, options) = crate::args::load(&args.patch.mesh)?;
     // Locations are evaluated on the surfaces Bfr itself builds, face by
-    // face (index-exact with OpenSubdiv's Bfr).
-    let per_face = crate::tessellate::SurfaceArgs {
-        per_face: true,
-        ..args.bfr
-    };
-    let surfaces = per_face.build(args.patch.engine, &name, &mesh, &options)?;
+    // face (index-exact with OpenSubdiv's Bfr): the native default.
+    let surfaces = args.bfr.build(args.patch.engine, &name, &mesh, &options)?;
     let derivatives = if args.derivatives {
         Derivatives::First
     } else {

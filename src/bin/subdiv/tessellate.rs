@@ -50,11 +50,15 @@ pub(crate) struct SurfaceArgs {
     /// Bfr's approximation level for sharp features (approxLevelSharp).
     #[arg(long, value_name = "N", default_value = "6")]
     pub(crate) level_sharp: u32,
-    /// Native engine: build each face's surface as Bfr does (its control
-    /// hull refined alone: index-exact with OpenSubdiv's Bfr, slower on
-    /// irregular meshes) rather than from one adaptive refinement of the
-    /// whole mesh. Always so for `eval --surface bfr`.
+    /// Native engine: evaluate every face on one adaptive refinement of
+    /// the whole mesh with Bfr's options, instead of each face's own
+    /// surface built as Bfr builds it (the default: index-exact with
+    /// OpenSubdiv's Bfr, and faster). Not for `eval --surface bfr`.
     #[arg(long)]
+    pub(crate) global: bool,
+    /// Each face's own surface, as Bfr builds it (the default; kept for
+    /// scripts written when it was not).
+    #[arg(long, hide = true, conflicts_with = "global")]
     pub(crate) per_face: bool,
 }
 
@@ -78,11 +82,11 @@ impl SurfaceArgs {
         };
         let in_input = |e: subdiv::Error| Failure::from(e).in_input(name);
         Ok(match engine {
-            Engine::Native if self.per_face => {
-                Box::new(MeshSurfaces::new(mesh, options, &surface).map_err(in_input)?)
+            Engine::Native if self.global => {
+                Box::new(LimitSurfaces::new(mesh, options, &surface).map_err(in_input)?)
             }
             Engine::Native => {
-                Box::new(LimitSurfaces::new(mesh, options, &surface).map_err(in_input)?)
+                Box::new(MeshSurfaces::new(mesh, options, &surface).map_err(in_input)?)
             }
             #[cfg(feature = "osd")]
             Engine::Osd => Box::new(

@@ -97,7 +97,7 @@ impl BenchReport {
         if !self.tessellation.is_empty() {
             let _ = writeln!(
                 s,
-                "\nTessellation of the limit surface, the Bfr way ({} thread(s); `LimitSurfaces::new` + `bfr::tessellate` against OpenSubdiv's RefinerSurfaceFactory + Surface + Tessellation in one C++ loop (bfr tutorial 2_2's, one thread); meshes checked equal before timing):\n",
+                "\nTessellation of the limit surface, the Bfr way ({} thread(s); `MeshSurfaces::new` + `bfr::tessellate` against OpenSubdiv's RefinerSurfaceFactory + Surface + Tessellation in one C++ loop (bfr tutorial 2_2's, one thread); meshes checked equal before timing):\n",
                 self.threads
             );
             let _ = writeln!(

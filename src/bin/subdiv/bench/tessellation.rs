@@ -1,6 +1,6 @@
 //! The tessellation section of `subdiv bench` (issue #25): the limit
 //! surface of the Catmull-Clark tori tessellated the Bfr way at rates 4 and
-//! 16 — the native `LimitSurfaces::new` + `bfr::tessellate` against
+//! 16 — the native `MeshSurfaces::new` + `bfr::tessellate` against
 //! OpenSubdiv's `Bfr::RefinerSurfaceFactory`, `Surface` and `Tessellation`
 //! in one C++ loop (bfr tutorial 2_2's, `osd::bfr::tessellate_mesh`) — with
 //! triangles per second.
@@ -9,16 +9,15 @@ use super::results::{Row, TessellationRow};
 use super::timing::interleaved;
 use crate::Failure;
 use std::hint::black_box;
-use subdiv::bfr::{LimitSurfaces, SurfaceOptions, TessellateOptions, tessellate};
+use subdiv::bfr::{MeshSurfaces, SurfaceOptions, TessellateOptions, tessellate};
 use subdiv::shapes::BenchShape;
 use subdiv::{Scheme, osd};
 
 /// The rates of the rows.
 pub const RATES: [u32; 2] = [4, 16];
 
-/// The inputs of the section: the Catmull-Clark tori of the standard set
-/// (their UVs too where they have linear ones; smooth UVs are not native
-/// yet and are left out on both sides).
+/// The inputs of the section: the Catmull-Clark tori of the standard set,
+/// with their UVs (face-varying channel 0, linear or smooth).
 pub fn tessellation_inputs(inputs: &[BenchShape]) -> Vec<&BenchShape> {
     inputs
         .iter()
@@ -36,16 +35,15 @@ pub fn tessellation_rows(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<TessellationRow>, Failure> {
     let so = SurfaceOptions::default();
-    let linear_uvs = input.options.fvar == subdiv::FVarLinearInterpolation::All;
     let mut rows = Vec::new();
     for rate in RATES {
         let tess = TessellateOptions {
             rate,
-            uvs: linear_uvs,
+            uvs: true,
             ..TessellateOptions::default()
         };
         let native = || -> subdiv::Result<subdiv::bfr::TessellatedMesh> {
-            let surfaces = LimitSurfaces::new(&input.mesh, &input.options, &so)?;
+            let surfaces = MeshSurfaces::new(&input.mesh, &input.options, &so)?;
             tessellate(&input.mesh, &surfaces, &tess)
         };
         let opensubdiv = || osd::bfr::tessellate_mesh(&input.mesh, &input.options, &so, &tess);

@@ -6,7 +6,7 @@
 use super::format::slug;
 use super::inputs::Input;
 use super::picture::{Shaded, render};
-use subdiv::bfr::{LimitSurfaces, SurfaceOptions, TessellateOptions, tessellate};
+use subdiv::bfr::{MeshSurfaces, SurfaceOptions, TessellateOptions, tessellate};
 use subdiv::compare::bbox_diagonal;
 use subdiv::{CreasingMethod, osd};
 
@@ -104,7 +104,7 @@ pub fn tessellated(input: &Input, tolerance: f64) -> Tessellated {
         ..TessellateOptions::default()
     };
     let both = || -> subdiv::Result<_> {
-        let native = LimitSurfaces::new(&input.mesh, &input.options, &so)?;
+        let native = MeshSurfaces::new(&input.mesh, &input.options, &so)?;
         let ours = tessellate(&input.mesh, &native, &tess)?;
         let surfaces = osd::bfr::Surfaces::new(&input.mesh, &input.options, &so)?;
         let theirs = tessellate(&input.mesh, &surfaces, &tess)?;
