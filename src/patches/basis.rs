@@ -13,10 +13,20 @@
 //! derivative in the ptex square, as OpenSubdiv does). Triangles in the
 //! upper half of their parent's square are rotated by 180°: their
 //! coordinates are reflected and their odd-order derivatives negated.
+//!
+//! Precision: the basis is computed in the precision of the weights asked
+//! for ([`evaluate_basis_in`]), as OpenSubdiv's `EvaluatePatchBasis<REAL>`.
+//! In `f32` the curves (B-spline, Bézier) and the Gregory blends follow
+//! OpenSubdiv's operation order, so that `f32` weights are its `float`
+//! weights bit for bit; in `f64` they keep the native formulas (within
+//! 1e-12 of `EvaluatePatchBasis<double>`, `tests/osd_patches.rs`). Loop
+//! and Gregory triangle patches and the exact limit's single-crease patches
+//! are evaluated in `f64` and rounded to `f32`.
 
 use super::exact::single_crease;
 use super::{Derivatives, Partials, PatchParam, PatchType, triangle_basis};
 use crate::error::{Error, Result};
+use crate::real::{Precision, Real};
 
 /// The uniform cubic B-spline basis at `t` and its first and second
 /// derivatives, each of the four functions `N_i` written as the polynomial
@@ -62,15 +72,90 @@ pub(crate) fn bezier(t: f64) -> [[f64; 4]; 3] {
     ]
 }
 
+/// [`bspline`] in OpenSubdiv's operation order (`evalBSplineCurve`): each
+/// function as a polynomial in `t`, `t²` and `t³` scaled by the nearest
+/// `REAL` to 1/6 last.
+fn bspline_osd<R: Real>(t: R) -> [[R; 4]; 3] {
+    let c = |x: f64| R::from_f64(x);
+    let one6th = c(1.0 / 6.0);
+    let (t2, one) = (t * t, R::ONE);
+    let t3 = t * t2;
+    [
+        [
+            one6th * (one - c(3.0) * (t - t2) - t3),
+            one6th * (c(4.0) - c(6.0) * t2 + c(3.0) * t3),
+            one6th * (one + c(3.0) * (t + t2 - t3)),
+            one6th * t3,
+        ],
+        [
+            c(-0.5) * t2 + t - c(0.5),
+            c(1.5) * t2 - c(2.0) * t,
+            c(-1.5) * t2 + t + c(0.5),
+            c(0.5) * t2,
+        ],
+        [-t + one, c(3.0) * t - c(2.0), c(-3.0) * t + one, t],
+    ]
+}
+
+/// [`bezier`] in OpenSubdiv's operation order (`evalBezierCurve`).
+fn bezier_osd<R: Real>(t: R) -> [[R; 4]; 3] {
+    let c = |x: f64| R::from_f64(x);
+    let (t2, tc) = (t * t, R::ONE - t);
+    let tc2 = tc * tc;
+    [
+        [tc2 * tc, tc2 * t * c(3.0), t2 * tc * c(3.0), t2 * t],
+        [
+            c(-3.0) * tc2,
+            c(9.0) * t2 - c(12.0) * t + c(3.0),
+            c(-9.0) * t2 + c(6.0) * t,
+            c(3.0) * t2,
+        ],
+        [
+            c(6.0) * tc,
+            c(18.0) * t - c(12.0),
+            c(-18.0) * t + c(6.0),
+            c(6.0) * t,
+        ],
+    ]
+}
+
+/// A curve basis in `R`: the native `f64` formulas (`native`) in `f64`,
+/// OpenSubdiv's operation order (`osd`) in `f32`.
+fn curve<R: Real>(
+    t: R,
+    native: fn(f64) -> [[f64; 4]; 3],
+    osd: fn(R) -> [[R; 4]; 3],
+) -> [[R; 4]; 3] {
+    match R::PRECISION {
+        Precision::F64 => native(t.to_f64()).map(|row| row.map(R::from_f64)),
+        Precision::F32 => osd(t),
+    }
+}
+
+/// The pair `(g, 1 - g)` of a Gregory face-point blend `g = num / den`,
+/// `num` itself where `den` vanishes (at a corner, where `num` is 0 too):
+/// in `f32` as OpenSubdiv computes it, `num` times the reciprocal of `den`.
+fn blend<R: Real>(num: R, den: R) -> (R, R) {
+    let g = if den <= R::ZERO {
+        num
+    } else {
+        match R::PRECISION {
+            Precision::F64 => num / den,
+            Precision::F32 => num * (R::ONE / den),
+        }
+    };
+    (g, R::ONE - g)
+}
+
 /// Weights of the six tables (position, ∂s, ∂t, ∂ss, ∂st, ∂tt) of `n`
 /// points; a table not asked for is empty.
-type Tables<'a> = [&'a mut [f64]; 6];
+type Tables<'a, R = f64> = [&'a mut [R]; 6];
 
 /// The orders of derivative `(in s, in t)` of the six tables.
 pub(crate) const ORDERS: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
 
 /// Room for the weights of any patch (20 points at most) in each table.
-pub(crate) type BasisBuffer = [[f64; 20]; 6];
+pub(crate) type BasisBuffer<R = f64> = [[R; 20]; 6];
 
 /// Folds the weights of the phantom points beyond the boundary edges of a
 /// B-spline patch into the points they are extrapolated from: a phantom
@@ -78,7 +163,7 @@ pub(crate) type BasisBuffer = [[f64; 20]; 6];
 /// so `p` gains twice its weight, `q` loses it, and the phantom keeps none.
 /// Edge 0 is the row `t = 0` (points 0-3), 1 the column `s = 1` (3, 7, 11,
 /// 15), 2 the row `t = 1` (12-15), 3 the column `s = 0` (0, 4, 8, 12).
-fn fold_phantoms(boundary: u32, w: &mut [f64]) {
+fn fold_phantoms<R: Real>(boundary: u32, w: &mut [R]) {
     // For each edge: the phantom, its neighbour and the next point, as
     // (first index, step along the edge).
     let edges: [([usize; 3], usize); 4] = [
@@ -95,15 +180,18 @@ fn fold_phantoms(boundary: u32, w: &mut [f64]) {
             let (p, n, f) = (phantom + i * step, near + i * step, far + i * step);
             let x = w[p];
             w[f] -= x;
-            w[n] += 2.0 * x;
-            w[p] = 0.0;
+            w[n] += x + x;
+            w[p] = R::ZERO;
         }
     }
 }
 
 /// A bicubic B-spline patch (16 points, row by row from `t = 0`).
-fn regular(s: f64, t: f64, boundary: u32, out: &mut Tables) {
-    let (bs, bt) = (bspline(s), bspline(t));
+fn regular<R: Real>(s: R, t: R, boundary: u32, out: &mut Tables<R>) {
+    let (bs, bt) = (
+        curve(s, bspline, bspline_osd),
+        curve(t, bspline, bspline_osd),
+    );
     // (order in s, order in t) of each table.
     for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
         if table.is_empty() {
@@ -121,15 +209,16 @@ fn regular(s: f64, t: f64, boundary: u32, out: &mut Tables) {
 }
 
 /// A bilinear quad (corners counter-clockwise from `(0, 0)`).
-fn bilinear(s: f64, t: f64, out: &mut Tables) {
-    let (sc, tc) = (1.0 - s, 1.0 - t);
-    let tables: [[f64; 4]; 6] = [
+fn bilinear<R: Real>(s: R, t: R, out: &mut Tables<R>) {
+    let (one, zero) = (R::ONE, R::ZERO);
+    let (sc, tc) = (one - s, one - t);
+    let tables: [[R; 4]; 6] = [
         [sc * tc, s * tc, s * t, sc * t],
         [-tc, tc, t, -t],
         [-sc, -s, s, sc],
-        [0.0; 4],
-        [1.0, -1.0, 1.0, -1.0],
-        [0.0; 4],
+        [zero; 4],
+        [one, -one, one, -one],
+        [zero; 4],
     ];
     for (table, w) in out.iter_mut().zip(tables) {
         if !table.is_empty() {
@@ -139,14 +228,15 @@ fn bilinear(s: f64, t: f64, out: &mut Tables) {
 }
 
 /// A linear triangle (corners at `(0, 0)`, `(1, 0)`, `(0, 1)`).
-fn linear_triangle(s: f64, t: f64, out: &mut Tables) {
-    let tables: [[f64; 3]; 6] = [
-        [1.0 - s - t, s, t],
-        [-1.0, 1.0, 0.0],
-        [-1.0, 0.0, 1.0],
-        [0.0; 3],
-        [0.0; 3],
-        [0.0; 3],
+fn linear_triangle<R: Real>(s: R, t: R, out: &mut Tables<R>) {
+    let (one, zero) = (R::ONE, R::ZERO);
+    let tables: [[R; 3]; 6] = [
+        [one - s - t, s, t],
+        [-one, one, zero],
+        [-one, zero, one],
+        [zero; 3],
+        [zero; 3],
+        [zero; 3],
     ];
     for (table, w) in out.iter_mut().zip(tables) {
         if !table.is_empty() {
@@ -165,6 +255,33 @@ fn triangles(s: f64, t: f64, out: &mut Tables, basis: impl Fn(f64, f64, usize, u
     }
 }
 
+/// Fills the tables `out` asks for with a basis only computed in `f64`
+/// (`fill`): in place when `R` is `f64`, otherwise into `f64` tables of
+/// the same lengths whose weights are then rounded to `R`.
+fn in_f64<R: Real>(out: &mut Tables<R>, fill: impl FnOnce(&mut Tables)) {
+    if R::PRECISION == Precision::F64 {
+        // `R` is `f64`: the casts cannot fail.
+        let mut tables: Tables = out
+            .each_mut()
+            .map(|t| bytemuck::try_cast_slice_mut(t).unwrap_or_default());
+        fill(&mut tables);
+        return;
+    }
+    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    let mut k = 0;
+    let mut tables: Tables = buf.each_mut().map(|b| {
+        let len = out[k].len();
+        k += 1;
+        &mut b[..len]
+    });
+    fill(&mut tables);
+    for (dst, src) in out.iter_mut().zip(&tables) {
+        for (d, &x) in dst.iter_mut().zip(src.iter()) {
+            *d = R::from_f64(x);
+        }
+    }
+}
+
 /// A 20-point Gregory patch. Its points come in groups of five per corner
 /// (corners counter-clockwise from `(0, 0)`): the corner point, the edge
 /// points after and before it (`e+`, `e-`), and the two face points (`f+`,
@@ -175,7 +292,7 @@ fn triangles(s: f64, t: f64, out: &mut Tables, basis: impl Fn(f64, f64, usize, u
 /// distance from the other edge. Derivatives are those of the Bézier patch
 /// with the blend held at the location's values, as OpenSubdiv (and its GPU
 /// shaders) compute them.
-fn gregory(s: f64, t: f64, out: &mut Tables) {
+fn gregory<R: Real>(s: R, t: R, out: &mut Tables<R>) {
     // Bézier (column, row) of each boundary point, by Gregory index.
     const BOUNDARY: [(usize, (usize, usize)); 12] = [
         (0, (0, 0)),
@@ -191,19 +308,17 @@ fn gregory(s: f64, t: f64, out: &mut Tables) {
         (16, (0, 2)),
         (17, (1, 3)),
     ];
-    // Interior Bézier point of each corner, its face points, and the
-    // numerator and denominator of the `f+` blend.
-    let (sc, tc) = (1.0 - s, 1.0 - t);
-    // At a corner both terms vanish: the blend is then the numerator itself
-    // (0), as OpenSubdiv takes it.
-    let blend = |num: f64, den: f64| if den <= 0.0 { num } else { num / den };
-    let interior: [((usize, usize), [usize; 2], f64); 4] = [
+    // Interior Bézier point of each corner, its face points (`f+`, `f-`),
+    // and their blends.
+    type Interior<R> = ((usize, usize), [usize; 2], (R, R));
+    let (sc, tc) = (R::ONE - s, R::ONE - t);
+    let interior: [Interior<R>; 4] = [
         ((1, 1), [3, 4], blend(s, s + t)),
         ((2, 1), [8, 9], blend(t, sc + t)),
         ((2, 2), [13, 14], blend(sc, sc + tc)),
         ((1, 2), [18, 19], blend(tc, s + tc)),
     ];
-    let (bs, bt) = (bezier(s), bezier(t));
+    let (bs, bt) = (curve(s, bezier, bezier_osd), curve(t, bezier, bezier_osd));
     for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
         if table.is_empty() {
             continue;
@@ -211,10 +326,10 @@ fn gregory(s: f64, t: f64, out: &mut Tables) {
         for (i, (col, row)) in BOUNDARY {
             table[i] = bs[os][col] * bt[ot][row];
         }
-        for ((col, row), [plus, minus], g) in interior {
+        for ((col, row), [plus, minus], (g, gc)) in interior {
             let b = bs[os][col] * bt[ot][row];
             table[plus] = b * g;
-            table[minus] = b * (1.0 - g);
+            table[minus] = b * gc;
         }
     }
 }
@@ -249,18 +364,44 @@ pub fn evaluate_basis(
     evaluate_basis_partials(patch_type, param, u, v, derivatives, None)
 }
 
+/// [`evaluate_basis`] in precision `R`, as OpenSubdiv's
+/// `PatchTable::EvaluateBasis<REAL>`: the location and the weights in `R`.
+/// In `f32` the weights of B-spline, Gregory, bilinear and linear triangle
+/// patches are OpenSubdiv's `float` weights bit for bit (its operation
+/// order; see the module documentation); those of Loop and Gregory
+/// triangle patches are the `f64` weights rounded. In `f64` it is
+/// [`evaluate_basis`]. Errors as [`evaluate_basis`]'s.
+///
+/// ```
+/// use subdiv::patches::{evaluate_basis_in, Derivatives, PatchParam, PatchType};
+/// let w = evaluate_basis_in::<f32>(PatchType::Regular, PatchParam::default(), 0.5, 0.5, Derivatives::First)?;
+/// // B-spline weights at 1/2: 1/48, 23/48, 23/48, 1/48 in each direction.
+/// assert_eq!(w.point[0], (1.0f64 / 2304.0) as f32);
+/// assert_eq!(w.du.len(), 16);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+pub fn evaluate_basis_in<R: Real>(
+    patch_type: PatchType,
+    param: PatchParam,
+    u: R,
+    v: R,
+    derivatives: Derivatives,
+) -> Result<Partials<R>> {
+    evaluate_basis_partials(patch_type, param, u, v, derivatives, None)
+}
+
 /// [`evaluate_basis`] as `Partials`, OpenSubdiv's way (`exact` `None`) or
 /// the exact limit's with the patch's single-crease sharpness
 /// ([`evaluate_basis_into`]).
-pub(crate) fn evaluate_basis_partials(
+pub(crate) fn evaluate_basis_partials<R: Real>(
     patch_type: PatchType,
     param: PatchParam,
-    u: f64,
-    v: f64,
+    u: R,
+    v: R,
     derivatives: Derivatives,
     exact: Option<f32>,
-) -> Result<Partials> {
-    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+) -> Result<Partials<R>> {
+    let mut buf: BasisBuffer<R> = [[R::ZERO; 20]; 6];
     let n = evaluate_basis_into(patch_type, param, u, v, derivatives, exact, &mut buf)?;
     let first = derivatives != Derivatives::None;
     let second = derivatives == Derivatives::Second;
@@ -282,16 +423,16 @@ pub(crate) fn evaluate_basis_partials(
 /// patches that are not single-crease ones) for the exact limit's
 /// (`exact.rs`: the crease honoured, derivatives with respect to the ptex
 /// face even under non-quad faces).
-pub(crate) fn evaluate_basis_into(
+pub(crate) fn evaluate_basis_into<R: Real>(
     patch_type: PatchType,
     param: PatchParam,
-    u: f64,
-    v: f64,
+    u: R,
+    v: R,
     derivatives: Derivatives,
     exact: Option<f32>,
-    buf: &mut BasisBuffer,
+    buf: &mut BasisBuffer<R>,
 ) -> Result<usize> {
-    for (coordinate, value) in [("u", u), ("v", v)] {
+    for (coordinate, value) in [("u", u.to_f64()), ("v", v.to_f64())] {
         if !(0.0..=1.0).contains(&value) {
             return Err(Error::Location {
                 face: param.face_id(),
@@ -308,11 +449,16 @@ pub(crate) fn evaluate_basis_into(
     // The patch's share of the ptex face, as a power of two.
     // (A non-quad root at depth 0 cannot come from OpenSubdiv; as the
     // words are public, it is taken as depth 0 rather than underflowing.)
-    let scale = f64::from(1u32 << depth.saturating_sub(u32::from(param.non_quad_root())));
-    let (pu, pv) = (f64::from(param.u()), f64::from(param.v()));
+    let scale = R::from_f64(f64::from(
+        1u32 << depth.saturating_sub(u32::from(param.non_quad_root())),
+    ));
+    let (pu, pv) = (
+        R::from_f64(f64::from(param.u())),
+        R::from_f64(f64::from(param.v())),
+    );
     let rotated = triangular && param.u() + param.v() >= 1 << depth;
     let (s, t) = if rotated {
-        let corner = f64::from(1u32 << depth);
+        let corner = R::from_f64(f64::from(1u32 << depth));
         (corner - pu - u * scale, corner - pv - v * scale)
     } else {
         (u * scale - pu, v * scale - pv)
@@ -325,7 +471,7 @@ pub(crate) fn evaluate_basis_into(
     };
     {
         let mut k = 0;
-        let mut tables: Tables = buf.each_mut().map(|b| {
+        let mut tables: Tables<R> = buf.each_mut().map(|b| {
             k += 1;
             if k <= kinds { &mut b[..n] } else { &mut b[..0] }
         });
@@ -336,19 +482,28 @@ pub(crate) fn evaluate_basis_into(
             .map(|sharpness| (param.boundary().trailing_zeros(), f64::from(sharpness)));
         match patch_type {
             PatchType::Regular => match crease {
-                Some((edge, sharpness)) => single_crease(s, t, edge, sharpness, &mut tables),
+                Some((edge, sharpness)) => in_f64(&mut tables, |tables| {
+                    single_crease(s.to_f64(), t.to_f64(), edge, sharpness, tables);
+                }),
                 None => regular(s, t, param.boundary(), &mut tables),
             },
             PatchType::GregoryBasis => gregory(s, t, &mut tables),
             PatchType::Quads => bilinear(s, t, &mut tables),
             PatchType::Triangles => linear_triangle(s, t, &mut tables),
-            PatchType::Loop => triangles(s, t, &mut tables, |s, t, ds, dt, w| {
-                triangle_basis::box_spline(s, t, ds, dt, w);
-                triangle_basis::fold_box_spline_phantoms(param.boundary(), w);
+            PatchType::Loop => in_f64(&mut tables, |tables| {
+                triangles(s.to_f64(), t.to_f64(), tables, |s, t, ds, dt, w| {
+                    triangle_basis::box_spline(s, t, ds, dt, w);
+                    triangle_basis::fold_box_spline_phantoms(param.boundary(), w);
+                });
             }),
-            PatchType::GregoryTriangle => {
-                triangles(s, t, &mut tables, triangle_basis::gregory_triangle)
-            }
+            PatchType::GregoryTriangle => in_f64(&mut tables, |tables| {
+                triangles(
+                    s.to_f64(),
+                    t.to_f64(),
+                    tables,
+                    triangle_basis::gregory_triangle,
+                );
+            }),
             _ => {
                 return Err(Error::NotYetSupported(
                     "a basis for legacy Gregory patches, points or lines (OpenSubdiv has none either)",
@@ -363,12 +518,12 @@ pub(crate) fn evaluate_basis_into(
     // sign as well (`derivSign * d1Scale * d1Scale`, d1Scale signed
     // already), negating them on rotated triangles: reproduced by default,
     // not in the exact limit.
-    let sign = if rotated { -1.0 } else { 1.0 };
+    let sign = if rotated { -R::ONE } else { R::ONE };
     let d1 = sign
         * if exact.is_some() {
             scale
         } else {
-            f64::from(1u32 << depth)
+            R::from_f64(f64::from(1u32 << depth))
         };
     let d2 = if exact.is_some() {
         d1 * d1
@@ -386,6 +541,60 @@ pub(crate) fn evaluate_basis_into(
 mod tests {
     use super::*;
     use crate::patches::{PatchArray, PatchMap, PatchTable};
+
+    /// `evaluate_basis_in::<f64>` is `evaluate_basis` bit for bit; in `f32`
+    /// a B-spline patch's weights are the products of OpenSubdiv's `float`
+    /// curve expressions (`evalBSplineCurve`), not the `f64` ones rounded.
+    #[test]
+    fn basis_in_each_precision() {
+        let p = PatchParam::default();
+        for ty in [
+            PatchType::Regular,
+            PatchType::GregoryBasis,
+            PatchType::Quads,
+            PatchType::Triangles,
+            PatchType::Loop,
+            PatchType::GregoryTriangle,
+        ] {
+            for (u, v) in [(0.3, 0.7), (0.0, 0.0), (0.05, 0.95), (1.0, 0.5)] {
+                let a = evaluate_basis(ty, p, u, v, Derivatives::Second).unwrap();
+                let b = evaluate_basis_in::<f64>(ty, p, u, v, Derivatives::Second).unwrap();
+                assert_eq!(a, b, "{ty:?} at ({u}, {v})");
+            }
+        }
+        let curve = |t: f32| {
+            let (t2, t3) = (t * t, t * t * t);
+            let sixth = (1.0f64 / 6.0) as f32;
+            [
+                sixth * (1.0 - 3.0 * (t - t2) - t3),
+                sixth * (4.0 - 6.0 * t2 + 3.0 * t3),
+                sixth * (1.0 + 3.0 * (t + t2 - t3)),
+                sixth * t3,
+            ]
+        };
+        let (s, t) = (0.3f32, 0.7f32);
+        let w = evaluate_basis_in(PatchType::Regular, p, s, t, Derivatives::None).unwrap();
+        let (bs, bt) = (curve(s), curve(t));
+        for (k, &x) in w.point.iter().enumerate() {
+            assert_eq!(x, bs[k % 4] * bt[k / 4]);
+        }
+        // The f64 weights rounded differ from them.
+        let wide = evaluate_basis(
+            PatchType::Regular,
+            p,
+            0.3f32.into(),
+            0.7f32.into(),
+            Derivatives::None,
+        )
+        .unwrap();
+        let rounded = wide
+            .point
+            .iter()
+            .zip(&w.point)
+            .filter(|&(&a, &b)| a as f32 != b)
+            .count();
+        assert!(rounded > 0);
+    }
 
     /// Parameter words OpenSubdiv never writes (a non-quad root at depth
     /// 0, the largest fields) are evaluated and located without a panic.
