@@ -375,8 +375,11 @@ pub fn evaluate_basis(
 /// ```
 /// use subdiv::patches::{evaluate_basis_in, Derivatives, PatchParam, PatchType};
 /// let w = evaluate_basis_in::<f32>(PatchType::Regular, PatchParam::default(), 0.5, 0.5, Derivatives::First)?;
-/// // B-spline weights at 1/2: 1/48, 23/48, 23/48, 1/48 in each direction.
-/// assert_eq!(w.point[0], (1.0f64 / 2304.0) as f32);
+/// // The corner B-spline weight at 1/2 is 1/48 in each direction, here as
+/// // OpenSubdiv's float code computes it: 1/6 rounded to f32, times 1/8.
+/// let b0 = (1.0f64 / 6.0) as f32 * 0.125;
+/// assert_eq!(w.point[0], b0 * b0);
+/// assert_ne!(w.point[0], (1.0f64 / 2304.0) as f32); // not the f64 weight rounded
 /// assert_eq!(w.du.len(), 16);
 /// # Ok::<(), subdiv::Error>(())
 /// ```
