@@ -119,29 +119,51 @@ fn bezier_osd<R: Real>(t: R) -> [[R; 4]; 3] {
     ]
 }
 
-/// A curve basis in `R`: the native `f64` formulas (`native`) in `f64`,
-/// OpenSubdiv's operation order (`osd`) in `f32`.
+/// Whose operation order the curves and Gregory blends follow: the native
+/// formulas (the `f64` basis, unchanged) or OpenSubdiv's (the `f32` basis,
+/// so that it is OpenSubdiv's `float` basis bit for bit).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Order {
+    /// The native formulas, in `f64`.
+    Native,
+    /// OpenSubdiv's expressions, in `R`.
+    OpenSubdiv,
+}
+
+impl Order {
+    /// The order of the basis in precision `R`.
+    fn of<R: Real>() -> Order {
+        match R::PRECISION {
+            Precision::F64 => Order::Native,
+            Precision::F32 => Order::OpenSubdiv,
+        }
+    }
+}
+
+/// A curve basis in `R`: the native `f64` formulas (`native`, rounded to
+/// `R`) or OpenSubdiv's operation order in `R` (`osd`).
 fn curve<R: Real>(
     t: R,
+    order: Order,
     native: fn(f64) -> [[f64; 4]; 3],
     osd: fn(R) -> [[R; 4]; 3],
 ) -> [[R; 4]; 3] {
-    match R::PRECISION {
-        Precision::F64 => native(t.to_f64()).map(|row| row.map(R::from_f64)),
-        Precision::F32 => osd(t),
+    match order {
+        Order::Native => native(t.to_f64()).map(|row| row.map(R::from_f64)),
+        Order::OpenSubdiv => osd(t),
     }
 }
 
 /// The pair `(g, 1 - g)` of a Gregory face-point blend `g = num / den`,
 /// `num` itself where `den` vanishes (at a corner, where `num` is 0 too):
-/// in `f32` as OpenSubdiv computes it, `num` times the reciprocal of `den`.
-fn blend<R: Real>(num: R, den: R) -> (R, R) {
+/// in OpenSubdiv's order `num` times the reciprocal of `den`.
+fn blend<R: Real>(num: R, den: R, order: Order) -> (R, R) {
     let g = if den <= R::ZERO {
         num
     } else {
-        match R::PRECISION {
-            Precision::F64 => num / den,
-            Precision::F32 => num * (R::ONE / den),
+        match order {
+            Order::Native => num / den,
+            Order::OpenSubdiv => num * (R::ONE / den),
         }
     };
     (g, R::ONE - g)
@@ -187,10 +209,10 @@ fn fold_phantoms<R: Real>(boundary: u32, w: &mut [R]) {
 }
 
 /// A bicubic B-spline patch (16 points, row by row from `t = 0`).
-fn regular<R: Real>(s: R, t: R, boundary: u32, out: &mut Tables<R>) {
+fn regular<R: Real>(s: R, t: R, boundary: u32, order: Order, out: &mut Tables<R>) {
     let (bs, bt) = (
-        curve(s, bspline, bspline_osd),
-        curve(t, bspline, bspline_osd),
+        curve(s, order, bspline, bspline_osd),
+        curve(t, order, bspline, bspline_osd),
     );
     // (order in s, order in t) of each table.
     for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
@@ -292,7 +314,7 @@ fn in_f64<R: Real>(out: &mut Tables<R>, fill: impl FnOnce(&mut Tables)) {
 /// distance from the other edge. Derivatives are those of the Bézier patch
 /// with the blend held at the location's values, as OpenSubdiv (and its GPU
 /// shaders) compute them.
-fn gregory<R: Real>(s: R, t: R, out: &mut Tables<R>) {
+fn gregory<R: Real>(s: R, t: R, order: Order, out: &mut Tables<R>) {
     // Bézier (column, row) of each boundary point, by Gregory index.
     const BOUNDARY: [(usize, (usize, usize)); 12] = [
         (0, (0, 0)),
@@ -313,12 +335,15 @@ fn gregory<R: Real>(s: R, t: R, out: &mut Tables<R>) {
     type Interior<R> = ((usize, usize), [usize; 2], (R, R));
     let (sc, tc) = (R::ONE - s, R::ONE - t);
     let interior: [Interior<R>; 4] = [
-        ((1, 1), [3, 4], blend(s, s + t)),
-        ((2, 1), [8, 9], blend(t, sc + t)),
-        ((2, 2), [13, 14], blend(sc, sc + tc)),
-        ((1, 2), [18, 19], blend(tc, s + tc)),
+        ((1, 1), [3, 4], blend(s, s + t, order)),
+        ((2, 1), [8, 9], blend(t, sc + t, order)),
+        ((2, 2), [13, 14], blend(sc, sc + tc, order)),
+        ((1, 2), [18, 19], blend(tc, s + tc, order)),
     ];
-    let (bs, bt) = (curve(s, bezier, bezier_osd), curve(t, bezier, bezier_osd));
+    let (bs, bt) = (
+        curve(s, order, bezier, bezier_osd),
+        curve(t, order, bezier, bezier_osd),
+    );
     for (table, (os, ot)) in out.iter_mut().zip(ORDERS) {
         if table.is_empty() {
             continue;
@@ -435,6 +460,23 @@ pub(crate) fn evaluate_basis_into<R: Real>(
     exact: Option<f32>,
     buf: &mut BasisBuffer<R>,
 ) -> Result<usize> {
+    let order = Order::of::<R>();
+    evaluate_basis_ordered(patch_type, param, u, v, derivatives, exact, order, buf)
+}
+
+/// [`evaluate_basis_into`] with the curves and blends in `order` (the
+/// tests check OpenSubdiv's order in `f64` against `EvaluateBasis<double>`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn evaluate_basis_ordered<R: Real>(
+    patch_type: PatchType,
+    param: PatchParam,
+    u: R,
+    v: R,
+    derivatives: Derivatives,
+    exact: Option<f32>,
+    order: Order,
+    buf: &mut BasisBuffer<R>,
+) -> Result<usize> {
     for (coordinate, value) in [("u", u.to_f64()), ("v", v.to_f64())] {
         if !(0.0..=1.0).contains(&value) {
             return Err(Error::Location {
@@ -488,9 +530,9 @@ pub(crate) fn evaluate_basis_into<R: Real>(
                 Some((edge, sharpness)) => in_f64(&mut tables, |tables| {
                     single_crease(s.to_f64(), t.to_f64(), edge, sharpness, tables);
                 }),
-                None => regular(s, t, param.boundary(), &mut tables),
+                None => regular(s, t, param.boundary(), order, &mut tables),
             },
-            PatchType::GregoryBasis => gregory(s, t, &mut tables),
+            PatchType::GregoryBasis => gregory(s, t, order, &mut tables),
             PatchType::Quads => bilinear(s, t, &mut tables),
             PatchType::Triangles => linear_triangle(s, t, &mut tables),
             PatchType::Loop => in_f64(&mut tables, |tables| {
@@ -597,6 +639,85 @@ mod tests {
             .filter(|&(&a, &b)| a as f32 != b)
             .count();
         assert!(rounded > 0);
+    }
+
+    /// OpenSubdiv's operation order (the `f32` basis's) evaluated in `f64`
+    /// is `EvaluateBasis<double>` bit for bit on B-spline patches (boundary
+    /// masks included) and Gregory basis end caps, with second derivatives,
+    /// at locations of every ptex face: the expressions are OpenSubdiv's, so
+    /// in `f32` they are its `float` ones.
+    #[cfg(feature = "osd")]
+    #[test]
+    fn opensubdiv_order_is_evaluate_basis_bit_for_bit() {
+        use crate::BoundaryInterpolation;
+        use crate::osd::TopologyRefiner;
+        use crate::patches::PatchOptions;
+        let (mut regular, mut gregory, mut boundary) = (0, 0, 0);
+        for (name, mesh) in crate::shapes::corpus() {
+            if mesh.face_offsets.windows(2).any(|w| w[1] - w[0] != 4) {
+                continue;
+            }
+            let options = PatchOptions::new().max_isolation(2);
+            let sdc = crate::Options::default().with_boundary(BoundaryInterpolation::EdgeOnly);
+            let mut r = TopologyRefiner::new(&mesh, &sdc).unwrap();
+            r.refine_adaptive(options.refine_adaptive_options(), &[])
+                .unwrap();
+            let Ok(table) = r.patch_table(&options, &[]) else {
+                continue;
+            };
+            let coordinates = [0.0, 0.013, 0.2371, 0.5, 0.618, 0.9437, 1.0];
+            for face in 0..table.table().ptex_faces as u32 {
+                for u in coordinates {
+                    for v in coordinates {
+                        let Some(h) = table.find_patch(face, u, v).unwrap() else {
+                            continue;
+                        };
+                        let array = &table.table().arrays[h.array];
+                        let param = array.params[h.patch];
+                        let theirs = table.evaluate_basis(h, u, v, Derivatives::Second).unwrap();
+                        let mut buf: BasisBuffer = [[0.0; 20]; 6];
+                        let n = evaluate_basis_ordered(
+                            array.patch_type,
+                            param,
+                            u,
+                            v,
+                            Derivatives::Second,
+                            None,
+                            Order::OpenSubdiv,
+                            &mut buf,
+                        )
+                        .unwrap();
+                        let columns = [
+                            &theirs.point,
+                            &theirs.du,
+                            &theirs.dv,
+                            &theirs.duu,
+                            &theirs.duv,
+                            &theirs.dvv,
+                        ];
+                        let bits = |w: &[f64]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        for (k, column) in columns.into_iter().enumerate() {
+                            assert_eq!(
+                                bits(&buf[k][..n]),
+                                bits(column),
+                                "{name}: {:?} at ({face}, {u}, {v}), table {k}",
+                                array.patch_type
+                            );
+                        }
+                        match array.patch_type {
+                            PatchType::Regular if param.boundary() != 0 => boundary += 1,
+                            PatchType::Regular => regular += 1,
+                            PatchType::GregoryBasis => gregory += 1,
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            regular > 1000 && gregory > 1000 && boundary > 100,
+            "{regular} {gregory} {boundary}"
+        );
     }
 
     /// Parameter words OpenSubdiv never writes (a non-quad root at depth
