@@ -263,7 +263,9 @@ int tutorial52() {
 // ---------------------------------------------------------------------------
 // 5_3
 
-int tutorial53() {
+// weights: instead of the OBJ text, each stencil's terms as "index=bits"
+// (the float weights' bits in hex: position, du, dv), first derivatives on.
+int tutorial53(bool weights) {
     typedef Point3<float> P;
     std::vector<int> sizes, verts;
     std::vector<P> base;
@@ -296,9 +298,23 @@ int tutorial53() {
         nPoints += 5;
     }
     Far::LimitStencilTableFactory::Options lo;
-    lo.generate1stDerivatives = false;
+    lo.generate1stDerivatives = weights;
     std::unique_ptr<Far::LimitStencilTable const> stencils(
         Far::LimitStencilTableFactory::Create(*refiner, locations, 0, table.get(), lo));
+    if (weights) {
+        for (int i = 0; i < stencils->GetNumStencils(); ++i) {
+            Far::LimitStencil st = stencils->GetLimitStencil(Far::Index(i));
+            printf("%d:", i);
+            for (int k = 0; k < st.GetSize(); ++k) {
+                float const w[3] = {st.GetWeights()[k], st.GetDuWeights()[k], st.GetDvWeights()[k]};
+                unsigned bits[3];
+                std::memcpy(bits, w, sizeof bits);
+                printf(" %d=%08x,%08x,%08x", st.GetVertexIndices()[k], bits[0], bits[1], bits[2]);
+            }
+            printf("\n");
+        }
+        return 0;
+    }
     std::vector<P> limit(nPoints);
     stencils->UpdateValues(base.data(), limit.data());
 
@@ -314,12 +330,13 @@ int tutorial53() {
 
 int main(int argc, char ** argv) {
     if (argc != 2) {
-        fprintf(stderr, "usage: far_tutorials 5_1|5_2|5_3\n");
+        fprintf(stderr, "usage: far_tutorials 5_1|5_2|5_3|5_3_weights\n");
         return 2;
     }
     if (!strcmp(argv[1], "5_1")) return tutorial51();
     if (!strcmp(argv[1], "5_2")) return tutorial52();
-    if (!strcmp(argv[1], "5_3")) return tutorial53();
+    if (!strcmp(argv[1], "5_3")) return tutorial53(false);
+    if (!strcmp(argv[1], "5_3_weights")) return tutorial53(true);
     fprintf(stderr, "far_tutorials: no tutorial %s\n", argv[1]);
     return 2;
 }

@@ -8,10 +8,9 @@
 //! as a fan of four triangles around its midpoint — the limit surface at
 //! the middle and the four corners of its ptex face — printed as the same
 //! OBJ text. The points are computed in `f32`, as the tutorial computes
-//! them (the refined levels, the local points, the weighted sums); the
-//! basis weights are the native `f64` ones rounded to `f32`, where
-//! OpenSubdiv evaluates them in `f32` (`tests/far_tutorials.rs` holds the
-//! output to OpenSubdiv's program, `cpp/far_tutorials.cpp`).
+//! them (the refined levels, the local points, the basis weights, the
+//! weighted sums; `tests/far_tutorials.rs` holds the output to
+//! OpenSubdiv's program, `cpp/far_tutorials.cpp`).
 //!
 //! ```sh
 //! cargo run --example far_tutorial_5_2 > groups.obj
@@ -131,8 +130,8 @@ pub fn run() -> Result<String, subdiv::Error> {
         }
         let map = PatchMap::new(&table);
 
-        // The fan of each face: `FindPatch`, `EvaluateBasis` (its weights
-        // rounded to f32) and the weighted sum of the patch's points.
+        // The fan of each face: `FindPatch`, `EvaluateBasis` in f32 and the
+        // weighted sum of the patch's points.
         let mut fans = Vec::with_capacity(group.len() * FAN.len());
         for &face in &group {
             let ptex_face = ptex.face_id(face as usize)?;
@@ -145,15 +144,15 @@ pub fn run() -> Result<String, subdiv::Error> {
                     });
                 };
                 let array = &table.arrays[h.array];
-                let w = patches::evaluate_basis(
+                let w = patches::evaluate_basis_in::<f32>(
                     array.patch_type,
                     array.params[h.patch],
-                    s,
-                    t,
+                    s as f32,
+                    t as f32,
                     Derivatives::None,
                 )?;
                 let cvs = array.patch_vertices(h.patch);
-                fans.push(sum(cvs, w.point.iter().map(|&w| w as f32), &points));
+                fans.push(sum(cvs, w.point.iter().copied(), &points));
             }
         }
 

@@ -8,9 +8,11 @@
 //! the stencils from a patch table of its own options, in `f32`;
 //! `location_stencils` builds the same patches (the cube has no boundary,
 //! where the tutorial's `generateLegacySharpCornerPatches = false` would
-//! matter) with their weights in `f64`, applied here in `f32` as the
-//! tutorial applies them (`tests/far_tutorials.rs` holds the output to
-//! OpenSubdiv's program, `cpp/far_tutorials.cpp`).
+//! matter) and, asked for `f32`, every weight in `f32` as OpenSubdiv's
+//! `LimitStencilTableFactory` does (the refined stencils, the local
+//! points, the basis, the sums), applied here in `f32` as the tutorial
+//! applies them (`tests/far_tutorials.rs` holds the output to OpenSubdiv's
+//! program, `cpp/far_tutorials.cpp`).
 //!
 //! ```sh
 //! cargo run --example far_tutorial_5_3 > limit.obj
@@ -18,10 +20,10 @@
 
 use glam::DVec3;
 use std::fmt::Write as _;
-use subdiv::patches::{LimitStencilOptions, PatchOptions};
+use subdiv::patches::{LimitStencilOptions, LocationStencils, PatchOptions};
 use subdiv::ptex::PtexIndices;
 use subdiv::refiner::Refiner;
-use subdiv::{BoundaryInterpolation, Mesh, Options};
+use subdiv::{BoundaryInterpolation, Mesh, Options, Precision};
 
 /// The tutorial's cube.
 fn cube() -> Mesh {
@@ -53,8 +55,9 @@ fn main() -> Result<(), subdiv::Error> {
     Ok(())
 }
 
-/// The tutorial's output.
-pub fn run() -> Result<String, subdiv::Error> {
+/// The tutorial's limit stencils (`f32` weights), at its locations; with
+/// first derivatives when `derivatives` (the tutorial computes none).
+pub fn stencils(derivatives: bool) -> Result<LocationStencils, subdiv::Error> {
     let mesh = cube();
     let options = Options::default().with_boundary(BoundaryInterpolation::EdgeAndCorner);
     let patch_options = PatchOptions {
@@ -76,9 +79,20 @@ pub fn run() -> Result<String, subdiv::Error> {
         let ptex_face = ptex.face_id(face)?;
         locations.extend((0..5).map(|i| (ptex_face, f64::from(s[i]), f64::from(t[i]))));
     }
-    let stencils = refiner.location_stencils(&locations, &LimitStencilOptions::new())?;
+    // In f32; the tutorial asks for positions only
+    // (`generate1stDerivatives = false`).
+    let stencil_options = LimitStencilOptions::new()
+        .first_derivatives(derivatives)
+        .precision(Precision::F32);
+    refiner.location_stencils(&locations, &stencil_options)
+}
+
+/// The tutorial's output.
+pub fn run() -> Result<String, subdiv::Error> {
+    let mesh = cube();
+    let stencils = stencils(false)?;
     // `UpdateValues` in f32, as the tutorial's: each stencil's terms in
-    // order, the weights rounded to f32.
+    // order (the weights f32 values, widened to f64).
     let base = mesh.flat_positions::<f32>();
     let mut limit = Vec::with_capacity(stencils.len());
     for (&offset, &size) in stencils.offsets.iter().zip(&stencils.sizes) {

@@ -3,9 +3,9 @@
 //! (`cpp/far_tutorials.cpp`, compiled against libosdCPU; it prints what the
 //! tutorials print, byte for byte, checked against the tutorials built
 //! from OpenSubdiv's sources on 2026-11-28): the same lines, words and
-//! numbers — 5_1 (double precision, like the tutorial) identical, 5_2 and
-//! 5_3 (the tutorials compute in `f32`) within `f32` rounding of the
-//! printed six decimals.
+//! numbers — 5_1 (double precision, like the tutorial), 5_2 and 5_3 (in
+//! `f32`, like the tutorials) identical; and 5_3's limit stencils
+//! (`far_tutorials 5_3_weights`) OpenSubdiv's `float` weights bit for bit.
 #![cfg(feature = "osd")]
 
 use std::path::{Path, PathBuf};
@@ -87,12 +87,9 @@ fn tutorial_5_1_prints_the_same_script() {
     assert_eq!(ours, theirs, "largest difference {e:e}");
 }
 
-/// 5_2 computes in f32 as the tutorial does — the refined levels are
-/// OpenSubdiv's bit for bit, the local points and sums in its order — but
-/// with the native basis weights (f64, rounded to f32) where OpenSubdiv
-/// evaluates them in f32: measured 2026-11-28, 5,280 of the 54,010 lines
-/// differ, each number by at most 4e-6 (coordinates up to 18.5, where f32
-/// values are 1.9e-6 apart).
+/// 5_2 computes in f32 as the tutorial does: the refined levels, the local
+/// points, the basis weights (`evaluate_basis_in::<f32>`, in OpenSubdiv's
+/// operation order) and the sums, each OpenSubdiv's bit for bit.
 #[test]
 fn tutorial_5_2_prints_the_same_tessellation() {
     let ours = tutorial_5_2::run().unwrap();
@@ -100,29 +97,49 @@ fn tutorial_5_2_prints_the_same_tessellation() {
     // 10 groups, 6,000 faces: 5 vertices and 4 triangles each.
     assert_eq!(ours.lines().count(), 10 + 6000 * 9);
     let e = compare(&ours, &theirs);
-    assert!(e <= 5e-6, "largest difference {e:e}");
-    let differing = ours
-        .lines()
-        .zip(theirs.lines())
-        .filter(|(a, b)| a != b)
-        .count();
-    assert!(differing < 6000, "{differing} lines differ");
+    assert_eq!(ours, theirs, "largest difference {e:e}");
 }
 
+/// 5_3 computes in f32 as the tutorial does: the limit stencils with
+/// every weight in f32 (`LimitStencilOptions::precision`, as
+/// `LimitStencilTableFactory<float>`), applied in f32.
 #[test]
 fn tutorial_5_3_prints_the_same_limit_points() {
     let ours = tutorial_5_3::run().unwrap();
     let theirs = osd("5_3");
     assert_eq!(ours.lines().count(), 1 + 30 + 24);
-    // The stencils' weights are f64 rounded to f32 where OpenSubdiv builds
-    // them in f32, the sums in f32 as the tutorial's: measured 2026-11-28,
-    // one line of the 55 differs, in the sign of a printed zero.
-    let differing = ours
-        .lines()
-        .zip(theirs.lines())
-        .filter(|(a, b)| a != b)
-        .count();
-    assert!(differing <= 2, "{differing} lines differ");
     let e = compare(&ours, &theirs);
-    assert!(e <= 1e-6, "largest difference {e:e}");
+    assert_eq!(ours, theirs, "largest difference {e:e}");
+}
+
+/// The stencils of 5_3 themselves, with first derivatives: OpenSubdiv's
+/// `float` weights bit for bit, position, du and dv, term by term.
+#[test]
+fn tutorial_5_3_stencil_weights_are_opensubdivs_floats() {
+    let stencils = tutorial_5_3::stencils(true).unwrap();
+    let w = &stencils.weights;
+    let bits = |x: f64| (x as f32).to_bits();
+    let mut ours = String::new();
+    for (s, (&offset, &size)) in stencils.offsets.iter().zip(&stencils.sizes).enumerate() {
+        ours.push_str(&format!("{s}:"));
+        for k in offset as usize..(offset + size) as usize {
+            // Each weight an f32 value, widened exactly.
+            for x in [w.point[k], w.du[k], w.dv[k]] {
+                assert_eq!(f64::from(x as f32), x);
+            }
+            ours.push_str(&format!(
+                " {}={:08x},{:08x},{:08x}",
+                stencils.indices[k],
+                bits(w.point[k]),
+                bits(w.du[k]),
+                bits(w.dv[k])
+            ));
+        }
+        ours.push('\n');
+    }
+    let theirs = osd("5_3_weights");
+    // 30 stencils of the cube's 8 vertices.
+    assert_eq!(theirs.lines().count(), 30);
+    assert_eq!(stencils.indices.len(), 240);
+    assert_eq!(ours, theirs);
 }

@@ -5,10 +5,12 @@
 //! One file per concern: [`errors`] (the exceptions), [`convert`] (numpy in
 //! and out), [`mesh`] (`Mesh`), [`options`] (`Options`, names), [`refine`]
 //! (`refine`, `compare`), [`refiner`] (`Refiner`: frames, limits,
-//! stencils), [`obj`] (OBJ files), [`shapes`] (generated meshes).
+//! stencils), [`eval`] (`evaluate`: the limit surface through patch
+//! tables), [`obj`] (OBJ files), [`shapes`] (generated meshes).
 
 mod convert;
 mod errors;
+mod eval;
 mod mesh;
 mod obj;
 mod options;
@@ -28,6 +30,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(refine::refine, m)?)?;
     m.add_function(wrap_pyfunction!(refine::compare, m)?)?;
     m.add_function(wrap_pyfunction!(refine::time_rust_refine, m)?)?;
+    m.add_function(wrap_pyfunction!(eval::evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(obj::read_obj, m)?)?;
     m.add_function(wrap_pyfunction!(obj::parse_obj, m)?)?;
     m.add_function(wrap_pyfunction!(obj::write_mesh_obj, m)?)?;

@@ -12,7 +12,8 @@ Two engines behind one API: ``"native"`` (pure Rust) and ``"osd"``
 
 Classes: ``Mesh`` (validated base mesh), ``Options`` (scheme and OpenSubdiv's
 options by the command line's names), ``Refiner`` (topology once, many frames;
-limits; stencil tables). Functions: ``refine``, ``compare``, ``read_obj``,
+limits; stencil tables). Functions: ``refine``, ``compare``, ``evaluate``
+(the limit surface at ptex locations through a patch table), ``read_obj``,
 ``parse_obj``, ``write_obj``; ``subdiv.shapes`` generates meshes. Errors are
 ``SubdivError`` (a ``ValueError``) and its subclasses ``MeshError``,
 ``ObjError``, ``LevelError`` and ``OsdError``; wrong dtypes are ``TypeError``.
@@ -57,6 +58,7 @@ __all__ = [
     "Refiner",
     "SubdivError",
     "compare",
+    "evaluate",
     "parse_obj",
     "read_obj",
     "refine",
@@ -243,6 +245,44 @@ def refine(
         options=options if options is not None else Options(),
         levels=[Level(*t) for t in levels],
         limit=Limit(*lim) if lim is not None else None,
+    )
+
+
+def evaluate(
+    mesh: Mesh,
+    faces: np.ndarray,
+    uv: np.ndarray,
+    options: Optional[Options] = None,
+    isolation: int = 4,
+    engine: str = "native",
+    *,
+    end_caps: str = "gregory-basis",
+    single_crease: bool = False,
+    inf_sharp: bool = False,
+    double: bool = False,
+    derivatives: bool = False,
+    exact_limit: bool = False,
+) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The limit surface of ``mesh`` at ptex faces ``faces`` and coordinates ``uv``.
+
+    As ``subdiv eval``: the mesh refined adaptively to ``isolation`` (0-10),
+    its patch table (``end_caps`` ``"none"``, ``"bilinear"``, ``"bspline"``,
+    ``"gregory-basis"`` or ``"legacy-gregory"``; ``single_crease``,
+    ``inf_sharp`` and ``double`` as ``--single-crease``, ``--inf-sharp`` and
+    ``--double``), then ``PatchMap`` and ``EvaluateBasis`` at each location.
+    ``faces`` holds ``N`` ptex face numbers (``Far::PtexIndices``), ``uv`` is
+    ``(N, 2)`` with coordinates in [0, 1]. Returns ``(N, 3)`` float64
+    positions, or ``(positions, du, dv)`` with ``derivatives=True``.
+
+    ``exact_limit=True`` (``--exact-limit``, native engine only) evaluates
+    the exact limit surface where OpenSubdiv's ``EvaluateBasis`` departs from
+    it: single-crease patches with their sharpness (semi-sharp) instead of
+    infinitely sharp, derivatives under non-quad faces with respect to the
+    ptex face. The GIL is released while evaluating.
+    """
+    return _subdiv.evaluate(
+        mesh, faces, uv, options, isolation, engine, end_caps,
+        single_crease, inf_sharp, double, derivatives, exact_limit,
     )
 
 

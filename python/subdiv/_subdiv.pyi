@@ -158,6 +158,20 @@ def compare(
     limit: bool = False,
     faces_first: bool = False,
 ) -> Tuple[List[Dict[str, Any]], float, float]: ...
+def evaluate(
+    mesh: Mesh,
+    faces: ArrayLike,
+    uv: ArrayLike,
+    options: Optional[Options] = None,
+    isolation: int = 4,
+    engine: str = "native",
+    end_caps: str = "gregory-basis",
+    single_crease: bool = False,
+    inf_sharp: bool = False,
+    double: bool = False,
+    derivatives: bool = False,
+    exact_limit: bool = False,
+) -> Union[npt.NDArray[np.float64], Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]]: ...
 def time_rust_refine(
     mesh: Mesh, level: int = 2, options: Optional[Options] = None, engine: str = "native", repeats: int = 1
 ) -> List[float]: ...

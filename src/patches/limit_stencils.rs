@@ -6,14 +6,19 @@
 //! OpenSubdiv's recipe, followed step by step: a stencil table of every
 //! refined vertex over the base vertices (control vertices included; every
 //! level after adaptive refinement, the last after uniform refinement), the
-//! local points of a Gregory-end-capped patch table in double precision
-//! appended to it, factorized over the base vertices; then for each
-//! location the patch `PatchMap` finds, the basis weights `EvaluateBasis`
-//! gives, and the sum of the patch's control points' stencils by those
-//! weights. Terms merge by base vertex in order of first contribution, and
-//! zero weights are skipped exactly where OpenSubdiv's `StencilBuilder`
-//! skips them, so the stencils have OpenSubdiv's sizes and indices, term by
-//! term; the weights agree to the basis functions' rounding (about 1e-15).
+//! local points of a Gregory-end-capped patch table appended to it,
+//! factorized over the base vertices; then for each location the patch
+//! `PatchMap` finds, the basis weights `EvaluateBasis` gives, and the sum of
+//! the patch's control points' stencils by those weights. Terms merge by
+//! base vertex in order of first contribution, and zero weights are skipped
+//! exactly where OpenSubdiv's `StencilBuilder` skips them, so the stencils
+//! have OpenSubdiv's sizes and indices, term by term. Every stage computes
+//! in [`LimitStencilOptions::precision`], as
+//! `LimitStencilTableFactoryReal<REAL>` does: in `f32` the weights are
+//! OpenSubdiv's `float` ones bit for bit (far tutorial 5_3's, position and
+//! derivatives: `tests/far_tutorials.rs`); in `f64` they agree to the
+//! native basis functions' rounding (about 1e-16: the native `f64` basis
+//! keeps its own operation order).
 //! A location in a hole has no stencil, as in OpenSubdiv:
 //! [`LocationStencils::locations`] says which location each stencil is for.
 
@@ -24,8 +29,10 @@ use super::{
     Derivatives, EndCapType, Evaluation, Partials, PatchMap, PatchOptions, PatchTable, PatchType,
 };
 use crate::error::{Buffer, Error, Result, StencilFault};
+use crate::real::{Precision, Real};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
+use std::borrow::Cow;
 
 /// `LimitStencilTableFactory::Options`, with OpenSubdiv 3.5's defaults
 /// ([`LimitStencilOptions::new`]: vertex data, first derivatives, no second
@@ -54,6 +61,14 @@ pub struct LimitStencilOptions {
     /// face, half OpenSubdiv's first and a quarter its second; the tables
     /// these stencils are built over have no single-crease patches).
     pub evaluation: Evaluation,
+    /// The precision every weight is computed in, as
+    /// `LimitStencilTableFactoryReal<REAL>` computes them: `f64` (the
+    /// default here) or `f32` (OpenSubdiv's `LimitStencilTableFactory`):
+    /// the refined vertices' stencils, the patch table's local points
+    /// (`patchPrecision` the same), their factorization, the basis
+    /// ([`evaluate_basis_in`](super::evaluate_basis_in)) and the sums. The
+    /// weights are stored widened to `f64`, exactly.
+    pub precision: Precision,
 }
 
 impl Default for LimitStencilOptions {
@@ -64,6 +79,7 @@ impl Default for LimitStencilOptions {
             second_derivatives: false,
             fvar_channel: 0,
             evaluation: Evaluation::OpenSubdiv,
+            precision: Precision::F64,
         }
     }
 }
@@ -102,6 +118,13 @@ impl LimitStencilOptions {
     /// ([`LimitStencilOptions::evaluation`]).
     pub fn evaluation(mut self, evaluation: Evaluation) -> Self {
         self.evaluation = evaluation;
+        self
+    }
+
+    /// Sets the precision the weights are computed in
+    /// ([`LimitStencilOptions::precision`]).
+    pub fn precision(mut self, precision: Precision) -> Self {
+        self.precision = precision;
         self
     }
 
@@ -256,7 +279,13 @@ impl AdaptiveRefiner {
             self.level_counts(0)?.vertices,
             (0..self.fvar_channel_count()).map(|c| self.fvar_levels(c)[0].value_count()),
         );
-        let refined = || self.stencil_table_with(&refined_options(options, true));
+        let refined = || {
+            let o = refined_options(options, true);
+            match options.precision {
+                Precision::F64 => self.stencil_table_in::<f64>(&o),
+                Precision::F32 => self.stencil_table_in::<f32>(&o),
+            }
+        };
         at_locations(table, base, refined, locations, options)
     }
 }
@@ -286,7 +315,13 @@ impl Refiner {
             self.levels[0].vertex_count,
             self.fvar.iter().map(|c| c[0].value_count()),
         );
-        let refined = || self.stencil_table_with(&refined_options(options, false));
+        let refined = || {
+            let o = refined_options(options, false);
+            match options.precision {
+                Precision::F64 => self.stencil_table_in::<f64>(&o),
+                Precision::F32 => self.stencil_table_in::<f32>(&o),
+            }
+        };
         at_locations(&table, base, refined, locations, options)
     }
 }
@@ -357,7 +392,7 @@ pub(crate) fn unrefined() -> Error {
 }
 
 /// The patch table `LimitStencilTableFactory` builds: the factory's
-/// defaults with double-precision local points, base-level indices,
+/// defaults with local points in the stencils' precision, base-level indices,
 /// Gregory end caps, varying tables only for varying stencils, the
 /// refinement's infinitely-sharp patches, and for face-varying stencils the
 /// channel's patches (legacy linear ones when `linear_fvar`: after uniform
@@ -373,7 +408,7 @@ fn patch_options(
     let mut o = PatchOptions::new()
         .end_caps(EndCapType::GregoryBasis)
         .inf_sharp_patch(inf_sharp);
-    o.patch_precision_double = true;
+    o.patch_precision_double = options.precision == Precision::F64;
     o.include_base_level_indices = true;
     o.varying_tables = options.interpolation == StencilInterpolation::Varying;
     if options.interpolation == StencilInterpolation::FaceVarying {
@@ -410,17 +445,17 @@ fn refined_options(options: &LimitStencilOptions, adaptive: bool) -> StencilOpti
 /// term is stored as it is, later ones are added to it, and a stencil's
 /// terms keep the order of their vertices' first contributions. `K` weights
 /// per term (position and derivatives).
-struct Builder<const K: usize> {
+struct Builder<const K: usize, R> {
     /// Position in the current stencil of each base vertex, or `u32::MAX`.
     slot: Vec<u32>,
     /// First term of the current stencil.
     start: usize,
     offsets: Vec<u32>,
     indices: Vec<u32>,
-    weights: [Vec<f64>; K],
+    weights: [Vec<R>; K],
 }
 
-impl<const K: usize> Builder<K> {
+impl<const K: usize, R: Real> Builder<K, R> {
     fn new(base: usize) -> Self {
         Builder {
             slot: crate::alloc::vec_or_unwind(u32::MAX, base),
@@ -434,8 +469,8 @@ impl<const K: usize> Builder<K> {
     /// Adds each term of stencil row (`indices`, `weights`) times `w`
     /// (`StencilBuilder::Index::AddWithWeight(StencilReal, ...)`): nothing
     /// when every `w` is zero, no term whose own weight is zero.
-    fn add_row(&mut self, indices: &[u32], weights: &[f64], w: [f64; K]) {
-        if w.iter().all(|&x| x == 0.0) {
+    fn add_row(&mut self, indices: &[u32], weights: &[R], w: [R; K]) {
+        if w.iter().all(|&x| x == R::ZERO) {
             return;
         }
         // Room for every term of the row, or the unwinding `alloc::guard`
@@ -445,10 +480,10 @@ impl<const K: usize> Builder<K> {
             || self.weights.iter_mut().any(|c| c.try_reserve(n).is_err())
         {
             let terms = self.indices.len().saturating_add(n);
-            crate::alloc::fail(terms.saturating_mul(4 + 8 * K));
+            crate::alloc::fail(terms.saturating_mul(4 + size_of::<R>() * K));
         }
         for (&i, &x) in indices.iter().zip(weights) {
-            if x == 0.0 {
+            if x == R::ZERO {
                 continue;
             }
             let slot = &mut self.slot[i as usize];
@@ -480,7 +515,7 @@ impl<const K: usize> Builder<K> {
     }
 
     /// The stencil `s` closed so far.
-    fn row(&self, s: usize) -> (&[u32], &[f64]) {
+    fn row(&self, s: usize) -> (&[u32], &[R]) {
         let start = self.offsets[s] as usize;
         let end = self
             .offsets
@@ -495,6 +530,29 @@ impl<const K: usize> Builder<K> {
 /// `table` (whose local points are appended to them, factorized, as
 /// `AppendLocalPointStencilTable` does).
 fn build(
+    refined: &StencilTable,
+    table: &PatchTable,
+    base: usize,
+    locations: &[(u32, f64, f64)],
+    options: &LimitStencilOptions,
+) -> Result<LocationStencils> {
+    match options.precision {
+        Precision::F64 => build_in::<f64>(refined, table, base, locations, options),
+        Precision::F32 => build_in::<f32>(refined, table, base, locations, options),
+    }
+}
+
+/// The weights of a table (`f64`) in `R`: the same slice for `f64`,
+/// narrowed (exactly, for weights computed in `R`) otherwise.
+fn weights_in<R: Real>(weights: &[f64]) -> Cow<'_, [R]> {
+    match (R::PRECISION, bytemuck::try_cast_slice(weights)) {
+        (Precision::F64, Ok(same)) => Cow::Borrowed(same),
+        _ => Cow::Owned(weights.iter().map(|&x| R::from_f64(x)).collect()),
+    }
+}
+
+/// [`build`] with every weight computed in `R`.
+fn build_in<R: Real>(
     refined: &StencilTable,
     table: &PatchTable,
     base: usize,
@@ -524,17 +582,21 @@ fn build(
         ));
     }
     // The local points over the base vertices.
-    let mut local = Builder::<1>::new(base);
+    let mut local = Builder::<1, R>::new(base);
     let lp = match data {
         PatchData::Vertex => &table.local_point_stencils,
         PatchData::Varying if table.feature_adaptive => &table.local_point_varying_stencils,
         _ => &none,
     };
+    let (refined_w, lp_w) = (
+        weights_in::<R>(&refined.weights),
+        weights_in::<R>(&lp.weights),
+    );
     for s in 0..lp.len() {
-        let (indices, weights) = row(lp, s)?;
+        let (indices, weights) = row(lp, &lp_w, s)?;
         for (&i, &w) in indices.iter().zip(weights) {
-            if w != 0.0 {
-                let (ri, rw) = row(refined, i as usize)?;
+            if w != R::ZERO {
+                let (ri, rw) = row(refined, &refined_w, i as usize)?;
                 local.add_row(ri, rw, [w]);
             }
         }
@@ -543,7 +605,7 @@ fn build(
     let source = |cv: u32| {
         let cv = cv as usize;
         if cv < refined.len() {
-            row(refined, cv)
+            row(refined, &refined_w, cv)
         } else {
             Ok(local.row(cv - refined.len()))
         }
@@ -556,9 +618,9 @@ fn build(
         evaluation: options.evaluation,
     };
     let (found, offsets, indices, weights) = match options.derivatives() {
-        Derivatives::None => at.stencils::<1>(base, locations, &source)?,
-        Derivatives::First => at.stencils::<3>(base, locations, &source)?,
-        Derivatives::Second => at.stencils::<6>(base, locations, &source)?,
+        Derivatives::None => at.stencils::<1, R>(base, locations, &source)?,
+        Derivatives::First => at.stencils::<3, R>(base, locations, &source)?,
+        Derivatives::Second => at.stencils::<6, R>(base, locations, &source)?,
     };
     let ends = offsets
         .iter()
@@ -595,21 +657,23 @@ impl Locator<'_> {
     /// The stencils with `K` weights per term (position, then derivatives in
     /// `EvaluateBasis`' order), each control point's stencil given by
     /// `source`.
-    fn stencils<'s, const K: usize>(
+    fn stencils<'s, const K: usize, R: Real>(
         &self,
         base: usize,
         locations: &[(u32, f64, f64)],
-        source: &impl Fn(u32) -> Result<(&'s [u32], &'s [f64])>,
+        source: &impl Fn(u32) -> Result<(&'s [u32], &'s [R])>,
     ) -> Result<Built> {
-        let mut b = Builder::<K>::new(base);
+        let mut b = Builder::<K, R>::new(base);
         let mut found = Vec::new();
         if found.try_reserve_exact(locations.len()).is_err() {
             crate::alloc::fail(locations.len().saturating_mul(8));
         }
-        let mut basis: BasisBuffer = [[0.0; 20]; 6];
+        let mut basis: BasisBuffer<R> = [[R::ZERO; 20]; 6];
         for (n, &(face, u, v)) in locations.iter().enumerate() {
+            // The location in `R`, as OpenSubdiv's `LocationArray` holds it.
+            let (u, v) = (R::from_f64(u), R::from_f64(v));
             // No patch: a hole, which OpenSubdiv leaves without a stencil.
-            let Some(h) = self.map.find_patch(face, u, v) else {
+            let Some(h) = self.map.find_patch(face, u.to_f64(), v.to_f64()) else {
                 continue;
             };
             let (patch_type, param, cvs) = patch_of(self.table, self.data, h)?;
@@ -624,14 +688,17 @@ impl Locator<'_> {
             found.push(n);
         }
         let mut columns = b.weights.into_iter();
-        let weights = std::array::from_fn(|_| columns.next().unwrap_or_default());
+        let weights = std::array::from_fn(|_| {
+            let column = columns.next().unwrap_or_default();
+            column.iter().map(|x| x.to_f64()).collect()
+        });
         Ok((found, b.offsets, b.indices, weights))
     }
 }
 
 /// Row `i` of a stencil table, or the error naming the point without one
 /// (a patch naming a point its tables lack).
-fn row(table: &StencilTable, i: usize) -> Result<(&[u32], &[f64])> {
+fn row<'a, R>(table: &'a StencilTable, weights: &'a [R], i: usize) -> Result<(&'a [u32], &'a [R])> {
     let (Some(&offset), Some(&size)) = (table.offsets.get(i), table.sizes.get(i)) else {
         return Err(Error::StencilOutOfRange {
             index: i,
@@ -639,7 +706,7 @@ fn row(table: &StencilTable, i: usize) -> Result<(&[u32], &[f64])> {
         });
     };
     let terms = offset as usize..offset as usize + size as usize;
-    match (table.indices.get(terms.clone()), table.weights.get(terms)) {
+    match (table.indices.get(terms.clone()), weights.get(terms)) {
         (Some(indices), Some(weights)) => Ok((indices, weights)),
         _ => Err(Error::MalformedStencils(StencilFault::RowOutOfRange {
             row: i,

@@ -38,7 +38,7 @@ mod triangle_basis;
 
 use crate::stencil::StencilTable;
 
-pub use basis::evaluate_basis;
+pub use basis::{evaluate_basis, evaluate_basis_in};
 pub use eval::{PatchData, evaluate, evaluate_data, evaluate_data_as, evaluate_with};
 pub use exact::{Evaluation, evaluate_basis_exact};
 pub use limit_stencils::{LimitStencilOptions, LocationStencils};
@@ -477,21 +477,22 @@ pub enum Derivatives {
 /// Values with their partial derivatives with respect to a ptex face's u
 /// and v, each list empty when not asked for: the weights of a patch's
 /// control vertices at one location (`EvaluateBasis`), or the limit
-/// surface's values at a list of locations ([`SurfaceSamples`]).
+/// surface's values at a list of locations ([`SurfaceSamples`]); in
+/// `f64` unless `R` names another precision ([`evaluate_basis_in`]).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Partials {
+pub struct Partials<R = f64> {
     /// The values themselves.
-    pub point: Vec<f64>,
+    pub point: Vec<R>,
     /// ∂/∂u.
-    pub du: Vec<f64>,
+    pub du: Vec<R>,
     /// ∂/∂v.
-    pub dv: Vec<f64>,
+    pub dv: Vec<R>,
     /// ∂²/∂u².
-    pub duu: Vec<f64>,
+    pub duu: Vec<R>,
     /// ∂²/∂u∂v.
-    pub duv: Vec<f64>,
+    pub duv: Vec<R>,
     /// ∂²/∂v².
-    pub dvv: Vec<f64>,
+    pub dvv: Vec<R>,
 }
 
 impl Partials {

@@ -7,7 +7,12 @@
 //! Both are evaluated at `(s, t)` of the triangle with corners `(0, 0)`,
 //! `(1, 0)` and `(0, 1)` (barycentric `w = 1 - s - t` at the first corner,
 //! as OpenSubdiv orients them); derivatives are with respect to `s` and `t`
-//! (the caller scales them to the ptex face).
+//! (the caller scales them to the ptex face). The box spline is evaluated
+//! in `f64` from Stam's coefficients, or in OpenSubdiv's operation order in
+//! any precision (`box_spline_osd`, the `f32` basis); the phantom points
+//! fold in OpenSubdiv's order in both.
+
+use crate::real::Real;
 
 /// Exponents `(a, b)` of the fifteen monomials `s^a t^b` of degree at most
 /// four, in the order of the box spline's coefficient rows.
@@ -91,17 +96,74 @@ pub(super) fn box_spline(s: f64, t: f64, ds: usize, dt: usize, w: &mut [f64]) {
     }
 }
 
+/// [`box_spline`] in OpenSubdiv's operation order
+/// (`evalBoxSplineTriDerivWeights`), in `R`: the monomials built from one
+/// another as OpenSubdiv builds them, each weight a sum over its nonzero
+/// terms in monomial order — the constant first, then `c * m` for integer
+/// coefficients `c` — times a scale applied last, the nearest `R` to 1/12
+/// for positions, to 1/6 for first derivatives, 1 for `ss` and `tt` and
+/// 1/2 for `st`. The coefficients are [`BOX_SPLINE`]'s, differentiated and
+/// divided by twelve times that scale.
+pub(super) fn box_spline_osd<R: Real>(s: R, t: R, ds: usize, dt: usize, w: &mut [R]) {
+    let one = R::ONE;
+    let (ss, st, tt) = (s * s, s * t, t * t);
+    let (sss, sst, stt, ttt) = (ss * s, st * s, st * t, tt * t);
+    let m = [
+        one,
+        s,
+        t,
+        ss,
+        st,
+        tt,
+        sss,
+        sst,
+        stt,
+        ttt,
+        sss * s,
+        sst * s,
+        ss * tt,
+        stt * t,
+        ttt * t,
+    ];
+    // Twelve times the scale, and the scale.
+    let (twelve_scale, scale) = match (ds, dt) {
+        (0, 0) => (1, R::from_f64(1.0 / 12.0)),
+        (1, 0) | (0, 1) => (2, R::from_f64(1.0 / 6.0)),
+        (1, 1) => (6, R::from_f64(0.5)),
+        _ => (12, one),
+    };
+    for (out, row) in w.iter_mut().zip(&BOX_SPLINE) {
+        let mut sum: Option<R> = None;
+        for (&c, &(a, b)) in row.iter().zip(&MONOMIALS) {
+            if c == 0 || a < ds || b < dt {
+                continue;
+            }
+            // The derivative's coefficient of the monomial s^(a-ds) t^(b-dt).
+            let factor = falling(a, ds) * falling(b, dt);
+            let d = f64::from(c) * factor / f64::from(twelve_scale);
+            let j = MONOMIALS
+                .iter()
+                .position(|&e| e == (a - ds, b - dt))
+                .unwrap_or(0);
+            let term = R::from_f64(d) * m[j];
+            sum = Some(sum.map_or(term, |acc| acc + term));
+        }
+        *out = sum.map_or(R::ZERO, |x| scale * x);
+    }
+}
+
 /// A phantom point beyond the boundary, extrapolated as `a + b - c` from
 /// three points of the patch.
 type Phantom = (usize, [usize; 3]);
 
-/// Folds a phantom point's weight into the points it is extrapolated from.
-fn fold(w: &mut [f64], (phantom, [a, b, c]): Phantom) {
+/// Folds a phantom point's weight into the points it is extrapolated from
+/// (the additions and the subtraction in OpenSubdiv's order).
+fn fold<R: Real>(w: &mut [R], (phantom, [a, b, c]): Phantom) {
     let x = w[phantom];
     w[a] += x;
     w[b] += x;
     w[c] -= x;
-    w[phantom] = 0.0;
+    w[phantom] = R::ZERO;
 }
 
 /// Folds the weights of the box spline's phantom points into the points
@@ -117,7 +179,7 @@ fn fold(w: &mut [f64], (phantom, [a, b, c]): Phantom) {
 /// edge's end (`2 b - i` where the neighbouring edge is a boundary too, else
 /// `b + b' - i'` with the points one row in). Beyond a boundary vertex the
 /// two points are reflected across it likewise.
-pub(super) fn fold_box_spline_phantoms(mask: u32, w: &mut [f64]) {
+pub(super) fn fold_box_spline_phantoms<R: Real>(mask: u32, w: &mut [R]) {
     if mask == 0 {
         return;
     }

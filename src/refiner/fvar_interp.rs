@@ -334,8 +334,8 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
 /// reading a value of the parent level or a face point's value of the
 /// child level, with the weights the interpolation multiplies it by. Every
 /// value of the channel at the child level comes once.
-pub(crate) fn fvar_terms<R: Children>(step: &FVarStep<'_, R>, emit: &mut Emit<'_>) {
-    let pass = Pass::<f64, R>::new(step);
+pub(crate) fn fvar_terms<T: Real, R: Children>(step: &FVarStep<'_, R>, emit: &mut Emit<'_, T>) {
+    let pass = Pass::<T, R>::new(step);
     let blocks = step.r.vertex_runs(step.parent);
     let mut sink = Terms {
         terms: Vec::new(),
@@ -404,16 +404,16 @@ impl<T: Real, C: Cols> Sink<T> for Values<'_, '_, T, C> {
 }
 
 /// Collects each value's terms and hands them to `emit`.
-struct Terms<'e, 'f> {
-    terms: Vec<(Source, f64)>,
-    emit: &'e mut Emit<'f>,
+struct Terms<'e, 'f, T> {
+    terms: Vec<(Source, T)>,
+    emit: &'e mut Emit<'f, T>,
 }
 
-impl Sink<f64> for Terms<'_, '_> {
-    fn parent(&mut self, x: u32, w: f64) {
+impl<T: Real> Sink<T> for Terms<'_, '_, T> {
+    fn parent(&mut self, x: u32, w: T) {
         self.terms.push((Source::Parent(x), w));
     }
-    fn centre(&mut self, x: u32, w: f64) {
+    fn centre(&mut self, x: u32, w: T) {
         self.terms.push((Source::Child(x), w));
     }
     fn finish(&mut self, x: u32) {

@@ -85,8 +85,8 @@ pub(crate) enum Source {
 }
 
 /// Receives each child vertex (or face-varying value) and its mask terms,
-/// weights in `f64`.
-pub(crate) type Emit<'a> = dyn FnMut(u32, &[(Source, f64)]) + 'a;
+/// weights in `T` (`f64` unless named).
+pub(crate) type Emit<'a, T = f64> = dyn FnMut(u32, &[(Source, T)]) + 'a;
 
 /// The three kinds of parent element a child vertex comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -32,6 +32,7 @@
 
 use super::AdaptiveRefiner;
 use crate::error::{Error, Result};
+use crate::real::Real;
 use crate::refiner::fvar_interp::fvar_terms;
 use crate::refiner::{Emit, Kind, Refiner, Source};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
@@ -39,15 +40,16 @@ use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
 /// Marks a coarse vertex without an entry in the row being built.
 const ABSENT: u32 = u32::MAX;
 
-/// Rows in compressed form: row `r` is `offsets[r]..offsets[r + 1]`.
+/// Rows in compressed form: row `r` is `offsets[r]..offsets[r + 1]`;
+/// weights in `T`.
 #[derive(Default)]
-struct Rows {
+struct Rows<T> {
     offsets: Vec<u32>,
     indices: Vec<u32>,
-    weights: Vec<f64>,
+    weights: Vec<T>,
 }
 
-impl Rows {
+impl<T: Real> Rows<T> {
     fn new() -> Self {
         Rows {
             offsets: vec![0],
@@ -59,7 +61,7 @@ impl Rows {
         self.offsets.len() - 1
     }
 
-    fn row(&self, r: usize) -> (&[u32], &[f64]) {
+    fn row(&self, r: usize) -> (&[u32], &[T]) {
         let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
         (&self.indices[a..b], &self.weights[a..b])
     }
@@ -74,7 +76,7 @@ struct Merger {
 impl Merger {
     /// `StencilBuilder`'s merge: add `x` to the weight of `i`, or append it.
     #[inline]
-    fn add(&mut self, out: &mut Rows, start: usize, i: u32, x: f64) {
+    fn add<T: Real>(&mut self, out: &mut Rows<T>, start: usize, i: u32, x: T) {
         let slot = &mut self.slot[i as usize];
         if *slot == ABSENT {
             *slot = (out.indices.len() - start) as u32;
@@ -86,7 +88,7 @@ impl Merger {
     }
 
     /// Closes the row that starts at `start`.
-    fn end(&mut self, out: &mut Rows, start: usize) -> Result<()> {
+    fn end<T: Real>(&mut self, out: &mut Rows<T>, start: usize) -> Result<()> {
         for &i in &out.indices[start..] {
             self.slot[i as usize] = ABSENT;
         }
@@ -101,13 +103,13 @@ impl Merger {
 }
 
 /// A refinement whose levels the builder walks: its vertices, or the
-/// values of one face-varying channel ([`Channel`]).
-trait Levels {
+/// values of one face-varying channel ([`Channel`]); mask weights in `T`.
+trait Levels<T> {
     /// Number of vertices (values) of `level`.
     fn vertex_count(&self, level: usize) -> usize;
     /// `emit(child, terms)` for every child vertex (value) of `level` (at
     /// least 1), in OpenSubdiv's order.
-    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>);
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_, T>);
 }
 
 /// The values of face-varying channel `channel` of a refinement: the rows
@@ -117,38 +119,38 @@ struct Channel<'a, L> {
     channel: usize,
 }
 
-impl Levels for Channel<'_, AdaptiveRefiner> {
+impl<T: Real> Levels<T> for Channel<'_, AdaptiveRefiner> {
     fn vertex_count(&self, level: usize) -> usize {
         self.refinement.fvar[self.channel][level].value_count()
     }
-    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_>) {
+    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_, T>) {
         fvar_terms(&self.refinement.fvar_step(self.channel, level), emit);
     }
 }
 
-impl Levels for Channel<'_, Refiner> {
+impl<T: Real> Levels<T> for Channel<'_, Refiner> {
     fn vertex_count(&self, level: usize) -> usize {
         self.refinement.fvar[self.channel][level].value_count()
     }
-    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_>) {
+    fn walk(&self, _: Kind, level: usize, emit: &mut Emit<'_, T>) {
         fvar_terms(&self.refinement.fvar_step(self.channel, level), emit);
     }
 }
 
-impl Levels for AdaptiveRefiner {
+impl<T: Real> Levels<T> for AdaptiveRefiner {
     fn vertex_count(&self, level: usize) -> usize {
         self.levels[level].vertex_count
     }
-    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>) {
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_, T>) {
         self.walk_level(kind, level, emit);
     }
 }
 
-impl Levels for Refiner {
+impl<T: Real> Levels<T> for Refiner {
     fn vertex_count(&self, level: usize) -> usize {
         self.levels[level].vertex_count
     }
-    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_>) {
+    fn walk(&self, kind: Kind, level: usize, emit: &mut Emit<'_, T>) {
         self.walk_masks(kind, level, emit);
     }
 }
@@ -156,9 +158,9 @@ impl Levels for Refiner {
 /// The table `options` ask for (checked, up to level `last`): over the
 /// refinement's vertices, or over the values of the face-varying channel
 /// they name.
-fn table(
-    vertices: &dyn Levels,
-    values: &dyn Levels,
+fn table<T: Real>(
+    vertices: &dyn Levels<T>,
+    values: &dyn Levels<T>,
     options: &StencilOptions,
     last: usize,
 ) -> Result<StencilTable> {
@@ -174,13 +176,13 @@ fn table(
 /// The rows of the vertices of `level` in vertex order, from the terms of
 /// its child vertices; `prev` holds the rows of level `level - 1` when they
 /// replace parent terms (factorized, below level 1).
-fn level_rows(
-    refinement: &dyn Levels,
+fn level_rows<T: Real>(
+    refinement: &dyn Levels<T>,
     kind: Kind,
     level: usize,
-    prev: Option<&Rows>,
+    prev: Option<&Rows<T>>,
     merger: &mut Merger,
-) -> Result<Rows> {
+) -> Result<Rows<T>> {
     let count = refinement.vertex_count(level);
     // Rows in the order they are built, and the position of each child's.
     let mut built = Rows::new();
@@ -192,7 +194,7 @@ fn level_rows(
         }
         let start = built.indices.len();
         for &(source, w) in terms {
-            if w == 0.0 {
+            if w == T::ZERO {
                 continue;
             }
             match (source, prev) {
@@ -241,8 +243,8 @@ fn level_rows(
 
 /// The table of `options` over `levels` levels of `refinement` (checked by
 /// [`StencilOptions::check`]), whose base level has `base` vertices.
-fn build(
-    refinement: &dyn Levels,
+fn build<T: Real>(
+    refinement: &dyn Levels<T>,
     options: &StencilOptions,
     last: usize,
     base: usize,
@@ -264,24 +266,25 @@ fn build(
     let mut merger = Merger {
         slot: vec![ABSENT; widest.max(base)],
     };
-    let mut levels: Vec<Rows> = Vec::with_capacity(last);
+    let mut levels: Vec<Rows<T>> = Vec::with_capacity(last);
     for level in 1..=last {
         let prev = (factorize && level > 1).then(|| &levels[level - 2]);
         let rows = level_rows(refinement, kind, level, prev, &mut merger)?;
         levels.push(rows);
     }
-    let mut push = |idx: &[u32], w: &[f64]| {
+    // Weights widened to the table's f64 (exactly).
+    let mut push = |idx: &[u32], w: &[T]| {
         table.offsets.push(table.indices.len() as u32);
         table.sizes.push(idx.len() as u32);
         table.indices.extend_from_slice(idx);
-        table.weights.extend_from_slice(w);
+        table.weights.extend(w.iter().map(|x| x.to_f64()));
     };
     // OpenSubdiv's numbering: base rows, then each level's. Control rows
     // come first when asked for; then the rows from `first` on.
     let identity = !factorize && !options.generate_intermediate_levels;
     if control || identity {
         for i in 0..base as u32 {
-            push(&[i], &[1.0]);
+            push(&[i], &[T::ONE]);
         }
     }
     let from = if options.generate_intermediate_levels || identity {
@@ -329,13 +332,22 @@ impl AdaptiveRefiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
+        self.stencil_table_in::<f64>(options)
+    }
+
+    /// [`AdaptiveRefiner::stencil_table_with`] with its weights computed in
+    /// `T` (`StencilTableFactoryReal<T>`), widened to `f64`.
+    pub(crate) fn stencil_table_in<T: Real>(
+        &self,
+        options: &StencilOptions,
+    ) -> Result<StencilTable> {
         let channels = self.fvar_channel_count();
         let last = options.check(self.max_level(), channels)?;
         let channel = Channel {
             refinement: self,
             channel: options.fvar_channel,
         };
-        table(self, &channel, options, last as usize)
+        table::<T>(self, &channel, options, last as usize)
     }
 }
 
@@ -361,11 +373,20 @@ impl Refiner {
     /// # Ok::<(), subdiv::Error>(())
     /// ```
     pub fn stencil_table_with(&self, options: &StencilOptions) -> Result<StencilTable> {
+        self.stencil_table_in::<f64>(options)
+    }
+
+    /// [`Refiner::stencil_table_with`] with its weights computed in `T`
+    /// (`StencilTableFactoryReal<T>`), widened to `f64`.
+    pub(crate) fn stencil_table_in<T: Real>(
+        &self,
+        options: &StencilOptions,
+    ) -> Result<StencilTable> {
         let last = options.check(self.max_level(), self.fvar.len())?;
         let channel = Channel {
             refinement: self,
             channel: options.fvar_channel,
         };
-        table(self, &channel, options, last as usize)
+        table::<T>(self, &channel, options, last as usize)
     }
 }
