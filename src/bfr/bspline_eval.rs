@@ -10,25 +10,50 @@
 //! and the next point (negated). Folding rows, then columns, is the tensor
 //! product of the two one-dimensional folds.
 
-use crate::patches::basis::{ORDERS, bspline};
+use crate::patches::basis::ORDERS;
 
-/// The four B-spline weights of one direction and their first and second
-/// derivatives at `t`, with the phantom point at the low end (`low`) and
-/// the high end (`high`) folded in.
-fn weights(t: f64, low: bool, high: bool) -> [[f64; 4]; 3] {
-    let mut w = bspline(t);
-    for order in &mut w {
-        if low {
-            let x = order[0];
-            order[2] -= x;
-            order[1] += 2.0 * x;
-            order[0] = 0.0;
-        }
-        if high {
-            let x = order[3];
-            order[1] -= x;
-            order[2] += 2.0 * x;
-            order[3] = 0.0;
+/// The four uniform cubic B-spline weights of one direction at `t` and,
+/// up to order `orders - 1`, their derivatives, with the phantom point at
+/// the low end (`low`) and the high end (`high`) folded in. (The same
+/// polynomials as `patches::basis::bspline`, their sixths taken by one
+/// multiplication.)
+#[inline]
+fn weights(t: f64, orders: usize, low: bool, high: bool) -> [[f64; 4]; 3] {
+    const SIXTH: f64 = 1.0 / 6.0;
+    let (t2, c) = (t * t, 1.0 - t);
+    let t3 = t2 * t;
+    let mut w = [[0.0; 4]; 3];
+    w[0] = [
+        c * c * c * SIXTH,
+        (3.0 * t3 - 6.0 * t2 + 4.0) * SIXTH,
+        (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) * SIXTH,
+        t3 * SIXTH,
+    ];
+    if orders > 1 {
+        w[1] = [
+            -0.5 * c * c,
+            1.5 * t2 - 2.0 * t,
+            -1.5 * t2 + t + 0.5,
+            0.5 * t2,
+        ];
+    }
+    if orders > 2 {
+        w[2] = [c, 3.0 * t - 2.0, 1.0 - 3.0 * t, t];
+    }
+    if low || high {
+        for order in w.iter_mut().take(orders) {
+            if low {
+                let x = order[0];
+                order[2] -= x;
+                order[1] += 2.0 * x;
+                order[0] = 0.0;
+            }
+            if high {
+                let x = order[3];
+                order[1] -= x;
+                order[2] += 2.0 * x;
+                order[3] = 0.0;
+            }
         }
     }
     w
@@ -66,12 +91,15 @@ fn evaluate_n<const N: usize>(
     coords: &[[f64; 2]],
     columns: &mut [Vec<f64>],
 ) {
-    // The orders in u the outputs need: 0, then 1, then 2.
-    let u_orders = match columns.len() {
-        0 | 1 => 1,
-        2..=5 => 2,
-        _ => 3,
+    // The orders the outputs need in u and in v: 0, then 1, then 2.
+    let (u_orders, v_orders) = match columns.len() {
+        0 | 1 => (1, 1),
+        2 => (2, 1),
+        3..=5 => (2, 2),
+        _ => (3, 3),
     };
+    let (u_low, u_high, v_low, v_high) =
+        (mask & 8 != 0, mask & 2 != 0, mask & 1 != 0, mask & 4 != 0);
     for start in (0..width).step_by(N) {
         let n = (width - start).min(N);
         let mut p = [[0.0; N]; 16];
@@ -79,8 +107,8 @@ fn evaluate_n<const N: usize>(
             dst[..n].copy_from_slice(&src[start..start + n]);
         }
         for (i, &[u, v]) in coords.iter().enumerate() {
-            let bu = weights(u, mask & 8 != 0, mask & 2 != 0);
-            let bv = weights(v, mask & 1 != 0, mask & 4 != 0);
+            let bu = weights(u, u_orders, u_low, u_high);
+            let bv = weights(v, v_orders, v_low, v_high);
             // rows[order][row]: row `row` contracted with the u weights of
             // that order.
             let mut rows = [[[0.0; N]; 4]; 3];

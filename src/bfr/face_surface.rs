@@ -23,6 +23,7 @@
 use super::corner::{Corner, CornerTag, Subset};
 use super::hull::hull;
 use super::parameterization::Parameterization;
+use super::plans::{PLAN_BUDGET, Plans};
 use super::regular::{shortcut_points, subset_mask, subset_points};
 use super::surfaces::SurfaceOptions;
 use crate::error::{Element, Error, Result};
@@ -39,6 +40,7 @@ use crate::stencil::StencilTable;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use rustc_hash::FxHashMap;
+use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
@@ -55,6 +57,8 @@ pub struct SurfaceFactory {
     /// The refined hulls built so far, by topology (Bfr's topology cache:
     /// faces whose hulls match share one refinement).
     cache: Mutex<FxHashMap<HullKey, Arc<Irregular>>>,
+    /// The bytes of evaluation plans the hulls may still keep.
+    plan_budget: Arc<AtomicUsize>,
 }
 
 /// What makes two control hulls refine alike: their faces, sharpness and
@@ -155,6 +159,10 @@ pub(super) struct Irregular {
     /// points (Bfr numbers the end caps' points patch by patch, level by
     /// level).
     pub(super) local_order: Vec<usize>,
+    /// The hull's evaluation plans (`plans.rs`).
+    pub(super) plans: Plans,
+    /// The bytes of plans the factory has left (shared by its hulls).
+    pub(super) budget: Arc<AtomicUsize>,
 }
 
 /// One base face's limit surface (`Bfr::Surface<double>`).
@@ -189,6 +197,7 @@ impl SurfaceFactory {
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
+            plan_budget: Arc::new(AtomicUsize::new(PLAN_BUDGET)),
         })
     }
 
@@ -573,6 +582,8 @@ impl SurfaceFactory {
             base,
             locals,
             local_order,
+            plans: Plans::default(),
+            budget: self.plan_budget.clone(),
         })
     }
 }

@@ -24,6 +24,7 @@ mod hull;
 mod mesh_surfaces;
 mod mesher;
 pub(crate) mod parameterization;
+mod plans;
 mod regular;
 mod surface_eval;
 mod surfaces;

@@ -13,8 +13,8 @@ use crate::error::{Error, Result};
 use crate::patches::basis::{BasisBuffer, evaluate_basis_into};
 use crate::patches::limit_stencils::stencils_at;
 use crate::patches::{
-    Derivatives, LimitStencilOptions, Partials, PatchData, PatchParam, PatchType, SurfaceSamples,
-    evaluate_basis, evaluate_data,
+    Derivatives, LimitStencilOptions, LocationStencils, Partials, PatchData, PatchParam, PatchType,
+    SurfaceSamples, evaluate_basis, evaluate_data,
 };
 
 /// The four weights of a sub-face of a split n-gon turned into the weights
@@ -136,15 +136,12 @@ impl Surface {
             }
             Form::Irregular(irregular) => {
                 let locations = self.locations(coords)?;
-                let options = LimitStencilOptions::new()
-                    .first_derivatives(derivatives != Derivatives::None)
-                    .second_derivatives(derivatives == Derivatives::Second);
                 let stencils = stencils_at(
                     &irregular.table,
                     irregular.base,
                     &irregular.refined,
                     &locations,
-                    &options,
+                    &stencil_options(derivatives),
                 )?;
                 let n = self.control_points.len();
                 for s in 0..stencils.len() {
@@ -404,6 +401,23 @@ impl Surface {
         self.check_points(points, layout)?;
         match &self.form {
             Form::Irregular(irregular) => {
+                // A plan when other faces of the hull were evaluated at the
+                // same coordinates (`plans.rs`).
+                let plan = irregular
+                    .plans
+                    .get(coords, derivatives, &irregular.budget, || {
+                        let locations = self.locations(coords)?;
+                        stencils_at(
+                            &irregular.table,
+                            irregular.base,
+                            &irregular.refined,
+                            &locations,
+                            &stencil_options(derivatives),
+                        )
+                    })?;
+                if let Some(plan) = plan {
+                    return self.apply_plan(&plan, points, layout, derivatives);
+                }
                 // Through the patch points (in the table's order): cheaper
                 // than a stencil per coordinate once there are more than a
                 // few.
@@ -540,6 +554,51 @@ impl Surface {
         })
     }
 
+    /// An evaluation plan (stencils over the control points at each
+    /// coordinate, in order) applied to the mesh's `points`.
+    fn apply_plan(
+        &self,
+        plan: &LocationStencils,
+        points: &[f64],
+        layout: PointDescriptor,
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
+        let width = layout.size;
+        let mut control = Vec::new();
+        alloc::reserve(
+            &mut control,
+            self.control_points.len().saturating_mul(width),
+        )?;
+        for &cv in &self.control_points {
+            control.extend_from_slice(layout.point(points, cv as usize));
+        }
+        let w = &plan.weights;
+        let kinds = match derivatives {
+            Derivatives::None => 1,
+            Derivatives::First => 3,
+            Derivatives::Second => 6,
+        };
+        let weights = [&w.point, &w.du, &w.dv, &w.duu, &w.duv, &w.dvv];
+        let mut columns: [Vec<f64>; 6] = Default::default();
+        for (column, weights) in columns.iter_mut().zip(weights).take(kinds) {
+            *column = alloc::try_vec(0.0, plan.locations.len().saturating_mul(width))?;
+            for (s, &at) in plan.locations.iter().enumerate() {
+                let terms = plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
+                let dst = &mut column[at * width..(at + 1) * width];
+                for (&i, &wt) in plan.indices[terms.clone()].iter().zip(&weights[terms]) {
+                    let p = &control[i as usize * width..(i as usize + 1) * width];
+                    for (d, &x) in dst.iter_mut().zip(p) {
+                        *d += wt * x;
+                    }
+                }
+            }
+        }
+        Ok(SurfaceSamples {
+            width,
+            values: Partials::from_columns(columns),
+        })
+    }
+
     /// The stencils at `coords` applied to `points`, the stencils' weights
     /// going to the points at `indices`.
     fn apply_stencils(
@@ -576,6 +635,13 @@ impl Surface {
             values: Partials::from_columns(columns),
         })
     }
+}
+
+/// Limit stencils with the derivatives asked for.
+fn stencil_options(derivatives: Derivatives) -> LimitStencilOptions {
+    LimitStencilOptions::new()
+        .first_derivatives(derivatives != Derivatives::None)
+        .second_derivatives(derivatives == Derivatives::Second)
 }
 
 /// The points an irregular surface's patch table indexes — its hull's

@@ -1,0 +1,162 @@
+//! Evaluation plans: the limit stencils of one list of coordinates over a
+//! cached control hull's points, kept for the other faces that share the
+//! hull and are evaluated at the same coordinates — as a mesher evaluates
+//! face after face at one tessellation pattern.
+//!
+//! Faces whose control hulls have the same topology share one refinement
+//! and patch table (Bfr's topology cache, `face_surface.rs`). Evaluating
+//! such a face at (u, v) finds the same patch and the same basis weights as
+//! every other face of the hull does, and its patch points are the same
+//! stencils of its own control points. A plan composes both once: for each
+//! coordinate, the weights of the hull's control points (and of their
+//! derivatives). A face then costs one weighted sum per coordinate.
+//!
+//! A plan is built when a second face asks for the same coordinates (the
+//! first is evaluated directly: a plan costs a few evaluations to build),
+//! and plans are kept within a byte budget shared by a factory's hulls;
+//! beyond it faces are evaluated directly, as without plans.
+
+use crate::error::Result;
+use crate::patches::{Derivatives, LocationStencils};
+use rustc_hash::{FxHashMap, FxHasher};
+use std::hash::Hasher;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// The bytes of plans (and of the coordinate lists waiting for one) a
+/// factory keeps at most.
+pub(super) const PLAN_BUDGET: usize = 256 << 20;
+
+/// The fewest coordinates worth a plan.
+const MIN_COORDS: usize = 16;
+
+/// One hull's plans, by coordinate list and derivatives.
+#[derive(Debug, Default)]
+pub(super) struct Plans {
+    entries: Mutex<FxHashMap<u64, Vec<Entry>>>,
+}
+
+#[derive(Debug)]
+struct Entry {
+    derivatives: Derivatives,
+    coords: Vec<[f64; 2]>,
+    /// Faces that asked before the plan was built.
+    uses: u32,
+    plan: Option<Arc<LocationStencils>>,
+}
+
+/// A key of `coords` and `derivatives` (equal lists hash alike: the
+/// coordinates' bits).
+fn key(coords: &[[f64; 2]], derivatives: Derivatives) -> u64 {
+    let mut h = FxHasher::default();
+    h.write_u8(derivatives as u8);
+    h.write_usize(coords.len());
+    for [u, v] in coords {
+        h.write_u64(u.to_bits());
+        h.write_u64(v.to_bits());
+    }
+    h.finish()
+}
+
+fn same(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p[0].to_bits() == q[0].to_bits() && p[1].to_bits() == q[1].to_bits())
+}
+
+/// The bytes a plan holds.
+fn plan_bytes(plan: &LocationStencils) -> usize {
+    let w = &plan.weights;
+    let weights = [&w.point, &w.du, &w.dv, &w.duu, &w.duv, &w.dvv]
+        .iter()
+        .map(|c| c.len())
+        .sum::<usize>();
+    8 * weights
+        + 4 * (plan.indices.len() + plan.sizes.len() + plan.offsets.len())
+        + 8 * plan.locations.len()
+}
+
+impl Plans {
+    /// The plan of `coords` (validated by the caller) with `derivatives`,
+    /// when one is kept or worth building now (`build` builds it): `None`
+    /// for the first face to ask, for short lists, and once `budget` (the
+    /// bytes the factory has left) is spent.
+    pub(super) fn get(
+        &self,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        budget: &AtomicUsize,
+        build: impl FnOnce() -> Result<LocationStencils>,
+    ) -> Result<Option<Arc<LocationStencils>>> {
+        if coords.len() < MIN_COORDS {
+            return Ok(None);
+        }
+        let k = key(coords, derivatives);
+        {
+            let mut entries = self
+                .entries
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner());
+            let list = entries.entry(k).or_default();
+            match list
+                .iter_mut()
+                .find(|e| e.derivatives == derivatives && same(&e.coords, coords))
+            {
+                Some(Entry {
+                    plan: Some(plan), ..
+                }) => return Ok(Some(plan.clone())),
+                Some(entry) => {
+                    entry.uses = entry.uses.saturating_add(1);
+                    if entry.uses < 2 {
+                        return Ok(None);
+                    }
+                }
+                None => {
+                    if take(budget, 16 * coords.len()) {
+                        list.push(Entry {
+                            derivatives,
+                            coords: coords.to_vec(),
+                            uses: 1,
+                            plan: None,
+                        });
+                    }
+                    return Ok(None);
+                }
+            }
+        }
+        // Built outside the lock (other faces of the hull go on directly
+        // meanwhile); the first plan stored wins.
+        let plan = build()?;
+        if plan.locations.len() != coords.len() || !take(budget, plan_bytes(&plan)) {
+            return Ok(None);
+        }
+        let plan = Arc::new(plan);
+        let mut entries = self
+            .entries
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some(entry) = entries.get_mut(&k).and_then(|list| {
+            list.iter_mut()
+                .find(|e| e.derivatives == derivatives && same(&e.coords, coords))
+        }) {
+            match &entry.plan {
+                Some(kept) => {
+                    budget.fetch_add(plan_bytes(&plan), Ordering::Relaxed);
+                    return Ok(Some(kept.clone()));
+                }
+                None => entry.plan = Some(plan.clone()),
+            }
+        }
+        Ok(Some(plan))
+    }
+}
+
+/// Takes `bytes` from `budget` if it has them.
+fn take(budget: &AtomicUsize, bytes: usize) -> bool {
+    budget
+        .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |left| {
+            left.checked_sub(bytes)
+        })
+        .is_ok()
+}
