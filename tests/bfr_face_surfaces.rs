@@ -647,11 +647,12 @@ fn mesh_surfaces_agree_where_the_global_ones_depart() {
     }
 }
 
-/// Faces that share a control hull and are evaluated at the same
-/// coordinates — a tessellation pattern, face after face, as the mesher
-/// does — go through an evaluation plan from the second such face on
-/// (`src/bfr/plans.rs`): the values and derivatives stay those of the
-/// surface's own patch points, for vertex and face-varying surfaces alike.
+/// Faces that share a control hull (or regular faces with the same
+/// boundary mask) and are evaluated at the same coordinates — a
+/// tessellation pattern, face after face, as the mesher does — go through
+/// an evaluation plan from the second such face on (`src/bfr/plans.rs`):
+/// the values and derivatives stay those of the surface's own patch
+/// points, for vertex and face-varying surfaces alike.
 #[test]
 fn evaluation_plans_give_the_patch_points_values() {
     use subdiv::FVarLinearInterpolation as F;
@@ -670,7 +671,7 @@ fn evaluation_plans_give_the_patch_points_values() {
                 surfaces.push((factory.fvar_surface(face, 0).unwrap(), &c.values, c.width));
             }
             for (s, data, width) in surfaces {
-                if !s.is_valid() || s.is_regular() || s.is_linear() {
+                if !s.is_valid() || s.is_linear() {
                     continue;
                 }
                 let pattern =

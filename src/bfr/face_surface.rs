@@ -59,6 +59,9 @@ pub struct SurfaceFactory {
     cache: Mutex<FxHashMap<HullKey, Arc<Irregular>>>,
     /// The bytes of evaluation plans the hulls may still keep.
     plan_budget: Arc<AtomicUsize>,
+    /// Regular faces' evaluation plans: B-spline patches by boundary mask,
+    /// then box-spline patches by boundary mask.
+    regular_plans: Vec<Arc<Plans>>,
 }
 
 /// What makes two control hulls refine alike: their faces, sharpness and
@@ -134,8 +137,13 @@ pub(super) enum Form {
     /// The face itself: bilinear (or linear, a triangle under Loop) when
     /// `regular`, else split into quads at its centre.
     Linear { regular: bool },
-    /// One regular patch with this boundary mask.
-    Regular { patch: PatchType, mask: u16 },
+    /// One regular patch with this boundary mask, and the evaluation plans
+    /// of its kind.
+    Regular {
+        patch: PatchType,
+        mask: u16,
+        plans: Arc<Plans>,
+    },
     /// The patches of an adaptive refinement of the face's control hull
     /// (shared by the faces whose hulls have the same topology).
     Irregular(Arc<Irregular>),
@@ -161,8 +169,6 @@ pub(super) struct Irregular {
     pub(super) local_order: Vec<usize>,
     /// The hull's evaluation plans (`plans.rs`).
     pub(super) plans: Plans,
-    /// The bytes of plans the factory has left (shared by its hulls).
-    pub(super) budget: Arc<AtomicUsize>,
 }
 
 /// One base face's limit surface (`Bfr::Surface<double>`).
@@ -192,12 +198,16 @@ impl SurfaceFactory {
         }
         let refiner = Refiner::new(mesh, options)?;
         let features = base_features(&refiner.levels[0], options.scheme);
+        let budget = Arc::new(AtomicUsize::new(PLAN_BUDGET));
         Ok(SurfaceFactory {
             refiner,
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
-            plan_budget: Arc::new(AtomicUsize::new(PLAN_BUDGET)),
+            regular_plans: (0..32)
+                .map(|_| Arc::new(Plans::new(budget.clone())))
+                .collect(),
+            plan_budget: budget,
         })
     }
 
@@ -396,17 +406,21 @@ impl SurfaceFactory {
         control_points: Vec<u32>,
         mask: u16,
     ) -> Surface {
-        let patch = if self.reg_size() == 4 {
-            PatchType::Regular
+        let (patch, plans) = if self.reg_size() == 4 {
+            (PatchType::Regular, 0)
         } else {
-            PatchType::Loop
+            (PatchType::Loop, 16)
         };
         Surface {
             face,
             param,
             patch_points: control_points.len(),
             control_points,
-            form: Form::Regular { patch, mask },
+            form: Form::Regular {
+                patch,
+                mask,
+                plans: self.regular_plans[plans + (mask & 15) as usize].clone(),
+            },
         }
     }
 
@@ -582,8 +596,7 @@ impl SurfaceFactory {
             base,
             locals,
             local_order,
-            plans: Plans::default(),
-            budget: self.plan_budget.clone(),
+            plans: Plans::new(self.plan_budget.clone()),
         })
     }
 }

@@ -14,7 +14,9 @@
 //! A plan is built when a second face asks for the same coordinates (the
 //! first is evaluated directly: a plan costs a few evaluations to build),
 //! and plans are kept within a byte budget shared by a factory's hulls;
-//! beyond it faces are evaluated directly, as without plans.
+//! beyond it faces are evaluated directly, as without plans. Regular faces
+//! get plans too, one set per patch type and boundary mask: their 16 (or
+//! 12) basis weights at each coordinate.
 
 use crate::error::Result;
 use crate::patches::{Derivatives, LocationStencils};
@@ -30,10 +32,13 @@ pub(super) const PLAN_BUDGET: usize = 256 << 20;
 /// The fewest coordinates worth a plan.
 const MIN_COORDS: usize = 16;
 
-/// One hull's plans, by coordinate list and derivatives.
-#[derive(Debug, Default)]
+/// One hull's plans (or one kind of regular patch's), by coordinate list
+/// and derivatives.
+#[derive(Debug)]
 pub(super) struct Plans {
     entries: Mutex<FxHashMap<u64, Vec<Entry>>>,
+    /// The bytes the factory's plans may still take (shared by them all).
+    budget: Arc<AtomicUsize>,
 }
 
 #[derive(Debug)]
@@ -78,17 +83,25 @@ fn plan_bytes(plan: &LocationStencils) -> usize {
 }
 
 impl Plans {
-    /// The plan of `coords` (validated by the caller) with `derivatives`,
-    /// when one is kept or worth building now (`build` builds it): `None`
-    /// for the first face to ask, for short lists, and once `budget` (the
-    /// bytes the factory has left) is spent.
+    /// No plans yet, within `budget`.
+    pub(super) fn new(budget: Arc<AtomicUsize>) -> Plans {
+        Plans {
+            entries: Mutex::new(FxHashMap::default()),
+            budget,
+        }
+    }
+
+    /// The plan of `coords` with `derivatives`, when one is kept or worth
+    /// building now (`build` builds it, validating the coordinates):
+    /// `None` for the first face to ask, for short lists, and once the
+    /// budget is spent.
     pub(super) fn get(
         &self,
         coords: &[[f64; 2]],
         derivatives: Derivatives,
-        budget: &AtomicUsize,
         build: impl FnOnce() -> Result<LocationStencils>,
     ) -> Result<Option<Arc<LocationStencils>>> {
+        let budget = &*self.budget;
         if coords.len() < MIN_COORDS {
             return Ok(None);
         }

@@ -127,11 +127,11 @@ impl Surface {
                     out.push(self.split_stencil(uv, derivatives)?);
                 }
             }
-            Form::Regular { patch, mask } => {
-                let param = PatchParam::new(0, 0, 0, 0, false, *mask, 0, true);
+            &Form::Regular { patch, mask, .. } => {
+                let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
                 for &uv in coords {
                     let [u, v] = self.clamped(uv);
-                    out.push(evaluate_basis(*patch, param, u, v, derivatives)?);
+                    out.push(evaluate_basis(patch, param, u, v, derivatives)?);
                 }
             }
             Form::Irregular(irregular) => {
@@ -328,7 +328,7 @@ impl Surface {
         // the patch points.
         let identity: Vec<u32> = (0..self.control_points.len() as u32).collect();
         match self.form {
-            Form::Regular { patch, mask } => self.evaluate_regular(
+            Form::Regular { patch, mask, .. } => self.evaluate_regular(
                 patch,
                 mask,
                 &identity,
@@ -403,18 +403,16 @@ impl Surface {
             Form::Irregular(irregular) => {
                 // A plan when other faces of the hull were evaluated at the
                 // same coordinates (`plans.rs`).
-                let plan = irregular
-                    .plans
-                    .get(coords, derivatives, &irregular.budget, || {
-                        let locations = self.locations(coords)?;
-                        stencils_at(
-                            &irregular.table,
-                            irregular.base,
-                            &irregular.refined,
-                            &locations,
-                            &stencil_options(derivatives),
-                        )
-                    })?;
+                let plan = irregular.plans.get(coords, derivatives, || {
+                    let locations = self.locations(coords)?;
+                    stencils_at(
+                        &irregular.table,
+                        irregular.base,
+                        &irregular.refined,
+                        &locations,
+                        &stencil_options(derivatives),
+                    )
+                })?;
                 if let Some(plan) = plan {
                     return self.apply_plan(&plan, points, layout, derivatives);
                 }
@@ -442,15 +440,26 @@ impl Surface {
                     derivatives,
                 )
             }
-            &Form::Regular { patch, mask } => self.evaluate_regular(
-                patch,
-                mask,
-                &self.control_points,
-                points,
-                layout,
-                coords,
-                derivatives,
-            ),
+            Form::Regular { patch, mask, plans } => {
+                let (patch, mask) = (*patch, *mask);
+                // The basis weights at these coordinates, once another
+                // face of the kind was evaluated there (`plans.rs`).
+                let plan = plans.get(coords, derivatives, || {
+                    self.regular_plan(patch, mask, coords, derivatives)
+                })?;
+                match plan {
+                    Some(plan) => self.apply_plan(&plan, points, layout, derivatives),
+                    None => self.evaluate_regular(
+                        patch,
+                        mask,
+                        &self.control_points,
+                        points,
+                        layout,
+                        coords,
+                        derivatives,
+                    ),
+                }
+            }
             Form::Linear { regular: true } => {
                 let patch = if self.control_points.len() == 4 {
                     PatchType::Quads
@@ -554,6 +563,46 @@ impl Surface {
         })
     }
 
+    /// The evaluation plan of a regular patch at `coords`: at each, its
+    /// basis weights (`EvaluatePatchBasis`) over its control points.
+    fn regular_plan(
+        &self,
+        patch: PatchType,
+        mask: u16,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<LocationStencils> {
+        if let Some(&uv) = coords.iter().find(|&&uv| !self.param.contains(uv, 1e-9)) {
+            return Err(self.off_face(uv));
+        }
+        let kinds = match derivatives {
+            Derivatives::None => 1,
+            Derivatives::First => 3,
+            Derivatives::Second => 6,
+        };
+        let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
+        let n = patch.control_vertices();
+        let mut plan = LocationStencils {
+            control_vertices: n,
+            ..LocationStencils::default()
+        };
+        let mut columns: [Vec<f64>; 6] = Default::default();
+        let mut buf: BasisBuffer = [[0.0; 20]; 6];
+        for (i, &uv) in coords.iter().enumerate() {
+            let [u, v] = self.clamped(uv);
+            let n = evaluate_basis_into(patch, param, u, v, derivatives, None, &mut buf)?;
+            plan.locations.push(i);
+            plan.offsets.push(plan.indices.len() as u32);
+            plan.sizes.push(n as u32);
+            plan.indices.extend(0..n as u32);
+            for (column, weights) in columns.iter_mut().zip(&buf).take(kinds) {
+                column.extend_from_slice(&weights[..n]);
+            }
+        }
+        plan.weights = Partials::from_columns(columns);
+        Ok(plan)
+    }
+
     /// An evaluation plan (stencils over the control points at each
     /// coordinate, in order) applied to the mesh's `points`.
     fn apply_plan(
@@ -582,13 +631,21 @@ impl Surface {
         let mut columns: [Vec<f64>; 6] = Default::default();
         for (column, weights) in columns.iter_mut().zip(weights).take(kinds) {
             *column = alloc::try_vec(0.0, plan.locations.len().saturating_mul(width))?;
-            for (s, &at) in plan.locations.iter().enumerate() {
-                let terms = plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
-                let dst = &mut column[at * width..(at + 1) * width];
-                for (&i, &wt) in plan.indices[terms.clone()].iter().zip(&weights[terms]) {
-                    let p = &control[i as usize * width..(i as usize + 1) * width];
-                    for (d, &x) in dst.iter_mut().zip(p) {
-                        *d += wt * x;
+            match width {
+                1 => apply_terms::<1>(plan, weights, &control, column),
+                2 => apply_terms::<2>(plan, weights, &control, column),
+                3 => apply_terms::<3>(plan, weights, &control, column),
+                _ => {
+                    for (s, &at) in plan.locations.iter().enumerate() {
+                        let terms =
+                            plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
+                        let dst = &mut column[at * width..(at + 1) * width];
+                        for (&i, &wt) in plan.indices[terms.clone()].iter().zip(&weights[terms]) {
+                            let p = &control[i as usize * width..(i as usize + 1) * width];
+                            for (d, &x) in dst.iter_mut().zip(p) {
+                                *d += wt * x;
+                            }
+                        }
                     }
                 }
             }
@@ -634,6 +691,31 @@ impl Surface {
             width,
             values: Partials::from_columns(columns),
         })
+    }
+}
+
+/// A plan's stencils with `weights` (one kind) applied to `control`
+/// (points of `N` values) into `column`, summed in registers.
+fn apply_terms<const N: usize>(
+    plan: &LocationStencils,
+    weights: &[f64],
+    control: &[f64],
+    column: &mut [f64],
+) {
+    let control: Vec<[f64; N]> = control
+        .chunks_exact(N)
+        .map(|p| std::array::from_fn(|k| p[k]))
+        .collect();
+    for (s, &at) in plan.locations.iter().enumerate() {
+        let terms = plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
+        let mut acc = [0.0; N];
+        for (&i, &wt) in plan.indices[terms.clone()].iter().zip(&weights[terms]) {
+            let p = &control[i as usize];
+            for k in 0..N {
+                acc[k] += wt * p[k];
+            }
+        }
+        column[at * N..(at + 1) * N].copy_from_slice(&acc);
     }
 }
 
