@@ -82,7 +82,7 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
     // Per input: one step per level and eight tasks (nine with UVs); then
     // the two parallel-use steps; then two adaptive steps per isolation
     // level and adaptive input, and two limit-surface steps per adaptive
-    // input; then one tessellation step per rate and torus.
+    // input; then one tessellation step per rate and input.
     let steps: u64 = inputs
         .iter()
         .map(|i| i.max_level as u64 + 8 + u64::from(!i.mesh.fvar_channels.is_empty()))
@@ -90,8 +90,10 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         + if inputs.is_empty() { 0 } else { 2 }
         + 2 * (super::adaptive::ISOLATION_LEVELS.len() * adaptive_inputs.len()) as u64
         + 2 * adaptive_inputs.len() as u64
-        + (super::tessellation::RATES.len()
-            * super::tessellation::tessellation_inputs(&inputs).len()) as u64;
+        + super::tessellation::tessellation_inputs(&inputs)
+            .iter()
+            .map(|i| super::tessellation::tessellation_rates(i).len() as u64)
+            .sum::<u64>();
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")

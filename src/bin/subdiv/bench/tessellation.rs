@@ -1,6 +1,6 @@
 //! The tessellation section of `subdiv bench` (issue #25): the limit
 //! surface of the Catmull-Clark tori tessellated the Bfr way at rates 4 and
-//! 16 — the native `MeshSurfaces::new` + `bfr::tessellate` against
+//! 16 (the production-like mesh at rate 4) — the native `MeshSurfaces::new` + `bfr::tessellate` against
 //! OpenSubdiv's `Bfr::RefinerSurfaceFactory`, `Surface` and `Tessellation`
 //! in one C++ loop (bfr tutorial 2_2's, `osd::bfr::tessellate_mesh`) — with
 //! triangles per second.
@@ -17,17 +17,33 @@ use subdiv::{Scheme, osd};
 pub const RATES: [u32; 2] = [4, 16];
 
 /// The inputs of the section: the Catmull-Clark tori of the standard set,
-/// with their UVs (face-varying channel 0, linear or smooth).
+/// with their UVs (face-varying channel 0, linear or smooth), and the
+/// production-like mesh (creases, holes, n-gons, a UV channel with seams).
 pub fn tessellation_inputs(inputs: &[BenchShape]) -> Vec<&BenchShape> {
     inputs
         .iter()
-        .filter(|i| i.options.scheme == Scheme::Catmark && i.name.starts_with("torus"))
+        .filter(|i| {
+            i.options.scheme == Scheme::Catmark
+                && (i.name.starts_with("torus") || i.name.starts_with("production"))
+        })
         .collect()
 }
 
-/// The rows of `input` at each of [`RATES`]. Both engines tessellate once
-/// first (not timed): the meshes must have the same facets and points
-/// within 1e-9 of the mesh's size, or the rows are refused.
+/// The rates `input` is tessellated at: [`RATES`] for a torus, the first
+/// for the production-like mesh.
+pub fn tessellation_rates(input: &BenchShape) -> &'static [u32] {
+    if input.name.starts_with("production") {
+        &RATES[..1]
+    } else {
+        &RATES
+    }
+}
+
+/// The rows of `input`: a torus at each of [`RATES`], the production-like
+/// mesh (290,000 faces: seconds a tessellation) at rate 4 once. Both
+/// engines tessellate once first (not timed): the meshes must have the
+/// same facets and points within 1e-9 of the mesh's size, or the rows are
+/// refused.
 pub fn tessellation_rows(
     pool: &rayon::ThreadPool,
     input: &BenchShape,
@@ -36,7 +52,9 @@ pub fn tessellation_rows(
 ) -> Result<Vec<TessellationRow>, Failure> {
     let so = SurfaceOptions::default();
     let mut rows = Vec::new();
-    for rate in RATES {
+    let rates = tessellation_rates(input);
+    let reps = if rates.len() < RATES.len() { 1 } else { reps };
+    for &rate in rates {
         let tess = TessellateOptions {
             rate,
             uvs: true,
@@ -73,7 +91,11 @@ pub fn tessellation_rows(
             .sum();
         let task = format!(
             "tessellation (rate {rate}{})",
-            if tess.uvs { ", UVs" } else { "" }
+            if tess.uvs && !input.mesh.fvar_channels.is_empty() {
+                ", UVs"
+            } else {
+                ""
+            }
         );
         progress(&format!("{} {}: {task}", input.name, input.options.scheme));
         let (n, o) = pool.install(|| {
