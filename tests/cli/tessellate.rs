@@ -308,3 +308,29 @@ fn smooth_uvs_come_from_every_engine() {
         assert_eq!(obj.corners_with_uv, obj.faces.len() * 3, "{engine}");
     }
 }
+
+/// `bench --tessellation-only` on a user's mesh: only the tessellation
+/// rows, both rates, the input named, the meshes checked equal first.
+#[cfg(feature = "osd")]
+#[test]
+fn bench_tessellates_the_inputs_given() {
+    let dir = scratch("cli-bench-tessellation");
+    let input = write(&dir, "cube.obj", &obj_text(&shapes::cube()));
+    let o = subdiv(&[
+        "bench",
+        input.to_str().unwrap(),
+        "--tessellation-only",
+        "--quick",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = crate::support::stdout(&o);
+    let rows: Vec<&str> = text.lines().filter(|l| l.contains("cube.obj")).collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    assert!(rows[0].contains("tessellation (rate 4)"), "{text}");
+    assert!(rows[1].contains("tessellation (rate 16)"), "{text}");
+    // 6 faces: 2 r² triangles each.
+    assert!(rows[1].contains("| 3072 |"), "{text}");
+    assert!(!text.contains("topology + positions"), "{text}");
+    let o = subdiv(&["bench", "--tessellation-only", "--adaptive-only"]);
+    assert_eq!(o.status.code(), Some(2));
+}

@@ -23,8 +23,13 @@ pub(crate) struct BenchArgs {
     pub(crate) quick: bool,
     /// Only the adaptive rows (feature-adaptive refinement at isolation 3
     /// and 6): no uniform rows, parallel use, whole processes or OBJ writer.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "tessellation_only")]
     pub(crate) adaptive_only: bool,
+    /// Only the tessellation rows (each input's limit surface tessellated
+    /// the Bfr way at rates 4 and 16; at rate 4 once for inputs of 100,000
+    /// faces or more).
+    #[arg(long)]
+    pub(crate) tessellation_only: bool,
     /// Threads for the native engine.
     #[arg(long, default_value_t = 1)]
     pub(crate) threads: usize,
@@ -72,12 +77,22 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         }
         v
     };
-    let adaptive_inputs =
-        super::adaptive::adaptive_inputs(&inputs, args.inputs.is_empty(), args.quick);
-    let inputs = if args.adaptive_only {
+    let standard = args.inputs.is_empty();
+    let adaptive_inputs = if args.tessellation_only {
         Vec::new()
     } else {
-        inputs
+        super::adaptive::adaptive_inputs(&inputs, standard, args.quick)
+    };
+    let tessellation_inputs = if args.adaptive_only {
+        Vec::new()
+    } else {
+        super::tessellation::tessellation_inputs(&inputs, standard)
+    };
+    let all_inputs = &inputs;
+    let inputs: &[subdiv::shapes::BenchShape] = if args.adaptive_only || args.tessellation_only {
+        &[]
+    } else {
+        all_inputs
     };
     // Per input: one step per level and eight tasks (nine with UVs); then
     // the two parallel-use steps; then two adaptive steps per isolation
@@ -90,7 +105,7 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         + if inputs.is_empty() { 0 } else { 2 }
         + 2 * (super::adaptive::ISOLATION_LEVELS.len() * adaptive_inputs.len()) as u64
         + 2 * adaptive_inputs.len() as u64
-        + super::tessellation::tessellation_inputs(&inputs)
+        + tessellation_inputs
             .iter()
             .map(|i| super::tessellation::tessellation_rates(i).len() as u64)
             .sum::<u64>();
@@ -99,12 +114,19 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let mut report = super::run::run(&inputs, &adaptive_inputs, args.quick, args.threads, |msg| {
-        bar.set_message(msg.to_string());
-        bar.inc(1);
-    })?;
+    let mut report = super::run::run(
+        inputs,
+        &adaptive_inputs,
+        &tessellation_inputs,
+        args.quick,
+        args.threads,
+        |msg| {
+            bar.set_message(msg.to_string());
+            bar.inc(1);
+        },
+    )?;
     bar.finish_and_clear();
-    if args.inputs.is_empty() && !args.adaptive_only {
+    if standard && !inputs.is_empty() {
         // The first input (the quad torus) at level 4; the big inputs
         // refined at most two levels in process (the grid, the
         // production-like mesh) at levels 1 and 2, as production assets are

@@ -13,11 +13,13 @@ use subdiv::shapes::BenchShape;
 use subdiv::{Mesh, Result, osd, refiner};
 
 /// Runs every comparison on `inputs` (the parallel-use section too, when
-/// there are some), then the adaptive rows on `adaptive_inputs`; `progress`
-/// is called once per step with a description.
+/// there are some), then the adaptive rows on `adaptive_inputs`, then the
+/// tessellation rows on `tessellation_inputs`; `progress` is called once
+/// per step with a description.
 pub fn run(
     inputs: &[BenchShape],
     adaptive_inputs: &[BenchShape],
+    tessellation_inputs: &[&BenchShape],
     quick: bool,
     threads: usize,
     mut progress: impl FnMut(&str),
@@ -259,7 +261,7 @@ pub fn run(
         adaptive.extend(adaptive_rows(&pool, input, reps, locations, &mut progress)?);
     }
     let mut tessellation = Vec::new();
-    for input in super::tessellation::tessellation_inputs(inputs) {
+    for &input in tessellation_inputs {
         tessellation.extend(super::tessellation::tessellation_rows(
             &pool,
             input,

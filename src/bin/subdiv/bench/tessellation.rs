@@ -16,31 +16,36 @@ use subdiv::{Scheme, osd};
 /// The rates of the rows.
 pub const RATES: [u32; 2] = [4, 16];
 
-/// The inputs of the section: the Catmull-Clark tori of the standard set,
-/// with their UVs (face-varying channel 0, linear or smooth), and the
-/// production-like mesh (creases, holes, n-gons, a UV channel with seams).
-pub fn tessellation_inputs(inputs: &[BenchShape]) -> Vec<&BenchShape> {
+/// The inputs of the section: of the standard set (`standard`), the
+/// Catmull-Clark tori, with their UVs (face-varying channel 0, linear or
+/// smooth), and the production-like mesh (creases, holes, n-gons, a UV
+/// channel with seams); else every input given.
+pub fn tessellation_inputs(inputs: &[BenchShape], standard: bool) -> Vec<&BenchShape> {
     inputs
         .iter()
         .filter(|i| {
-            i.options.scheme == Scheme::Catmark
-                && (i.name.starts_with("torus") || i.name.starts_with("production"))
+            !standard
+                || i.options.scheme == Scheme::Catmark
+                    && (i.name.starts_with("torus") || i.name.starts_with("production"))
         })
         .collect()
 }
 
-/// The rates `input` is tessellated at: [`RATES`] for a torus, the first
-/// for the production-like mesh.
+/// Inputs with this many faces or more are tessellated at the first rate
+/// only, once (the production-like mesh: seconds a tessellation).
+pub const BIG_INPUT: usize = 100_000;
+
+/// The rates `input` is tessellated at: [`RATES`], the first only for an
+/// input of [`BIG_INPUT`] faces or more.
 pub fn tessellation_rates(input: &BenchShape) -> &'static [u32] {
-    if input.name.starts_with("production") {
+    if input.mesh.face_count() >= BIG_INPUT {
         &RATES[..1]
     } else {
         &RATES
     }
 }
 
-/// The rows of `input`: a torus at each of [`RATES`], the production-like
-/// mesh (290,000 faces: seconds a tessellation) at rate 4 once. Both
+/// The rows of `input` at [`tessellation_rates`] (once for big inputs). Both
 /// engines tessellate once first (not timed): the meshes must have the
 /// same facets and points within 1e-9 of the mesh's size, or the rows are
 /// refused.

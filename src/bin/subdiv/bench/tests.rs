@@ -426,7 +426,7 @@ fn tessellation_rows_on_tiny_tori() {
         && t.row.osd > 0.0
         && t.row.task.starts_with("tessellation (rate")));
     let standard = subdiv::shapes::bench_shapes(true);
-    let names: Vec<&str> = tessellation_inputs(&standard)
+    let names: Vec<&str> = tessellation_inputs(&standard, true)
         .iter()
         .map(|i| i.name.as_str())
         .collect();
