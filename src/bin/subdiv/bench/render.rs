@@ -102,18 +102,19 @@ impl BenchReport {
             );
             let _ = writeln!(
                 s,
-                "| input | task | points | triangles | native ms | OpenSubdiv ms | speed-up | native Mtri/s | OpenSubdiv Mtri/s |"
+                "| input | scheme | task | points | triangles | native ms | OpenSubdiv ms | speed-up | native Mtri/s | OpenSubdiv Mtri/s |"
             );
             let _ = writeln!(
                 s,
-                "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+                "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
             );
             for t in &self.tessellation {
                 let (r, (rn, ro)) = (&t.row, t.rates());
                 let _ = writeln!(
                     s,
-                    "| {} | {} | {} | {} | {:.2} | {:.2} | {:.2}x | {:.2} | {:.2} |",
+                    "| {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2}x | {:.2} | {:.2} |",
                     r.input,
+                    r.scheme,
                     r.task,
                     r.vertices,
                     t.triangles,

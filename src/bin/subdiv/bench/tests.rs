@@ -446,7 +446,7 @@ fn tessellation_rows_on_tiny_tori() {
         "{md}"
     );
     assert!(
-        md.contains("| torus 6x4 quads | tessellation (rate 16) | 6144 | 12288 |"),
+        md.contains("| torus 6x4 quads | catmark | tessellation (rate 16) | 6144 | 12288 |"),
         "{md}"
     );
     let json: serde_json::Value = serde_json::to_value(&report).unwrap();
