@@ -174,12 +174,14 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         std::fs::create_dir_all(dir).map_err(io)?;
         let json = serde_json::to_string_pretty(&report)
             .map_err(|e| Failure::Message(format!("cannot encode the report: {e}")))?;
-        for (name, body) in [
-            ("bench.md", text.clone()),
-            ("bench.json", json),
-            ("time-per-level.svg", report.svg_time_per_level()),
-            ("rate-vs-bandwidth.svg", report.svg_rate_vs_bandwidth()),
-        ] {
+        let mut files = vec![("bench.md", text.clone()), ("bench.json", json)];
+        // The plots draw the uniform rows (none with --adaptive-only or
+        // --tessellation-only).
+        if !report.rows.is_empty() {
+            files.push(("time-per-level.svg", report.svg_time_per_level()));
+            files.push(("rate-vs-bandwidth.svg", report.svg_rate_vs_bandwidth()));
+        }
+        for (name, body) in files {
             std::fs::write(dir.join(name), body).map_err(io)?;
         }
         outln!("wrote {}", dir.display());
