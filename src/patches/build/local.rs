@@ -53,36 +53,43 @@ fn varying_corners(patch_type: PatchType) -> &'static [usize] {
     }
 }
 
-/// Stencils in the precision of the patch table's options.
+/// Stencils computed in the precision of the patch table's options, kept
+/// as the table holds them (weights widened to `f64` as they are pushed,
+/// offsets with them).
 #[derive(Debug, Default)]
-struct Stencils<R> {
+struct Stencils {
     sizes: Vec<u32>,
+    offsets: Vec<u32>,
     indices: Vec<u32>,
-    weights: Vec<R>,
+    weights: Vec<f64>,
 }
 
-impl<R: Real> Stencils<R> {
-    fn push(&mut self, entries: impl Iterator<Item = (u32, R)>) {
+impl Stencils {
+    fn push<R: Real>(&mut self, entries: impl Iterator<Item = (u32, R)>) {
         let before = self.indices.len();
         for (i, w) in entries {
             self.indices.push(i);
-            self.weights.push(w);
+            self.weights.push(w.to_f64());
         }
+        self.offsets.push(before as u32);
         self.sizes.push((self.indices.len() - before) as u32);
     }
 
+    /// Room for `stencils` stencils of `entries` entries in all (an
+    /// estimate: pages reserved and never written cost nothing).
+    fn reserve(&mut self, stencils: usize, entries: usize) {
+        self.sizes.reserve(stencils);
+        self.offsets.reserve(stencils);
+        self.indices.reserve(entries);
+        self.weights.reserve(entries);
+    }
+
     fn finish(self) -> StencilTable {
-        let mut offsets = Vec::with_capacity(self.sizes.len());
-        let mut at = 0u32;
-        for &n in &self.sizes {
-            offsets.push(at);
-            at += n;
-        }
         StencilTable {
             sizes: self.sizes,
-            offsets,
+            offsets: self.offsets,
             indices: self.indices,
-            weights: self.weights.into_iter().map(Real::to_f64).collect(),
+            weights: self.weights,
         }
     }
 }
@@ -95,10 +102,11 @@ pub(super) struct LocalPoints<R> {
     share: bool,
     /// B-spline end caps keep source points their matrix copies.
     reuse_sources: bool,
-    stencils: Stencils<R>,
-    varying: Option<Stencils<R>>,
+    stencils: Stencils,
+    varying: Option<Stencils>,
     shared_corners: Vec<Vec<u32>>,
     shared_edges: Vec<Vec<u32>>,
+    real: std::marker::PhantomData<R>,
 }
 
 impl<R: Real> LocalPoints<R> {
@@ -112,6 +120,16 @@ impl<R: Real> LocalPoints<R> {
             varying: varying.then(Stencils::default),
             shared_corners: vec![Vec::new(); levels],
             shared_edges: vec![Vec::new(); levels],
+            real: std::marker::PhantomData,
+        }
+    }
+
+    /// Room for about `patches` end caps of `rows` points with `entries`
+    /// stencil entries each.
+    pub fn reserve(&mut self, patches: usize, rows: usize, entries: usize) {
+        self.stencils.reserve(patches * rows, patches * entries);
+        if let Some(v) = &mut self.varying {
+            v.reserve(patches * rows, patches * rows);
         }
     }
 
@@ -131,7 +149,8 @@ impl<R: Real> LocalPoints<R> {
     /// point per matrix row unless shared with a neighbour's (or, when
     /// reusing sources, a row that is one source point); `sources` are the
     /// matrix's columns as vertices of `level` (values of channel `fv`),
-    /// `offset` that level's first vertex (value).
+    /// `offset` that level's first vertex (value). The patch's points are
+    /// pushed onto `points`.
     #[allow(clippy::too_many_arguments)]
     pub fn append(
         &mut self,
@@ -143,7 +162,8 @@ impl<R: Real> LocalPoints<R> {
         sources: &[u32],
         offset: u32,
         fv: Option<&ChannelLevel>,
-    ) -> Vec<u32> {
+        points: &mut Vec<u32>,
+    ) {
         let l = &builder.levels[level];
         let bits = if self.share {
             share_bits(patch_type)
@@ -152,7 +172,7 @@ impl<R: Real> LocalPoints<R> {
         };
         let corners = varying_corners(patch_type);
         let source = |column: usize| sources.get(column).copied().unwrap_or(0) + offset;
-        let mut points = Vec::with_capacity(matrix.rows.len());
+        points.reserve(matrix.rows.len());
         for (i, row) in matrix.rows.iter().enumerate() {
             if self.reuse_sources && row.len() == 1 {
                 points.push(source(row.columns[0]));
@@ -178,7 +198,6 @@ impl<R: Real> LocalPoints<R> {
             }
             points.push(point);
         }
-        points
     }
 
     /// The local point already made for the corner or edge `bits` names,

@@ -58,6 +58,11 @@ use crate::topology::Level;
 use crate::topology::refine::sparse::SparseSplit;
 use local::LocalPoints;
 
+/// The stencil entries reserved per end-cap point: more than most points
+/// of a Gregory end cap have (room reserved and never written is never
+/// touched, so never paid for).
+const END_CAP_ENTRIES: usize = 16;
+
 /// The deepest isolation `PatchTableFactory::Options` holds (4 bits).
 const MAX_ISOLATION: u32 = 10;
 
@@ -330,6 +335,22 @@ impl Builder<'_> {
             options.varying_tables && options.varying_local_points,
             self.levels.len(),
         );
+        // Room for every patch's entries, so that the arrays never move.
+        let irregulars = regular.iter().filter(|&&r| !r).count();
+        let regulars = patches.len() - irregulars;
+        let varying = options.varying_tables;
+        if legacy {
+            interior.reserve(irregulars, 4, varying);
+        } else {
+            let (rows, entries) = (irregular_type.control_vertices(), END_CAP_ENTRIES);
+            local.reserve(irregulars, rows, rows * entries);
+            if irregular_type == regular_type {
+                reg_array.reserve(irregulars, rows, varying);
+            } else {
+                irregular.reserve(irregulars, rows, varying);
+            }
+        }
+        reg_array.reserve(regulars, regular_type.control_vertices(), varying);
         // OpenSubdiv keeps these from patch to patch: an irregular patch
         // takes the sharpness of the last regular one before it, and a
         // legacy Gregory patch its parameter boundary mask too.
@@ -386,7 +407,14 @@ impl Builder<'_> {
                 let source = self.source_patch(p.level, p.face, &spans);
                 Self::convert(irregular_type, &source, &mut matrix, &mut spare);
                 let sources = self.source_points(p.level, p.face, &spans, &source, None);
-                let cvs = local.append(
+                // Irregular patches share the regular array when their
+                // types agree.
+                let (s, a) = if irregular_type == regular_type {
+                    (0, &mut reg_array)
+                } else {
+                    (1, &mut irregular)
+                };
+                local.append(
                     self,
                     p.level,
                     p.face,
@@ -395,18 +423,10 @@ impl Builder<'_> {
                     &sources,
                     offset,
                     None,
+                    &mut a.control_vertices,
                 );
-                // Irregular patches share the regular array when their
-                // types agree.
-                if irregular_type == regular_type {
-                    reg_array.control_vertices.extend(cvs);
-                    slot = 0;
-                    &mut reg_array
-                } else {
-                    irregular.control_vertices.extend(cvs);
-                    slot = 1;
-                    &mut irregular
-                }
+                slot = s;
+                a
             };
             array.sharpness.push(if options.single_crease_patch {
                 sharpness
@@ -512,6 +532,17 @@ impl Builder<'_> {
 }
 
 impl PatchArray {
+    /// Room for `patches` more patches of `cvs` control vertices (and
+    /// varying vertices when `varying`).
+    fn reserve(&mut self, patches: usize, cvs: usize, varying: bool) {
+        self.control_vertices.reserve(patches * cvs);
+        self.params.reserve(patches);
+        self.sharpness.reserve(patches);
+        if varying {
+            self.varying_vertices.reserve(patches * 4);
+        }
+    }
+
     fn new(patch_type: PatchType) -> PatchArray {
         PatchArray {
             patch_type,
