@@ -71,6 +71,7 @@ fn edge_boundary(fv: Option<&ChannelLevel>, l: &Level, e: u32) -> bool {
 impl Builder<'_> {
     /// The tags of the corners of face `f` of `level` (a patch's face: its
     /// first four corners at most), as channel `fv` sees them if any.
+    #[inline(always)]
     pub(super) fn corner_tags(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> Corners {
         let l = &self.levels[level];
         let features = &self.features[level];
@@ -79,7 +80,11 @@ impl Builder<'_> {
             len: 0,
         };
         for (k, (slot, &v)) in c.tags.iter_mut().zip(l.face_verts(f)).enumerate() {
-            *slot = Tag::of(l, features, v as usize).with_value(value_tag(fv, l, f, k));
+            let tag = Tag::of(l, features, v as usize);
+            *slot = match fv {
+                None => tag,
+                Some(_) => tag.with_value(value_tag(fv, l, f, k)),
+            };
             c.len += 1;
         }
         c
@@ -87,6 +92,7 @@ impl Builder<'_> {
 
     /// The tags of every corner of face `f` or-ed together
     /// (`getFaceCompositeVTag`).
+    #[inline(always)]
     pub(super) fn composite(&self, level: usize, f: usize) -> Tag {
         let l = &self.levels[level];
         let features = &self.features[level];
