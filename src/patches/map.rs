@@ -118,10 +118,11 @@ impl PatchMap {
     /// The map of `table`'s patches.
     pub fn new(table: &PatchTable) -> PatchMap {
         let triangular = table.varying_patch_type.control_vertices() == 3;
+        let patches: usize = table.arrays.iter().map(|a| a.params.len()).sum();
         let mut map = PatchMap {
             triangular,
             max_depth: 0,
-            patches: FxHashMap::default(),
+            patches: FxHashMap::with_capacity_and_hasher(patches, Default::default()),
             roots: vec![(false, None); table.ptex_faces],
         };
         for (a, array) in table.arrays.iter().enumerate() {

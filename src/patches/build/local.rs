@@ -235,8 +235,13 @@ impl<R: Real> LocalPoints<R> {
             {
                 return next;
             }
-            let reversed = l.edge_vertices[e as usize][0] != l.face_verts(face)[k];
-            let end = ((bits & EDGE_END != 0) != reversed) as usize;
+            // The edge's two points are told apart by the vertex they are
+            // nearer: its lower-numbered end first (every face around the
+            // edge names the same two vertices, so they agree without
+            // reading the edge's own vertices).
+            let verts = l.face_verts(face);
+            let (a, b) = (verts[k], verts[(k + 1) % verts.len()]);
+            let end = ((bits & EDGE_END != 0) != (a > b)) as usize;
             let table = &mut self.shared_edges[level];
             if table.is_empty() {
                 *table = vec![invalid; 2 * l.edge_count()];

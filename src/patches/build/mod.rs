@@ -57,6 +57,7 @@ use crate::refiner::adaptive::Features;
 use crate::topology::Level;
 use crate::topology::refine::sparse::SparseSplit;
 use local::LocalPoints;
+use rustc_hash::FxHashMap;
 
 /// The stencil entries reserved per end-cap point: more than most points
 /// of a Gregory end cap have (room reserved and never written is never
@@ -356,11 +357,11 @@ impl Builder<'_> {
         // legacy Gregory patch its parameter boundary mask too.
         let mut param_boundary = 0u16;
         let mut sharpness = 0f32;
-        // The end caps' matrices, their storage reused from patch to patch.
-        let (mut matrix, mut spare) = (
-            matrix::Matrix::<R>::default(),
-            matrix::Matrix::<R>::default(),
-        );
+        // The end caps' matrices, each made once per source patch, and
+        // their source points' storage, reused from patch to patch.
+        let mut conversions = Conversions::<R>::default();
+        let mut spare = matrix::Matrix::<R>::default();
+        let (mut sources, mut ring) = (Vec::new(), Vec::new());
         // Each face-varying channel's values, by array (regular, irregular,
         // legacy interior and boundary), put in table order at the end.
         let mut fvar_values: Vec<[Vec<u32>; 4]> =
@@ -405,8 +406,18 @@ impl Builder<'_> {
                 param_boundary = 0;
                 let spans = self.corner_spans(p.level, p.face, None);
                 let source = self.source_patch(p.level, p.face, &spans);
-                Self::convert(irregular_type, &source, &mut matrix, &mut spare);
-                let sources = self.source_points(p.level, p.face, &spans, &source, None);
+                let (matrix, numbering) = conversions.of(source, |s, m| {
+                    Self::convert(irregular_type, s, m, &mut spare);
+                });
+                self.source_points_into(
+                    p.level,
+                    p.face,
+                    &spans,
+                    numbering,
+                    None,
+                    &mut sources,
+                    &mut ring,
+                );
                 // Irregular patches share the regular array when their
                 // types agree.
                 let (s, a) = if irregular_type == regular_type {
@@ -418,7 +429,7 @@ impl Builder<'_> {
                     self,
                     p.level,
                     p.face,
-                    &matrix,
+                    matrix,
                     irregular_type,
                     &sources,
                     offset,
@@ -528,6 +539,47 @@ impl Builder<'_> {
             .collect();
         table.arrays = all.into_iter().filter(|a| !a.is_empty()).collect();
         Ok(table)
+    }
+}
+
+/// The change-of-basis matrices of end caps already made, by source
+/// patch (the matrix and the numbering of the source points depend on
+/// nothing else, and a mesh has few kinds of irregular patches).
+struct Conversions<R> {
+    index: FxHashMap<source::SourcePatch, usize>,
+    made: Vec<(matrix::Matrix<R>, source::Numbering)>,
+}
+
+impl<R> Default for Conversions<R> {
+    fn default() -> Self {
+        Conversions {
+            index: FxHashMap::default(),
+            made: Vec::new(),
+        }
+    }
+}
+
+impl<R: Real> Conversions<R> {
+    /// The matrix and numbering of `source`, made by `convert` (into an
+    /// empty matrix) the first time.
+    fn of(
+        &mut self,
+        source: source::SourcePatch,
+        convert: impl FnOnce(&source::SourcePatch, &mut matrix::Matrix<R>),
+    ) -> (&matrix::Matrix<R>, &source::Numbering) {
+        let k = match self.index.get(&source) {
+            Some(&k) => k,
+            None => {
+                let mut m = matrix::Matrix::default();
+                convert(&source, &mut m);
+                let numbering = source.numbering();
+                self.made.push((m, numbering));
+                self.index.insert(source, self.made.len() - 1);
+                self.made.len() - 1
+            }
+        };
+        let (m, n) = &self.made[k];
+        (m, n)
     }
 }
 
