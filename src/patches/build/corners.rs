@@ -105,11 +105,22 @@ impl Builder<'_> {
     /// `PatchBuilder::IsPatchRegular` in the vertex topology or channel
     /// `fv`'s.
     pub(super) fn is_regular(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> bool {
+        self.linear || self.is_regular_with(level, f, fv, &self.corner_tags(level, f, fv))
+    }
+
+    /// [`Builder::is_regular`] from the face's corner tags (`tags`, as
+    /// [`Builder::corner_tags`] reads them).
+    pub(super) fn is_regular_with(
+        &self,
+        level: usize,
+        f: usize,
+        fv: Option<&ChannelLevel>,
+        tags: &[Tag],
+    ) -> bool {
         if self.linear {
             return true;
         }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp && !all.inf_sharp_edges {
             return !all.features.xordinary;
@@ -215,8 +226,21 @@ impl Builder<'_> {
         if self.linear {
             return 0;
         }
+        self.boundary_mask_with(level, f, fv, &self.corner_tags(level, f, fv))
+    }
+
+    /// [`Builder::boundary_mask`] from the face's corner tags.
+    pub(super) fn boundary_mask_with(
+        &self,
+        level: usize,
+        f: usize,
+        fv: Option<&ChannelLevel>,
+        tags: &[Tag],
+    ) -> u16 {
+        if self.linear {
+            return 0;
+        }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp_edges {
             return 0;

@@ -214,7 +214,10 @@ impl Builder<'_> {
             };
         }
         if self.reg == 4 {
-            !self.composite(level, f).features.incomplete
+            let features = &self.features[level];
+            !l.face_verts(f)
+                .iter()
+                .any(|&v| features[v as usize].incomplete)
         } else {
             let step = &self.steps[level - 1];
             step.selection.face(step.child_face_parent[f] as usize)
@@ -300,10 +303,21 @@ impl Builder<'_> {
         scheme: Scheme,
     ) -> Result<PatchTable> {
         let patches = self.identify(selected);
-        let regular: Vec<bool> = patches
+        // Whether each patch is regular, and the boundary mask of a regular
+        // one, from one reading of its corners' tags.
+        let (regular, masks): (Vec<bool>, Vec<u16>) = patches
             .iter()
-            .map(|p| self.is_regular(p.level, p.face, None))
-            .collect();
+            .map(|p| {
+                let tags = self.corner_tags(p.level, p.face, None);
+                let regular = self.is_regular_with(p.level, p.face, None, &tags);
+                let mask = if regular {
+                    self.boundary_mask_with(p.level, p.face, None, &tags)
+                } else {
+                    0
+                };
+                (regular, mask)
+            })
+            .unzip();
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
         let (regular_type, linear_type) = match scheme {
             Scheme::Catmark => (PatchType::Regular, PatchType::Quads),
@@ -369,11 +383,10 @@ impl Builder<'_> {
         // Each patch's array and vertex parameter, for non-linear channels.
         let mut slots = Vec::with_capacity(patches.len());
         let mut vertex_params = Vec::with_capacity(patches.len());
-        for (p, &is_regular) in patches.iter().zip(&regular) {
+        for ((p, &is_regular), &mask) in patches.iter().zip(&regular).zip(&masks) {
             let offset = offsets[p.level];
             let slot;
             let array = if is_regular {
-                let mask = self.boundary_mask(p.level, p.face, None);
                 param_boundary = mask;
                 sharpness = 0.0;
                 if options.single_crease_patch
