@@ -381,8 +381,10 @@ impl Builder<'_> {
         let mut fvar_values: Vec<[Vec<u32>; 4]> =
             self.fvar.iter().map(|_| Default::default()).collect();
         // Each patch's array and vertex parameter, for non-linear channels.
-        let mut slots = Vec::with_capacity(patches.len());
-        let mut vertex_params = Vec::with_capacity(patches.len());
+        let nonlinear_fvar = !self.fvar_linear && !self.fvar.is_empty();
+        let kept_per_patch = if nonlinear_fvar { patches.len() } else { 0 };
+        let mut slots = Vec::with_capacity(kept_per_patch);
+        let mut vertex_params = Vec::with_capacity(kept_per_patch);
         for ((p, &is_regular), &mask) in patches.iter().zip(&regular).zip(&masks) {
             let offset = offsets[p.level];
             let slot;
@@ -459,8 +461,10 @@ impl Builder<'_> {
             });
             let param = self.param(p.level, p.face, &ptex, is_regular, param_boundary);
             array.params.push(param);
-            slots.push(slot);
-            vertex_params.push(param);
+            if nonlinear_fvar {
+                slots.push(slot);
+                vertex_params.push(param);
+            }
             // The varying patch: the face's own vertices.
             let topology = &self.levels[p.level];
             if options.varying_tables {
@@ -503,7 +507,7 @@ impl Builder<'_> {
         }
         let all = [reg_array, irregular, interior, boundary];
         let kept: Vec<usize> = (0..all.len()).filter(|&i| !all[i].is_empty()).collect();
-        if !self.fvar_linear && !self.fvar.is_empty() {
+        if nonlinear_fvar {
             // Each patch's index in the table: its array's first, then its
             // place in the array.
             let mut first = [0usize; 4];
