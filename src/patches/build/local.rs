@@ -76,12 +76,13 @@ impl Stencils {
     }
 
     /// Room for `stencils` stencils of `entries` entries in all (an
-    /// estimate: pages reserved and never written cost nothing).
+    /// estimate: pages reserved and never written cost nothing). Only a
+    /// hint: what cannot be reserved is left to grow as it is pushed.
     fn reserve(&mut self, stencils: usize, entries: usize) {
-        self.sizes.reserve(stencils);
-        self.offsets.reserve(stencils);
-        self.indices.reserve(entries);
-        self.weights.reserve(entries);
+        let _ = self.sizes.try_reserve(stencils);
+        let _ = self.offsets.try_reserve(stencils);
+        let _ = self.indices.try_reserve(entries);
+        let _ = self.weights.try_reserve(entries);
     }
 
     fn finish(self) -> StencilTable {
