@@ -11,7 +11,24 @@
 //! follows the location's path down until a patch sits there.
 
 use super::{PatchHandle, PatchParam, PatchTable};
-use rustc_hash::FxHashMap;
+
+/// No index.
+const NONE: u32 = u32::MAX;
+
+/// A quadrant of a node of the quadtree: the patch sitting there and the
+/// node of its sub-quadrants, each if any (`NONE`).
+#[derive(Debug, Clone, Copy)]
+struct Child {
+    array: u32,
+    patch: u32,
+    node: u32,
+}
+
+const EMPTY: Child = Child {
+    array: NONE,
+    patch: NONE,
+    node: NONE,
+};
 
 /// Locates (ptex face, u, v) in a patch table (`Far::PatchMap`).
 ///
@@ -41,12 +58,12 @@ use rustc_hash::FxHashMap;
 pub struct PatchMap {
     triangular: bool,
     max_depth: u32,
-    /// The patch at each (ptex face, level, quadrant path: two bits per
-    /// level, the first level in the highest bits) below the root.
-    patches: FxHashMap<(u32, u32, u64), PatchHandle>,
+    /// The quadtree below the ptex faces: each node's four quadrants.
+    nodes: Vec<[Child; 4]>,
     /// Per ptex face: whether its first quadrant is covered (OpenSubdiv's
-    /// test for a face with patches), and the patch covering all of it.
-    roots: Vec<(bool, Option<PatchHandle>)>,
+    /// test for a face with patches), the patch covering all of it, and
+    /// the node of its quadrants (`NONE`: none).
+    roots: Vec<(bool, Option<PatchHandle>, u32)>,
 }
 
 /// The quadrant of (`u`, `v`) in a square halved at `median`, and (`u`,
@@ -118,11 +135,12 @@ impl PatchMap {
     /// The map of `table`'s patches.
     pub fn new(table: &PatchTable) -> PatchMap {
         let triangular = table.varying_patch_type.control_vertices() == 3;
+        let patches: usize = table.arrays.iter().map(|a| a.params.len()).sum();
         let mut map = PatchMap {
             triangular,
             max_depth: 0,
-            patches: FxHashMap::default(),
-            roots: vec![(false, None); table.ptex_faces],
+            nodes: Vec::with_capacity(patches / 2),
+            roots: vec![(false, None, NONE); table.ptex_faces],
         };
         for (a, array) in table.arrays.iter().enumerate() {
             for (k, &p) in array.params.iter().enumerate() {
@@ -149,7 +167,7 @@ impl PatchMap {
                 // first one when its path starts there.
                 let face = p.face_id() as usize;
                 if face >= map.roots.len() {
-                    map.roots.resize(face + 1, (false, None));
+                    map.roots.resize(face + 1, (false, None, NONE));
                 }
                 if levels == 0 || path >> (2 * (levels - 1)) == 0 {
                     map.roots[face].0 = true;
@@ -157,11 +175,44 @@ impl PatchMap {
                 if levels == 0 {
                     map.roots[face].1 = Some(handle);
                 } else {
-                    map.patches.insert((p.face_id(), levels, path), handle);
+                    map.insert(face, levels, path, handle);
                 }
             }
         }
         map
+    }
+
+    /// A new node without quadrants, its index.
+    fn new_node(&mut self) -> u32 {
+        self.nodes.push([EMPTY; 4]);
+        (self.nodes.len() - 1) as u32
+    }
+
+    /// Puts `handle` at quadrant path `path` (`levels` levels deep) of ptex
+    /// face `face`, in place of any patch there before.
+    fn insert(&mut self, face: usize, levels: u32, path: u64, handle: PatchHandle) {
+        let mut node = self.roots[face].2;
+        if node == NONE {
+            node = self.new_node();
+            self.roots[face].2 = node;
+        }
+        for level in 1..=levels {
+            let q = ((path >> (2 * (levels - level))) & 3) as usize;
+            if level == levels {
+                let child = &mut self.nodes[node as usize][q];
+                child.array = handle.array as u32;
+                child.patch = handle.patch as u32;
+                return;
+            }
+            let next = self.nodes[node as usize][q].node;
+            node = if next == NONE {
+                let n = self.new_node();
+                self.nodes[node as usize][q].node = n;
+                n
+            } else {
+                next
+            };
+        }
     }
 
     /// The patch covering (`u`, `v`) of ptex face `face`
@@ -174,24 +225,29 @@ impl PatchMap {
         if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
             return None;
         }
-        match self.roots.get(face as usize) {
-            Some((true, Some(root))) => return Some(*root),
-            Some((true, None)) => {}
+        let mut node = match self.roots.get(face as usize) {
+            Some((true, Some(root), _)) => return Some(*root),
+            Some((true, None, node)) => *node,
             _ => return None,
-        }
+        };
         let (mut u, mut v) = (u, v);
-        let (mut median, mut rotated, mut path) = (0.5, false, 0u64);
-        for level in 1..=self.max_depth + 1 {
+        let (mut median, mut rotated) = (0.5, false);
+        for _ in 0..=self.max_depth {
+            let children = self.nodes.get(node as usize)?;
             let q = if self.triangular {
                 tri_quadrant(median, &mut u, &mut v, &mut rotated)
             } else {
                 quad_quadrant(median, &mut u, &mut v)
             };
-            path = path << 2 | q;
             median *= 0.5;
-            if let Some(&h) = self.patches.get(&(face, level, path)) {
-                return Some(h);
+            let child = children[q as usize];
+            if child.patch != NONE {
+                return Some(PatchHandle {
+                    array: child.array as usize,
+                    patch: child.patch as usize,
+                });
             }
+            node = child.node;
         }
         None
     }

@@ -71,6 +71,7 @@ fn edge_boundary(fv: Option<&ChannelLevel>, l: &Level, e: u32) -> bool {
 impl Builder<'_> {
     /// The tags of the corners of face `f` of `level` (a patch's face: its
     /// first four corners at most), as channel `fv` sees them if any.
+    #[inline(always)]
     pub(super) fn corner_tags(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> Corners {
         let l = &self.levels[level];
         let features = &self.features[level];
@@ -79,7 +80,11 @@ impl Builder<'_> {
             len: 0,
         };
         for (k, (slot, &v)) in c.tags.iter_mut().zip(l.face_verts(f)).enumerate() {
-            *slot = Tag::of(l, features, v as usize).with_value(value_tag(fv, l, f, k));
+            let tag = Tag::of(l, features, v as usize);
+            *slot = match fv {
+                None => tag,
+                Some(_) => tag.with_value(value_tag(fv, l, f, k)),
+            };
             c.len += 1;
         }
         c
@@ -87,6 +92,7 @@ impl Builder<'_> {
 
     /// The tags of every corner of face `f` or-ed together
     /// (`getFaceCompositeVTag`).
+    #[inline(always)]
     pub(super) fn composite(&self, level: usize, f: usize) -> Tag {
         let l = &self.levels[level];
         let features = &self.features[level];
@@ -99,11 +105,22 @@ impl Builder<'_> {
     /// `PatchBuilder::IsPatchRegular` in the vertex topology or channel
     /// `fv`'s.
     pub(super) fn is_regular(&self, level: usize, f: usize, fv: Option<&ChannelLevel>) -> bool {
+        self.linear || self.is_regular_with(level, f, fv, &self.corner_tags(level, f, fv))
+    }
+
+    /// [`Builder::is_regular`] from the face's corner tags (`tags`, as
+    /// [`Builder::corner_tags`] reads them).
+    pub(super) fn is_regular_with(
+        &self,
+        level: usize,
+        f: usize,
+        fv: Option<&ChannelLevel>,
+        tags: &[Tag],
+    ) -> bool {
         if self.linear {
             return true;
         }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp && !all.inf_sharp_edges {
             return !all.features.xordinary;
@@ -209,8 +226,21 @@ impl Builder<'_> {
         if self.linear {
             return 0;
         }
+        self.boundary_mask_with(level, f, fv, &self.corner_tags(level, f, fv))
+    }
+
+    /// [`Builder::boundary_mask`] from the face's corner tags.
+    pub(super) fn boundary_mask_with(
+        &self,
+        level: usize,
+        f: usize,
+        fv: Option<&ChannelLevel>,
+        tags: &[Tag],
+    ) -> u16 {
+        if self.linear {
+            return 0;
+        }
         let l = &self.levels[level];
-        let tags = self.corner_tags(level, f, fv);
         let all = tags.iter().copied().fold(Tag::default(), Tag::or);
         if !all.inf_sharp_edges {
             return 0;

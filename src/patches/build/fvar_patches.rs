@@ -130,6 +130,8 @@ impl Builder<'_> {
         let (mut matrix, mut spare) = (Matrix::<F>::default(), Matrix::<F>::default());
         // `fvarPatchInfo.paramBoundaryMask`: one for every channel.
         let mut param_boundary = 0u16;
+        // One end cap's points, the storage reused.
+        let mut cvs = Vec::new();
         for (k, p) in vertex.patches.iter().enumerate() {
             let vparam = vertex.params[k];
             let at = vertex.index[k];
@@ -160,7 +162,8 @@ impl Builder<'_> {
                     let source = self.source_patch(p.level, p.face, &spans);
                     Self::convert(irregular_type, &source, &mut matrix, &mut spare);
                     let sources = self.source_points(p.level, p.face, &spans, &source, Some(fv));
-                    let cvs = local.append(
+                    cvs.clear();
+                    local.append(
                         self,
                         p.level,
                         p.face,
@@ -169,8 +172,9 @@ impl Builder<'_> {
                         &sources,
                         offset,
                         Some(fv),
+                        &mut cvs,
                     );
-                    for (slot, v) in values.iter_mut().zip(cvs) {
+                    for (slot, &v) in values.iter_mut().zip(&cvs) {
                         *slot = v;
                     }
                 }

@@ -53,36 +53,44 @@ fn varying_corners(patch_type: PatchType) -> &'static [usize] {
     }
 }
 
-/// Stencils in the precision of the patch table's options.
+/// Stencils computed in the precision of the patch table's options, kept
+/// as the table holds them (weights widened to `f64` as they are pushed,
+/// offsets with them).
 #[derive(Debug, Default)]
-struct Stencils<R> {
+struct Stencils {
     sizes: Vec<u32>,
+    offsets: Vec<u32>,
     indices: Vec<u32>,
-    weights: Vec<R>,
+    weights: Vec<f64>,
 }
 
-impl<R: Real> Stencils<R> {
-    fn push(&mut self, entries: impl Iterator<Item = (u32, R)>) {
+impl Stencils {
+    fn push<R: Real>(&mut self, entries: impl Iterator<Item = (u32, R)>) {
         let before = self.indices.len();
         for (i, w) in entries {
             self.indices.push(i);
-            self.weights.push(w);
+            self.weights.push(w.to_f64());
         }
+        self.offsets.push(before as u32);
         self.sizes.push((self.indices.len() - before) as u32);
     }
 
+    /// Room for `stencils` stencils of `entries` entries in all (an
+    /// estimate: pages reserved and never written cost nothing). Only a
+    /// hint: what cannot be reserved is left to grow as it is pushed.
+    fn reserve(&mut self, stencils: usize, entries: usize) {
+        let _ = self.sizes.try_reserve(stencils);
+        let _ = self.offsets.try_reserve(stencils);
+        let _ = self.indices.try_reserve(entries);
+        let _ = self.weights.try_reserve(entries);
+    }
+
     fn finish(self) -> StencilTable {
-        let mut offsets = Vec::with_capacity(self.sizes.len());
-        let mut at = 0u32;
-        for &n in &self.sizes {
-            offsets.push(at);
-            at += n;
-        }
         StencilTable {
             sizes: self.sizes,
-            offsets,
+            offsets: self.offsets,
             indices: self.indices,
-            weights: self.weights.into_iter().map(Real::to_f64).collect(),
+            weights: self.weights,
         }
     }
 }
@@ -95,10 +103,11 @@ pub(super) struct LocalPoints<R> {
     share: bool,
     /// B-spline end caps keep source points their matrix copies.
     reuse_sources: bool,
-    stencils: Stencils<R>,
-    varying: Option<Stencils<R>>,
+    stencils: Stencils,
+    varying: Option<Stencils>,
     shared_corners: Vec<Vec<u32>>,
     shared_edges: Vec<Vec<u32>>,
+    real: std::marker::PhantomData<R>,
 }
 
 impl<R: Real> LocalPoints<R> {
@@ -112,6 +121,16 @@ impl<R: Real> LocalPoints<R> {
             varying: varying.then(Stencils::default),
             shared_corners: vec![Vec::new(); levels],
             shared_edges: vec![Vec::new(); levels],
+            real: std::marker::PhantomData,
+        }
+    }
+
+    /// Room for about `patches` end caps of `rows` points with `entries`
+    /// stencil entries each.
+    pub fn reserve(&mut self, patches: usize, rows: usize, entries: usize) {
+        self.stencils.reserve(patches * rows, patches * entries);
+        if let Some(v) = &mut self.varying {
+            v.reserve(patches * rows, patches * rows);
         }
     }
 
@@ -131,7 +150,8 @@ impl<R: Real> LocalPoints<R> {
     /// point per matrix row unless shared with a neighbour's (or, when
     /// reusing sources, a row that is one source point); `sources` are the
     /// matrix's columns as vertices of `level` (values of channel `fv`),
-    /// `offset` that level's first vertex (value).
+    /// `offset` that level's first vertex (value). The patch's points are
+    /// pushed onto `points`.
     #[allow(clippy::too_many_arguments)]
     pub fn append(
         &mut self,
@@ -143,7 +163,8 @@ impl<R: Real> LocalPoints<R> {
         sources: &[u32],
         offset: u32,
         fv: Option<&ChannelLevel>,
-    ) -> Vec<u32> {
+        points: &mut Vec<u32>,
+    ) {
         let l = &builder.levels[level];
         let bits = if self.share {
             share_bits(patch_type)
@@ -152,7 +173,7 @@ impl<R: Real> LocalPoints<R> {
         };
         let corners = varying_corners(patch_type);
         let source = |column: usize| sources.get(column).copied().unwrap_or(0) + offset;
-        let mut points = Vec::with_capacity(matrix.rows.len());
+        points.reserve(matrix.rows.len());
         for (i, row) in matrix.rows.iter().enumerate() {
             if self.reuse_sources && row.len() == 1 {
                 points.push(source(row.columns[0]));
@@ -178,7 +199,6 @@ impl<R: Real> LocalPoints<R> {
             }
             points.push(point);
         }
-        points
     }
 
     /// The local point already made for the corner or edge `bits` names,
@@ -216,8 +236,13 @@ impl<R: Real> LocalPoints<R> {
             {
                 return next;
             }
-            let reversed = l.edge_vertices[e as usize][0] != l.face_verts(face)[k];
-            let end = ((bits & EDGE_END != 0) != reversed) as usize;
+            // The edge's two points are told apart by the vertex they are
+            // nearer: its lower-numbered end first (every face around the
+            // edge names the same two vertices, so they agree without
+            // reading the edge's own vertices).
+            let verts = l.face_verts(face);
+            let (a, b) = (verts[k], verts[(k + 1) % verts.len()]);
+            let end = ((bits & EDGE_END != 0) != (a > b)) as usize;
             let table = &mut self.shared_edges[level];
             if table.is_empty() {
                 *table = vec![invalid; 2 * l.edge_count()];

@@ -57,6 +57,13 @@ use crate::refiner::adaptive::Features;
 use crate::topology::Level;
 use crate::topology::refine::sparse::SparseSplit;
 use local::LocalPoints;
+use rustc_hash::FxHashMap;
+
+/// The stencil entries reserved per end-cap point: more than the points
+/// of a Gregory end cap have on average (7.5 on the bench's inputs, where
+/// neighbours share a third of them; room reserved and never written is
+/// never touched, so never paid for).
+const END_CAP_ENTRIES: usize = 10;
 
 /// The deepest isolation `PatchTableFactory::Options` holds (4 bits).
 const MAX_ISOLATION: u32 = 10;
@@ -208,7 +215,10 @@ impl Builder<'_> {
             };
         }
         if self.reg == 4 {
-            !self.composite(level, f).features.incomplete
+            let features = &self.features[level];
+            !l.face_verts(f)
+                .iter()
+                .any(|&v| features[v as usize].incomplete)
         } else {
             let step = &self.steps[level - 1];
             step.selection.face(step.child_face_parent[f] as usize)
@@ -294,10 +304,21 @@ impl Builder<'_> {
         scheme: Scheme,
     ) -> Result<PatchTable> {
         let patches = self.identify(selected);
-        let regular: Vec<bool> = patches
+        // Whether each patch is regular, and the boundary mask of a regular
+        // one, from one reading of its corners' tags.
+        let (regular, masks): (Vec<bool>, Vec<u16>) = patches
             .iter()
-            .map(|p| self.is_regular(p.level, p.face, None))
-            .collect();
+            .map(|p| {
+                let tags = self.corner_tags(p.level, p.face, None);
+                let regular = self.is_regular_with(p.level, p.face, None, &tags);
+                let mask = if regular {
+                    self.boundary_mask_with(p.level, p.face, None, &tags)
+                } else {
+                    0
+                };
+                (regular, mask)
+            })
+            .unzip();
         let legacy = options.end_cap_type == EndCapType::LegacyGregory;
         let (regular_type, linear_type) = match scheme {
             Scheme::Catmark => (PatchType::Regular, PatchType::Quads),
@@ -330,28 +351,45 @@ impl Builder<'_> {
             options.varying_tables && options.varying_local_points,
             self.levels.len(),
         );
+        // Room for every patch's entries, so that the arrays never move.
+        let irregulars = regular.iter().filter(|&&r| !r).count();
+        let regulars = patches.len() - irregulars;
+        let varying = options.varying_tables;
+        if legacy {
+            interior.reserve(irregulars, 4, varying);
+        } else {
+            let (rows, entries) = (irregular_type.control_vertices(), END_CAP_ENTRIES);
+            local.reserve(irregulars, rows, rows * entries);
+            if irregular_type == regular_type {
+                reg_array.reserve(irregulars, rows, varying);
+            } else {
+                irregular.reserve(irregulars, rows, varying);
+            }
+        }
+        reg_array.reserve(regulars, regular_type.control_vertices(), varying);
         // OpenSubdiv keeps these from patch to patch: an irregular patch
         // takes the sharpness of the last regular one before it, and a
         // legacy Gregory patch its parameter boundary mask too.
         let mut param_boundary = 0u16;
         let mut sharpness = 0f32;
-        // The end caps' matrices, their storage reused from patch to patch.
-        let (mut matrix, mut spare) = (
-            matrix::Matrix::<R>::default(),
-            matrix::Matrix::<R>::default(),
-        );
+        // The end caps' matrices, each made once per source patch, and
+        // their source points' storage, reused from patch to patch.
+        let mut conversions = Conversions::<R>::default();
+        let mut spare = matrix::Matrix::<R>::default();
+        let (mut sources, mut ring) = (Vec::new(), Vec::new());
         // Each face-varying channel's values, by array (regular, irregular,
         // legacy interior and boundary), put in table order at the end.
         let mut fvar_values: Vec<[Vec<u32>; 4]> =
             self.fvar.iter().map(|_| Default::default()).collect();
         // Each patch's array and vertex parameter, for non-linear channels.
-        let mut slots = Vec::with_capacity(patches.len());
-        let mut vertex_params = Vec::with_capacity(patches.len());
-        for (p, &is_regular) in patches.iter().zip(&regular) {
+        let nonlinear_fvar = !self.fvar_linear && !self.fvar.is_empty();
+        let kept_per_patch = if nonlinear_fvar { patches.len() } else { 0 };
+        let mut slots = Vec::with_capacity(kept_per_patch);
+        let mut vertex_params = Vec::with_capacity(kept_per_patch);
+        for ((p, &is_regular), &mask) in patches.iter().zip(&regular).zip(&masks) {
             let offset = offsets[p.level];
             let slot;
             let array = if is_regular {
-                let mask = self.boundary_mask(p.level, p.face, None);
                 param_boundary = mask;
                 sharpness = 0.0;
                 if options.single_crease_patch
@@ -384,29 +422,38 @@ impl Builder<'_> {
                 param_boundary = 0;
                 let spans = self.corner_spans(p.level, p.face, None);
                 let source = self.source_patch(p.level, p.face, &spans);
-                Self::convert(irregular_type, &source, &mut matrix, &mut spare);
-                let sources = self.source_points(p.level, p.face, &spans, &source, None);
-                let cvs = local.append(
+                let (matrix, numbering) = conversions.of(source, |s, m| {
+                    Self::convert(irregular_type, s, m, &mut spare);
+                });
+                self.source_points_into(
+                    p.level,
+                    p.face,
+                    &spans,
+                    numbering,
+                    None,
+                    &mut sources,
+                    &mut ring,
+                );
+                // Irregular patches share the regular array when their
+                // types agree.
+                let (s, a) = if irregular_type == regular_type {
+                    (0, &mut reg_array)
+                } else {
+                    (1, &mut irregular)
+                };
+                local.append(
                     self,
                     p.level,
                     p.face,
-                    &matrix,
+                    matrix,
                     irregular_type,
                     &sources,
                     offset,
                     None,
+                    &mut a.control_vertices,
                 );
-                // Irregular patches share the regular array when their
-                // types agree.
-                if irregular_type == regular_type {
-                    reg_array.control_vertices.extend(cvs);
-                    slot = 0;
-                    &mut reg_array
-                } else {
-                    irregular.control_vertices.extend(cvs);
-                    slot = 1;
-                    &mut irregular
-                }
+                slot = s;
+                a
             };
             array.sharpness.push(if options.single_crease_patch {
                 sharpness
@@ -415,8 +462,10 @@ impl Builder<'_> {
             });
             let param = self.param(p.level, p.face, &ptex, is_regular, param_boundary);
             array.params.push(param);
-            slots.push(slot);
-            vertex_params.push(param);
+            if nonlinear_fvar {
+                slots.push(slot);
+                vertex_params.push(param);
+            }
             // The varying patch: the face's own vertices.
             let topology = &self.levels[p.level];
             if options.varying_tables {
@@ -459,7 +508,7 @@ impl Builder<'_> {
         }
         let all = [reg_array, irregular, interior, boundary];
         let kept: Vec<usize> = (0..all.len()).filter(|&i| !all[i].is_empty()).collect();
-        if !self.fvar_linear && !self.fvar.is_empty() {
+        if nonlinear_fvar {
             // Each patch's index in the table: its array's first, then its
             // place in the array.
             let mut first = [0usize; 4];
@@ -511,7 +560,60 @@ impl Builder<'_> {
     }
 }
 
+/// The change-of-basis matrices of end caps already made, by source
+/// patch (the matrix and the numbering of the source points depend on
+/// nothing else, and a mesh has few kinds of irregular patches).
+struct Conversions<R> {
+    index: FxHashMap<source::SourcePatch, usize>,
+    made: Vec<(matrix::Matrix<R>, source::Numbering)>,
+}
+
+impl<R> Default for Conversions<R> {
+    fn default() -> Self {
+        Conversions {
+            index: FxHashMap::default(),
+            made: Vec::new(),
+        }
+    }
+}
+
+impl<R: Real> Conversions<R> {
+    /// The matrix and numbering of `source`, made by `convert` (into an
+    /// empty matrix) the first time.
+    fn of(
+        &mut self,
+        source: source::SourcePatch,
+        convert: impl FnOnce(&source::SourcePatch, &mut matrix::Matrix<R>),
+    ) -> (&matrix::Matrix<R>, &source::Numbering) {
+        let k = match self.index.get(&source) {
+            Some(&k) => k,
+            None => {
+                let mut m = matrix::Matrix::default();
+                convert(&source, &mut m);
+                let numbering = source.numbering();
+                self.made.push((m, numbering));
+                self.index.insert(source, self.made.len() - 1);
+                self.made.len() - 1
+            }
+        };
+        let (m, n) = &self.made[k];
+        (m, n)
+    }
+}
+
 impl PatchArray {
+    /// Room for `patches` more patches of `cvs` control vertices (and
+    /// varying vertices when `varying`). Only a hint: what cannot be
+    /// reserved is left to grow as it is pushed.
+    fn reserve(&mut self, patches: usize, cvs: usize, varying: bool) {
+        let _ = self.control_vertices.try_reserve(patches * cvs);
+        let _ = self.params.try_reserve(patches);
+        let _ = self.sharpness.try_reserve(patches);
+        if varying {
+            let _ = self.varying_vertices.try_reserve(patches * 4);
+        }
+    }
+
     fn new(patch_type: PatchType) -> PatchArray {
         PatchArray {
             patch_type,

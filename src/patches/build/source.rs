@@ -12,7 +12,7 @@ use crate::rules::Rule;
 use crate::topology::fvar::ChannelLevel;
 
 /// One corner of a source patch.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub(super) struct Corner {
     /// Faces around the corner (in its span).
     pub faces: usize,
@@ -27,8 +27,9 @@ pub(super) struct Corner {
     shares_next: bool,
 }
 
-/// A source patch: its corners and the numbering of its points.
-#[derive(Debug, Clone, Default)]
+/// A source patch: its corners and the numbering of its points (equal
+/// source patches have the same change-of-basis matrices).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
 pub(super) struct SourcePatch {
     pub corners: [Corner; 4],
     /// 4 for a quad, 3 for a triangle.
@@ -109,6 +110,22 @@ impl SourcePatch {
     /// The ring size of corner `c`.
     pub fn ring_size(&self, c: usize) -> usize {
         self.ring_sizes[c]
+    }
+
+    /// Every corner's ring in the patch's numbering ([`SourcePatch::ring`])
+    /// and the number of points they and the patch's count name.
+    pub fn numbering(&self) -> Numbering {
+        let rings: Vec<Vec<usize>> = (0..self.size).map(|c| self.ring(c)).collect();
+        // Next to interior corners of valence 2 (a dart among them), a
+        // ring can name a point past the patch's count; OpenSubdiv writes it
+        // into its buffer all the same and its matrix reads it back: so
+        // does this.
+        let len = rings
+            .iter()
+            .flatten()
+            .map(|&i| i + 1)
+            .fold(self.points, usize::max);
+        Numbering { rings, len }
     }
 
     /// The ring of corner `c` in the patch's numbering, starting after the
@@ -198,42 +215,68 @@ impl Builder<'_> {
         patch: &SourcePatch,
         fv: Option<&ChannelLevel>,
     ) -> Vec<u32> {
+        let mut points = Vec::new();
+        let numbering = patch.numbering();
+        self.source_points_into(
+            level,
+            f,
+            spans,
+            &numbering,
+            fv,
+            &mut points,
+            &mut Vec::new(),
+        );
+        points
+    }
+
+    /// [`Builder::source_points`] with the patch's `numbering`, into
+    /// `points` (`ring`: scratch space).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn source_points_into(
+        &self,
+        level: usize,
+        f: usize,
+        spans: &[Span],
+        numbering: &Numbering,
+        fv: Option<&ChannelLevel>,
+        points: &mut Vec<u32>,
+        ring: &mut Vec<u32>,
+    ) {
         let l = &self.levels[level];
-        // Next to interior corners of valence 2 (a dart among them), a
-        // ring can name a point past the patch's count; OpenSubdiv writes it
-        // into its buffer all the same and its matrix reads it back: so
-        // does this.
-        let rings: Vec<Vec<usize>> = (0..patch.size).map(|c| patch.ring(c)).collect();
-        let len = rings
-            .iter()
-            .flatten()
-            .map(|&i| i + 1)
-            .fold(patch.points, usize::max);
-        let mut points = vec![0u32; len];
-        for (c, &v) in l.face_verts(f).iter().enumerate().take(patch.size) {
-            let from_level = if spans[c].is_assigned() {
-                self.partial_ring(level, v, &spans[c], fv)
-            } else if patch.size == 4 {
-                self.quad_ring(level, v, fv)
+        let size = numbering.rings.len();
+        points.clear();
+        points.resize(numbering.len, 0);
+        for (c, &v) in l.face_verts(f).iter().enumerate().take(size) {
+            ring.clear();
+            if spans[c].is_assigned() {
+                self.partial_ring(level, v, &spans[c], fv, ring);
+            } else if size == 4 {
+                self.quad_ring_into(level, v, fv, ring);
             } else {
-                self.tri_ring(level, v, fv)
-            };
-            for (&local, &vertex) in rings[c].iter().zip(&from_level) {
+                self.tri_ring(level, v, fv, ring);
+            }
+            for (&local, &vertex) in numbering.rings[c].iter().zip(ring.iter()) {
                 points[local] = vertex;
             }
         }
-        points
     }
 
     /// The ring around a vertex whose faces are all quads: the two points
     /// each face adds after the vertex, and the last boundary point
     /// (`gatherQuadRegularRingAroundVertex`); channel `fv`'s values if any.
     pub(super) fn quad_ring(&self, level: usize, v: u32, fv: Option<&ChannelLevel>) -> Vec<u32> {
+        let mut ring = Vec::new();
+        self.quad_ring_into(level, v, fv, &mut ring);
+        ring
+    }
+
+    /// [`Builder::quad_ring`] pushed onto `ring`.
+    fn quad_ring_into(&self, level: usize, v: u32, fv: Option<&ChannelLevel>, ring: &mut Vec<u32>) {
         let l = &self.levels[level];
         let faces = l.vertex_faces_of(v as usize);
         let locals = l.vertex_face_locals(v as usize);
         let boundary = l.vertex_edges_of(v as usize).len() > faces.len();
-        let mut ring = Vec::with_capacity(2 * faces.len() + 1);
+        ring.reserve(2 * faces.len() + 1);
         for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
             let p = face_points(fv, l, f as usize);
             let k = k as usize;
@@ -243,17 +286,16 @@ impl Builder<'_> {
                 ring.push(p[(k + 3) % 4]);
             }
         }
-        ring
     }
 
     /// The ring around a vertex whose faces are all triangles
     /// (`gatherTriRegularRingAroundVertex`).
-    fn tri_ring(&self, level: usize, v: u32, fv: Option<&ChannelLevel>) -> Vec<u32> {
+    fn tri_ring(&self, level: usize, v: u32, fv: Option<&ChannelLevel>, ring: &mut Vec<u32>) {
         let l = &self.levels[level];
         let faces = l.vertex_faces_of(v as usize);
         let locals = l.vertex_face_locals(v as usize);
         let boundary = l.vertex_edges_of(v as usize).len() > faces.len();
-        let mut ring = Vec::with_capacity(faces.len() + 1);
+        ring.reserve(faces.len() + 1);
         for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
             let p = face_points(fv, l, f as usize);
             let k = k as usize;
@@ -262,7 +304,6 @@ impl Builder<'_> {
                 ring.push(p[(k + 2) % 3]);
             }
         }
-        ring
     }
 
     /// The ring of the faces of a span around vertex `v`
@@ -273,15 +314,15 @@ impl Builder<'_> {
         v: u32,
         span: &Span,
         fv: Option<&ChannelLevel>,
-    ) -> Vec<u32> {
+        ring: &mut Vec<u32>,
+    ) {
         let l = &self.levels[level];
         let manifold = !l.vertex_tag(v as usize).non_manifold();
         let faces = l.vertex_faces_of(v as usize);
         let locals = l.vertex_face_locals(v as usize);
-        let mut ring = Vec::new();
         let Some((&first, &first_k)) = faces.get(span.start_face).zip(locals.get(span.start_face))
         else {
-            return ring;
+            return;
         };
         let (mut face, mut k) = (first as usize, first_k as usize);
         for i in 0..span.faces {
@@ -317,6 +358,14 @@ impl Builder<'_> {
                 face = next;
             }
         }
-        ring
     }
+}
+
+/// A source patch's rings in its numbering ([`SourcePatch::numbering`]).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Numbering {
+    /// Each corner's ring ([`SourcePatch::ring`]).
+    pub rings: Vec<Vec<usize>>,
+    /// The points they and the patch's count name.
+    pub len: usize,
 }

@@ -41,6 +41,7 @@ pub(crate) struct Tag {
 
 impl Tag {
     /// The tags of vertex `v` of `level` (`features`: the level's).
+    #[inline(always)]
     pub fn of(level: &Level, features: &[Features], v: usize) -> Tag {
         let t = level.vertex_tag(v);
         Tag {
@@ -60,6 +61,7 @@ impl Tag {
     /// sees it (`FVarLevel::ValueTag::combineWithLevelVTag`): a value where
     /// the channel's topology differs lies on an infinitely sharp boundary
     /// of the channel, a crease or a corner.
+    #[inline(always)]
     pub fn with_value(mut self, value: ValueTag) -> Tag {
         if !value.is_mismatch() {
             return self;
@@ -83,6 +85,7 @@ impl Tag {
     }
 
     /// The tags of two vertices combined (`VTag::BitwiseOr`).
+    #[inline(always)]
     pub fn or(self, o: Tag) -> Tag {
         let (a, b) = (self.features, o.features);
         Tag {
