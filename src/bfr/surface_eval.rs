@@ -242,11 +242,11 @@ impl Surface {
         let layout = layout.into();
         self.check_points(points, layout)?;
         let width = layout.size;
-        let mut out = Vec::new();
-        alloc::reserve(&mut out, self.patch_points.saturating_mul(width))?;
-        for &cv in &self.control_points {
-            out.extend_from_slice(layout.point(points, cv as usize));
-        }
+        let mut out = self.control_values(points, layout)?;
+        alloc::reserve(
+            &mut out,
+            self.patch_points.saturating_sub(self.control_points.len()) * width,
+        )?;
         match &self.form {
             Form::Linear { regular: false } => {
                 let n = self.control_points.len();
@@ -341,6 +341,20 @@ impl Surface {
         }
     }
 
+    /// The control points' values (`layout.size` each, packed) from the
+    /// mesh's `points`, which [`Surface::check_points`] accepted.
+    fn control_values(&self, points: &[f64], layout: PointDescriptor) -> Result<Vec<f64>> {
+        let mut control = Vec::new();
+        alloc::reserve(
+            &mut control,
+            self.control_points.len().saturating_mul(layout.size),
+        )?;
+        for &cv in &self.control_points {
+            control.extend_from_slice(layout.point(points, cv as usize));
+        }
+        Ok(control)
+    }
+
     fn check_points(&self, points: &[f64], layout: PointDescriptor) -> Result<()> {
         layout.check()?;
         if let Some(&v) = self.control_points.iter().max()
@@ -420,14 +434,7 @@ impl Surface {
                 // than a stencil per coordinate once there are more than a
                 // few.
                 let width = layout.size;
-                let mut control = Vec::new();
-                alloc::reserve(
-                    &mut control,
-                    self.control_points.len().saturating_mul(width),
-                )?;
-                for &cv in &self.control_points {
-                    control.extend_from_slice(layout.point(points, cv as usize));
-                }
+                let control = self.control_values(points, layout)?;
                 let native = native_patch_points(irregular, width, &control)?;
                 let locations = self.locations(coords)?;
                 evaluate_data(
@@ -499,11 +506,7 @@ impl Surface {
             return Err(self.off_face(uv));
         }
         let width = layout.size;
-        let kinds = match derivatives {
-            Derivatives::None => 1,
-            Derivatives::First => 3,
-            Derivatives::Second => 6,
-        };
+        let kinds = derivatives.columns();
         let len = coords.len().saturating_mul(width);
         let mut columns: [Vec<f64>; 6] = Default::default();
         for column in columns.iter_mut().take(kinds) {
@@ -575,11 +578,7 @@ impl Surface {
         if let Some(&uv) = coords.iter().find(|&&uv| !self.param.contains(uv, 1e-9)) {
             return Err(self.off_face(uv));
         }
-        let kinds = match derivatives {
-            Derivatives::None => 1,
-            Derivatives::First => 3,
-            Derivatives::Second => 6,
-        };
+        let kinds = derivatives.columns();
         let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
         let n = patch.control_vertices();
         let mut plan = LocationStencils {
@@ -613,20 +612,9 @@ impl Surface {
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
         let width = layout.size;
-        let mut control = Vec::new();
-        alloc::reserve(
-            &mut control,
-            self.control_points.len().saturating_mul(width),
-        )?;
-        for &cv in &self.control_points {
-            control.extend_from_slice(layout.point(points, cv as usize));
-        }
+        let control = self.control_values(points, layout)?;
         let w = &plan.weights;
-        let kinds = match derivatives {
-            Derivatives::None => 1,
-            Derivatives::First => 3,
-            Derivatives::Second => 6,
-        };
+        let kinds = derivatives.columns();
         let weights = [&w.point, &w.du, &w.dv, &w.duu, &w.duv, &w.dvv];
         let mut columns: [Vec<f64>; 6] = Default::default();
         for (column, weights) in columns.iter_mut().zip(weights).take(kinds) {

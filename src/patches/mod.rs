@@ -474,6 +474,18 @@ pub enum Derivatives {
     Second,
 }
 
+impl Derivatives {
+    /// How many of the six columns (values, ∂u, ∂v, ∂uu, ∂uv, ∂vv) these
+    /// derivatives fill: 1, 3 or 6.
+    pub(crate) fn columns(self) -> usize {
+        match self {
+            Derivatives::None => 1,
+            Derivatives::First => 3,
+            Derivatives::Second => 6,
+        }
+    }
+}
+
 /// Values with their partial derivatives with respect to a ptex face's u
 /// and v, each list empty when not asked for: the weights of a patch's
 /// control vertices at one location (`EvaluateBasis`), or the limit
