@@ -4,7 +4,8 @@
 use crate::MeshCase;
 use arbitrary::Unstructured;
 use subdiv::bfr::{
-    FacetSize, LimitSurfaces, Parameterization, SurfaceOptions, Tessellation, TessellationOptions,
+    FacetSize, LimitSurfaces, MeshSurfaces, Parameterization, SurfaceOptions, TessellateOptions,
+    Tessellation, TessellationOptions,
 };
 use subdiv::patches::Derivatives;
 use subdiv::{Error, Scheme, osd};
@@ -138,5 +139,59 @@ pub fn check_bfr_surfaces(case: &MeshCase, u: &mut Unstructured<'_>) {
             (Ok(_), Err(Error::Osd(e))) if e.kind == subdiv::OsdErrorKind::Unsafe => {}
             (a, b) => panic!("face {face} {coords:?}: native {a:?}, OpenSubdiv {b:?}"),
         }
+    }
+    check_mesh_surfaces(case, &so, u);
+}
+
+/// The per-face surfaces (`MeshSurfaces`, what `subdiv tessellate` uses):
+/// each face evaluated twice at a pattern's coordinates — the second time
+/// through an evaluation plan when another face of its hull or kind was
+/// evaluated there — agrees with itself and with its own patch points; the
+/// watertight mesher over them succeeds or refuses, never faults.
+fn check_mesh_surfaces(case: &MeshCase, so: &SurfaceOptions, u: &mut Unstructured<'_>) {
+    let Ok(surfaces) = MeshSurfaces::new(&case.mesh, &case.options, so) else {
+        return;
+    };
+    let points = case.mesh.flat_positions::<f64>();
+    let size = 1.0 + points.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let rate = u.int_in_range(1u32..=6).unwrap_or(3);
+    for face in 0..case.mesh.face_count().min(8) {
+        let Ok(s) = surfaces.factory().vertex_surface(face) else {
+            continue;
+        };
+        if !s.is_valid() {
+            continue;
+        }
+        let Ok(pattern) =
+            Tessellation::uniform(s.parameterization(), rate, TessellationOptions::default())
+        else {
+            continue;
+        };
+        let coords = pattern.coords::<f64>().expect("a valid pattern's coordinates");
+        let patch = s.patch_points(&points, 3).expect("patch points");
+        let expected = s
+            .evaluate_patch_points(&patch, 3, &coords, Derivatives::First)
+            .expect("evaluation from patch points");
+        for pass in 0..2 {
+            let got = s
+                .evaluate(&points, 3, &coords, Derivatives::First)
+                .expect("evaluation");
+            for (x, y) in got.values.point.iter().zip(&expected.values.point) {
+                assert!(
+                    (x - y).abs() <= 1e-9 * size,
+                    "face {face} pass {pass}: {x} against {y}"
+                );
+            }
+        }
+    }
+    let tess = TessellateOptions {
+        rate,
+        normals: true,
+        ..TessellateOptions::default()
+    };
+    if let Ok(mesh) = subdiv::bfr::tessellate(&case.mesh, &surfaces, &tess) {
+        let points = mesh.positions.len() as u32;
+        assert!(mesh.face_vertices.iter().all(|&p| p < points));
+        assert_eq!(mesh.face_offsets.len(), mesh.facet_faces.len() + 1);
     }
 }
