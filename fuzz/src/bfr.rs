@@ -167,7 +167,9 @@ fn check_mesh_surfaces(case: &MeshCase, so: &SurfaceOptions, u: &mut Unstructure
         else {
             continue;
         };
-        let coords = pattern.coords::<f64>().expect("a valid pattern's coordinates");
+        let coords = pattern
+            .coords::<f64>()
+            .expect("a valid pattern's coordinates");
         let patch = s.patch_points(&points, 3).expect("patch points");
         let expected = s
             .evaluate_patch_points(&patch, 3, &coords, Derivatives::First)
