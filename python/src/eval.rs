@@ -15,18 +15,8 @@ use subdiv::patches::{
 
 /// An end-cap type by the command line's name.
 fn end_cap_type(name: &str) -> PyResult<EndCapType> {
-    Ok(match name {
-        "none" => EndCapType::None,
-        "bilinear" => EndCapType::BilinearBasis,
-        "bspline" => EndCapType::BSplineBasis,
-        "gregory-basis" => EndCapType::GregoryBasis,
-        "legacy-gregory" => EndCapType::LegacyGregory,
-        _ => {
-            return Err(SubdivError::new_err(format!(
-                "'{name}' is not an end-cap type (none, bilinear, bspline, gregory-basis, legacy-gregory)"
-            )));
-        }
-    })
+    name.parse()
+        .map_err(|e: subdiv::ParseNameError| SubdivError::new_err(e.to_string()))
 }
 
 /// The locations of `faces` (ptex faces) and `uv` (`(N, 2)` coordinates).

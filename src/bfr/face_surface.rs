@@ -256,16 +256,9 @@ impl SurfaceFactory {
     /// of its surfaces (`SurfaceFactory::populateAllSurfaces` up to the
     /// surfaces themselves).
     fn neighbourhood(&self, face: usize) -> Result<Neighbourhood> {
-        let base = &self.refiner.levels[0];
-        if face >= base.face_count() {
-            return Err(Error::NoSuchElement {
-                element: Element::Face,
-                index: face,
-                level: 0,
-                count: base.face_count(),
-            });
-        }
+        // (Refuses a face that does not exist.)
         let param = self.parameterization(face)?;
+        let base = &self.refiner.levels[0];
         if param.face_size() < 3 || base.is_hole(face) {
             return Ok(Neighbourhood::Invalid(param));
         }

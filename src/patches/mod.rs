@@ -169,6 +169,14 @@ pub enum EndCapType {
     LegacyGregory = 4,
 }
 
+crate::names::impl_named!(EndCapType, "end-cap type", {
+    None => "none",
+    BilinearBasis => "bilinear",
+    BSplineBasis => "bspline",
+    GregoryBasis => "gregory-basis",
+    LegacyGregory => "legacy-gregory",
+});
+
 /// `Far::PatchTableFactory::Options`, every field, with OpenSubdiv 3.5's
 /// defaults ([`PatchOptions::new`]), and the face-varying channels to build
 /// tables for.

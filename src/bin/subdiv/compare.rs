@@ -30,7 +30,7 @@ pub(crate) struct CompareArgs {
     /// End caps of the compared patch tables (with --patches): none, bilinear,
     /// bspline, gregory-basis (OpenSubdiv's default) or legacy-gregory.
     #[arg(long, value_name = "TYPE", default_value = "gregory-basis", requires = "patches",
-          value_parser = crate::patches::parse_end_caps)]
+          value_parser = crate::args::parse::<subdiv::patches::EndCapType>)]
     pub(crate) end_caps: subdiv::patches::EndCapType,
 }
 

@@ -31,7 +31,7 @@ pub(crate) struct PatchArgs {
     pub(crate) isolation: u32,
     /// End caps around extraordinary features: none, bilinear, bspline, gregory-basis
     /// (OpenSubdiv's default) or legacy-gregory.
-    #[arg(long, value_name = "TYPE", default_value = "gregory-basis", value_parser = parse_end_caps)]
+    #[arg(long, value_name = "TYPE", default_value = "gregory-basis", value_parser = crate::args::parse::<EndCapType>)]
     pub(crate) end_caps: EndCapType,
     /// Single-crease patches (useSingleCreasePatch).
     #[arg(long)]
@@ -88,21 +88,6 @@ pub(crate) struct EvalArgs {
     /// Output file (`-` or absent: standard output).
     #[arg(short, long, value_name = "OUT.txt")]
     pub(crate) output: Option<PathBuf>,
-}
-
-pub(crate) fn parse_end_caps(s: &str) -> Result<EndCapType, String> {
-    Ok(match s {
-        "none" => EndCapType::None,
-        "bilinear" => EndCapType::BilinearBasis,
-        "bspline" => EndCapType::BSplineBasis,
-        "gregory-basis" => EndCapType::GregoryBasis,
-        "legacy-gregory" => EndCapType::LegacyGregory,
-        _ => {
-            return Err(format!(
-                "'{s}' is not an end-cap type (none, bilinear, bspline, gregory-basis, legacy-gregory)"
-            ));
-        }
-    })
 }
 
 impl PatchArgs {
