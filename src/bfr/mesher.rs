@@ -213,7 +213,8 @@ pub fn tessellate(
     let mut next: u64 = 0;
     let mut plans = Vec::new();
     let mut patterns: Vec<Pattern> = Vec::new();
-    let mut pattern_of: FxHashMap<(usize, Vec<u32>), u32> = FxHashMap::default();
+    // By the face's rates (one per edge: its size too).
+    let mut pattern_of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
     let mut take = |count: usize| -> Result<u32> {
         let first = next;
         next += count as u64;
@@ -236,7 +237,7 @@ pub fn tessellate(
         let face_edges = &corner_edge[mesh.face_offsets[f] as usize..][..n];
         rates.clear();
         rates.extend(face_edges.iter().map(|&e| edge_rate[e as usize]));
-        let pattern = match pattern_of.get(&(n, rates.clone())) {
+        let pattern = match pattern_of.get(rates.as_slice()) {
             Some(&p) => p,
             None => {
                 let param = Parameterization::new(scheme, n)?;
@@ -249,7 +250,7 @@ pub fn tessellate(
                     tess,
                 });
                 let p = (patterns.len() - 1) as u32;
-                pattern_of.insert((n, rates.clone()), p);
+                pattern_of.insert(rates.clone(), p);
                 p
             }
         };
