@@ -60,10 +60,10 @@ fn main() {
         println!("the same mesh from OpenSubdiv's Bfr surfaces");
     }
     let obj = common::Obj {
-        positions: t.positions.clone(),
-        normals: t.normals.clone(),
-        offsets: t.face_offsets.clone(),
-        corners: t.face_vertices.clone(),
+        positions: t.positions.to_vec(),
+        normals: t.normals.to_vec(),
+        offsets: t.face_offsets.to_vec(),
+        corners: t.face_vertices.to_vec(),
         ..Default::default()
     };
     obj.write(args.output.as_deref());

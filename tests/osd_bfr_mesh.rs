@@ -551,7 +551,7 @@ fn faces_the_surfaces_bridge_refuses_refuse_the_mesh() {
     holes.holes.extend([0, 1]);
     let m = tessellate_mesh(&holes, &o, &s, &t).unwrap();
     assert!(m.positions.is_empty() && m.facet_faces.is_empty());
-    assert_eq!(m.face_offsets, [0]);
+    assert_eq!(m.face_offsets[..], [0]);
     // Smooth UVs go through the same builder (any corner may bound the
     // channel at a seam): a closed pillow of two quads, every vertex
     // interior of valence 2, one edge creased, is refused with them only.

@@ -18,6 +18,7 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::patches::{Derivatives, SurfaceSamples};
+use crate::topology::Table;
 use glam::DVec3;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -103,24 +104,30 @@ impl Default for TessellateOptions {
 }
 
 /// A tessellated limit surface: an indexed polygon mesh.
+///
+/// Its arrays are [`Table`]s (slices to read): the large ones live in
+/// memory maps that go back to a pool when the mesh is dropped, so the next
+/// tessellation (the next frame, the next mesh) writes into memory the
+/// kernel has already faulted in ([`crate::release_buffer_pool`] hands it
+/// back).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TessellatedMesh {
     /// The points of the surface.
-    pub positions: Vec<DVec3>,
+    pub positions: Table<DVec3>,
     /// Unit normals, one per point (empty unless asked for; zero where the
     /// surface is degenerate).
-    pub normals: Vec<DVec3>,
+    pub normals: Table<DVec3>,
     /// Face offsets into `face_vertices` (one more than the facets).
-    pub face_offsets: Vec<u32>,
+    pub face_offsets: Table<u32>,
     /// The facets' points, counter-clockwise.
-    pub face_vertices: Vec<u32>,
+    pub face_vertices: Table<u32>,
     /// Texture coordinates, 2 per value (empty without UVs).
-    pub uvs: Vec<f64>,
+    pub uvs: Table<f64>,
     /// One texture-coordinate index per facet corner (empty without UVs).
     /// Each face has its own, so UV seams stay seams.
-    pub uv_indices: Vec<u32>,
+    pub uv_indices: Table<u32>,
     /// The base face each facet tessellates.
-    pub facet_faces: Vec<u32>,
+    pub facet_faces: Table<u32>,
 }
 
 /// A tessellation pattern shared by every face of the same size and rates:
@@ -291,15 +298,6 @@ pub fn tessellate(
     let total = next as usize;
     let pattern = |p: &FacePlan| &patterns[p.pattern as usize];
 
-    // Evaluate each face's own points, in parallel. They are a contiguous
-    // range (taken in order while planning that face), so the outputs split
-    // into disjoint slices, one per face, in plan order.
-    debug_assert!(plans.iter().all(|p| {
-        p.owned
-            .iter()
-            .enumerate()
-            .all(|(k, &c)| p.points[c as usize] == p.points[p.owned[0] as usize] + k as u32)
-    }));
     let derivs = if options.normals {
         Derivatives::First
     } else {
@@ -307,32 +305,107 @@ pub fn tessellate(
     };
     let uvs = options.uvs && !mesh.fvar_channels.is_empty();
     let uv_width = mesh.fvar_channels.first().map_or(0, |c| c.width).max(1);
-    // Each face's own texture coordinates: one per pattern coordinate.
-    let uv_counts: Vec<usize> = plans
-        .iter()
-        .map(|p| if uvs { pattern(p).coords.len() } else { 0 })
-        .collect();
-    let mut positions = alloc::try_vec(DVec3::ZERO, total)?;
-    let mut normals = alloc::try_vec(DVec3::ZERO, if options.normals { total } else { 0 })?;
-    let mut uv_values = alloc::try_vec(0.0, 2 * uv_counts.iter().sum::<usize>())?;
+    // Where each face's facets, facet corners and texture coordinates (one
+    // per pattern coordinate: each face has its own) start in the outputs.
+    let mut starts: Vec<Starts> = Vec::new();
+    alloc::reserve(&mut starts, plans.len() + 1)?;
+    let mut at = Starts::default();
+    for plan in &plans {
+        starts.push(at);
+        let p = pattern(plan);
+        at.facet += p.tess.num_facets() as u64;
+        at.corner += p.corners as u64;
+        at.uv += if uvs { p.coords.len() as u64 } else { 0 };
+    }
+    if at.corner > u32::MAX as u64 || at.uv > u32::MAX as u64 {
+        return Err(Error::TooLarge {
+            what: "tessellated facet corners",
+            count: at.corner.max(at.uv) as usize,
+            bits: 32,
+        });
+    }
+    starts.push(at);
+    let (facets, corners) = (at.facet as usize, at.corner as usize);
+
+    // Every output written once, face by face in parallel, into tables
+    // that may hold stale values (recycled maps): each face's points (its
+    // own ones, a contiguous range taken in order while planning it), its
+    // facets with the pattern's coordinates replaced by the face's points,
+    // its texture coordinates.
+    debug_assert!(plans.iter().all(|p| {
+        p.owned
+            .iter()
+            .enumerate()
+            .all(|(k, &c)| p.points[c as usize] == p.points[p.owned[0] as usize] + k as u32)
+    }));
+    let mut out = TessellatedMesh {
+        positions: Table::for_overwrite(total),
+        normals: Table::for_overwrite(if options.normals { total } else { 0 }),
+        face_offsets: Table::for_overwrite(facets + 1),
+        face_vertices: Table::for_overwrite(corners),
+        uvs: Table::for_overwrite(2 * at.uv as usize),
+        uv_indices: Table::for_overwrite(if uvs { corners } else { 0 }),
+        facet_faces: Table::for_overwrite(facets),
+    };
+    out.face_offsets[0] = 0;
     let owned = |p: &FacePlan| p.owned.len();
-    let pos_chunks = split_by(&mut positions, plans.iter().map(owned));
+    let span = |i: usize, f: fn(&Starts) -> u64| (f(&starts[i + 1]) - f(&starts[i])) as usize;
+    let pos_chunks = split_by(&mut out.positions, plans.iter().map(owned));
     let normal_chunks = split_by(
-        &mut normals,
+        &mut out.normals,
         plans
             .iter()
             .map(|p| if options.normals { owned(p) } else { 0 }),
     );
-    let uv_chunks = split_by(&mut uv_values, uv_counts.iter().map(|&n| 2 * n));
-    plans
-        .par_iter()
-        .zip(pos_chunks)
+    let uv_chunks = split_by(
+        &mut out.uvs,
+        (0..plans.len()).map(|i| 2 * span(i, |s| s.uv)),
+    );
+    let offset_chunks = split_by(
+        &mut out.face_offsets[1..],
+        (0..plans.len()).map(|i| span(i, |s| s.facet)),
+    );
+    let face_chunks = split_by(
+        &mut out.facet_faces,
+        (0..plans.len()).map(|i| span(i, |s| s.facet)),
+    );
+    let corner_chunks = split_by(
+        &mut out.face_vertices,
+        (0..plans.len()).map(|i| span(i, |s| s.corner)),
+    );
+    let uv_index_chunks = split_by(
+        &mut out.uv_indices,
+        (0..plans.len()).map(|i| if uvs { span(i, |s| s.corner) } else { 0 }),
+    );
+    let outputs = pos_chunks
+        .into_iter()
         .zip(normal_chunks)
         .zip(uv_chunks)
+        .zip(offset_chunks)
+        .zip(face_chunks)
+        .zip(corner_chunks)
+        .zip(uv_index_chunks)
+        .map(
+            |((((((position, normal), uv), offset), facet_face), corner), uv_index)| FaceOutputs {
+                position,
+                normal,
+                uv,
+                offset,
+                facet_face,
+                corner,
+                uv_index,
+            },
+        )
+        .collect::<Vec<_>>();
+    plans
+        .par_iter()
+        .zip(&starts[..plans.len()])
+        .zip(outputs)
         .try_for_each_init(
             Vec::new,
-            |own: &mut Vec<[f64; 2]>, (((plan, pos), nrm), uv_out)| -> Result<()> {
-                let coords = &pattern(plan).coords;
+            |own: &mut Vec<[f64; 2]>, ((plan, start), out)| -> Result<()> {
+                let pattern = pattern(plan);
+                let coords = &pattern.coords;
                 // Every coordinate when the face owns them all (from the
                 // first face on, most faces own their interior only).
                 let own: &[[f64; 2]] = if plan.owned.len() == coords.len() {
@@ -344,10 +417,11 @@ pub fn tessellate(
                 };
                 let s = surfaces.evaluate(plan.face, own, derivs)?;
                 let v = &s.values;
-                for (p, x) in pos.iter_mut().zip(v.point.chunks_exact(3)) {
+                for (p, x) in out.position.iter_mut().zip(v.point.chunks_exact(3)) {
                     *p = DVec3::from_slice(x);
                 }
-                for ((n, du), dv) in nrm
+                for ((n, du), dv) in out
+                    .normal
                     .iter_mut()
                     .zip(v.du.chunks_exact(3))
                     .zip(v.dv.chunks_exact(3))
@@ -359,79 +433,71 @@ pub fn tessellate(
                 if uvs {
                     // Texture coordinates are 2D: the first two components.
                     let uv = surfaces.evaluate_fvar(plan.face, 0, coords)?.values.point;
-                    for (value, dst) in uv.chunks(uv_width).zip(uv_out.chunks_mut(2)) {
+                    for (value, dst) in uv.chunks(uv_width).zip(out.uv.chunks_mut(2)) {
                         dst[0] = value[0];
                         dst[1] = value.get(1).copied().unwrap_or(0.0);
                     }
                 }
+                write_facets(pattern, plan, start, out);
                 Ok(())
             },
         )?;
-
-    // The facets: each pattern's, its coordinates replaced by the face's
-    // points (and by the face's own texture coordinates).
-    let facets: usize = plans.iter().map(|p| pattern(p).tess.num_facets()).sum();
-    let corners: usize = plans.iter().map(|p| pattern(p).corners).sum();
-    fn room<T>(n: usize) -> Result<Vec<T>> {
-        let mut v = Vec::new();
-        alloc::reserve(&mut v, n)?;
-        Ok(v)
-    }
-    let mut out = TessellatedMesh {
-        positions,
-        normals,
-        uvs: uv_values,
-        face_offsets: room(facets + 1)?,
-        face_vertices: room(corners)?,
-        uv_indices: room(if uvs { corners } else { 0 })?,
-        facet_faces: room(facets)?,
-    };
-    out.face_offsets.push(0);
-    let mut uv_base = 0usize;
-    for (plan, &uv_count) in plans.iter().zip(&uv_counts) {
-        let pattern = pattern(plan);
-        let size = pattern.tess.facet_size();
-        if pattern.corners == pattern.facets.len() {
-            // No padding: every facet has `size` corners.
-            let first = out.face_vertices.len();
-            out.face_vertices
-                .extend(pattern.facets.iter().map(|&c| plan.points[c as usize]));
-            if uvs {
-                out.uv_indices.extend(
-                    pattern
-                        .facets
-                        .iter()
-                        .map(|&c| (uv_base + c as usize) as u32),
-                );
-            }
-            let facets = pattern.facets.len() / size;
-            out.face_offsets
-                .extend((1..=facets).map(|k| (first + k * size) as u32));
-            out.facet_faces
-                .extend(std::iter::repeat_n(plan.face as u32, facets));
-            uv_base += uv_count;
-            continue;
-        }
-        for facet in pattern.facets.chunks_exact(size) {
-            for &c in facet.iter().filter(|&&c| c >= 0) {
-                out.face_vertices.push(plan.points[c as usize]);
-                if uvs {
-                    out.uv_indices.push((uv_base + c as usize) as u32);
-                }
-            }
-            out.face_offsets.push(out.face_vertices.len() as u32);
-            out.facet_faces.push(plan.face as u32);
-        }
-        uv_base += uv_count;
-    }
-    if out.face_vertices.len() > u32::MAX as usize || uv_base > u32::MAX as usize {
-        return Err(Error::TooLarge {
-            what: "tessellated facet corners",
-            count: out.face_vertices.len().max(uv_base),
-            bits: 32,
-        });
-    }
     Ok(out)
+}
+
+/// Where one face's outputs start: its first facet, facet corner and
+/// texture coordinate.
+#[derive(Debug, Clone, Copy, Default)]
+struct Starts {
+    facet: u64,
+    corner: u64,
+    uv: u64,
+}
+
+/// One face's share of the outputs.
+struct FaceOutputs<'a> {
+    position: &'a mut [DVec3],
+    normal: &'a mut [DVec3],
+    uv: &'a mut [f64],
+    /// Its facets' end offsets (the mesh's `face_offsets` after the first).
+    offset: &'a mut [u32],
+    facet_face: &'a mut [u32],
+    corner: &'a mut [u32],
+    uv_index: &'a mut [u32],
+}
+
+/// Writes `plan`'s facets: `pattern`'s, its coordinates replaced by the
+/// face's points (and by its own texture coordinates, from `start.uv`).
+fn write_facets(pattern: &Pattern, plan: &FacePlan, start: &Starts, out: FaceOutputs<'_>) {
+    let size = pattern.tess.facet_size();
+    let face = plan.face as u32;
+    let uv_base = start.uv as u32;
+    out.facet_face.fill(face);
+    if pattern.corners == pattern.facets.len() {
+        // No padding: every facet has `size` corners.
+        for (dst, &c) in out.corner.iter_mut().zip(&pattern.facets) {
+            *dst = plan.points[c as usize];
+        }
+        for (dst, &c) in out.uv_index.iter_mut().zip(&pattern.facets) {
+            *dst = uv_base + c as u32;
+        }
+        let first = start.corner as u32;
+        for (k, dst) in out.offset.iter_mut().enumerate() {
+            *dst = first + (k as u32 + 1) * size as u32;
+        }
+        return;
+    }
+    let mut corner = 0;
+    for (facet, offset) in pattern.facets.chunks_exact(size).zip(out.offset.iter_mut()) {
+        for &c in facet.iter().filter(|&&c| c >= 0) {
+            out.corner[corner] = plan.points[c as usize];
+            if let Some(dst) = out.uv_index.get_mut(corner) {
+                *dst = uv_base + c as u32;
+            }
+            corner += 1;
+        }
+        *offset = (start.corner + corner as u64) as u32;
+    }
 }
 
 /// `slice` cut into consecutive pieces of `sizes` (which sum to at most its

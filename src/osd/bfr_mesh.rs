@@ -76,12 +76,11 @@ use super::ERR_LEN;
 use super::TopologyRefiner;
 use super::ffi;
 use super::shim::{ErrBuf, internal};
-use crate::alloc::try_vec;
 use crate::bfr::{SurfaceOptions, TessellateOptions, TessellatedMesh};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::options::Options;
-use glam::DVec3;
+use crate::topology::Table;
 use std::ptr::{NonNull, null, null_mut};
 
 /// The most points a tessellated mesh through the bridge may have (2^25).
@@ -171,14 +170,15 @@ pub fn tessellate_mesh(
     };
     // SAFETY: the handle is live; `c` is written by the shim.
     unsafe { ffi::sdv_bfr_mesh_counts_get(handle.0.as_ptr(), &mut c) };
+    // Every value is written by the shim (it checks the counts first).
     let mut out = TessellatedMesh {
-        positions: try_vec(DVec3::ZERO, c.num_points)?,
-        normals: try_vec(DVec3::ZERO, c.num_normals)?,
-        face_offsets: try_vec(0u32, c.num_facets + 1)?,
-        face_vertices: try_vec(0u32, c.num_face_vertices)?,
-        uvs: try_vec(0.0, 2 * c.num_uvs)?,
-        uv_indices: try_vec(0u32, c.num_uv_indices)?,
-        facet_faces: try_vec(0u32, c.num_facets)?,
+        positions: Table::for_overwrite(c.num_points),
+        normals: Table::for_overwrite(c.num_normals),
+        face_offsets: Table::for_overwrite(c.num_facets + 1),
+        face_vertices: Table::for_overwrite(c.num_face_vertices),
+        uvs: Table::for_overwrite(2 * c.num_uvs),
+        uv_indices: Table::for_overwrite(c.num_uv_indices),
+        facet_faces: Table::for_overwrite(c.num_facets),
     };
     let positions: &mut [f64] = bytemuck::cast_slice_mut(&mut out.positions);
     let normals: &mut [f64] = bytemuck::cast_slice_mut(&mut out.normals);
