@@ -64,21 +64,23 @@ fn weights(t: f64, orders: usize, low: bool, high: bool) -> [[f64; 4]; 3] {
 /// values each; `mask` its boundary edges (bit 0 the row `v = 0`, 1 the
 /// column `u = 1`, 2 the row `v = 1`, 3 the column `u = 0`). Of values,
 /// ∂u, ∂v, ∂uu, ∂uv, ∂vv, the first `columns.len()` are written to
-/// `columns`, `width` values per coordinate each.
+/// `columns`, `width` values per coordinate each. Each coordinate goes
+/// through `clamp` first.
 pub(super) fn evaluate(
     points: &[f64],
     width: usize,
     mask: u16,
     coords: &[[f64; 2]],
-    columns: &mut [Vec<f64>],
+    clamp: impl Fn([f64; 2]) -> [f64; 2],
+    columns: &mut [&mut [f64]],
 ) {
     match width {
-        1 => evaluate_n::<1>(points, width, mask, coords, columns),
-        2 => evaluate_n::<2>(points, width, mask, coords, columns),
-        3 => evaluate_n::<3>(points, width, mask, coords, columns),
-        4 => evaluate_n::<4>(points, width, mask, coords, columns),
+        1 => evaluate_n::<1>(points, width, mask, coords, clamp, columns),
+        2 => evaluate_n::<2>(points, width, mask, coords, clamp, columns),
+        3 => evaluate_n::<3>(points, width, mask, coords, clamp, columns),
+        4 => evaluate_n::<4>(points, width, mask, coords, clamp, columns),
         // Wider points, four components at a time.
-        _ => evaluate_n::<4>(points, width, mask, coords, columns),
+        _ => evaluate_n::<4>(points, width, mask, coords, clamp, columns),
     }
 }
 
@@ -89,7 +91,8 @@ fn evaluate_n<const N: usize>(
     width: usize,
     mask: u16,
     coords: &[[f64; 2]],
-    columns: &mut [Vec<f64>],
+    clamp: impl Fn([f64; 2]) -> [f64; 2],
+    columns: &mut [&mut [f64]],
 ) {
     // The orders the outputs need in u and in v: 0, then 1, then 2.
     let (u_orders, v_orders) = match columns.len() {
@@ -106,7 +109,8 @@ fn evaluate_n<const N: usize>(
         for (dst, src) in p.iter_mut().zip(points.chunks_exact(width)) {
             dst[..n].copy_from_slice(&src[start..start + n]);
         }
-        for (i, &[u, v]) in coords.iter().enumerate() {
+        for (i, &uv) in coords.iter().enumerate() {
+            let [u, v] = clamp(uv);
             let bu = weights(u, u_orders, u_low, u_high);
             let bv = weights(v, v_orders, v_low, v_high);
             // rows[order][row]: row `row` contracted with the u weights of
@@ -160,8 +164,10 @@ mod tests {
                 )
                 .unwrap();
                 assert_eq!(n, 16);
-                let mut out: Vec<Vec<f64>> = vec![vec![0.0; width]; 6];
-                evaluate(&points, width, mask, &[[u, v]], &mut out);
+                // Stale values in the outputs: every one is overwritten.
+                let mut out: Vec<Vec<f64>> = vec![vec![f64::NAN; width]; 6];
+                let mut columns: Vec<&mut [f64]> = out.iter_mut().map(|c| &mut c[..]).collect();
+                evaluate(&points, width, mask, &[[u, v]], |uv| uv, &mut columns);
                 for (kind, weights) in buf.iter().enumerate() {
                     for k in 0..width {
                         let expected: f64 =

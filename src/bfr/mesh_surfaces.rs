@@ -120,4 +120,34 @@ impl FaceSurfaces for MeshSurfaces {
     ) -> Result<SurfaceSamples> {
         MeshSurfaces::evaluate_fvar(self, face, channel, coords, Derivatives::None)
     }
+    fn evaluate_into(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Result<()> {
+        let surface = self.factory.vertex_surface(face)?;
+        surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
+    }
+    fn evaluate_fvar_into(
+        &self,
+        face: usize,
+        channel: usize,
+        coords: &[[f64; 2]],
+        out: &mut [f64],
+    ) -> Result<()> {
+        let (values, width) = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+            channel,
+            count: self.fvar.len(),
+        })?;
+        let surface: Surface = self.factory.fvar_surface(face, channel)?;
+        surface.evaluate_into(
+            values,
+            (*width).into(),
+            coords,
+            Derivatives::None,
+            &mut [out],
+        )
+    }
 }

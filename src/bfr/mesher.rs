@@ -45,6 +45,53 @@ pub trait FaceSurfaces: Sync {
         channel: usize,
         coords: &[[f64; 2]],
     ) -> Result<SurfaceSamples>;
+    /// [`FaceSurfaces::evaluate`] written into `out`: one slice per kind
+    /// of value asked for (the positions, then ∂u and ∂v with first
+    /// derivatives), 3 values per coordinate, every value overwritten. By
+    /// default a copy of what `evaluate` returns.
+    fn evaluate_into(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Result<()> {
+        let s = self.evaluate(face, coords, derivatives)?;
+        copy_samples(&s, out)
+    }
+    /// [`FaceSurfaces::evaluate_fvar`] written into `out` (the channel's
+    /// width per coordinate, every value overwritten). By default a copy of
+    /// what `evaluate_fvar` returns.
+    fn evaluate_fvar_into(
+        &self,
+        face: usize,
+        channel: usize,
+        coords: &[[f64; 2]],
+        out: &mut [f64],
+    ) -> Result<()> {
+        let s = self.evaluate_fvar(face, channel, coords)?;
+        copy_samples(&s, &mut [out])
+    }
+}
+
+/// Copies the kinds of values in `samples` there are slices in `out` for
+/// (values, ∂u, ∂v, ...), refused when a length differs.
+fn copy_samples(samples: &SurfaceSamples, out: &mut [&mut [f64]]) -> Result<()> {
+    let v = &samples.values;
+    for (dst, src) in out
+        .iter_mut()
+        .zip([&v.point, &v.du, &v.dv, &v.duu, &v.duv, &v.dvv])
+    {
+        if dst.len() != src.len() {
+            return Err(Error::BufferLength {
+                buffer: crate::error::Buffer::Output,
+                expected: src.len(),
+                got: dst.len(),
+            });
+        }
+        dst.copy_from_slice(src);
+    }
+    Ok(())
 }
 
 impl FaceSurfaces for crate::bfr::LimitSurfaces {
@@ -146,10 +193,12 @@ struct FacePlan {
     face: usize,
     /// Index of its pattern.
     pattern: u32,
-    /// Mesh point of each of the pattern's coordinates.
-    points: Vec<u32>,
-    /// The coordinates (indices into the pattern) this face evaluates.
-    owned: Vec<u32>,
+    /// Where its mesh point of each of the pattern's coordinates are in
+    /// the planned points.
+    points: std::ops::Range<usize>,
+    /// Where the coordinates (indices into the pattern) this face
+    /// evaluates are in the planned owned coordinates.
+    owned: std::ops::Range<usize>,
 }
 
 /// Tessellates every base face of `mesh` with a limit surface in
@@ -191,7 +240,9 @@ pub fn tessellate(
     // Base edges by vertex pair, in order of first use, and the edge of
     // every face corner (from the corner to the next), found once.
     let mut edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+    edges.reserve(mesh.face_vertices.len() / 2);
     let mut edge_rate: Vec<u32> = Vec::new();
+    alloc::reserve(&mut edge_rate, mesh.face_vertices.len() / 2)?;
     let mut corner_edge: Vec<u32> = Vec::new();
     alloc::reserve(&mut corner_edge, mesh.face_vertices.len())?;
     for f in 0..mesh.face_count() {
@@ -219,6 +270,10 @@ pub fn tessellate(
     let mut edge_points: Vec<(u32, u32)> = alloc::try_vec((u32::MAX, 0), edge_rate.len())?;
     let mut next: u64 = 0;
     let mut plans = Vec::new();
+    alloc::reserve(&mut plans, mesh.face_count())?;
+    // Every face's points and owned coordinates, face after face.
+    let mut all_points: Vec<u32> = Vec::new();
+    let mut all_owned: Vec<u32> = Vec::new();
     let mut patterns: Vec<Pattern> = Vec::new();
     // By the face's rates (one per edge: its size too).
     let mut pattern_of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
@@ -262,21 +317,24 @@ pub fn tessellate(
             }
         };
         let tess = &patterns[pattern as usize].tess;
-        let mut points = Vec::new();
-        alloc::reserve(&mut points, tess.num_coords())?;
-        let mut owned = Vec::new();
+        let (points_start, owned_start) = (all_points.len(), all_owned.len());
+        alloc::reserve(&mut all_points, tess.num_coords())?;
+        let (points, owned) = (&mut all_points, &mut all_owned);
+        // The index in this face's points of the next one pushed.
+        let here = |points: &Vec<u32>| (points.len() - points_start) as u32;
         for i in 0..n {
             let a = fv[i];
             if vertex_point[a as usize] == u32::MAX {
                 vertex_point[a as usize] = take(1)?;
-                owned.push(points.len() as u32);
+                owned.push(here(points));
             }
             points.push(vertex_point[a as usize]);
             let inner = rates[i] as usize - 1;
             let e = face_edges[i] as usize;
             if edge_points[e].0 == u32::MAX {
                 edge_points[e] = (take(inner)?, a);
-                owned.extend((0..inner).map(|k| (points.len() + k) as u32));
+                let first = here(points);
+                owned.extend((0..inner as u32).map(|k| first + k));
             }
             let (first, start) = edge_points[e];
             if start == a {
@@ -286,13 +344,13 @@ pub fn tessellate(
             }
         }
         let interior = take(tess.num_interior_coords())?;
-        owned.extend((points.len()..tess.num_coords()).map(|k| k as u32));
+        owned.extend(here(points)..tess.num_coords() as u32);
         points.extend((0..tess.num_interior_coords() as u32).map(|k| interior + k));
         plans.push(FacePlan {
             face: f,
             pattern,
-            points,
-            owned,
+            points: points_start..all_points.len(),
+            owned: owned_start..all_owned.len(),
         });
     }
     let total = next as usize;
@@ -332,11 +390,14 @@ pub fn tessellate(
     // own ones, a contiguous range taken in order while planning it), its
     // facets with the pattern's coordinates replaced by the face's points,
     // its texture coordinates.
+    let face_points = |p: &FacePlan| &all_points[p.points.clone()];
+    let face_owned = |p: &FacePlan| &all_owned[p.owned.clone()];
     debug_assert!(plans.iter().all(|p| {
-        p.owned
+        let (points, owned) = (face_points(p), face_owned(p));
+        owned
             .iter()
             .enumerate()
-            .all(|(k, &c)| p.points[c as usize] == p.points[p.owned[0] as usize] + k as u32)
+            .all(|(k, &c)| points[c as usize] == points[owned[0] as usize] + k as u32)
     }));
     let mut out = TessellatedMesh {
         positions: Table::for_overwrite(total),
@@ -402,8 +463,8 @@ pub fn tessellate(
         .zip(&starts[..plans.len()])
         .zip(outputs)
         .try_for_each_init(
-            Vec::new,
-            |own: &mut Vec<[f64; 2]>, ((plan, start), out)| -> Result<()> {
+            Scratch::default,
+            |scratch: &mut Scratch, ((plan, start), out)| -> Result<()> {
                 let pattern = pattern(plan);
                 let coords = &pattern.coords;
                 // Every coordinate when the face owns them all (from the
@@ -411,38 +472,68 @@ pub fn tessellate(
                 let own: &[[f64; 2]] = if plan.owned.len() == coords.len() {
                     coords
                 } else {
-                    own.clear();
-                    own.extend(plan.owned.iter().map(|&k| coords[k as usize]));
-                    own
+                    scratch.own.clear();
+                    scratch
+                        .own
+                        .extend(face_owned(plan).iter().map(|&k| coords[k as usize]));
+                    &scratch.own
                 };
-                let s = surfaces.evaluate(plan.face, own, derivs)?;
-                let v = &s.values;
-                for (p, x) in out.position.iter_mut().zip(v.point.chunks_exact(3)) {
-                    *p = DVec3::from_slice(x);
-                }
-                for ((n, du), dv) in out
-                    .normal
-                    .iter_mut()
-                    .zip(v.du.chunks_exact(3))
-                    .zip(v.dv.chunks_exact(3))
-                {
-                    *n = DVec3::from_slice(du)
-                        .cross(DVec3::from_slice(dv))
-                        .normalize_or_zero();
+                // Positions straight into the output; the derivatives (for
+                // normals) into scratch columns.
+                let position: &mut [f64] = bytemuck::cast_slice_mut(&mut *out.position);
+                if options.normals {
+                    let len = 3 * own.len();
+                    scratch.du.resize(len, 0.0);
+                    scratch.dv.resize(len, 0.0);
+                    surfaces.evaluate_into(
+                        plan.face,
+                        own,
+                        derivs,
+                        &mut [position, &mut scratch.du, &mut scratch.dv],
+                    )?;
+                    for ((n, du), dv) in out
+                        .normal
+                        .iter_mut()
+                        .zip(scratch.du.chunks_exact(3))
+                        .zip(scratch.dv.chunks_exact(3))
+                    {
+                        *n = DVec3::from_slice(du)
+                            .cross(DVec3::from_slice(dv))
+                            .normalize_or_zero();
+                    }
+                } else {
+                    surfaces.evaluate_into(plan.face, own, derivs, &mut [position])?;
                 }
                 if uvs {
                     // Texture coordinates are 2D: the first two components.
-                    let uv = surfaces.evaluate_fvar(plan.face, 0, coords)?.values.point;
-                    for (value, dst) in uv.chunks(uv_width).zip(out.uv.chunks_mut(2)) {
-                        dst[0] = value[0];
-                        dst[1] = value.get(1).copied().unwrap_or(0.0);
+                    if uv_width == 2 {
+                        surfaces.evaluate_fvar_into(plan.face, 0, coords, out.uv)?;
+                    } else {
+                        scratch.uv.resize(uv_width * coords.len(), 0.0);
+                        surfaces.evaluate_fvar_into(plan.face, 0, coords, &mut scratch.uv)?;
+                        for (value, dst) in scratch.uv.chunks(uv_width).zip(out.uv.chunks_mut(2)) {
+                            dst[0] = value[0];
+                            dst[1] = value.get(1).copied().unwrap_or(0.0);
+                        }
                     }
                 }
-                write_facets(pattern, plan, start, out);
+                write_facets(pattern, plan.face, face_points(plan), start, out);
                 Ok(())
             },
         )?;
     Ok(out)
+}
+
+/// A thread's scratch space while it evaluates faces.
+#[derive(Default)]
+struct Scratch {
+    /// The coordinates a face owns.
+    own: Vec<[f64; 2]>,
+    /// ∂u and ∂v at them (for normals).
+    du: Vec<f64>,
+    dv: Vec<f64>,
+    /// Texture coordinates of a channel wider than 2.
+    uv: Vec<f64>,
 }
 
 /// Where one face's outputs start: its first facet, facet corner and
@@ -466,17 +557,24 @@ struct FaceOutputs<'a> {
     uv_index: &'a mut [u32],
 }
 
-/// Writes `plan`'s facets: `pattern`'s, its coordinates replaced by the
-/// face's points (and by its own texture coordinates, from `start.uv`).
-fn write_facets(pattern: &Pattern, plan: &FacePlan, start: &Starts, out: FaceOutputs<'_>) {
+/// Writes the facets of `face`: `pattern`'s, its coordinates replaced by
+/// the face's `points` (and by its own texture coordinates, from
+/// `start.uv`).
+fn write_facets(
+    pattern: &Pattern,
+    face: usize,
+    points: &[u32],
+    start: &Starts,
+    out: FaceOutputs<'_>,
+) {
     let size = pattern.tess.facet_size();
-    let face = plan.face as u32;
+    let face = face as u32;
     let uv_base = start.uv as u32;
     out.facet_face.fill(face);
     if pattern.corners == pattern.facets.len() {
         // No padding: every facet has `size` corners.
         for (dst, &c) in out.corner.iter_mut().zip(&pattern.facets) {
-            *dst = plan.points[c as usize];
+            *dst = points[c as usize];
         }
         for (dst, &c) in out.uv_index.iter_mut().zip(&pattern.facets) {
             *dst = uv_base + c as u32;
@@ -490,7 +588,7 @@ fn write_facets(pattern: &Pattern, plan: &FacePlan, start: &Starts, out: FaceOut
     let mut corner = 0;
     for (facet, offset) in pattern.facets.chunks_exact(size).zip(out.offset.iter_mut()) {
         for &c in facet.iter().filter(|&&c| c >= 0) {
-            out.corner[corner] = plan.points[c as usize];
+            out.corner[corner] = points[c as usize];
             if let Some(dst) = out.uv_index.get_mut(corner) {
                 *dst = uv_base + c as u32;
             }

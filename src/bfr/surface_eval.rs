@@ -328,15 +328,11 @@ impl Surface {
         // the patch points.
         let identity: Vec<u32> = (0..self.control_points.len() as u32).collect();
         match self.form {
-            Form::Regular { patch, mask, .. } => self.evaluate_regular(
-                patch,
-                mask,
-                &identity,
-                patch_points,
-                layout,
-                coords,
-                derivatives,
-            ),
+            Form::Regular { patch, mask, .. } => {
+                fresh_samples(layout.size, coords.len(), derivatives, |out| {
+                    self.evaluate_regular(patch, mask, &identity, patch_points, layout, coords, out)
+                })
+            }
             _ => self.apply_stencils(&identity, patch_points, layout, coords, derivatives),
         }
     }
@@ -412,7 +408,33 @@ impl Surface {
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
         let layout = layout.into();
+        layout.check()?;
+        fresh_samples(layout.size, coords.len(), derivatives, |out| {
+            self.evaluate_into(points, layout, coords, derivatives, out)
+        })
+    }
+
+    /// [`Surface::evaluate`] written into `out`: one slice per kind of
+    /// value asked for (the value, then ∂u and ∂v, then ∂uu, ∂uv and ∂vv:
+    /// `derivatives.columns()` of them), each `layout.size` values per
+    /// coordinate, every value overwritten (whatever the slices held).
+    pub(crate) fn evaluate_into(
+        &self,
+        points: &[f64],
+        layout: PointDescriptor,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Result<()> {
         self.check_points(points, layout)?;
+        let len = coords.len().saturating_mul(layout.size);
+        if out.len() != derivatives.columns() || out.iter().any(|c| c.len() != len) {
+            return Err(Error::BufferLength {
+                buffer: crate::error::Buffer::Output,
+                expected: len,
+                got: out.first().map_or(0, |c| c.len()),
+            });
+        }
         match &self.form {
             Form::Irregular(irregular) => {
                 // A plan when other faces of the hull were evaluated at the
@@ -428,7 +450,7 @@ impl Surface {
                     )
                 })?;
                 if let Some(plan) = plan {
-                    return self.apply_plan(&plan, points, layout, derivatives);
+                    return self.apply_plan(&plan, points, layout, out);
                 }
                 // Through the patch points (in the table's order): cheaper
                 // than a stencil per coordinate once there are more than a
@@ -437,7 +459,7 @@ impl Surface {
                 let control = self.control_values(points, layout)?;
                 let native = native_patch_points(irregular, width, &control)?;
                 let locations = self.locations(coords)?;
-                evaluate_data(
+                let samples = evaluate_data(
                     &irregular.map,
                     &irregular.table,
                     PatchData::Vertex,
@@ -445,7 +467,8 @@ impl Surface {
                     width,
                     &locations,
                     derivatives,
-                )
+                )?;
+                copy_columns(&samples.values, out)
             }
             Form::Regular { patch, mask, plans } => {
                 let (patch, mask) = (*patch, *mask);
@@ -455,7 +478,7 @@ impl Surface {
                     self.regular_plan(patch, mask, coords, derivatives)
                 })?;
                 match plan {
-                    Some(plan) => self.apply_plan(&plan, points, layout, derivatives),
+                    Some(plan) => self.apply_plan(&plan, points, layout, out),
                     None => self.evaluate_regular(
                         patch,
                         mask,
@@ -463,7 +486,7 @@ impl Surface {
                         points,
                         layout,
                         coords,
-                        derivatives,
+                        out,
                     ),
                 }
             }
@@ -473,17 +496,13 @@ impl Surface {
                 } else {
                     PatchType::Triangles
                 };
-                self.evaluate_regular(
-                    patch,
-                    0,
-                    &self.control_points,
-                    points,
-                    layout,
-                    coords,
-                    derivatives,
-                )
+                self.evaluate_regular(patch, 0, &self.control_points, points, layout, coords, out)
             }
-            _ => self.apply_stencils(&self.control_points, points, layout, coords, derivatives),
+            _ => {
+                let samples =
+                    self.apply_stencils(&self.control_points, points, layout, coords, derivatives)?;
+                copy_columns(&samples.values, out)
+            }
         }
     }
 
@@ -500,27 +519,25 @@ impl Surface {
         points: &[f64],
         layout: PointDescriptor,
         coords: &[[f64; 2]],
-        derivatives: Derivatives,
-    ) -> Result<SurfaceSamples> {
+        columns: &mut [&mut [f64]],
+    ) -> Result<()> {
         if let Some(&uv) = coords.iter().find(|&&uv| !self.param.contains(uv, 1e-9)) {
             return Err(self.off_face(uv));
         }
         let width = layout.size;
-        let kinds = derivatives.columns();
-        let len = coords.len().saturating_mul(width);
-        let mut columns: [Vec<f64>; 6] = Default::default();
-        for column in columns.iter_mut().take(kinds) {
-            *column = alloc::try_vec(0.0, len)?;
-        }
         if patch == PatchType::Regular && indices.len() == 16 {
             let mut gathered = alloc::try_vec(0.0, 16 * width)?;
             for (dst, &cv) in gathered.chunks_exact_mut(width).zip(indices) {
                 dst.copy_from_slice(layout.point(points, cv as usize));
             }
-            let mut clamped = Vec::new();
-            alloc::reserve(&mut clamped, coords.len())?;
-            clamped.extend(coords.iter().map(|&uv| self.clamped(uv)));
-            bspline_eval::evaluate(&gathered, width, mask, &clamped, &mut columns[..kinds]);
+            bspline_eval::evaluate(
+                &gathered,
+                width,
+                mask,
+                coords,
+                |uv| self.clamped(uv),
+                columns,
+            );
         } else if patch == PatchType::Quads && indices.len() == 4 {
             let p = |i: usize| layout.point(points, indices[i] as usize);
             let (p0, p1, p2, p3) = (p(0), p(1), p(2), p(3));
@@ -537,7 +554,7 @@ impl Surface {
                     [1.0, -1.0, 1.0, -1.0],
                     [0.0; 4],
                 ];
-                for (column, w) in columns.iter_mut().zip(&weights).take(kinds) {
+                for (column, w) in columns.iter_mut().zip(&weights) {
                     let out = &mut column[i * width..(i + 1) * width];
                     for (k, o) in out.iter_mut().enumerate() {
                         *o = w[0] * p0[k] + w[1] * p1[k] + w[2] * p2[k] + w[3] * p3[k];
@@ -545,12 +562,20 @@ impl Surface {
                 }
             }
         } else {
+            let derivatives = match columns.len() {
+                1 => Derivatives::None,
+                3 => Derivatives::First,
+                _ => Derivatives::Second,
+            };
             let param = PatchParam::new(0, 0, 0, 0, false, mask, 0, true);
             let mut buf: BasisBuffer = [[0.0; 20]; 6];
+            for column in columns.iter_mut() {
+                column.fill(0.0);
+            }
             for (i, &uv) in coords.iter().enumerate() {
                 let [u, v] = self.clamped(uv);
                 let n = evaluate_basis_into(patch, param, u, v, derivatives, None, &mut buf)?;
-                for (column, weights) in columns.iter_mut().zip(&buf).take(kinds) {
+                for (column, weights) in columns.iter_mut().zip(&buf) {
                     let out = &mut column[i * width..(i + 1) * width];
                     for (&cv, &w) in indices.iter().zip(&weights[..n]) {
                         for (o, &x) in out.iter_mut().zip(layout.point(points, cv as usize)) {
@@ -560,10 +585,7 @@ impl Surface {
                 }
             }
         }
-        Ok(SurfaceSamples {
-            width,
-            values: Partials::from_columns(columns),
-        })
+        Ok(())
     }
 
     /// The evaluation plan of a regular patch at `coords`: at each, its
@@ -603,27 +625,24 @@ impl Surface {
     }
 
     /// An evaluation plan (stencils over the control points at each
-    /// coordinate, in order) applied to the mesh's `points`.
+    /// coordinate, in order) applied to the mesh's `points`, into
+    /// `columns` (one per kind of value, as many as the plan has).
     fn apply_plan(
         &self,
         plan: &LocationStencils,
         points: &[f64],
         layout: PointDescriptor,
-        derivatives: Derivatives,
-    ) -> Result<SurfaceSamples> {
-        let width = layout.size;
-        let control = self.control_values(points, layout)?;
-        let w = &plan.weights;
-        let kinds = derivatives.columns();
-        let weights = [&w.point, &w.du, &w.dv, &w.duu, &w.duv, &w.dvv];
-        let mut columns: [Vec<f64>; 6] = Default::default();
-        for (column, weights) in columns.iter_mut().zip(weights).take(kinds) {
-            *column = alloc::try_vec(0.0, plan.locations.len().saturating_mul(width))?;
-            match width {
-                1 => apply_terms::<1>(plan, weights, &control, column),
-                2 => apply_terms::<2>(plan, weights, &control, column),
-                3 => apply_terms::<3>(plan, weights, &control, column),
-                _ => {
+        columns: &mut [&mut [f64]],
+    ) -> Result<()> {
+        match layout.size {
+            1 => self.apply_plan_n::<1>(plan, points, layout, columns),
+            2 => self.apply_plan_n::<2>(plan, points, layout, columns),
+            3 => self.apply_plan_n::<3>(plan, points, layout, columns),
+            _ => {
+                let width = layout.size;
+                let control = self.control_values(points, layout)?;
+                for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
+                    column.fill(0.0);
                     for (s, &at) in plan.locations.iter().enumerate() {
                         let terms =
                             plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
@@ -636,12 +655,43 @@ impl Surface {
                         }
                     }
                 }
+                Ok(())
             }
         }
-        Ok(SurfaceSamples {
-            width,
-            values: Partials::from_columns(columns),
-        })
+    }
+
+    /// [`Surface::apply_plan`] for points of `N` values, summed in
+    /// registers, the control points gathered on the stack when they are
+    /// few.
+    fn apply_plan_n<const N: usize>(
+        &self,
+        plan: &LocationStencils,
+        points: &[f64],
+        layout: PointDescriptor,
+        columns: &mut [&mut [f64]],
+    ) -> Result<()> {
+        const ON_STACK: usize = 32;
+        let n = self.control_points.len();
+        let gather = |dst: &mut [[f64; N]]| {
+            for (d, &cv) in dst.iter_mut().zip(&self.control_points) {
+                d.copy_from_slice(layout.point(points, cv as usize));
+            }
+        };
+        let mut stack = [[0.0; N]; ON_STACK];
+        let heap;
+        let control: &[[f64; N]] = if n <= ON_STACK {
+            gather(&mut stack[..n]);
+            &stack[..n]
+        } else {
+            let mut h = alloc::try_vec([0.0; N], n)?;
+            gather(&mut h);
+            heap = h;
+            &heap
+        };
+        for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
+            apply_terms::<N>(plan, weights, control, column);
+        }
+        Ok(())
     }
 
     /// The stencils at `coords` applied to `points`, the stencils' weights
@@ -683,17 +733,17 @@ impl Surface {
 }
 
 /// A plan's stencils with `weights` (one kind) applied to `control`
-/// (points of `N` values) into `column`, summed in registers.
+/// into `column`, summed in registers; a coordinate no stencil is for
+/// gets zeros.
 fn apply_terms<const N: usize>(
     plan: &LocationStencils,
     weights: &[f64],
-    control: &[f64],
+    control: &[[f64; N]],
     column: &mut [f64],
 ) {
-    let control: Vec<[f64; N]> = control
-        .chunks_exact(N)
-        .map(|p| std::array::from_fn(|k| p[k]))
-        .collect();
+    if plan.locations.len() * N != column.len() {
+        column.fill(0.0);
+    }
     for (s, &at) in plan.locations.iter().enumerate() {
         let terms = plan.offsets[s] as usize..(plan.offsets[s] + plan.sizes[s]) as usize;
         let mut acc = [0.0; N];
@@ -705,6 +755,47 @@ fn apply_terms<const N: usize>(
         }
         column[at * N..(at + 1) * N].copy_from_slice(&acc);
     }
+}
+
+/// Copies the kinds of `values` there are `columns` for into them
+/// (refused when their lengths differ).
+fn copy_columns(values: &Partials, columns: &mut [&mut [f64]]) -> Result<()> {
+    for (column, from) in columns.iter_mut().zip(values.kinds()) {
+        if column.len() != from.len() {
+            return Err(Error::BufferLength {
+                buffer: crate::error::Buffer::Output,
+                expected: from.len(),
+                got: column.len(),
+            });
+        }
+        column.copy_from_slice(from);
+    }
+    Ok(())
+}
+
+/// Zeroed columns for `coords.len()` values of `width` and each kind
+/// `derivatives` asks for, evaluated by `fill` into samples.
+fn fresh_samples(
+    width: usize,
+    coords: usize,
+    derivatives: Derivatives,
+    fill: impl FnOnce(&mut [&mut [f64]]) -> Result<()>,
+) -> Result<SurfaceSamples> {
+    let len = coords.saturating_mul(width);
+    let mut columns: [Vec<f64>; 6] = Default::default();
+    for column in columns.iter_mut().take(derivatives.columns()) {
+        *column = alloc::try_vec(0.0, len)?;
+    }
+    let mut out: Vec<&mut [f64]> = columns
+        .iter_mut()
+        .take(derivatives.columns())
+        .map(|c| &mut c[..])
+        .collect();
+    fill(&mut out)?;
+    Ok(SurfaceSamples {
+        width,
+        values: Partials::from_columns(columns),
+    })
 }
 
 /// Limit stencils with the derivatives asked for.

@@ -529,6 +529,18 @@ impl Partials {
             dvv,
         }
     }
+
+    /// The six columns in their order, as in [`Partials::from_columns`].
+    pub(crate) fn kinds(&self) -> [&[f64]; 6] {
+        [
+            &self.point,
+            &self.du,
+            &self.dv,
+            &self.duu,
+            &self.duv,
+            &self.dvv,
+        ]
+    }
 }
 
 /// Values of the limit surface at a list of locations, `width` components
