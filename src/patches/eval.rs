@@ -342,36 +342,81 @@ pub fn evaluate_data_as(
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
-    let kinds = match derivatives {
-        Derivatives::None => 1,
-        Derivatives::First => 3,
-        Derivatives::Second => 6,
-    };
+    let kinds = derivatives.columns();
     let len = locations.len().checked_mul(width).ok_or(Error::TooLarge {
         what: "evaluated values",
         count: usize::MAX,
         bits: usize::BITS,
     })?;
+    // Every location checked first, in order: an error names the first
+    // bad one, whatever order they are evaluated in.
+    for &(face, u, v) in locations {
+        check_location(table, face, u, v)?;
+    }
     let mut outs: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::new());
     for out in outs.iter_mut().take(kinds) {
         *out = crate::alloc::try_vec(0.0, len)?;
     }
-    let mut buf: BasisBuffer = [[0.0; 20]; 6];
-    for (i, &(face, u, v)) in locations.iter().enumerate() {
-        check_location(table, face, u, v)?;
+    let evaluator = Evaluator {
+        evaluation,
+        map,
+        table,
+        data,
+        points,
+        width,
+        derivatives,
+    };
+    super::locations::evaluate_all(&evaluator, locations, &mut outs[..kinds])?;
+    Ok(SurfaceSamples {
+        width,
+        values: Partials::from_columns(outs),
+    })
+}
+
+/// What evaluating one location needs: the table, its map, the data and
+/// how to evaluate.
+pub(crate) struct Evaluator<'a> {
+    evaluation: Evaluation,
+    map: &'a PatchMap,
+    table: &'a PatchTable,
+    data: PatchData,
+    points: &'a [f64],
+    /// Values per point.
+    pub(crate) width: usize,
+    derivatives: Derivatives,
+}
+
+impl Evaluator<'_> {
+    /// The number of ptex faces locations are on.
+    pub(crate) fn ptex_faces(&self) -> usize {
+        self.table.ptex_faces
+    }
+
+    /// Evaluates the limit at (`face`, `u`, `v`), a location
+    /// [`check_location`] accepted, into value `i` of each of `columns`
+    /// (one per kind of value asked for, `width` reals per value).
+    #[inline]
+    pub(crate) fn at(
+        &self,
+        (face, u, v): (u32, f64, f64),
+        i: usize,
+        buf: &mut BasisBuffer,
+        columns: &mut [&mut [f64]],
+    ) -> Result<()> {
+        let (table, points, width) = (self.table, self.points, self.width);
         // (let-else, not `ok_or`: an error built and dropped per location
         // cost 7-9% of the evaluation.)
-        let Some(handle) = map.find_patch(face, u, v) else {
+        let Some(handle) = self.map.find_patch(face, u, v) else {
             return Err(Error::NoPatchAt { face, u, v });
         };
         // A map of another table names patches this one may not have.
-        let (patch_type, param, cvs) = patch_of(table, data, handle)?;
-        let exact = exact_sharpness(evaluation, table, data, handle);
-        let n = evaluate_basis_into(patch_type, param, u, v, derivatives, exact, &mut buf)?;
+        let (patch_type, param, cvs) = patch_of(table, self.data, handle)?;
+        let exact = exact_sharpness(self.evaluation, table, self.data, handle);
+        let n = evaluate_basis_into(patch_type, param, u, v, self.derivatives, exact, buf)?;
         // Every control point's values, once per table asked for; points
         // of width 3 (positions) summed in registers, in the same order.
         if width == 3 {
-            for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
+            for (out, weights) in columns.iter_mut().zip(buf.iter()) {
                 let mut acc = [0.0f64; 3];
                 for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
                     let start = cv as usize * 3;
@@ -388,10 +433,11 @@ pub fn evaluate_data_as(
                 }
                 out[i * 3..i * 3 + 3].copy_from_slice(&acc);
             }
-            continue;
+            return Ok(());
         }
-        for (out, weights) in outs.iter_mut().zip(&buf).take(kinds) {
+        for (out, weights) in columns.iter_mut().zip(buf.iter()) {
             let dst = &mut out[i * width..(i + 1) * width];
+            dst.fill(0.0);
             for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
                 let end = (cv as usize + 1).saturating_mul(width);
                 let Some(row) = points.get(end - width..end) else {
@@ -406,11 +452,8 @@ pub fn evaluate_data_as(
                 }
             }
         }
+        Ok(())
     }
-    Ok(SurfaceSamples {
-        width,
-        values: Partials::from_columns(outs),
-    })
 }
 
 /// Location (`face`, `u`, `v`) on a ptex face of `table`, its coordinates in

@@ -32,6 +32,7 @@ mod build;
 mod eval;
 mod exact;
 pub(crate) mod limit_stencils;
+mod locations;
 mod map;
 mod param;
 mod triangle_basis;

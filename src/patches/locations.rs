@@ -1,0 +1,174 @@
+//! Evaluating many locations at once: in ptex-face order, on the pool's
+//! threads.
+//!
+//! Locations given in no particular order (a renderer's samples, a
+//! scatterer's points) visit the patch map, the patch arrays and the
+//! control points at random: most of the time goes to cache misses.
+//! Evaluated face after face, neighbouring locations share their patch's
+//! data. Each location's value is computed exactly as alone (the same
+//! sums in the same order); only the order of the locations changes, and
+//! the results are written back in the caller's order.
+
+use super::basis::BasisBuffer;
+use super::eval::Evaluator;
+use crate::alloc::try_vec;
+use crate::error::Result;
+use rayon::prelude::*;
+
+/// The fewest locations evaluated in face order (fewer are evaluated as
+/// given).
+const ORDERED_FROM: usize = 4096;
+
+/// Locations per task on several threads.
+const CHUNK: usize = 8192;
+
+/// Evaluates `locations` (each accepted by `check_location`) into
+/// `columns` (one per kind of value, `evaluator.width` reals per
+/// location). An error is the first location's error in the caller's
+/// order.
+pub(super) fn evaluate_all(
+    evaluator: &Evaluator<'_>,
+    locations: &[(u32, f64, f64)],
+    columns: &mut [Vec<f64>],
+) -> Result<()> {
+    if locations.len() < ORDERED_FROM || u32::try_from(locations.len()).is_err() {
+        return in_given_order(evaluator, locations, columns);
+    }
+    match in_face_order(evaluator, locations, columns) {
+        Ok(()) => Ok(()),
+        // The first error in the caller's order, not in face order.
+        Err(_) => in_given_order(evaluator, locations, columns),
+    }
+}
+
+/// Each location in turn.
+fn in_given_order(
+    evaluator: &Evaluator<'_>,
+    locations: &[(u32, f64, f64)],
+    columns: &mut [Vec<f64>],
+) -> Result<()> {
+    let mut columns: Vec<&mut [f64]> = columns.iter_mut().map(|c| &mut c[..]).collect();
+    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    for (i, &location) in locations.iter().enumerate() {
+        evaluator.at(location, i, &mut buf, &mut columns)?;
+    }
+    Ok(())
+}
+
+/// The indices of `locations` sorted by ptex face (a counting sort; in the
+/// given order within a face). Faces are below `faces`.
+fn face_order(locations: &[(u32, f64, f64)], faces: usize) -> Result<Vec<u32>> {
+    let mut next = try_vec(0u32, faces + 1)?;
+    for &(face, _, _) in locations {
+        next[face as usize + 1] += 1;
+    }
+    for f in 1..next.len() {
+        next[f] += next[f - 1];
+    }
+    let mut order = try_vec(0u32, locations.len())?;
+    for (i, &(face, _, _)) in locations.iter().enumerate() {
+        let slot = &mut next[face as usize];
+        order[*slot as usize] = i as u32;
+        *slot += 1;
+    }
+    Ok(order)
+}
+
+/// Face after face, a stretch of the face order at a time: its locations
+/// gathered, evaluated into a stretch of sorted columns, the values then
+/// put in the caller's order. (Gathering and scattering in tight loops of
+/// their own keeps many cache misses in flight; inside the evaluation
+/// they came one at a time.) On one thread each stretch is scattered as
+/// it is done; on several, the stretches go into sorted copies of the
+/// columns in parallel, gathered back afterwards.
+fn in_face_order(
+    evaluator: &Evaluator<'_>,
+    locations: &[(u32, f64, f64)],
+    columns: &mut [Vec<f64>],
+) -> Result<()> {
+    let order = face_order(locations, evaluator.ptex_faces())?;
+    let width = evaluator.width;
+    let kinds = columns.len();
+    let evaluate =
+        |indices: &[u32], scratch: &mut Scratch, stretch: &mut [&mut [f64]]| -> Result<()> {
+            scratch.locations.clear();
+            scratch
+                .locations
+                .extend(indices.iter().map(|&i| locations[i as usize]));
+            for (j, &location) in scratch.locations.iter().enumerate() {
+                evaluator.at(location, j, &mut scratch.buf, stretch)?;
+            }
+            Ok(())
+        };
+    if rayon::current_num_threads() <= 1 {
+        let mut scratch = Scratch::default();
+        let mut sorted: Vec<Vec<f64>> = Vec::new();
+        for _ in 0..kinds {
+            sorted.push(try_vec(0.0, CHUNK.min(order.len()) * width)?);
+        }
+        for indices in order.chunks(CHUNK) {
+            let mut stretch: Vec<&mut [f64]> = sorted
+                .iter_mut()
+                .map(|c| &mut c[..indices.len() * width])
+                .collect();
+            evaluate(indices, &mut scratch, &mut stretch)?;
+            for (column, from) in columns.iter_mut().zip(&stretch) {
+                for (&i, value) in indices.iter().zip(from.chunks_exact(width)) {
+                    let i = i as usize;
+                    column[i * width..(i + 1) * width].copy_from_slice(value);
+                }
+            }
+        }
+        return Ok(());
+    }
+    let mut sorted = Vec::new();
+    for column in columns.iter() {
+        sorted.push(try_vec(0.0, column.len())?);
+    }
+    // Each task's stretch of every sorted column.
+    let tasks = order.len().div_ceil(CHUNK);
+    let mut stretches: Vec<Vec<&mut [f64]>> = (0..tasks).map(|_| Vec::new()).collect();
+    for column in sorted.iter_mut() {
+        for (task, piece) in stretches.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
+            task.push(piece);
+        }
+    }
+    order
+        .par_chunks(CHUNK)
+        .zip(stretches)
+        .try_for_each_init(Scratch::default, |scratch, (indices, mut stretch)| {
+            evaluate(indices, scratch, &mut stretch)
+        })?;
+    // Where each location's values are in the sorted columns.
+    let mut rank = try_vec(0u32, order.len())?;
+    for (k, &i) in order.iter().enumerate() {
+        rank[i as usize] = k as u32;
+    }
+    for (column, from) in columns.iter_mut().zip(&sorted) {
+        column
+            .par_chunks_mut(CHUNK * width)
+            .zip(rank.par_chunks(CHUNK))
+            .for_each(|(dst, ranks)| {
+                for (d, &r) in dst.chunks_exact_mut(width).zip(ranks) {
+                    let r = r as usize;
+                    d.copy_from_slice(&from[r * width..(r + 1) * width]);
+                }
+            });
+    }
+    Ok(())
+}
+
+/// A task's scratch space: its stretch's locations and a basis buffer.
+struct Scratch {
+    locations: Vec<(u32, f64, f64)>,
+    buf: BasisBuffer,
+}
+
+impl Default for Scratch {
+    fn default() -> Self {
+        Scratch {
+            locations: Vec::new(),
+            buf: [[0.0; 20]; 6],
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! Many locations at once (`patches::evaluate_data`): a batch is evaluated
+//! in ptex-face order, on the pool's threads, yet every value is the one
+//! the location gets alone, in the caller's order, and an error names the
+//! first bad location in the caller's order.
+
+use subdiv::patches::{self, Derivatives, PatchData, PatchMap, PatchOptions, PatchTable};
+use subdiv::ptex::PtexIndices;
+use subdiv::refiner::{AdaptiveRefiner, Refiner};
+use subdiv::{Error, Mesh, Options, shapes};
+
+/// A mesh with quads, triangles and extraordinary vertices, refined and
+/// its patch table (Gregory end caps) built.
+fn setup(mesh: &Mesh) -> (AdaptiveRefiner, PatchTable) {
+    let options = PatchOptions::new().max_isolation(3);
+    let adaptive = Refiner::new(mesh, &Options::default())
+        .unwrap()
+        .refine_adaptive(options.refine_adaptive_options(), &[])
+        .unwrap();
+    let table = adaptive.patch_table(&options, &[]).unwrap();
+    (adaptive, table)
+}
+
+/// `count` pseudo-random locations on faces that have patches, in no
+/// order.
+fn scattered(table: &PatchTable, map: &PatchMap, count: usize) -> Vec<(u32, f64, f64)> {
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut out = Vec::new();
+    while out.len() < count {
+        let l = ((next() * table.ptex_faces as f64) as u32, next(), next());
+        if map.find_patch(l.0, l.1, l.2).is_some() {
+            out.push(l);
+        }
+    }
+    out
+}
+
+/// Each location evaluated alone (a batch of one is evaluated as given).
+fn one_by_one(
+    map: &PatchMap,
+    table: &PatchTable,
+    points: &[f64],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    derivatives: Derivatives,
+) -> Vec<Vec<f64>> {
+    let mut columns = vec![Vec::new(); 6];
+    for &l in locations {
+        let s = patches::evaluate_data(
+            map,
+            table,
+            PatchData::Vertex,
+            points,
+            width,
+            &[l],
+            derivatives,
+        )
+        .unwrap();
+        let v = s.values;
+        for (c, kind) in columns
+            .iter_mut()
+            .zip([v.point, v.du, v.dv, v.duu, v.duv, v.dvv])
+        {
+            c.extend(kind);
+        }
+    }
+    columns
+}
+
+#[test]
+fn a_batch_gives_each_location_its_own_value_in_order() {
+    let mesh = shapes::torus_mixed(12, 10);
+    let (adaptive, table) = setup(&mesh);
+    let map = PatchMap::new(&table);
+    let locations = scattered(&table, &map, 20_000);
+    // Widths 3 (positions, summed in registers) and 4 (any other width).
+    let base3 = mesh.flat_positions::<f64>();
+    let base4: Vec<f64> = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z, p.x * p.y - p.z])
+        .collect();
+    for (width, base) in [(3, &base3), (4, &base4)] {
+        let points = adaptive.patch_points(&table, width, base).unwrap();
+        for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
+            let alone = one_by_one(&map, &table, &points, width, &locations, derivatives);
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let s = pool
+                    .install(|| {
+                        patches::evaluate_with(
+                            &map,
+                            &table,
+                            &points,
+                            width,
+                            &locations,
+                            derivatives,
+                        )
+                    })
+                    .unwrap();
+                let v = s.values;
+                for (kind, (got, want)) in [v.point, v.du, v.dv, v.duu, v.duv, v.dvv]
+                    .iter()
+                    .zip(&alone)
+                    .enumerate()
+                {
+                    assert_eq!(got.len(), want.len());
+                    // Bit for bit: the same sums, only in another order of
+                    // locations.
+                    let differ = got
+                        .iter()
+                        .zip(want)
+                        .position(|(a, b)| a.to_bits() != b.to_bits());
+                    assert_eq!(
+                        differ, None,
+                        "width {width}, {derivatives:?}, {threads} threads, kind {kind}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_batch_reports_its_first_bad_location() {
+    let mut mesh = shapes::torus_mixed(12, 10);
+    // Two holes: the later hole's face comes first in face order.
+    mesh.holes.extend([7, 40]);
+    let (adaptive, table) = setup(&mesh);
+    let map = PatchMap::new(&table);
+    let points = adaptive
+        .patch_points(&table, 3, &mesh.flat_positions::<f64>())
+        .unwrap();
+    // The (first) ptex faces of the holes.
+    let ptex = PtexIndices::new(&Refiner::new(&mesh, &Options::default()).unwrap()).unwrap();
+    let (early, late) = (ptex.face_id(7).unwrap(), ptex.face_id(40).unwrap());
+    assert!(map.find_patch(early, 0.5, 0.5).is_none());
+    assert!(map.find_patch(late, 0.5, 0.5).is_none());
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut locations = scattered(&table, &map, 10_000);
+        locations[100] = (late, 0.5, 0.5);
+        locations[6000] = (early, 0.25, 0.5);
+        let e = pool
+            .install(|| {
+                patches::evaluate_with(&map, &table, &points, 3, &locations, Derivatives::First)
+            })
+            .unwrap_err();
+        assert!(
+            matches!(e, Error::NoPatchAt { face, .. } if face == late),
+            "{threads} threads: {e}"
+        );
+        // A location off its face is refused before any is evaluated.
+        locations[50] = (0, 1.5, 0.5);
+        let e = pool
+            .install(|| {
+                patches::evaluate_with(&map, &table, &points, 3, &locations, Derivatives::None)
+            })
+            .unwrap_err();
+        assert!(matches!(e, Error::Location { face: 0, .. }), "{e}");
+    }
+}
