@@ -113,10 +113,7 @@ fn in_face_order(
                 .collect();
             evaluate(indices, &mut scratch, &mut stretch)?;
             for (column, from) in columns.iter_mut().zip(&stretch) {
-                for (&i, value) in indices.iter().zip(from.chunks_exact(width)) {
-                    let i = i as usize;
-                    column[i * width..(i + 1) * width].copy_from_slice(value);
-                }
+                move_values(width, from, |k| k, column, |k| indices[k] as usize);
             }
         }
         return Ok(());
@@ -149,10 +146,7 @@ fn in_face_order(
             .par_chunks_mut(CHUNK * width)
             .zip(rank.par_chunks(CHUNK))
             .for_each(|(dst, ranks)| {
-                for (d, &r) in dst.chunks_exact_mut(width).zip(ranks) {
-                    let r = r as usize;
-                    d.copy_from_slice(&from[r * width..(r + 1) * width]);
-                }
+                move_values(width, from, |k| ranks[k] as usize, dst, |k| k);
             });
     }
     Ok(())
@@ -169,6 +163,45 @@ impl Default for Scratch {
         Scratch {
             locations: Vec::new(),
             buf: [[0.0; 20]; 6],
+        }
+    }
+}
+
+/// Copies `to.len() / width` values of `width` reals: value `from_at(k)`
+/// of `from` to value `to_at(k)` of `to`, for each `k`. Small widths
+/// are copied as fixed-size arrays (a copy of a slice of run-time length
+/// is a call to `memcpy` per value).
+fn move_values(
+    width: usize,
+    from: &[f64],
+    from_at: impl Fn(usize) -> usize,
+    to: &mut [f64],
+    to_at: impl Fn(usize) -> usize,
+) {
+    fn fixed<const N: usize>(
+        from: &[f64],
+        from_at: impl Fn(usize) -> usize,
+        to: &mut [f64],
+        to_at: impl Fn(usize) -> usize,
+        count: usize,
+    ) {
+        for k in 0..count {
+            let (f, t) = (from_at(k) * N, to_at(k) * N);
+            let value: [f64; N] = std::array::from_fn(|c| from[f + c]);
+            to[t..t + N].copy_from_slice(&value);
+        }
+    }
+    let count = from.len().min(to.len()) / width;
+    match width {
+        1 => fixed::<1>(from, from_at, to, to_at, count),
+        2 => fixed::<2>(from, from_at, to, to_at, count),
+        3 => fixed::<3>(from, from_at, to, to_at, count),
+        4 => fixed::<4>(from, from_at, to, to_at, count),
+        _ => {
+            for k in 0..count {
+                let (f, t) = (from_at(k) * width, to_at(k) * width);
+                to[t..t + width].copy_from_slice(&from[f..f + width]);
+            }
         }
     }
 }
