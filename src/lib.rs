@@ -125,6 +125,7 @@ pub use real::{Precision, Real};
 pub use stencil::{
     LimitStencilTable, StencilInterpolation, StencilOptions, StencilTable, StencilTableF32,
 };
+pub use topology::Table;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(all(doctest, feature = "osd"))]

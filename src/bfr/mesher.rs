@@ -12,13 +12,13 @@
 //! Interior points are the face's own. Evaluation runs face by face in
 //! parallel once every point has its face.
 
+use crate::Table;
 use crate::alloc;
 use crate::bfr::{FacetSize, Parameterization, Tessellation, TessellationOptions};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::patches::{Derivatives, SurfaceSamples};
-use crate::topology::Table;
 use glam::DVec3;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;

@@ -76,11 +76,11 @@ use super::ERR_LEN;
 use super::TopologyRefiner;
 use super::ffi;
 use super::shim::{ErrBuf, internal};
+use crate::Table;
 use crate::bfr::{SurfaceOptions, TessellateOptions, TessellatedMesh};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::options::Options;
-use crate::topology::Table;
 use std::ptr::{NonNull, null, null_mut};
 
 /// The most points a tessellated mesh through the bridge may have (2^25).

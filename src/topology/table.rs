@@ -55,7 +55,7 @@ fn map_threshold() -> usize {
 /// fault. A table of 2 MiB or more is an anonymous memory map advised with
 /// `MADV_HUGEPAGE` (transparent huge pages: one fault where there were 512),
 /// and when dropped its map is kept for the next table of its size
-/// ([`release_table_pool`]); smaller tables are ordinary `Vec`s. The
+/// ([`release_buffer_pool`](crate::release_buffer_pool)); smaller tables are ordinary `Vec`s. The
 /// environment variable `SUBDIV_HUGE_PAGES=0` makes every table a `Vec`
 /// (docs/PERFORMANCE.md has the measurements).
 pub struct Table<T: Pod> {
