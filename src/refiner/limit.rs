@@ -454,10 +454,10 @@ impl<'a, T: Real> Evaluator<'a, T> {
             }
             return;
         }
-        if let [p, d1, d2] = rows {
-            if apply_three(masks, v, width, src, [&mut **p, &mut **d1, &mut **d2]) {
-                return;
-            }
+        if let [p, d1, d2] = rows
+            && apply_three(masks, v, width, src, [&mut **p, &mut **d1, &mut **d2])
+        {
+            return;
         }
         for (mask, row) in masks.masks().into_iter().zip(rows.iter_mut()) {
             apply(mask, masks, v, width, src, row);
