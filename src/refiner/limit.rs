@@ -560,7 +560,7 @@ impl Refiner {
     /// data at that level (`PrimvarRefiner::Limit`). Works at any level,
     /// including 0; like OpenSubdiv, it needs the last level refined with
     /// `full_topology_in_last_level`. Parallel over blocks of vertices in
-    /// the current rayon pool; the buffers are [`Values`](crate::Values),
+    /// the current rayon pool; the buffers are [`Values`],
     /// written once (a large one recycled from the buffer pool).
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
         crate::alloc::guard(None, || {
