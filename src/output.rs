@@ -121,15 +121,18 @@ pub struct LevelCounts {
 }
 
 /// Limit values and both tangents of one primvar (`width` components per
-/// vertex) at the vertices of one level.
+/// vertex) at the vertices of one level. Each buffer is a [`Values`]: it
+/// dereferences to a slice, and a large one lives in memory advised for huge
+/// pages that returns to a pool when dropped, so that evaluating the next
+/// frame writes its limits without page faults.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct LimitData<T> {
+pub struct LimitData<T: Real> {
     /// Limit values, `width` per vertex.
-    pub positions: Vec<T>,
+    pub positions: Values<T>,
     /// First tangents, `width` per vertex.
-    pub du: Vec<T>,
+    pub du: Values<T>,
     /// Second tangents, `width` per vertex.
-    pub dv: Vec<T>,
+    pub dv: Values<T>,
 }
 
 /// Limit positions, tangents and face-varying values at the vertices of one level.

@@ -150,6 +150,7 @@ fn limit_positions(mesh: &Mesh, options: &Options) -> Vec<f64> {
         .unwrap()
         .limit_positions::<f64>(3, &mesh.flat_positions::<f64>())
         .unwrap()
+        .into_vec()
 }
 
 /// At each face's vertex coordinates the surface passes through its

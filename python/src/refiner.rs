@@ -310,15 +310,15 @@ impl Refiner {
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let data = floats(points, "points")?;
         let width = width_of(&data, "points")?;
-        fn arrays<'py, T: Element>(
+        fn arrays<'py, T: Real + Element>(
             py: Python<'py>,
             l: LimitData<T>,
             width: usize,
         ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)> {
             Ok((
-                convert::values(py, l.positions, width)?.into_any(),
-                convert::values(py, l.du, width)?.into_any(),
-                convert::values(py, l.dv, width)?.into_any(),
+                convert::values(py, l.positions.into_vec(), width)?.into_any(),
+                convert::values(py, l.du.into_vec(), width)?.into_any(),
+                convert::values(py, l.dv.into_vec(), width)?.into_any(),
             ))
         }
         with_floats!(&data, src => {

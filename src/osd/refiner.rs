@@ -543,11 +543,11 @@ impl TopologyRefiner {
         }
         let n = last.vertices * width;
         check_length(Buffer::Source, n, src.len())?;
-        let mut out = LimitData {
-            positions: try_vec(T::default(), n)?,
-            du: try_vec(T::default(), n)?,
-            dv: try_vec(T::default(), n)?,
-        };
+        let (mut positions, mut du, mut dv) = (
+            try_vec(T::default(), n)?,
+            try_vec(T::default(), n)?,
+            try_vec(T::default(), n)?,
+        );
         let mut err = ErrBuf::new();
         let width = to_i32(width, "primvar components")?;
         let status = with_shim_type!(T, |S| S::limit(
@@ -555,14 +555,19 @@ impl TopologyRefiner {
             width,
             bytemuck::cast_slice(src),
             [
-                bytemuck::cast_slice_mut(&mut out.positions),
-                bytemuck::cast_slice_mut(&mut out.du),
-                bytemuck::cast_slice_mut(&mut out.dv),
+                bytemuck::cast_slice_mut(&mut positions),
+                bytemuck::cast_slice_mut(&mut du),
+                bytemuck::cast_slice_mut(&mut dv),
             ],
             &mut err,
         ));
         err.check(status)?;
-        Ok(out)
+        // The vectors become the values without a copy.
+        Ok(LimitData {
+            positions: positions.into(),
+            du: du.into(),
+            dv: dv.into(),
+        })
     }
 
     /// Limit values of face-varying `channel` at the last level

@@ -3,10 +3,12 @@
 
 use super::Refiner;
 use crate::error::{Buffer, Error, Result};
-use crate::output::LimitData;
+use crate::options::Scheme;
+use crate::output::{LimitData, Values};
 use crate::real::Real;
-use crate::rules::{Mask, VertexNeighborhood};
-use crate::topology::Level;
+use crate::rules::{Mask, Rule, VertexNeighborhood};
+use crate::topology::refine::{Split, derive_limit_ring};
+use crate::topology::{Level, Table};
 
 /// The limit masks of one vertex, with the vertices they apply to.
 pub(crate) struct LimitMasks<T> {
@@ -61,8 +63,7 @@ impl<T: Real> LimitMasks<T> {
         }
         let faces = level.vertex_faces_of(v);
         let rule = level.vertex_tag(v).rule();
-        let smooth = matches!(rule, crate::rules::Rule::Smooth | crate::rules::Rule::Dart)
-            && faces.len() == edges.len();
+        let smooth = matches!(rule, Rule::Smooth | Rule::Dart) && faces.len() == edges.len();
         let n = faces.len();
         self.smooth_valence = smooth.then_some(n);
         // A smooth vertex's masks depend on its valence alone: the
@@ -238,6 +239,266 @@ fn apply_three_fixed<T: Real, const W: usize>(
 /// Vertices per parallel task of limit evaluation.
 const BLOCK: usize = 2048;
 
+/// The largest valence whose smooth vertices take the one-pass path
+/// ([`Evaluator::smooth`]); the neighbours of a vertex of higher valence are
+/// gathered in vectors ([`LimitMasks`]).
+const MAX_SMOOTH_VALENCE: usize = 32;
+
+/// The limit masks of a smooth interior vertex of one valence (they depend on
+/// the valence alone), interleaved for one pass over its neighbours: the
+/// weights of the position, first and second tangent for each face point,
+/// then for each edge point, then for the vertex.
+struct SmoothMasks<T> {
+    face: Vec<[T; 3]>,
+    edge: Vec<[T; 3]>,
+    vertex: [T; 3],
+}
+
+/// What a valence's smooth masks are, once computed.
+enum Smooth<T> {
+    /// Not computed yet.
+    Unknown,
+    /// Masks whose terms do not line up (a valence-2 vertex: no position
+    /// terms, two tangent ones): the general path applies them.
+    General,
+    /// Masks the one-pass path applies.
+    Fused(SmoothMasks<T>),
+}
+
+/// The masks of one valence as [`Smooth`] holds them.
+fn smooth_masks<T: Real>(rules: &crate::rules::SchemeRules, n: usize) -> Smooth<T> {
+    let edge_sharpness = vec![0.0; n];
+    let hood = VertexNeighborhood {
+        sharpness: 0.0,
+        edge_sharpness: &edge_sharpness,
+        face_count: n,
+        child_sharpness: 0.0,
+        child_edge_sharpness: &[],
+    };
+    let (mut p, mut t1, mut t2) = (Mask::new(), Mask::new(), Mask::new());
+    rules.vertex_limit_masks(&hood, Rule::Smooth, &mut p, &mut t1, &mut t2);
+    let lined_up = [&p, &t1, &t2].iter().all(|m| {
+        m.vertex.len() == 1 && m.edge.len() == n && (m.face.len() == n || m.face.is_empty())
+    }) && p.face.len() == t1.face.len()
+        && p.face.len() == t2.face.len();
+    if !lined_up {
+        return Smooth::General;
+    }
+    let zip = |a: &[T], b: &[T], c: &[T]| -> Vec<[T; 3]> {
+        a.iter()
+            .zip(b)
+            .zip(c)
+            .map(|((&a, &b), &c)| [a, b, c])
+            .collect()
+    };
+    Smooth::Fused(SmoothMasks {
+        face: zip(&p.face, &t1.face, &t2.face),
+        edge: zip(&p.edge, &t1.edge, &t2.edge),
+        vertex: [p.vertex[0], t1.vertex[0], t2.vertex[0]],
+    })
+}
+
+/// The neighbours of a smooth interior vertex: the vertex opposite it in each
+/// face (when its masks weigh faces) and the far end of each edge.
+struct Ring {
+    faces: [u32; MAX_SMOOTH_VALENCE],
+    edges: [u32; MAX_SMOOTH_VALENCE],
+    n: usize,
+}
+
+/// Limit evaluation of the vertices of one block: the masks it has computed
+/// and its scratch buffers.
+struct Evaluator<'a, T> {
+    refiner: &'a Refiner,
+    level: &'a Level,
+    /// The level before, how it was split and whether into triangles, when
+    /// the level has one (with its relations).
+    parent: Option<(&'a Level, &'a Split, bool)>,
+    /// Smooth masks by valence.
+    smooth: Vec<Smooth<T>>,
+    /// The general path's masks and neighbours.
+    general: LimitMasks<T>,
+}
+
+impl<'a, T: Real> Evaluator<'a, T> {
+    fn new(refiner: &'a Refiner, level: &'a Level) -> Self {
+        let depth = refiner.levels.len() - 1;
+        let parent = depth
+            .checked_sub(1)
+            .map(|p| &refiner.levels[p])
+            .filter(|p| {
+                // Bilinear limit masks take the general path anyway.
+                refiner.options.scheme != Scheme::Bilinear
+                    && p.has_local_indices()
+                    && p.edge_vertices.len() == p.num_edges
+            })
+            .zip(refiner.refinements.get(depth.wrapping_sub(1)))
+            .map(|(p, split)| (p, split, refiner.options.scheme == Scheme::Loop));
+        Evaluator {
+            refiner,
+            level,
+            parent,
+            smooth: Vec::new(),
+            general: LimitMasks::new(),
+        }
+    }
+
+    /// The masks of vertex `v` when it is a smooth interior vertex (rule
+    /// smooth or dart, manifold) of valence at most [`MAX_SMOOTH_VALENCE`]
+    /// whose masks line up, with its neighbours then in `ring`; `None` sends
+    /// it down the general path.
+    ///
+    /// Under a parent level the neighbours come from the parent element the
+    /// vertex is the child of ([`derive_limit_ring`]): its tables are a
+    /// quarter of the size of the level's and read nearly in order, where
+    /// the level's face-vertices would be read all over.
+    #[inline(always)]
+    fn smooth(&mut self, v: usize, ring: &mut Ring) -> Option<&SmoothMasks<T>> {
+        let tag = self.level.vertex_tag(v);
+        if !matches!(tag.rule(), Rule::Smooth | Rule::Dart) || tag.non_manifold() {
+            return None;
+        }
+        let derived = self.parent.and_then(|(parent, split, triangles)| {
+            derive_limit_ring(
+                parent,
+                split,
+                triangles,
+                v,
+                &mut ring.faces,
+                &mut ring.edges,
+            )
+        });
+        let n = match derived {
+            Some(n) => n,
+            None => self.ring_from_level(v, ring)?,
+        };
+        ring.n = n;
+        if self.smooth.len() <= n {
+            self.smooth.resize_with(n + 1, || Smooth::Unknown);
+        }
+        if let Smooth::Unknown = self.smooth[n] {
+            self.smooth[n] = smooth_masks(&self.refiner.rules, n);
+        }
+        match &self.smooth[n] {
+            Smooth::Fused(masks) => Some(masks),
+            _ => None,
+        }
+    }
+
+    /// The neighbours of smooth vertex `v` read from the level: `None` when
+    /// it has not as many edges as faces, or more than
+    /// [`MAX_SMOOTH_VALENCE`].
+    ///
+    /// Around such a vertex OpenSubdiv orders edge `i` as the edge leading
+    /// out of face `i` (`Vtr::Level::orderVertexFacesAndEdges`: from the
+    /// vertex to the next vertex of the face), so the far ends of the edges
+    /// come from the face rows read for the opposite vertices, and the edges
+    /// themselves are not read.
+    fn ring_from_level(&self, v: usize, ring: &mut Ring) -> Option<usize> {
+        let level = self.level;
+        let faces = level.vertex_faces_of(v);
+        let n = faces.len();
+        if n > MAX_SMOOTH_VALENCE || level.vertex_edges.count(v) != n {
+            return None;
+        }
+        let locals = level.vertex_face_locals(v);
+        let rows = ring.faces.iter_mut().zip(ring.edges.iter_mut());
+        for ((opposite, next), (&f, &k)) in rows.zip(faces.iter().zip(locals)) {
+            let verts = level.face_verts(f as usize);
+            let (k, size) = (k as usize, verts.len());
+            *opposite = verts[(k + 2) % size];
+            *next = verts[(k + 1) % size];
+        }
+        Some(n)
+    }
+
+    /// Limit values of the vertices of one block from `first` on: `K` = 3
+    /// outputs (position and both tangents) or 1 (position), rows of `W`
+    /// values.
+    fn block<const W: usize, const K: usize>(
+        &mut self,
+        first: usize,
+        src: &[T],
+        mut out: [&mut [T]; K],
+    ) {
+        let mut ring = Ring {
+            faces: [0; MAX_SMOOTH_VALENCE],
+            edges: [0; MAX_SMOOTH_VALENCE],
+            n: 0,
+        };
+        let count = out[0].len() / W;
+        for k in 0..count {
+            let v = first + k;
+            let rows = k * W..(k + 1) * W;
+            if let Some(masks) = self.smooth(v, &mut ring) {
+                let sums = sum_smooth::<T, W, K>(masks, &ring, v, src);
+                for (o, sum) in out.iter_mut().zip(&sums) {
+                    o[rows.clone()].copy_from_slice(sum);
+                }
+                continue;
+            }
+            let mut rows = out.each_mut().map(|o| &mut o[rows.clone()]);
+            self.general(v, W, src, &mut rows);
+        }
+    }
+
+    /// Limit values of vertex `v` through its own masks (`rows`: the position,
+    /// then both tangents if asked for).
+    fn general(&mut self, v: usize, width: usize, src: &[T], rows: &mut [&mut [T]]) {
+        let tangents = rows.len() == 3;
+        let masks = &mut self.general;
+        if !masks.compute(self.refiner, self.level, v, tangents) {
+            rows[0].copy_from_slice(&src[v * width..(v + 1) * width]);
+            for row in &mut rows[1..] {
+                row.fill(T::ZERO);
+            }
+            return;
+        }
+        if let [p, d1, d2] = rows
+            && apply_three(masks, v, width, src, [&mut **p, &mut **d1, &mut **d2])
+        {
+            return;
+        }
+        for (mask, row) in masks.masks().into_iter().zip(rows.iter_mut()) {
+            apply(mask, masks, v, width, src, row);
+        }
+    }
+}
+
+/// The `K` limit values (position, then tangents) of smooth vertex `v`, rows
+/// of `W` values: one pass over its neighbours, each output summing its terms
+/// in OpenSubdiv's order (faces, then edges, then the vertex).
+#[inline(always)]
+fn sum_smooth<T: Real, const W: usize, const K: usize>(
+    masks: &SmoothMasks<T>,
+    ring: &Ring,
+    v: usize,
+    src: &[T],
+) -> [[T; W]; K] {
+    let mut acc = [[T::ZERO; W]; K];
+    let mut add = |i: u32, w: &[T; 3]| {
+        let i = i as usize;
+        let row: &[T; W] = src[i * W..(i + 1) * W].try_into().expect("W values");
+        for (a, &w) in acc.iter_mut().zip(w) {
+            for (a, &x) in a.iter_mut().zip(row) {
+                *a += x * w;
+            }
+        }
+    };
+    let n = ring.n;
+    for (&i, w) in ring.faces[..n.min(masks.face.len())]
+        .iter()
+        .zip(&masks.face)
+    {
+        add(i, w);
+    }
+    for (&i, w) in ring.edges[..n].iter().zip(&masks.edge) {
+        add(i, w);
+    }
+    add(v as u32, &masks.vertex);
+    acc
+}
+
 impl Refiner {
     fn check_limit_source<T>(&self, width: usize, src: &[T]) -> Result<&Level> {
         let level = self.levels.last().expect("base level");
@@ -257,72 +518,76 @@ impl Refiner {
         Ok(level)
     }
 
+    /// Limit values of the vertices of `level` into `out` (position, then both
+    /// tangents when `K` = 3), in parallel blocks of [`BLOCK`] vertices.
+    fn limit_into<T: Real, const K: usize>(
+        &self,
+        level: &Level,
+        width: usize,
+        src: &[T],
+        out: [&mut [T]; K],
+    ) {
+        use rayon::prelude::*;
+        // The outputs have the same length: as many chunks each.
+        let mut chunks = out.map(|o| o.chunks_mut(BLOCK * width));
+        let blocks: Vec<[&mut [T]; K]> = (0..level.vertex_count.div_ceil(BLOCK))
+            .map(|_| chunks.each_mut().map(|c| c.next().unwrap_or_default()))
+            .collect();
+        blocks.into_par_iter().enumerate().for_each(|(b, out)| {
+            let mut ev = Evaluator::new(self, level);
+            let first = b * BLOCK;
+            match width {
+                1 => ev.block::<1, K>(first, src, out),
+                2 => ev.block::<2, K>(first, src, out),
+                3 => ev.block::<3, K>(first, src, out),
+                4 => ev.block::<4, K>(first, src, out),
+                _ => {
+                    let mut out = out;
+                    let count = out[0].len() / width;
+                    for k in 0..count {
+                        let mut rows: Vec<&mut [T]> = out
+                            .iter_mut()
+                            .map(|o| &mut o[k * width..(k + 1) * width])
+                            .collect();
+                        ev.general(first + k, width, src, &mut rows);
+                    }
+                }
+            }
+        });
+    }
+
     /// Limit values and both tangents at the vertices of the last level, from
     /// data at that level (`PrimvarRefiner::Limit`). Works at any level,
     /// including 0; like OpenSubdiv, it needs the last level refined with
     /// `full_topology_in_last_level`. Parallel over blocks of vertices in
-    /// the current rayon pool.
+    /// the current rayon pool; the buffers are [`Values`],
+    /// written once (a large one recycled from the buffer pool).
     pub fn limit<T: Real>(&self, width: usize, src: &[T]) -> Result<LimitData<T>> {
         crate::alloc::guard(None, || {
-            use rayon::prelude::*;
             let level = self.check_limit_source(width, src)?;
             let n = level.vertex_count * width;
             let mut out = LimitData {
-                positions: crate::alloc::vec_or_unwind(T::ZERO, n),
-                du: crate::alloc::vec_or_unwind(T::ZERO, n),
-                dv: crate::alloc::vec_or_unwind(T::ZERO, n),
+                positions: Values(Table::for_overwrite(n)),
+                du: Values(Table::for_overwrite(n)),
+                dv: Values(Table::for_overwrite(n)),
             };
-            let block = BLOCK * width;
-            out.positions
-                .par_chunks_mut(block)
-                .zip(out.du.par_chunks_mut(block))
-                .zip(out.dv.par_chunks_mut(block))
-                .enumerate()
-                .for_each(|(b, ((pos, du), dv))| {
-                    let mut masks = LimitMasks::<T>::new();
-                    let rows = pos
-                        .chunks_exact_mut(width)
-                        .zip(du.chunks_exact_mut(width))
-                        .zip(dv.chunks_exact_mut(width));
-                    for (k, ((p, d1), d2)) in rows.enumerate() {
-                        let v = b * BLOCK + k;
-                        if !masks.compute(self, level, v, true) {
-                            p.copy_from_slice(&src[v * width..(v + 1) * width]);
-                            continue;
-                        }
-                        if apply_three(&masks, v, width, src, [&mut *p, &mut *d1, &mut *d2]) {
-                            continue;
-                        }
-                        let [mp, m1, m2] = masks.masks();
-                        apply(mp, &masks, v, width, src, p);
-                        apply(m1, &masks, v, width, src, d1);
-                        apply(m2, &masks, v, width, src, d2);
-                    }
-                });
+            self.limit_into(
+                level,
+                width,
+                src,
+                [&mut *out.positions, &mut *out.du, &mut *out.dv],
+            );
             Ok(out)
         })
     }
 
     /// Limit values only, at the vertices of the last level (parallel as
     /// [`limit`](Self::limit)).
-    pub fn limit_positions<T: Real>(&self, width: usize, src: &[T]) -> Result<Vec<T>> {
+    pub fn limit_positions<T: Real>(&self, width: usize, src: &[T]) -> Result<Values<T>> {
         crate::alloc::guard(None, || {
-            use rayon::prelude::*;
             let level = self.check_limit_source(width, src)?;
-            let mut out = crate::alloc::vec_or_unwind(T::ZERO, level.vertex_count * width);
-            out.par_chunks_mut(BLOCK * width)
-                .enumerate()
-                .for_each(|(b, out)| {
-                    let mut masks = LimitMasks::<T>::new();
-                    for (k, p) in out.chunks_exact_mut(width).enumerate() {
-                        let v = b * BLOCK + k;
-                        if !masks.compute(self, level, v, false) {
-                            p.copy_from_slice(&src[v * width..(v + 1) * width]);
-                            continue;
-                        }
-                        apply(masks.masks()[0], &masks, v, width, src, p);
-                    }
-                });
+            let mut out = Values(Table::for_overwrite(level.vertex_count * width));
+            self.limit_into(level, width, src, [&mut *out]);
             Ok(out)
         })
     }
@@ -332,6 +597,101 @@ impl Refiner {
 mod tests {
     use super::*;
     use crate::{Options, UniformOptions, shapes};
+
+    /// The neighbours of smooth vertices derived from the parent level are
+    /// those read from the level, in the same order, on every corpus mesh
+    /// under every scheme, boundary mode and vertex order, at levels 1 to 3;
+    /// and read from the level, edge `i`'s far end is the vertex after the
+    /// vertex in face `i`.
+    #[test]
+    fn derived_rings_are_the_level_rings() {
+        use crate::BoundaryInterpolation;
+        let (mut derived, mut read) = (0, 0);
+        for (name, mut mesh) in shapes::corpus() {
+            mesh.fvar_channels.clear();
+            for &scheme in mesh.applicable_schemes() {
+                for boundary in [BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::None] {
+                    for faces_first in [false, true] {
+                        let options = Options::default()
+                            .with_scheme(scheme)
+                            .with_boundary(boundary);
+                        let Ok(mut r) = Refiner::new(&mesh, &options) else {
+                            continue;
+                        };
+                        for level in 0..=3 {
+                            let uniform = UniformOptions::new(level)
+                                .full_topology(true)
+                                .faces_first(faces_first);
+                            if r.refine_uniform(uniform).is_err() {
+                                break;
+                            }
+                            let last = r.levels.last().unwrap();
+                            let mut ev = Evaluator::<f64>::new(&r, last);
+                            for v in 0..last.vertex_count {
+                                let ctx = format!(
+                                    "{name} {scheme} {boundary:?} {faces_first} level {level} vertex {v}"
+                                );
+                                let mut from_level = Ring {
+                                    faces: [0; MAX_SMOOTH_VALENCE],
+                                    edges: [0; MAX_SMOOTH_VALENCE],
+                                    n: 0,
+                                };
+                                let tag = last.vertex_tag(v);
+                                if !matches!(tag.rule(), Rule::Smooth | Rule::Dart)
+                                    || tag.non_manifold()
+                                {
+                                    continue;
+                                }
+                                let Some(n) = ev.ring_from_level(v, &mut from_level) else {
+                                    continue;
+                                };
+                                read += 1;
+                                let edges = last.vertex_edges_of(v);
+                                for (j, &e) in edges.iter().enumerate() {
+                                    let far = last.other_vertex(e as usize, v as u32);
+                                    assert_eq!(from_level.edges[j], far, "{ctx}: edge {j}");
+                                }
+                                let Some((p, split, tri)) = ev.parent else {
+                                    continue;
+                                };
+                                let mut ring = Ring {
+                                    faces: [0; MAX_SMOOTH_VALENCE],
+                                    edges: [0; MAX_SMOOTH_VALENCE],
+                                    n: 0,
+                                };
+                                let Some(m) = derive_limit_ring(
+                                    p,
+                                    split,
+                                    tri,
+                                    v,
+                                    &mut ring.faces,
+                                    &mut ring.edges,
+                                ) else {
+                                    continue;
+                                };
+                                derived += 1;
+                                assert_eq!(m, n, "{ctx}: valence");
+                                assert_eq!(ring.edges[..n], from_level.edges[..n], "{ctx}: edges");
+                                if !tri {
+                                    assert_eq!(
+                                        ring.faces[..n],
+                                        from_level.faces[..n],
+                                        "{ctx}: faces"
+                                    );
+                                }
+                                // The smooth path takes it.
+                                assert!(ev.smooth(v, &mut ring).is_some() || n <= 2, "{ctx}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            derived > 10_000 && read > derived,
+            "{derived} derived, {read} read"
+        );
+    }
 
     /// The one-pass application of the three masks gives the bits of three
     /// separate passes, at every width it handles, on every corpus mesh.

@@ -189,7 +189,10 @@ pub fn refine(mesh: &Mesh, options: &Options, request: impl Into<Request>) -> Re
                 Precision::F32 => {
                     let narrow: Vec<f32> = collect_n(last.len(), last.iter().map(|&x| x as f32));
                     let d = refiner.limit(3, &narrow)?;
-                    let widen = |v: Vec<f32>| collect_n(v.len(), v.into_iter().map(f64::from));
+                    let widen = |v: crate::output::Values<f32>| {
+                        let wide: Vec<f64> = collect_n(v.len(), v.iter().map(|&x| f64::from(x)));
+                        crate::output::Values::from(wide)
+                    };
                     crate::output::LimitData {
                         positions: widen(d.positions),
                         du: widen(d.du),

@@ -177,6 +177,125 @@ pub(crate) fn derive_smooth_hood<const N: usize>(
     }
 }
 
+/// The neighbours the limit masks of a smooth interior vertex weigh, for
+/// vertex `c` of a level split from `parent` by `r` (`triangles`: Loop's
+/// triangle split, otherwise the quad split), read from `parent` alone: the
+/// far end of each of its edges into `fars`, and under the quad split the
+/// vertex opposite `c` in each of its faces into `opposite`, both in the
+/// order the level stores its edges and faces. Returns how many, or `None`
+/// where the parent element's neighbourhood is not the ordinary one (a
+/// parent edge without exactly two distinct faces or with one vertex at
+/// both ends, a parent vertex with more faces or edges than `N` or not as
+/// many of each), there to be read from the level itself.
+///
+/// In the child quad of parent face `f` at its corner `j`, the vertex
+/// opposite the corner's vertex point is the face point, and the points of
+/// the face's edges `j` and `j - 1` are opposite each other.
+#[inline(always)]
+pub(crate) fn derive_limit_ring<const N: usize>(
+    parent: &Level,
+    r: &Split,
+    triangles: bool,
+    c: usize,
+    opposite: &mut [u32; N],
+    fars: &mut [u32; N],
+) -> Option<usize> {
+    let [nv, ne, nf] = r.parent_counts;
+    let from = |first: u32, count: usize| c.checked_sub(first as usize).filter(|&i| i < count);
+    if let Some(v) = from(r.first_vertex_from_vertices, nv) {
+        // The child's faces and edges are the children of the vertex's, in
+        // their order.
+        let vfaces = parent.vertex_faces_of(v);
+        let vedges = parent.vertex_edges_of(v);
+        let n = vfaces.len();
+        if n > N || vedges.len() != n {
+            return None;
+        }
+        if !triangles {
+            for (o, &f) in opposite.iter_mut().zip(vfaces) {
+                *o = r.face_child(f as usize);
+            }
+        }
+        for (far, &e) in fars.iter_mut().zip(vedges) {
+            *far = r.edge_child(e as usize);
+        }
+        Some(n)
+    } else if let Some(e) = from(r.first_vertex_from_edges, ne) {
+        let ev = parent.edge_vertices[e];
+        let faces = parent.edge_faces_of(e);
+        let &[f0, f1] = faces else {
+            return None;
+        };
+        if ev[0] == ev[1] || f0 == f1 {
+            return None;
+        }
+        let locals = parent.edge_face_locals(e);
+        let (f0, k0, f1, k1) = (
+            f0 as usize,
+            locals[0] as usize,
+            f1 as usize,
+            locals[1] as usize,
+        );
+        if triangles {
+            // As derive_smooth_hood orders them.
+            if 6 > N {
+                return None;
+            }
+            let ep = |f: usize, j: usize| r.edge_child(parent.face_edges_of(f)[j % 3] as usize);
+            let reversed = parent.face_verts(f0)[k0] != ev[0];
+            let (first, second) = if reversed { (0, 1) } else { (1, 0) };
+            fars[..6].copy_from_slice(&[
+                r.vertex_child(ev[first] as usize),
+                ep(f0, k0 + 1),
+                ep(f0, k0 + 2),
+                r.vertex_child(ev[second] as usize),
+                ep(f1, k1 + 1),
+                ep(f1, k1 + 2),
+            ]);
+            Some(6)
+        } else {
+            if 4 > N {
+                return None;
+            }
+            // The faces are the children at corners k0 + 1 and k0 of f0,
+            // then k1 + 1 and k1 of f1 (derive_smooth_hood).
+            let (e0, e1) = (parent.face_edges_of(f0), parent.face_edges_of(f1));
+            let (n0, n1) = (e0.len(), e1.len());
+            opposite[..4].copy_from_slice(&[
+                r.edge_child(e0[next(k0, n0)] as usize),
+                r.edge_child(e0[prev(k0, n0)] as usize),
+                r.edge_child(e1[next(k1, n1)] as usize),
+                r.edge_child(e1[prev(k1, n1)] as usize),
+            ]);
+            let swapped = parent.face_verts(f0)[k0] == ev[0];
+            let (a, b) = if swapped { (1, 0) } else { (0, 1) };
+            fars[..4].copy_from_slice(&[
+                r.vertex_child(ev[a] as usize),
+                r.face_child(f0),
+                r.vertex_child(ev[b] as usize),
+                r.face_child(f1),
+            ]);
+            Some(4)
+        }
+    } else if let Some(f) = from(r.first_vertex_from_faces, nf) {
+        // Quad split: the child at corner j is the face's child face j,
+        // its edge j leads to the point of the face's edge j - 1.
+        let verts = parent.face_verts(f);
+        let edges = parent.face_edges_of(f);
+        let n = edges.len();
+        if n > N || verts.len() != n {
+            return None;
+        }
+        for j in 0..n {
+            opposite[j] = r.vertex_child(verts[j] as usize);
+            fars[j] = r.edge_child(edges[prev(j, n)] as usize);
+        }
+        Some(n)
+    } else {
+        None
+    }
+}
+
 /// The two faces of edge `c` of a level split from `parent` by `r`
 /// (`triangles`: Loop's triangle split), in the order the level would store
 /// them, for a level built without its edge-faces

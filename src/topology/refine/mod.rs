@@ -51,7 +51,7 @@ mod tri;
 
 pub(crate) use derive::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
-    derive_smooth_hood, derive_vertex_relations,
+    derive_limit_ring, derive_smooth_hood, derive_vertex_relations,
 };
 pub(crate) use tags::child_edge;
 pub use tags::child_edge_sharpness;
