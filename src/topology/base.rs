@@ -35,7 +35,7 @@ fn topology_from_face_vertices(mesh: &Mesh, block: usize) -> Level {
         Table::from_slice(&mesh.face_vertices),
     )
     .compact();
-    match super::manifold::manifold_topology(face_vertices, mesh.vertex_count()) {
+    match super::manifold::manifold_topology(face_vertices, mesh.vertex_count(), block) {
         Ok((mut level, failed)) => {
             for v in failed {
                 level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
@@ -187,7 +187,7 @@ const VERTEX_BLOCK: usize = 16_384;
 /// `block` vertices for the pool's threads. Each vertex's results depend on
 /// nothing another vertex's pass writes, so blocks give the same level as
 /// one pass.
-fn vertex_blocks(nv: usize, threads: usize, block: usize) -> Vec<Range<usize>> {
+pub(super) fn vertex_blocks(nv: usize, threads: usize, block: usize) -> Vec<Range<usize>> {
     if threads <= 1 || nv <= block {
         // One block: the whole level.
         return std::iter::once(0..nv).collect();
@@ -721,7 +721,11 @@ mod tests {
                 "{:?}",
                 general_topology(face_vertices(), mesh.vertex_count(), usize::MAX)
             );
-            match super::super::manifold::manifold_topology(face_vertices(), mesh.vertex_count()) {
+            match super::super::manifold::manifold_topology(
+                face_vertices(),
+                mesh.vertex_count(),
+                usize::MAX,
+            ) {
                 Ok((mut level, failed)) => {
                     accepted += 1;
                     unordered += usize::from(!failed.is_empty());

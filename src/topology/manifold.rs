@@ -26,7 +26,9 @@
 //! faces in corner order, edges in the order they were numbered, tagged
 //! non-manifold by the caller.
 
+use super::base::vertex_blocks;
 use super::{Level, Relation, Table};
+use std::ops::Range;
 
 const NONE: u32 = u32::MAX;
 
@@ -117,14 +119,17 @@ impl Corners for Mixed<'_> {
 /// built) when one is not; the vertices whose faces could not be ordered
 /// come second, in increasing order, for the caller to tag.
 /// `face_vertices` is the level's copy of the mesh's faces (validated), `nv`
-/// its vertex count.
+/// its vertex count; the last pass writes the vertices' relations in blocks
+/// of `block` vertices on the pool's threads
+/// ([`vertex_blocks`](super::base::vertex_blocks)).
 pub(super) fn manifold_topology(
     face_vertices: Relation,
     nv: usize,
+    block: usize,
 ) -> Result<(Level, Vec<u32>), Relation> {
     let built = match face_vertices.uniform_size() {
-        Some(4) => build(&face_vertices, nv, &Uniform::<4>, 4),
-        Some(3) => build(&face_vertices, nv, &Uniform::<3>, 3),
+        Some(4) => build(&face_vertices, nv, &Uniform::<4>, 4, block),
+        Some(3) => build(&face_vertices, nv, &Uniform::<3>, 3, block),
         _ => {
             let offsets = face_vertices.offsets_slice();
             let mut face: Table<u32> = Table::for_overwrite(face_vertices.members.len());
@@ -137,7 +142,7 @@ pub(super) fn manifold_topology(
                 face: &face,
                 offsets: &offsets,
             };
-            build(&face_vertices, nv, &corners, largest as usize)
+            build(&face_vertices, nv, &corners, largest as usize, block)
         }
     };
     match built {
@@ -156,6 +161,7 @@ fn build<C: Corners>(
     nv: usize,
     corners: &C,
     largest: usize,
+    block: usize,
 ) -> Option<(Level, Vec<u32>)> {
     let fv: &[u32] = &face_vertices.members;
     let nc = fv.len();
@@ -279,27 +285,40 @@ fn build<C: Corners>(
             twin: &twin,
             edge_vertices: &edge_vertices,
         };
-        let (vf_offsets, ve_offsets): (&[u32], &[u32]) = (&vf_offsets, &ve_offsets);
-        let vertex_corners: &[u32] = &vertex_corners;
-        let (vf_members, vf_local): (&mut [u32], &mut [u16]) = (&mut vf_members, &mut vf_local);
-        let (ve_members, ve_local): (&mut [u32], &mut [u16]) = (&mut ve_members, &mut ve_local);
-        let mut failed_at = failed.iter().copied().peekable();
-        let mut scratch = Vec::new();
-        for v in 0..nv {
-            let fr = vf_offsets[v] as usize..vf_offsets[v + 1] as usize;
-            let er = ve_offsets[v] as usize..ve_offsets[v + 1] as usize;
+        let blocks = vertex_blocks(nv, rayon::current_num_threads(), block);
+        let (mut vfm, mut vfl): (&mut [u32], &mut [u16]) = (&mut vf_members, &mut vf_local);
+        let (mut vem, mut vel): (&mut [u32], &mut [u16]) = (&mut ve_members, &mut ve_local);
+        let mut parts = Vec::with_capacity(blocks.len());
+        for range in blocks {
+            let faces = (vf_offsets[range.end] - vf_offsets[range.start]) as usize;
+            let edges = (ve_offsets[range.end] - ve_offsets[range.start]) as usize;
+            let (a, rest_a) = std::mem::take(&mut vfm).split_at_mut(faces);
+            let (b, rest_b) = std::mem::take(&mut vfl).split_at_mut(faces);
+            let (c, rest_c) = std::mem::take(&mut vem).split_at_mut(edges);
+            let (d, rest_d) = std::mem::take(&mut vel).split_at_mut(edges);
+            (vfm, vfl, vem, vel) = (rest_a, rest_b, rest_c, rest_d);
             let tables = VertexTables {
-                faces: &mut vf_members[fr.clone()],
-                face_local: &mut vf_local[fr.clone()],
-                edges: &mut ve_members[er.clone()],
-                edge_local: &mut ve_local[er],
+                faces: a,
+                face_local: b,
+                edges: c,
+                edge_local: d,
             };
-            let at = &vertex_corners[fr];
-            if failed_at.next_if_eq(&(v as u32)).is_none() {
-                relations.write_ordered(at, tables);
-            } else {
-                relations.write_unordered(v as u32, at, tables, &mut scratch);
-            }
+            parts.push((range, tables));
+        }
+        let write = |(range, tables): (Range<usize>, VertexTables)| {
+            relations.write_block(
+                range,
+                (&vf_offsets, &ve_offsets),
+                &vertex_corners,
+                &failed,
+                tables,
+            )
+        };
+        if parts.len() == 1 {
+            parts.into_iter().for_each(write);
+        } else {
+            use rayon::prelude::*;
+            parts.into_par_iter().for_each(write);
         }
     }
     drop((vertex_corners, twin));
@@ -497,6 +516,41 @@ struct Relations<'a, C> {
 }
 
 impl<C: Corners> Relations<'_, C> {
+    /// Writes the relations of the vertices of `range` into their parts of
+    /// the tables (`t`): faces and edges in walk order, or as numbered for
+    /// the vertices of `failed` (every vertex that could not be ordered, in
+    /// increasing order). `offsets` are the vertex-face and vertex-edge
+    /// offsets, `vertex_corners` each vertex's corners in walk order.
+    fn write_block(
+        &self,
+        range: Range<usize>,
+        (vf, ve): (&[u32], &[u32]),
+        vertex_corners: &[u32],
+        failed: &[u32],
+        t: VertexTables,
+    ) {
+        let (fbase, ebase) = (vf[range.start] as usize, ve[range.start] as usize);
+        let first = failed.partition_point(|&x| (x as usize) < range.start);
+        let mut failed_at = failed[first..].iter().copied().peekable();
+        let mut scratch = Vec::new();
+        for v in range {
+            let fr = vf[v] as usize..vf[v + 1] as usize;
+            let er = ve[v] as usize..ve[v + 1] as usize;
+            let tables = VertexTables {
+                faces: &mut t.faces[fr.start - fbase..fr.end - fbase],
+                face_local: &mut t.face_local[fr.start - fbase..fr.end - fbase],
+                edges: &mut t.edges[er.start - ebase..er.end - ebase],
+                edge_local: &mut t.edge_local[er.start - ebase..er.end - ebase],
+            };
+            let at = &vertex_corners[fr];
+            if failed_at.next_if_eq(&(v as u32)).is_none() {
+                self.write_ordered(at, tables);
+            } else {
+                self.write_unordered(v as u32, at, tables, &mut scratch);
+            }
+        }
+    }
+
     /// Writes the relations of a vertex whose corners `at` are in walk
     /// order: faces, the vertex's place in each, the edge leaving it in
     /// each face and, at a boundary vertex, the last face's arriving edge.
