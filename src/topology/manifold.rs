@@ -20,8 +20,8 @@
 //! 4. each vertex's faces, edges and local indices written in walk order.
 //!
 //! When a vertex shows anything else (a non-manifold or degenerate edge, a
-//! vertex twice in a face), [`manifold_topology`] returns `None` and the
-//! general build runs instead. Vertices whose faces cannot be ordered (two
+//! vertex twice in a face), [`manifold_topology`] declines (hands the
+//! faces back) and the general build runs instead. Vertices whose faces cannot be ordered (two
 //! fans meeting at a vertex, an isolated vertex) are handled here as there:
 //! faces in corner order, edges in the order they were numbered, tagged
 //! non-manifold by the caller.
@@ -85,11 +85,19 @@ impl<const N: usize> Corners for Uniform<N> {
     }
     #[inline(always)]
     fn next(&self, c: usize) -> usize {
-        if (c + 1) % N == 0 { c + 1 - N } else { c + 1 }
+        if (c + 1).is_multiple_of(N) {
+            c + 1 - N
+        } else {
+            c + 1
+        }
     }
     #[inline(always)]
     fn prev(&self, c: usize) -> usize {
-        if c % N == 0 { c + N - 1 } else { c - 1 }
+        if c.is_multiple_of(N) {
+            c + N - 1
+        } else {
+            c - 1
+        }
     }
 }
 
@@ -409,10 +417,8 @@ fn pair(entries: &mut [Entry], sorted: &mut Vec<(u32, u32)>) -> Option<usize> {
     if k <= PAIRWISE {
         for i in 0..k {
             let (n, p) = (entries[i].n, entries[i].p);
-            for j in 0..i {
-                if entries[j].n == n || entries[j].p == p {
-                    return None;
-                }
+            if entries[..i].iter().any(|e| e.n == n || e.p == p) {
+                return None;
             }
             for j in 0..k {
                 if entries[j].p == n {
@@ -566,8 +572,8 @@ impl<C: Corners> Relations<'_, C> {
         } else {
             face_of(at[k - 1])
         };
-        for m in 0..k {
-            let c = at[m] as usize;
+        for (m, &c) in at.iter().enumerate() {
+            let c = c as usize;
             let f = self.corners.face(c);
             t.faces[m] = f as u32;
             t.face_local[m] = (c - self.corners.start(f)) as u16;
