@@ -26,15 +26,32 @@ pub fn build_base_level(mesh: &Mesh, options: &Options) -> Level {
 }
 
 /// Edges, edge-faces, vertex-faces and vertex-edges from the face-vertex lists,
-/// with non-manifold detection, orientation and local indices (the
-/// per-vertex passes in blocks of `block` vertices on several threads).
+/// with non-manifold detection, orientation and local indices: by
+/// [`manifold_topology`](super::manifold::manifold_topology) when every edge
+/// is manifold, else by [`general_topology`].
 fn topology_from_face_vertices(mesh: &Mesh, block: usize) -> Level {
-    let nv = mesh.vertex_count();
     let face_vertices = Relation::from_parts(
         Table::from_slice(&mesh.face_offsets),
         Table::from_slice(&mesh.face_vertices),
     )
     .compact();
+    match super::manifold::manifold_topology(face_vertices, mesh.vertex_count(), block) {
+        Ok((mut level, failed)) => {
+            for v in failed {
+                level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
+            }
+            level
+        }
+        Err(face_vertices) => general_topology(face_vertices, mesh.vertex_count(), block),
+    }
+}
+
+/// [`topology_from_face_vertices`] for any mesh, as OpenSubdiv's factory
+/// builds it: each edge looked up among its first vertex's edges so far,
+/// non-manifold features detected on the way, then every vertex's faces and
+/// edges ordered by a walk (the per-vertex passes in blocks of `block`
+/// vertices on several threads).
+fn general_topology(face_vertices: Relation, nv: usize, block: usize) -> Level {
     let corners = face_vertices.members.len();
     let mut face_edges = crate::alloc::vec_or_unwind(0u32, corners);
     let mut edge_vertices: Vec<[u32; 2]> = crate::alloc::with_capacity(2 * nv);
@@ -170,7 +187,7 @@ const VERTEX_BLOCK: usize = 16_384;
 /// `block` vertices for the pool's threads. Each vertex's results depend on
 /// nothing another vertex's pass writes, so blocks give the same level as
 /// one pass.
-fn vertex_blocks(nv: usize, threads: usize, block: usize) -> Vec<Range<usize>> {
+pub(super) fn vertex_blocks(nv: usize, threads: usize, block: usize) -> Vec<Range<usize>> {
     if threads <= 1 || nv <= block {
         // One block: the whole level.
         return std::iter::once(0..nv).collect();
@@ -490,41 +507,104 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         }
     }
 
-    for e in 0..level.edge_count() {
-        let mut tag = level.edge_tag(e);
-        tag.set_boundary(level.edge_faces.count(e) < 2);
-        if tag.boundary() || tag.non_manifold() {
-            level.set_edge_sharpness(e, crate::rules::SHARPNESS_INFINITE);
+    tag_edges(level);
+    tag_vertices(
+        level,
+        options.boundary == BoundaryInterpolation::EdgeAndCorner,
+    );
+}
+
+/// Edge tags from the edges' faces and sharpness: boundary and non-manifold
+/// edges made infinitely sharp, then every edge's sharpness classified. The
+/// tables stay empty when every edge is smooth with two faces.
+fn tag_edges(level: &mut Level) {
+    let ne = level.edge_count();
+    let offsets = level.edge_faces.offsets_slice();
+    let few_faces = |e: usize| offsets[e + 1] - offsets[e] < 2;
+    let boundary = match level.edge_faces.uniform_size() {
+        Some(size) => size < 2 && ne > 0,
+        None => (0..ne).any(few_faces),
+    };
+    let non_manifold = !level.edge_tags.is_empty();
+    if !boundary && !non_manifold && level.edge_sharpness.is_empty() {
+        return;
+    }
+    if boundary || non_manifold {
+        // At least one edge becomes infinitely sharp.
+        if level.edge_sharpness.is_empty() {
+            level.edge_sharpness = Table::zeroed(ne);
         }
-        let s = level.edge_sharpness_at(e);
+    }
+    if level.edge_tags.is_empty() {
+        level.edge_tags = Table::zeroed(ne);
+    }
+    let tags: &mut [super::EdgeTag] = &mut level.edge_tags;
+    let sharpness: &mut [f32] = &mut level.edge_sharpness;
+    for e in 0..ne {
+        let mut tag = tags[e];
+        tag.set_boundary(few_faces(e));
+        let s = if tag.boundary() || tag.non_manifold() {
+            sharpness[e] = crate::rules::SHARPNESS_INFINITE;
+            crate::rules::SHARPNESS_INFINITE
+        } else if sharpness.is_empty() {
+            0.0
+        } else {
+            sharpness[e]
+        };
         tag.set_inf_sharp(crease::is_infinite(s));
         tag.set_semi_sharp(crease::is_sharp(s) && !tag.inf_sharp());
-        level.set_edge_tag(e, tag);
+        tags[e] = tag;
     }
+    drop(offsets);
+    // Sharpness that is neither infinite nor semi-sharp leaves tags clear.
+    super::level::drop_if_default(&mut level.edge_tags);
+}
 
-    let sharpen_corners = options.boundary == BoundaryInterpolation::EdgeAndCorner;
-    for v in 0..level.vertex_count {
+/// Vertex tags from their edges' tags and their sharpness (topological
+/// corners made infinitely sharp when `sharpen_corners`, non-manifold
+/// vertices but interior non-manifold creases always), with each vertex's
+/// rule. The tables stay empty while every tag is the default.
+fn tag_vertices(level: &mut Level, sharpen_corners: bool) {
+    let nv = level.vertex_count;
+    let vf = level.vertex_faces.offsets_slice();
+    let ve = level.vertex_edges.offsets_slice();
+    let edge_tags: &[super::EdgeTag] = &level.edge_tags;
+    let members: &[u32] = &level.vertex_edges.members;
+    let mut sharpness = std::mem::take(&mut level.vertex_sharpness);
+    let mut tags = std::mem::take(&mut level.vertex_tags);
+    for v in 0..nv {
         let (mut boundary, mut inf, mut semi, mut non_manifold) = (0, 0, 0, 0);
-        for &e in level.vertex_edges_of(v) {
-            let t = level.edge_tag(e as usize);
-            boundary += t.boundary() as usize;
-            inf += t.inf_sharp() as usize;
-            semi += t.semi_sharp() as usize;
-            non_manifold += t.non_manifold() as usize;
-        }
-        let (nf, ne) = (level.vertex_faces.count(v), level.vertex_edges.count(v));
-        let topological_corner = nf == 1 && ne == 2;
-        let mut tag = level.vertex_tag(v);
-        if topological_corner && sharpen_corners {
-            level.set_vertex_sharpness(v, crate::rules::SHARPNESS_INFINITE);
-        } else if tag.non_manifold() {
-            // Interior non-manifold creases (two opposing non-manifold edges
-            // with extra "fin" faces and no boundary) stay unsharpened.
-            if !(non_manifold == 2 && boundary == 0 && nf > ne) {
-                level.set_vertex_sharpness(v, crate::rules::SHARPNESS_INFINITE);
+        let (nf, ne) = ((vf[v + 1] - vf[v]) as usize, (ve[v + 1] - ve[v]) as usize);
+        if !edge_tags.is_empty() {
+            for &e in &members[ve[v] as usize..ve[v + 1] as usize] {
+                let t = edge_tags[e as usize];
+                boundary += t.boundary() as usize;
+                inf += t.inf_sharp() as usize;
+                semi += t.semi_sharp() as usize;
+                non_manifold += t.non_manifold() as usize;
             }
         }
-        let s = level.vertex_sharpness_at(v);
+        let topological_corner = nf == 1 && ne == 2;
+        let mut tag = if tags.is_empty() {
+            super::VertexTag::default()
+        } else {
+            tags[v]
+        };
+        // Interior non-manifold creases (two opposing non-manifold edges
+        // with extra "fin" faces and no boundary) stay unsharpened.
+        let sharpen = (topological_corner && sharpen_corners)
+            || (tag.non_manifold() && !(non_manifold == 2 && boundary == 0 && nf > ne));
+        if sharpen {
+            if sharpness.is_empty() {
+                sharpness = Table::zeroed(nv);
+            }
+            sharpness[v] = crate::rules::SHARPNESS_INFINITE;
+        }
+        let s = if sharpness.is_empty() {
+            0.0
+        } else {
+            sharpness[v]
+        };
         tag.set_inf_sharp(crease::is_infinite(s));
         tag.set_semi_sharp(crease::is_semi_sharp(s));
         tag.set_semi_sharp_edges(semi > 0);
@@ -532,8 +612,16 @@ fn assign_tags(level: &mut Level, mesh: &Mesh, options: &Options) {
         tag.set_rule(crease::vertex_rule_from_sharp_edge_count(s, inf + semi));
         tag.set_boundary(boundary > 0);
         tag.set_corner(topological_corner && tag.inf_sharp());
-        level.set_vertex_tag(v, tag);
+        if tags.is_empty() && tag != super::VertexTag::default() {
+            tags = Table::zeroed(nv);
+        }
+        if !tags.is_empty() {
+            tags[v] = tag;
+        }
     }
+    drop((vf, ve));
+    level.vertex_sharpness = sharpness;
+    level.vertex_tags = tags;
 }
 
 #[cfg(test)]
@@ -565,5 +653,93 @@ mod tests {
             blocked += usize::from(mesh.vertex_count() > 7);
         }
         assert!(blocked > 10, "{blocked}");
+    }
+
+    /// A disc of `n` triangles around vertex 0 (`closed`: the rim is
+    /// joined), with a second fan of three triangles touching it at vertex
+    /// 0 when `bowtie` (a vertex whose faces cannot be ordered).
+    fn fan(n: u32, closed: bool, bowtie: bool) -> Mesh {
+        let mut faces: Vec<Vec<u32>> = (0..n)
+            .filter(|&i| closed || i + 1 < n)
+            .map(|i| vec![0, 1 + i, 1 + (i + 1) % n])
+            .collect();
+        let mut count = n + 1;
+        if bowtie {
+            faces.extend((0..3).map(|i| vec![0, count + i, count + i + 1]));
+            count += 4;
+        }
+        let faces: Vec<&[u32]> = faces.iter().map(Vec::as_slice).collect();
+        Mesh::from_faces(vec![glam::DVec3::ZERO; count as usize], &faces)
+    }
+
+    /// Wherever the manifold build accepts a mesh, it builds the level the
+    /// general build does, table by table; it declines exactly the meshes
+    /// with a non-manifold, degenerate or repeated edge or a vertex twice in
+    /// a face. Corpus, production-like, tori and grids of every face kind,
+    /// fans of more corners than [`super::super::lookup::SCAN_LIMIT`] at a
+    /// vertex, and vertices whose faces cannot be ordered.
+    #[test]
+    fn manifold_build_equals_the_general_build() {
+        let mut meshes = crate::shapes::corpus();
+        meshes.push(("production".into(), crate::shapes::production(8, 6)));
+        meshes.push(("torus".into(), crate::shapes::torus(7, 5)));
+        meshes.push(("mixed".into(), crate::shapes::torus_mixed(6, 6)));
+        meshes.push(("triangles".into(), crate::shapes::torus_triangles(6, 4)));
+        meshes.push(("grid".into(), crate::shapes::grid(5, 4)));
+        for n in [3, 5, 31, 32, 33, 40, 70] {
+            for (closed, bowtie) in [(true, false), (false, false), (true, true), (false, true)] {
+                meshes.push((format!("fan {n} {closed} {bowtie}"), fan(n, closed, bowtie)));
+            }
+        }
+        meshes.push(("book 3x4".into(), crate::shapes::book(3, 4)));
+        meshes.push(("book 5x3".into(), crate::shapes::book(5, 3)));
+        let odd: [&[&[u32]]; 3] = [
+            // A degenerate edge.
+            &[&[0, 1, 1, 2], &[2, 1, 3]],
+            // A vertex twice in a face, no edge repeated.
+            &[&[0, 1, 2, 0, 3, 4], &[1, 0, 5]],
+            // An edge twice in a face.
+            &[&[0, 1, 0, 2], &[1, 0, 3]],
+        ];
+        for (i, faces) in odd.into_iter().enumerate() {
+            let mesh = Mesh::from_faces(vec![glam::DVec3::ZERO; 6], faces);
+            meshes.push((format!("odd {i}"), mesh));
+        }
+        let (mut accepted, mut declined, mut unordered) = (0, 0, 0);
+        for (name, mesh) in &meshes {
+            if mesh.validate().is_err() {
+                continue;
+            }
+            let face_vertices = || {
+                Relation::from_parts(
+                    Table::from_slice(&mesh.face_offsets),
+                    Table::from_slice(&mesh.face_vertices),
+                )
+                .compact()
+            };
+            let general = format!(
+                "{:?}",
+                general_topology(face_vertices(), mesh.vertex_count(), usize::MAX)
+            );
+            match super::super::manifold::manifold_topology(
+                face_vertices(),
+                mesh.vertex_count(),
+                usize::MAX,
+            ) {
+                Ok((mut level, failed)) => {
+                    accepted += 1;
+                    unordered += usize::from(!failed.is_empty());
+                    for v in failed {
+                        level.update_vertex_tag(v as usize, |t| t.set_non_manifold(true));
+                    }
+                    assert_eq!(format!("{level:?}"), general, "{name}");
+                }
+                Err(_) => declined += 1,
+            }
+        }
+        assert!(
+            accepted > 40 && declined >= 7 && unordered > 8,
+            "{accepted} {declined} {unordered}"
+        );
     }
 }

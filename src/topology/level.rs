@@ -294,9 +294,15 @@ impl Level {
 /// making anything non-manifold. OpenSubdiv's smooth masks assume pairs (its
 /// own assertion aborts on such a vertex), so both engines refuse the mesh.
 pub fn unpaired_smooth_vertex(level: &Level) -> Option<usize> {
+    // Offsets and tags read as slices: this runs over every base vertex.
+    let (vf, ve) = (
+        level.vertex_faces.offsets_slice(),
+        level.vertex_edges.offsets_slice(),
+    );
+    let tags: &[VertexTag] = &level.vertex_tags;
     (0..level.vertex_count).find(|&v| {
-        matches!(level.vertex_tag(v).rule(), Rule::Smooth | Rule::Dart)
-            && level.vertex_faces.count(v) != level.vertex_edges.count(v)
+        vf[v + 1] - vf[v] != ve[v + 1] - ve[v]
+            && (tags.is_empty() || matches!(tags[v].rule(), Rule::Smooth | Rule::Dart))
     })
 }
 

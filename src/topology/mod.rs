@@ -27,6 +27,7 @@
 //! | `tags.rs` | [`EdgeTag`], [`VertexTag`] | `Level::ETag`, `Level::VTag` |
 //! | `table.rs` | [`Table`]: the flat tables, on recycled huge pages when large | — |
 //! | `base.rs` | [`build_base_level`]: the base level from face-vertex lists | `far/topologyRefinerFactory.cpp`, `vtr/level.cpp` |
+//! | `manifold.rs` | the base level of a mesh whose edges are all manifold, from each vertex's corners (no edge search) | `vtr/level.cpp` (`completeTopologyFromFaceVertices`, `orientIncidentComponents`) |
 //! | `lookup.rs` | the base level's lookups (an edge by its ends, a vertex's corner in a face), mapped past 32 edges or corners | `vtr/level.cpp` (`findEdge`) |
 //! | `refine/` | [`refine_level`]: one level split into the next ([`refine`] says which file does what) | `vtr/refinement.cpp`, `quadRefinement.cpp`, `triRefinement.cpp` |
 //! | `fvar/` | face-varying channels at one level and their split | `vtr/fvarLevel.cpp`, `fvarRefinement.cpp` |
@@ -36,6 +37,7 @@ mod base;
 pub mod fvar;
 mod level;
 mod lookup;
+mod manifold;
 pub mod refine;
 mod relation;
 mod table;
