@@ -70,20 +70,27 @@ fn falling(n: usize, d: usize) -> f64 {
     (0..d).map(|k| (n - k) as f64).product()
 }
 
-/// The `(ds, dt)` derivative of the monomial `s^a t^b`.
-fn monomial(s: f64, t: f64, (a, b): (usize, usize), ds: usize, dt: usize) -> f64 {
+/// `x`'s powers 0 to 4, each `x.powi(k)` (computed once: a call each).
+fn powers(x: f64) -> [f64; 5] {
+    [1.0, x, x.powi(2), x.powi(3), x.powi(4)]
+}
+
+/// The `(ds, dt)` derivative of the monomial `s^a t^b`, from the powers
+/// of `s` and `t` ([`powers`]).
+fn monomial(ps: &[f64; 5], pt: &[f64; 5], (a, b): (usize, usize), ds: usize, dt: usize) -> f64 {
     if ds > a || dt > b {
         return 0.0;
     }
-    falling(a, ds) * falling(b, dt) * s.powi((a - ds) as i32) * t.powi((b - dt) as i32)
+    falling(a, ds) * falling(b, dt) * ps[a - ds] * pt[b - dt]
 }
 
 /// The weights of the box spline's twelve points for the `(ds, dt)`
 /// derivative at `(s, t)`.
 pub(super) fn box_spline(s: f64, t: f64, ds: usize, dt: usize, w: &mut [f64]) {
+    let (ps, pt) = (powers(s), powers(t));
     let mut m = [0.0; 15];
     for (x, &e) in m.iter_mut().zip(&MONOMIALS) {
-        *x = monomial(s, t, e, ds, dt);
+        *x = monomial(&ps, &pt, e, ds, dt);
     }
     for (out, row) in w.iter_mut().zip(&BOX_SPLINE) {
         let sum: f64 = row
