@@ -56,8 +56,9 @@ pub trait FaceSurfaces: Sync {
         derivatives: Derivatives,
         out: &mut [&mut [f64]],
     ) -> Result<()> {
-        let s = self.evaluate(face, coords, derivatives)?;
-        copy_samples(&s, out)
+        self.evaluate(face, coords, derivatives)?
+            .values
+            .copy_into(out)
     }
     /// [`FaceSurfaces::evaluate_fvar`] written into `out` (the channel's
     /// width per coordinate, every value overwritten). By default a copy of
@@ -69,29 +70,10 @@ pub trait FaceSurfaces: Sync {
         coords: &[[f64; 2]],
         out: &mut [f64],
     ) -> Result<()> {
-        let s = self.evaluate_fvar(face, channel, coords)?;
-        copy_samples(&s, &mut [out])
+        self.evaluate_fvar(face, channel, coords)?
+            .values
+            .copy_into(&mut [out])
     }
-}
-
-/// Copies the kinds of values in `samples` there are slices in `out` for
-/// (values, ∂u, ∂v, ...), refused when a length differs.
-fn copy_samples(samples: &SurfaceSamples, out: &mut [&mut [f64]]) -> Result<()> {
-    let v = &samples.values;
-    for (dst, src) in out
-        .iter_mut()
-        .zip([&v.point, &v.du, &v.dv, &v.duu, &v.duv, &v.dvv])
-    {
-        if dst.len() != src.len() {
-            return Err(Error::BufferLength {
-                buffer: crate::error::Buffer::Output,
-                expected: src.len(),
-                got: dst.len(),
-            });
-        }
-        dst.copy_from_slice(src);
-    }
-    Ok(())
 }
 
 impl FaceSurfaces for crate::bfr::LimitSurfaces {

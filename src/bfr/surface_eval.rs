@@ -468,7 +468,7 @@ impl Surface {
                     &locations,
                     derivatives,
                 )?;
-                copy_columns(&samples.values, out)
+                samples.values.copy_into(out)
             }
             Form::Regular { patch, mask, plans } => {
                 let (patch, mask) = (*patch, *mask);
@@ -501,7 +501,7 @@ impl Surface {
             _ => {
                 let samples =
                     self.apply_stencils(&self.control_points, points, layout, coords, derivatives)?;
-                copy_columns(&samples.values, out)
+                samples.values.copy_into(out)
             }
         }
     }
@@ -755,22 +755,6 @@ fn apply_terms<const N: usize>(
         }
         column[at * N..(at + 1) * N].copy_from_slice(&acc);
     }
-}
-
-/// Copies the kinds of `values` there are `columns` for into them
-/// (refused when their lengths differ).
-fn copy_columns(values: &Partials, columns: &mut [&mut [f64]]) -> Result<()> {
-    for (column, from) in columns.iter_mut().zip(values.kinds()) {
-        if column.len() != from.len() {
-            return Err(Error::BufferLength {
-                buffer: crate::error::Buffer::Output,
-                expected: from.len(),
-                got: column.len(),
-            });
-        }
-        column.copy_from_slice(from);
-    }
-    Ok(())
 }
 
 /// Zeroed columns for `coords.len()` values of `width` and each kind

@@ -531,6 +531,22 @@ impl Partials {
         }
     }
 
+    /// Copies the kinds of values there are `columns` for (values, ∂u,
+    /// ∂v, ...) into them; refused when a length differs.
+    pub(crate) fn copy_into(&self, columns: &mut [&mut [f64]]) -> crate::error::Result<()> {
+        for (column, from) in columns.iter_mut().zip(self.kinds()) {
+            if column.len() != from.len() {
+                return Err(crate::error::Error::BufferLength {
+                    buffer: crate::error::Buffer::Output,
+                    expected: from.len(),
+                    got: column.len(),
+                });
+            }
+            column.copy_from_slice(from);
+        }
+        Ok(())
+    }
+
     /// The six columns in their order, as in [`Partials::from_columns`].
     pub(crate) fn kinds(&self) -> [&[f64]; 6] {
         [
