@@ -408,10 +408,68 @@ impl Surface {
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
         let layout = layout.into();
-        layout.check()?;
-        fresh_samples(layout.size, coords.len(), derivatives, |out| {
-            self.evaluate_into(points, layout, coords, derivatives, out)
-        })
+        self.check_points(points, layout)?;
+        let fresh = |fill: &dyn Fn(&mut [&mut [f64]]) -> Result<()>| {
+            fresh_samples(layout.size, coords.len(), derivatives, fill)
+        };
+        // The forms that compute their own samples return them as they are
+        // (written into columns of their own they would be copied).
+        match &self.form {
+            Form::Irregular(irregular) => {
+                match self.irregular(irregular, points, layout, coords, derivatives)? {
+                    Irregularly::Plan(plan) => {
+                        fresh(&|out| self.apply_plan(&plan, points, layout, out))
+                    }
+                    Irregularly::Samples(samples) => Ok(samples),
+                }
+            }
+            Form::Regular { .. } | Form::Linear { regular: true } => {
+                fresh(&|out| self.evaluate_into(points, layout, coords, derivatives, out))
+            }
+            _ => self.apply_stencils(&self.control_points, points, layout, coords, derivatives),
+        }
+    }
+
+    /// An irregular surface at `coords`: the plan of its hull at these
+    /// coordinates when there is one (`plans.rs`: other faces of the hull
+    /// were evaluated there), else its values through the patch points (in
+    /// the table's order; cheaper than a stencil per coordinate once there
+    /// are more than a few).
+    fn irregular(
+        &self,
+        irregular: &Irregular,
+        points: &[f64],
+        layout: PointDescriptor,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<Irregularly> {
+        let plan = irregular.plans.get(coords, derivatives, || {
+            let locations = self.locations(coords)?;
+            stencils_at(
+                &irregular.table,
+                irregular.base,
+                &irregular.refined,
+                &locations,
+                &stencil_options(derivatives),
+            )
+        })?;
+        if let Some(plan) = plan {
+            return Ok(Irregularly::Plan(plan));
+        }
+        let width = layout.size;
+        let control = self.control_values(points, layout)?;
+        let native = native_patch_points(irregular, width, &control)?;
+        let locations = self.locations(coords)?;
+        evaluate_data(
+            &irregular.map,
+            &irregular.table,
+            PatchData::Vertex,
+            &native,
+            width,
+            &locations,
+            derivatives,
+        )
+        .map(Irregularly::Samples)
     }
 
     /// [`Surface::evaluate`] written into `out`: one slice per kind of
@@ -437,38 +495,10 @@ impl Surface {
         }
         match &self.form {
             Form::Irregular(irregular) => {
-                // A plan when other faces of the hull were evaluated at the
-                // same coordinates (`plans.rs`).
-                let plan = irregular.plans.get(coords, derivatives, || {
-                    let locations = self.locations(coords)?;
-                    stencils_at(
-                        &irregular.table,
-                        irregular.base,
-                        &irregular.refined,
-                        &locations,
-                        &stencil_options(derivatives),
-                    )
-                })?;
-                if let Some(plan) = plan {
-                    return self.apply_plan(&plan, points, layout, out);
+                match self.irregular(irregular, points, layout, coords, derivatives)? {
+                    Irregularly::Plan(plan) => self.apply_plan(&plan, points, layout, out),
+                    Irregularly::Samples(samples) => samples.values.copy_into(out),
                 }
-                // Through the patch points (in the table's order): cheaper
-                // than a stencil per coordinate once there are more than a
-                // few.
-                let width = layout.size;
-                let control = self.control_values(points, layout)?;
-                let native = native_patch_points(irregular, width, &control)?;
-                let locations = self.locations(coords)?;
-                let samples = evaluate_data(
-                    &irregular.map,
-                    &irregular.table,
-                    PatchData::Vertex,
-                    &native,
-                    width,
-                    &locations,
-                    derivatives,
-                )?;
-                samples.values.copy_into(out)
             }
             Form::Regular { patch, mask, plans } => {
                 let (patch, mask) = (*patch, *mask);
@@ -755,6 +785,12 @@ fn apply_terms<const N: usize>(
         }
         column[at * N..(at + 1) * N].copy_from_slice(&acc);
     }
+}
+
+/// How [`Surface::irregular`] evaluates: a plan to apply, or the values.
+enum Irregularly {
+    Plan(std::sync::Arc<LocationStencils>),
+    Samples(SurfaceSamples),
 }
 
 /// Zeroed columns for `coords.len()` values of `width` and each kind
