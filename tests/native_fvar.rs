@@ -502,6 +502,7 @@ fn check(
         .iter()
         .map(|c| (c.values.clone(), c.values.clone()))
         .collect();
+    let mut native_levels: Vec<Vec<Vec<f64>>> = vec![Vec::new(); mesh.fvar_channels.len()];
     for level in 0..=uniform.level {
         let (te, ta) = (
             expected.level(level).map_err(|e| e.to_string())?,
@@ -579,7 +580,46 @@ fn check(
                         da[i] - de[i]
                     ));
                 }
+                native_levels[c].push(da.clone());
                 data[c] = (de, da);
+            }
+        }
+    }
+    // The whole-refinement calls give the levels just checked, bit for bit,
+    // on one thread (the vertex kernel's path) and on the pool.
+    for (c, channel) in mesh.fvar_channels.iter().enumerate() {
+        let base = &channel.values;
+        for pool in [false, true] {
+            let (all, last) = if pool {
+                (
+                    actual.interpolate_face_varying_all(c, channel.width, base),
+                    actual.interpolate_face_varying_last(c, channel.width, base),
+                )
+            } else {
+                one_thread().install(|| {
+                    (
+                        actual.interpolate_face_varying_all(c, channel.width, base),
+                        actual.interpolate_face_varying_last(c, channel.width, base),
+                    )
+                })
+            };
+            let (all, last) = (
+                all.map_err(|e| e.to_string())?,
+                last.map_err(|e| e.to_string())?,
+            );
+            let same = |a: &[f64], b: &[f64]| {
+                a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+            };
+            let levels = &native_levels[c];
+            if all.len() != levels.len() + 1
+                || !same(&all[0], base)
+                || all[1..].iter().zip(levels).any(|(a, b)| !same(a, b))
+                || !same(&last, all.last().expect("level 0"))
+            {
+                return Err(format!(
+                    "{}: channel {c}: interpolate_face_varying_all/_last (pool {pool}) differ from the level-by-level values",
+                    what()
+                ));
             }
         }
     }

@@ -28,10 +28,11 @@ use super::kernel::{Cache, MAX_WIDTH, takes_smooth_mask};
 use super::{Emit, Refiner, Source};
 use crate::error::{Buffer, Error, Result};
 use crate::options::{Options, Scheme, TriangleSubdivision};
+use crate::output;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::{ChannelLevel, Children, missing};
-use crate::topology::{Level, Split};
+use crate::topology::{Level, Split, Table};
 
 /// The columns one pass computes of values `stride` wide: `count` of them
 /// from `offset` (every column, for the usual widths).
@@ -146,6 +147,150 @@ impl Refiner {
             self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
             Ok(dst)
         })
+    }
+
+    /// As [`Refiner::interpolate_face_varying`], into a caller's buffer of
+    /// `width × (value count at level)` components (every one is written).
+    pub fn interpolate_face_varying_into<T: Real>(
+        &self,
+        channel: usize,
+        level: u32,
+        width: usize,
+        src: &[T],
+        dst: &mut [T],
+    ) -> Result<()> {
+        crate::alloc::guard(Some(level), || {
+            self.check_fvar_buffers(channel, level, width, src, dst.len())?;
+            self.interpolate_fvar_level(channel, level as usize, width, src, dst);
+            Ok(())
+        })
+    }
+
+    /// Interpolates face-varying `channel` through every level from the
+    /// mesh's values `base` (`width` components each): `result[l]` is level
+    /// `l` (`result[0]` a copy of `base`), numbered as [`Refiner::level`]
+    /// reports the channel's face values. As [`Refiner::interpolate_all`],
+    /// the levels come as [`output::Values`], large ones in huge-page maps recycled
+    /// when dropped.
+    ///
+    /// ```
+    /// use subdiv::{refiner::Refiner, shapes, Options, UniformOptions};
+    /// let mesh = shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6);
+    /// let mut r = Refiner::new(&mesh, &Options::default())?;
+    /// r.refine_uniform(UniformOptions::new(2))?;
+    /// let base: Vec<f32> = mesh.fvar_channels[0].values.iter().map(|&x| x as f32).collect();
+    /// let levels = r.interpolate_face_varying_all(0, 2, &base)?;
+    /// let one = r.interpolate_face_varying(0, 1, 2, &base)?;
+    /// assert_eq!(levels[1], one);
+    /// assert_eq!(levels[2], r.interpolate_face_varying(0, 2, 2, &one)?);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn interpolate_face_varying_all<T: Real>(
+        &self,
+        channel: usize,
+        width: usize,
+        base: &[T],
+    ) -> Result<Vec<output::Values<T>>> {
+        crate::alloc::guard(None, || {
+            let mut out = vec![output::Values(Table::from_slice(base))];
+            for level in 1..=self.max_level() {
+                let src = out.last().expect("non-empty");
+                let next = self.interpolate_fvar_table(channel, level, width, src)?;
+                out.push(output::Values(next));
+            }
+            Ok(out)
+        })
+    }
+
+    /// Interpolates face-varying `channel` through every level and returns
+    /// the last level's values only, holding no more than two levels at a
+    /// time (as [`Refiner::interpolate_last`] does for vertex data).
+    pub fn interpolate_face_varying_last<T: Real>(
+        &self,
+        channel: usize,
+        width: usize,
+        base: &[T],
+    ) -> Result<output::Values<T>> {
+        crate::alloc::guard(None, || {
+            // Level 1 reads `base` where it is: no copy of it.
+            let mut current: Option<Table<T>> = None;
+            for level in 1..=self.max_level() {
+                let src = current.as_deref().unwrap_or(base);
+                current = Some(self.interpolate_fvar_table(channel, level, width, src)?);
+            }
+            match current {
+                Some(values) => Ok(output::Values(values)),
+                None => {
+                    self.check_fvar_buffers(channel, 0, width, base, base.len())?;
+                    Ok(output::Values(Table::from_slice(base)))
+                }
+            }
+        })
+    }
+
+    /// One level of one channel into a table from the pool (written once).
+    fn interpolate_fvar_table<T: Real>(
+        &self,
+        channel: usize,
+        level: u32,
+        width: usize,
+        src: &[T],
+    ) -> Result<Table<T>> {
+        let (_, child) = fvar_call_levels(
+            &self.fvar,
+            channel,
+            level,
+            self.max_level(),
+            width,
+            src.len(),
+        )?;
+        let mut dst = Table::for_overwrite(child.value_count() * width);
+        self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
+        Ok(dst)
+    }
+
+    /// Checks a face-varying call's channel, level, width and both buffers'
+    /// lengths (`level` 0: `src` alone, as the channel's base values).
+    fn check_fvar_buffers<T: Real>(
+        &self,
+        channel: usize,
+        level: u32,
+        width: usize,
+        src: &[T],
+        dst_len: usize,
+    ) -> Result<()> {
+        if level == 0 {
+            let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+                channel,
+                count: self.fvar.len(),
+            })?;
+            let expected = levels[0].value_count() * width;
+            if src.len() != expected {
+                return Err(Error::BufferLength {
+                    buffer: Buffer::FaceVaryingSource,
+                    expected,
+                    got: src.len(),
+                });
+            }
+            return Ok(());
+        }
+        let (_, child) = fvar_call_levels(
+            &self.fvar,
+            channel,
+            level,
+            self.max_level(),
+            width,
+            src.len(),
+        )?;
+        let expected = child.value_count() * width;
+        if dst_len != expected {
+            return Err(Error::BufferLength {
+                buffer: Buffer::Destination,
+                expected,
+                got: dst_len,
+            });
+        }
+        Ok(())
     }
 
     /// One level of one channel.

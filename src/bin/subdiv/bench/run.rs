@@ -323,11 +323,20 @@ fn uvs(
     out
 }
 
-/// [`uvs`] by the native engine.
-fn native_uvs(r: &refiner::Refiner, mesh: &Mesh, level: u32) -> Vec<Vec<f32>> {
-    uvs(mesh, level, |c, l, w, v| {
-        r.interpolate_face_varying(c, l, w, v)
-    })
+/// Every face-varying channel of `mesh` refined to `level` in f32 by the
+/// native engine's whole-refinement call (the last level kept, in a table
+/// from its pool), the result [`uvs`] gives level by level.
+fn native_uvs(r: &refiner::Refiner, mesh: &Mesh, level: u32) -> Vec<subdiv::Values<f32>> {
+    debug_assert_eq!(level, r.max_level());
+    mesh.fvar_channels
+        .iter()
+        .enumerate()
+        .map(|(c, ch)| {
+            let base: Vec<f32> = ch.values.iter().map(|&x| x as f32).collect();
+            r.interpolate_face_varying_last(c, ch.width, &base)
+                .expect("UVs")
+        })
+        .collect()
 }
 
 /// [`uvs`] by OpenSubdiv.
