@@ -1115,3 +1115,86 @@ fn degenerate_faces_number_values_as_opensubdiv() {
         .unwrap();
     }
 }
+
+/// The caller's-buffer and whole-refinement calls: the level-by-level
+/// values, every value written (over a buffer of NaNs), and typed refusals
+/// of a wrong channel, level, source or destination length.
+#[test]
+fn face_varying_into_all_and_last() {
+    use subdiv::{Buffer, Error};
+    let mesh = shapes::with_torus_uvs(shapes::torus_mixed(8, 6), 8, 6);
+    let channel = &mesh.fvar_channels[0];
+    let r = native(&mesh, &Options::default(), 2);
+    let one = r
+        .interpolate_face_varying(0, 1, 2, &channel.values)
+        .unwrap();
+    let two = r.interpolate_face_varying(0, 2, 2, &one).unwrap();
+    let mut dst = vec![f64::NAN; two.len()];
+    r.interpolate_face_varying_into(0, 2, 2, &one, &mut dst)
+        .unwrap();
+    assert!(
+        dst.iter()
+            .zip(&two)
+            .all(|(a, b)| a.to_bits() == b.to_bits())
+    );
+    let all = r
+        .interpolate_face_varying_all(0, 2, &channel.values)
+        .unwrap();
+    assert_eq!(all.len(), 3);
+    assert_eq!((&all[1][..], &all[2][..]), (&one[..], &two[..]));
+    let last = r
+        .interpolate_face_varying_last(0, 2, &channel.values)
+        .unwrap();
+    assert_eq!(&last[..], &two[..]);
+    // Refusals.
+    let mut short = vec![0.0; two.len() - 2];
+    assert!(matches!(
+        r.interpolate_face_varying_into(0, 2, 2, &one, &mut short),
+        Err(Error::BufferLength { buffer: Buffer::Destination, got, .. }) if got == two.len() - 2
+    ));
+    assert!(matches!(
+        r.interpolate_face_varying_into(0, 2, 2, &one[2..], &mut dst),
+        Err(Error::BufferLength {
+            buffer: Buffer::FaceVaryingSource,
+            ..
+        })
+    ));
+    assert!(matches!(
+        r.interpolate_face_varying_into(1, 2, 2, &one, &mut dst),
+        Err(Error::NoSuchChannel {
+            channel: 1,
+            count: 1
+        })
+    ));
+    assert!(
+        r.interpolate_face_varying_into(0, 3, 2, &two, &mut dst)
+            .is_err()
+    );
+    assert!(matches!(
+        r.interpolate_face_varying_all(0, 2, &channel.values[1..]),
+        Err(Error::BufferLength {
+            buffer: Buffer::FaceVaryingSource,
+            ..
+        })
+    ));
+    // Level 0 only: the base values back, checked all the same.
+    let base = native(&mesh, &Options::default(), 0);
+    let values = base
+        .interpolate_face_varying_last(0, 2, &channel.values)
+        .unwrap();
+    assert_eq!(&values[..], &channel.values[..]);
+    assert!(matches!(
+        base.interpolate_face_varying_last(0, 2, &channel.values[1..]),
+        Err(Error::BufferLength {
+            buffer: Buffer::FaceVaryingSource,
+            ..
+        })
+    ));
+    assert!(matches!(
+        base.interpolate_face_varying_last(3, 2, &channel.values),
+        Err(Error::NoSuchChannel {
+            channel: 3,
+            count: 1
+        })
+    ));
+}
