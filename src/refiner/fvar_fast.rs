@@ -78,17 +78,16 @@ impl Refiner {
             return None;
         }
         let nf = parent.face_count();
-        let clean_faces = flags(nf, |f| {
+        // The faces that are not clean (their face points are left to the
+        // face-varying pass) and the vertices around them.
+        let unclean = select(nf, |f| {
             let verts = parent.face_verts(f);
             let values = pf.face_values_of(parent, f);
             verts
                 .iter()
                 .zip(values)
-                .all(|(&v, &x)| pf.vertex_value(v as usize, 0) == x)
+                .any(|(&v, &x)| pf.vertex_value(v as usize, 0) != x)
         });
-        // The faces that are not clean (their face points are left to the
-        // face-varying pass) and the vertices around them.
-        let unclean = select(nf, |f| !clean_faces[f]);
         if ((nf - unclean.len()) as f64) < MIN_CLEAN_SHARE * nf as f64 {
             return None;
         }
@@ -155,13 +154,6 @@ impl Refiner {
         };
         Some(left)
     }
-}
-
-/// `pred` of each of `0..n`.
-fn flags(n: usize, pred: impl Fn(usize) -> bool) -> Vec<bool> {
-    let mut out = crate::alloc::vec_or_unwind(false, n);
-    out.iter_mut().enumerate().for_each(|(i, x)| *x = pred(i));
-    out
 }
 
 /// The elements of `0..n` for which `pred` holds, in order.
