@@ -135,15 +135,8 @@ impl Refiner {
         src: &[T],
     ) -> Result<Vec<T>> {
         crate::alloc::guard(Some(level), || {
-            let (_, child) = fvar_call_levels(
-                &self.fvar,
-                channel,
-                level,
-                self.max_level(),
-                width,
-                src.len(),
-            )?;
-            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, child.value_count() * width);
+            let n = self.fvar_output_len(channel, level, width, src.len())?;
+            let mut dst = crate::alloc::vec_or_unwind(T::ZERO, n);
             self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
             Ok(dst)
         })
@@ -160,7 +153,14 @@ impl Refiner {
         dst: &mut [T],
     ) -> Result<()> {
         crate::alloc::guard(Some(level), || {
-            self.check_fvar_buffers(channel, level, width, src, dst.len())?;
+            let expected = self.fvar_output_len(channel, level, width, src.len())?;
+            if dst.len() != expected {
+                return Err(Error::BufferLength {
+                    buffer: Buffer::Destination,
+                    expected,
+                    got: dst.len(),
+                });
+            }
             self.interpolate_fvar_level(channel, level as usize, width, src, dst);
             Ok(())
         })
@@ -221,7 +221,19 @@ impl Refiner {
             match current {
                 Some(values) => Ok(output::Values(values)),
                 None => {
-                    self.check_fvar_buffers(channel, 0, width, base, base.len())?;
+                    // Nothing refined: the base values back, checked all the same.
+                    let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
+                        channel,
+                        count: self.fvar.len(),
+                    })?;
+                    let expected = levels[0].value_count() * width;
+                    if base.len() != expected {
+                        return Err(Error::BufferLength {
+                            buffer: Buffer::FaceVaryingSource,
+                            expected,
+                            got: base.len(),
+                        });
+                    }
                     Ok(output::Values(Table::from_slice(base)))
                 }
             }
@@ -236,61 +248,25 @@ impl Refiner {
         width: usize,
         src: &[T],
     ) -> Result<Table<T>> {
-        let (_, child) = fvar_call_levels(
-            &self.fvar,
-            channel,
-            level,
-            self.max_level(),
-            width,
-            src.len(),
-        )?;
-        let mut dst = Table::for_overwrite(child.value_count() * width);
+        let n = self.fvar_output_len(channel, level, width, src.len())?;
+        let mut dst = Table::for_overwrite(n);
         self.interpolate_fvar_level(channel, level as usize, width, src, &mut dst);
         Ok(dst)
     }
 
-    /// Checks a face-varying call's channel, level, width and both buffers'
-    /// lengths (`level` 0: `src` alone, as the channel's base values).
-    fn check_fvar_buffers<T: Real>(
+    /// The length of the values of `channel` at `level` (`width` components
+    /// each), once the call's channel, level, width and source length
+    /// (`src_len`) are checked.
+    fn fvar_output_len(
         &self,
         channel: usize,
         level: u32,
         width: usize,
-        src: &[T],
-        dst_len: usize,
-    ) -> Result<()> {
-        if level == 0 {
-            let levels = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
-                channel,
-                count: self.fvar.len(),
-            })?;
-            let expected = levels[0].value_count() * width;
-            if src.len() != expected {
-                return Err(Error::BufferLength {
-                    buffer: Buffer::FaceVaryingSource,
-                    expected,
-                    got: src.len(),
-                });
-            }
-            return Ok(());
-        }
-        let (_, child) = fvar_call_levels(
-            &self.fvar,
-            channel,
-            level,
-            self.max_level(),
-            width,
-            src.len(),
-        )?;
-        let expected = child.value_count() * width;
-        if dst_len != expected {
-            return Err(Error::BufferLength {
-                buffer: Buffer::Destination,
-                expected,
-                got: dst_len,
-            });
-        }
-        Ok(())
+        src_len: usize,
+    ) -> Result<usize> {
+        let (_, child) =
+            fvar_call_levels(&self.fvar, channel, level, self.max_level(), width, src_len)?;
+        Ok(child.value_count() * width)
     }
 
     /// One level of one channel.
