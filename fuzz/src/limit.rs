@@ -189,6 +189,17 @@ pub fn check_book(case: &BookCase) {
             };
             agree(&nv, &ov, "refined face-varying value");
         }
+        // The whole-refinement call gives the level-by-level values.
+        let last = n
+            .interpolate_face_varying_last(c, ch.width, &ch.values)
+            .expect("native face-varying, last level");
+        assert!(
+            last.iter()
+                .zip(&nv)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+                && last.len() == nv.len(),
+            "interpolate_face_varying_last differs from the level-by-level values"
+        );
         let native_fv = n
             .limit_face_varying(c, ch.width, &nv)
             .expect("native face-varying limit");
