@@ -65,12 +65,13 @@ struct Stencils {
 }
 
 impl Stencils {
-    fn push<R: Real>(&mut self, entries: impl Iterator<Item = (u32, R)>) {
+    /// One stencil: `columns` mapped to points by `point`, with `weights`
+    /// (as many), each written in a loop of its own (the lengths known:
+    /// no check per entry).
+    fn push<R: Real>(&mut self, columns: &[usize], weights: &[R], point: impl Fn(usize) -> u32) {
         let before = self.indices.len();
-        for (i, w) in entries {
-            self.indices.push(i);
-            self.weights.push(w.to_f64());
-        }
+        self.indices.extend(columns.iter().map(|&c| point(c)));
+        self.weights.extend(weights.iter().map(|w| w.to_f64()));
         self.offsets.push(before as u32);
         self.sizes.push((self.indices.len() - before) as u32);
     }
@@ -173,6 +174,11 @@ impl<R: Real> LocalPoints<R> {
         };
         let corners = varying_corners(patch_type);
         let source = |column: usize| sources.get(column).copied().unwrap_or(0) + offset;
+        // What the shared points are found by, read once for the patch.
+        let keys = match bits {
+            Some(_) => self.share_keys(l, level, face, fv),
+            None => ShareKeys::default(),
+        };
         points.reserve(matrix.rows.len());
         for (i, row) in matrix.rows.iter().enumerate() {
             if self.reuse_sources && row.len() == 1 {
@@ -181,19 +187,14 @@ impl<R: Real> LocalPoints<R> {
             }
             let next = self.first + self.count;
             let point = match bits.map(|b| b[i]) {
-                Some(b) if b != 0 => self.shared(l, level, face, b, next, fv),
+                Some(b) if b != 0 => self.shared(&keys, level, b, next),
                 _ => next,
             };
             if point == next {
-                self.stencils.push(
-                    row.columns
-                        .iter()
-                        .zip(&row.weights)
-                        .map(|(&c, &w)| (source(c), w)),
-                );
+                self.stencils.push(&row.columns, &row.weights, source);
                 if let Some(v) = &mut self.varying {
                     let corner = corners.get(i).copied().unwrap_or(0);
-                    v.push(std::iter::once((source(corner), R::ONE)));
+                    v.push(&[corner], &[R::ONE], source);
                 }
                 self.count += 1;
             }
@@ -201,61 +202,87 @@ impl<R: Real> LocalPoints<R> {
         }
     }
 
-    /// The local point already made for the corner or edge `bits` names,
-    /// or `next` (recorded for the next patch) (`findSharedCornerPoint`,
-    /// `findSharedEdgePoint`). Boundary edges (and those channel `fv` is
-    /// split across) share nothing.
-    fn shared(
+    /// The corners' and edges' slots in the shared-point tables of `level`
+    /// for face `face` (the tables made the first time, as many entries as
+    /// the level has vertices — values of channel `fv` — and twice its
+    /// edges): a corner's vertex, an edge's two slots in the order its
+    /// lower-numbered vertex first, or none for a boundary edge (or one the
+    /// channel is split across), which shares nothing.
+    fn share_keys(
         &mut self,
         l: &Level,
         level: usize,
         face: usize,
-        bits: u8,
-        next: u32,
         fv: Option<&ChannelLevel>,
-    ) -> u32 {
-        let k = (bits & 0x0f) as usize;
-        let invalid = u32::MAX;
-        if bits & (CORNER | EDGE_BEGIN | EDGE_END) == 0 {
-            return next;
+    ) -> ShareKeys {
+        if self.shared_corners[level].is_empty() {
+            self.shared_corners[level] =
+                vec![0; fv.map_or(l.vertex_count, ChannelLevel::value_count)];
         }
-        let slot = if bits & CORNER != 0 {
-            let table = &mut self.shared_corners[level];
-            if table.is_empty() {
-                *table = vec![invalid; fv.map_or(l.vertex_count, ChannelLevel::value_count)];
-            }
-            super::points::face_points(fv, l, face)
-                .get(k)
-                .and_then(|&v| table.get_mut(v as usize))
-        } else {
-            let Some(&e) = l.face_edges_of(face).get(k) else {
-                return next;
-            };
+        if self.shared_edges[level].is_empty() {
+            self.shared_edges[level] = vec![0; 2 * l.edge_count()];
+        }
+        let mut keys = ShareKeys::default();
+        let corners = super::points::face_points(fv, l, face);
+        for (key, &v) in keys.corners.iter_mut().zip(corners) {
+            *key = Some(v as usize);
+        }
+        let verts = l.face_verts(face);
+        let n = verts.len();
+        for (k, (key, &e)) in keys.edges.iter_mut().zip(l.face_edges_of(face)).enumerate() {
             if l.edge_tag(e as usize).boundary()
                 || fv.is_some_and(|c| c.edge_tag(e as usize).is_mismatch())
             {
-                return next;
+                continue;
             }
             // The edge's two points are told apart by the vertex they are
             // nearer: its lower-numbered end first (every face around the
             // edge names the same two vertices, so they agree without
             // reading the edge's own vertices).
-            let verts = l.face_verts(face);
-            let (a, b) = (verts[k], verts[(k + 1) % verts.len()]);
-            let end = ((bits & EDGE_END != 0) != (a > b)) as usize;
-            let table = &mut self.shared_edges[level];
-            if table.is_empty() {
-                *table = vec![invalid; 2 * l.edge_count()];
-            }
-            table.get_mut(2 * e as usize + end)
+            let (a, b) = (verts[k], verts[if k + 1 == n { 0 } else { k + 1 }]);
+            *key = Some((2 * e as usize, a > b));
+        }
+        keys
+    }
+
+    /// The local point already made for the corner or edge `bits` names
+    /// (its slot in `keys`), or `next` (recorded for the next patch)
+    /// (`findSharedCornerPoint`, `findSharedEdgePoint`). The tables hold
+    /// each point plus one, 0 for none yet (zeroed tables: pages no end cap
+    /// reaches are never touched).
+    fn shared(&mut self, keys: &ShareKeys, level: usize, bits: u8, next: u32) -> u32 {
+        let k = (bits & 0x0f) as usize;
+        let slot = if bits & CORNER != 0 {
+            let Some(v) = keys.corners.get(k).copied().flatten() else {
+                return next;
+            };
+            self.shared_corners[level].get_mut(v)
+        } else if bits & (EDGE_BEGIN | EDGE_END) != 0 {
+            let Some((at, flipped)) = keys.edges.get(k).copied().flatten() else {
+                return next;
+            };
+            let end = ((bits & EDGE_END != 0) != flipped) as usize;
+            self.shared_edges[level].get_mut(at + end)
+        } else {
+            return next;
         };
         match slot {
-            Some(s) if *s == invalid => {
-                *s = next;
+            Some(s) if *s == 0 => {
+                *s = next + 1;
                 next
             }
-            Some(s) => *s,
+            Some(s) => *s - 1,
             None => next,
         }
     }
+}
+
+/// Where each corner's and edge's shared points are kept
+/// ([`LocalPoints::share_keys`]): a corner's slot in the corner table, an
+/// edge's first slot in the edge table and whether its points are taken
+/// in reverse; none where nothing is shared.
+#[derive(Debug, Default, Clone, Copy)]
+struct ShareKeys {
+    corners: [Option<usize>; 4],
+    edges: [Option<(usize, bool)>; 4],
 }

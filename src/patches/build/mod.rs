@@ -386,6 +386,7 @@ impl Builder<'_> {
         let kept_per_patch = if nonlinear_fvar { patches.len() } else { 0 };
         let mut slots = Vec::with_capacity(kept_per_patch);
         let mut vertex_params = Vec::with_capacity(kept_per_patch);
+        let mut walk = placement::QuadWalk::default();
         for ((p, &is_regular), &mask) in patches.iter().zip(&regular).zip(&masks) {
             let offset = offsets[p.level];
             let slot;
@@ -460,7 +461,14 @@ impl Builder<'_> {
             } else {
                 0.0
             });
-            let param = self.param(p.level, p.face, &ptex, is_regular, param_boundary);
+            let param = self.param_with(
+                &mut walk,
+                p.level,
+                p.face,
+                &ptex,
+                is_regular,
+                param_boundary,
+            );
             array.params.push(param);
             if nonlinear_fvar {
                 slots.push(slot);

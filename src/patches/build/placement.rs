@@ -39,6 +39,107 @@ impl Builder<'_> {
         first
     }
 
+    /// [`Builder::param`] through `walk`, which remembers the last face
+    /// placed at each level: under the quad split (Catmull-Clark and
+    /// bilinear), where a face's place is its parent's doubled plus its
+    /// quadrant, siblings share their parent's walk (patches come face by
+    /// face, siblings together). The same words as the walk up.
+    pub(super) fn param_with(
+        &self,
+        walk: &mut QuadWalk,
+        level: usize,
+        f: usize,
+        ptex: &[u32],
+        regular: bool,
+        boundary: u16,
+    ) -> PatchParam {
+        if self.reg != 4
+            || level == 0
+            || level >= MAX_DEPTH
+            || self.steps[..level].iter().any(|s| s.triangles)
+        {
+            return self.param(level, f, ptex, regular, boundary);
+        }
+        let place = self.quad_place(walk, level, f);
+        let transition = if level < self.max_level() {
+            self.steps[level].face_transitional[f]
+        } else {
+            0
+        };
+        let mut ptex_face = ptex.get(place.base as usize).copied().unwrap_or(0);
+        if place.irregular_base {
+            ptex_face += place.first_child;
+        }
+        PatchParam::new(
+            ptex_face,
+            place.u as u16,
+            place.v as u16,
+            level as u16,
+            place.irregular_base,
+            boundary,
+            u16::from(transition),
+            regular,
+        )
+    }
+
+    /// The place of face `f` of `level` (at least 1) under the quad split,
+    /// from its parent's (remembered in `walk`, or placed first).
+    fn quad_place(&self, walk: &mut QuadWalk, level: usize, f: usize) -> Place {
+        if walk.last.len() < self.levels.len() {
+            walk.last = vec![None; self.levels.len()];
+        }
+        // The chain of faces up to the first one remembered (or the base).
+        let mut chain = [(0usize, 0usize); MAX_DEPTH];
+        let mut depth = 0;
+        let mut child = f;
+        let mut i = level;
+        let mut place = loop {
+            if i == 0 {
+                break Place {
+                    base: child as u32,
+                    irregular_base: self.levels[0].face_vertices.count(child) != self.reg,
+                    first_child: 0,
+                    u: 0,
+                    v: 0,
+                };
+            }
+            if let Some((face, p)) = walk.last[i]
+                && face as usize == child
+            {
+                break p;
+            }
+            let parent = self.steps[i - 1].child_face_parent[child] as usize;
+            chain[depth] = (child, parent);
+            depth += 1;
+            child = parent;
+            i -= 1;
+        };
+        // Down again: each child's quadrant in its parent.
+        for &(child, parent) in chain[..depth].iter().rev() {
+            i += 1;
+            let k = self
+                .child_faces(i - 1, parent)
+                .iter()
+                .position(|&c| c as usize == child)
+                .unwrap_or(0);
+            place = if i == 1 && place.irregular_base {
+                Place {
+                    first_child: k as u32,
+                    ..place
+                }
+            } else {
+                let (du, dv) = QUADRANT[k & 3];
+                Place {
+                    u: 2 * place.u + du,
+                    v: 2 * place.v + dv,
+                    ..place
+                }
+            };
+            walk.last[i] = Some((child as u32, place));
+        }
+        place
+    }
+
     /// `PatchBuilder::ComputePatchParam`: the patch's place in its ptex
     /// face, found by walking up to its base face.
     pub(super) fn param(
@@ -77,6 +178,31 @@ impl Builder<'_> {
             u16::from(transition),
         )
     }
+}
+
+/// The deepest walk [`Builder::param_with`] remembers (more than any
+/// table's 10 levels).
+const MAX_DEPTH: usize = 16;
+
+/// The (u, v) offset of each quadrant of a quad split, by child.
+const QUADRANT: [(u32, u32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
+
+/// Where a face of the quad split lies: its base face (and, under a
+/// non-quad base face, which of its children it descends from) and its
+/// place in the ptex face at its own depth.
+#[derive(Debug, Clone, Copy)]
+struct Place {
+    base: u32,
+    irregular_base: bool,
+    first_child: u32,
+    u: u32,
+    v: u32,
+}
+
+/// The last face placed at each level ([`Builder::param_with`]).
+#[derive(Debug, Default)]
+pub(super) struct QuadWalk {
+    last: Vec<Option<(u32, Place)>>,
 }
 
 /// What locating a face in its ptex face needs: every level's faces, the

@@ -155,18 +155,25 @@ fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u3
         let at = ring.position(f);
         let leading = mask & (1 << i) != 0;
         let trailing = mask & (1 << ((i + 3) % 4)) != 0;
-        let manifold = !l.vertex_tag(v as usize).non_manifold();
+        // The vertex's tag is read only along a boundary (a cache miss).
+        let manifold = || !l.vertex_tag(v as usize).non_manifold();
         let outer: [u32; 3] = if interior || (!leading && !trailing) {
-            let (opp, k) = ring.at((at + 2) % ring.faces.len());
+            // (at + 2) modulo the valence, without a division.
+            let n = ring.faces.len().max(1);
+            let mut opposite = at + 2;
+            while opposite >= n {
+                opposite -= n;
+            }
+            let (opp, k) = ring.at(opposite);
             let p = face_points(fv, l, opp);
-            [p[(k + 1) % 4], p[(k + 2) % 4], p[(k + 3) % 4]]
+            [p[(k + 1) & 3], p[(k + 2) & 3], p[(k + 3) & 3]]
         } else if leading && trailing {
             [fill; 3]
         } else if leading {
-            let (next, k) = next_face(l, &ring, at, manifold);
+            let (next, k) = next_face(l, &ring, at, manifold());
             [face_points(fv, l, next)[(k + 3) % 4], fill, fill]
         } else {
-            let (prev, k) = prev_face(l, &ring, at, manifold);
+            let (prev, k) = prev_face(l, &ring, at, manifold());
             [fill, fill, face_points(fv, l, prev)[(k + 1) % 4]]
         };
         points[slots[0]] = own[i];
