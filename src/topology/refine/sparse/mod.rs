@@ -256,20 +256,19 @@ fn number_children(
 
     // Edges: both halves and the edge point of a selected edge; the half at
     // a selected end of any other edge, and its edge point.
-    let mut edge_child_edges = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_child_vertex = Table::<u32>::zeroed(ne);
+    // Every mark is written, marked or not (the tables are not cleared
+    // first).
+    let mut edge_child_edges = Table::<[u32; 2]>::for_overwrite(ne);
+    let mut edge_child_vertex = Table::<u32>::for_overwrite(ne);
     let mut edge_transitional = vec![false; ne];
     for e in 0..ne {
         if sel.edge(e) {
             edge_child_edges[e] = [MARKED; 2];
             edge_child_vertex[e] = MARKED;
         } else {
-            for (half, &end) in edge_child_edges[e].iter_mut().zip(&parent.edge_vertices[e]) {
-                if sel.vertex(end as usize) {
-                    *half = MARKED;
-                    edge_child_vertex[e] = MARKED;
-                }
-            }
+            let ends = parent.edge_vertices[e].map(|end| sel.vertex(end as usize));
+            edge_child_edges[e] = ends.map(|m| m as u32 * MARKED);
+            edge_child_vertex[e] = (ends[0] || ends[1]) as u32 * MARKED;
         }
         // Only a selected edge has a selected face on either side.
         edge_transitional[e] = sel.edge(e)
@@ -316,8 +315,9 @@ fn number_children(
     let child_vertices = first as usize;
 
     // Children to parents.
-    let mut child_face_parent = Table::<u32>::zeroed(child_faces);
-    let mut child_edge_parent = Table::<u32>::zeroed(edges_from_faces + edges_from_edges);
+    // Every child has one parent: each entry is written once.
+    let mut child_face_parent = Table::<u32>::for_overwrite(child_faces);
+    let mut child_edge_parent = Table::<u32>::for_overwrite(edges_from_faces + edges_from_edges);
     let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
     if !triangles && parent.face_vertices.uniform_size() == Some(4) {
         // Every parent face a quad: corner `i` is corner `i % 4` of face
