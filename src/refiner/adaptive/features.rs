@@ -125,7 +125,7 @@ pub(crate) fn child_features(
         .iter()
         .zip(&split.child_vertex_incomplete)
         .map(|(&p, &incomplete)| {
-            let mut f = match p {
+            let mut f = match p.get() {
                 VertexParent::Face(f) => Features {
                     xordinary: parent.depth == 0
                         && parent.face_vertices.count(f as usize) != reg_face,

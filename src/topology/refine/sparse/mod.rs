@@ -115,6 +115,40 @@ pub enum VertexParent {
     Vertex(u32),
 }
 
+/// A [`VertexParent`] as plain data, so that the parents of a level's child
+/// vertices fit a [`Table`] (recycled memory, not fresh pages each level).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PackedParent {
+    /// 0: a face, 1: an edge, 2: a vertex.
+    kind: u32,
+    /// The parent's index.
+    index: u32,
+}
+
+impl PackedParent {
+    /// Packs `p`.
+    #[inline]
+    pub fn new(p: VertexParent) -> Self {
+        let (kind, index) = match p {
+            VertexParent::Face(i) => (0, i),
+            VertexParent::Edge(i) => (1, i),
+            VertexParent::Vertex(i) => (2, i),
+        };
+        PackedParent { kind, index }
+    }
+
+    /// The parent.
+    #[inline]
+    pub fn get(self) -> VertexParent {
+        match self.kind {
+            0 => VertexParent::Face(self.index),
+            1 => VertexParent::Edge(self.index),
+            _ => VertexParent::Vertex(self.index),
+        }
+    }
+}
+
 /// The numbering of one sparse step, both ways: parent components to their
 /// children ([`INVALID`] where not created) and children to their parents.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -149,7 +183,7 @@ pub struct SparseSplit {
     /// Number of child edges inside parent faces (numbered first).
     pub edges_from_faces: usize,
     /// The parent of each child vertex.
-    pub child_vertex_parent: Vec<VertexParent>,
+    pub child_vertex_parent: Table<PackedParent>,
     /// Whether each child vertex is incomplete: its parent was not selected,
     /// so only part of its neighbourhood exists in the child level.
     pub child_vertex_incomplete: Vec<bool>,
@@ -353,23 +387,24 @@ fn number_children(
             }
         }
     }
-    let mut child_vertex_parent = vec![VertexParent::Vertex(0); child_vertices];
+    // Every child vertex has one parent: each entry is written once.
+    let mut child_vertex_parent = Table::<PackedParent>::for_overwrite(child_vertices);
     let mut child_vertex_incomplete = vec![true; child_vertices];
     for (f, &c) in face_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Face(f as u32);
+            child_vertex_parent[c as usize] = PackedParent::new(VertexParent::Face(f as u32));
             child_vertex_incomplete[c as usize] = !sel.face(f);
         }
     }
     for (e, &c) in edge_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Edge(e as u32);
+            child_vertex_parent[c as usize] = PackedParent::new(VertexParent::Edge(e as u32));
             child_vertex_incomplete[c as usize] = !sel.edge(e);
         }
     }
     for (v, &c) in vertex_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Vertex(v as u32);
+            child_vertex_parent[c as usize] = PackedParent::new(VertexParent::Vertex(v as u32));
             child_vertex_incomplete[c as usize] = !sel.vertex(v);
         }
     }

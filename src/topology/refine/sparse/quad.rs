@@ -186,7 +186,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
     let mut c = 0;
     while c < nv {
         debug_assert_eq!(vertex_faces.elements, c);
-        match s.child_vertex_parent[c] {
+        match s.child_vertex_parent[c].get() {
             VertexParent::Face(f) => {
                 let range = faces.range(f as usize);
                 let n = range.len();
@@ -215,7 +215,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
                 debug_assert!(
                     s.child_vertex_parent[c..c + points]
                         .iter()
-                        .all(|p| matches!(p, VertexParent::Edge(_)))
+                        .all(|p| matches!(p.get(), VertexParent::Edge(_)))
                 );
                 c += points;
                 continue;

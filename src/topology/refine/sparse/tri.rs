@@ -134,8 +134,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> T
     // Vertex-faces and vertex-edges, child vertices in index order.
     let mut vertex_faces = Filler::new(nv, room.vertex_faces);
     let mut vertex_edges = Filler::new(nv, room.vertex_edges);
-    for &p in &s.child_vertex_parent {
-        match p {
+    for &p in s.child_vertex_parent.iter() {
+        match p.get() {
             VertexParent::Edge(e) => {
                 let e = e as usize;
                 let ends = parent.edge_vertices[e];
