@@ -123,8 +123,8 @@ pub(crate) fn child_features(
     split
         .child_vertex_parent
         .iter()
-        .zip(&split.child_vertex_incomplete)
-        .map(|(&p, &incomplete)| {
+        .map(|&p| {
+            let incomplete = p.incomplete();
             let mut f = match p.get() {
                 VertexParent::Face(f) => Features {
                     xordinary: parent.depth == 0

@@ -35,7 +35,7 @@ fn mark_faces_of<const QUADS: bool>(
     let mut face_child_faces = Table::<u32>::for_overwrite(corners);
     let mut face_child_edges = Table::<u32>::for_overwrite(corners);
     let mut face_child_vertex = Table::<u32>::for_overwrite(nf);
-    let mut face_transitional = vec![0u8; nf];
+    let mut face_transitional = Table::<u8>::zeroed(nf);
     for f in 0..nf {
         let range = faces.range(f);
         let n = range.len();

@@ -18,7 +18,7 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
     let nf = parent.face_count();
     let mut child_faces = Table::<u32>::zeroed(4 * nf);
     let mut child_edges = Table::<u32>::zeroed(parent.face_vertices.members.len());
-    let mut transitional = vec![0u8; nf];
+    let mut transitional = Table::<u8>::zeroed(nf);
     for f in 0..nf {
         let edges = parent.face_vertices.range(f);
         if sel.face(f) {
