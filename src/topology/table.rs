@@ -9,9 +9,8 @@
 //! available the map still works with ordinary pages. A dropped map goes to
 //! a pool (256 MiB at most) that serves the next table of its size, so a
 //! program that refines again — the next frame, the next mesh — writes into
-//! memory already faulted in ([`release_table_pool`] hands it back). A
-//! table of 128 KiB to 2 MiB is a map of ordinary pages, pooled the same
-//! way; smaller tables are ordinary `Vec`s. (OpenSubdiv keeps its tables in
+//! memory already faulted in ([`release_table_pool`] hands it back).
+//! Smaller tables are ordinary `Vec`s. (OpenSubdiv keeps its tables in
 //! `std::vector`s: this has no counterpart there.)
 
 use bytemuck::Pod;
@@ -33,15 +32,6 @@ const MAP_BYTES: usize = 2 << 20;
 /// The size of a transparent huge page on x86-64 and most aarch64 kernels.
 const HUGE_PAGE: usize = 2 << 20;
 
-/// Tables of at least this many bytes (and less than `MAP_BYTES`) are
-/// memory maps of ordinary pages, recycled through the pool like the large
-/// ones: left to the C allocator they are fresh pages at every level of
-/// every refinement too (glibc maps them, or trims its heap after them).
-const SMALL_MAP_BYTES: usize = 128 << 10;
-
-/// The size of an ordinary page.
-const PAGE: usize = 4 << 10;
-
 /// The smallest table that is a huge-page map: `MAP_BYTES`, or none with the
 /// environment variable `SUBDIV_HUGE_PAGES=0` (read once).
 fn map_threshold() -> usize {
@@ -52,7 +42,7 @@ fn map_threshold() -> usize {
             .and_then(|v| v.to_str())
         {
             Some("0") => usize::MAX,
-            _ => SMALL_MAP_BYTES,
+            _ => MAP_BYTES,
         }
     })
 }
@@ -65,9 +55,7 @@ fn map_threshold() -> usize {
 /// fault. A table of 2 MiB or more is an anonymous memory map advised with
 /// `MADV_HUGEPAGE` (transparent huge pages: one fault where there were 512),
 /// and when dropped its map is kept for the next table of its size
-/// ([`release_buffer_pool`](crate::release_buffer_pool)); a table of 128 KiB
-/// to 2 MiB is a map of ordinary pages, kept the same way; smaller tables
-/// are ordinary `Vec`s. The
+/// ([`release_buffer_pool`](crate::release_buffer_pool)); smaller tables are ordinary `Vec`s. The
 /// environment variable `SUBDIV_HUGE_PAGES=0` makes every table a `Vec`
 /// (docs/PERFORMANCE.md has the measurements).
 pub struct Table<T: Pod> {
@@ -138,15 +126,8 @@ impl<T: Pod> Table<T> {
             return None;
         }
         // A whole number of huge pages: the kernel then aligns the map
-        // on a huge-page boundary, so every part of it can use them. A
-        // smaller table takes ordinary pages (a huge page would be mostly
-        // idle).
-        let huge = bytes >= MAP_BYTES;
-        let mapped = if huge {
-            bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE
-        } else {
-            bytes.div_ceil(PAGE) * PAGE
-        };
+        // on a huge-page boundary, so every part of it can use them.
+        let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
         if let Some(map) = pool::take(mapped) {
             return Some((
                 Table {
@@ -159,9 +140,7 @@ impl<T: Pod> Table<T> {
         // Only advice: without transparent huge pages the map keeps
         // ordinary pages.
         #[cfg(target_os = "linux")]
-        if huge {
-            let _ = map.advise(memmap2::Advice::HugePage);
-        }
+        let _ = map.advise(memmap2::Advice::HugePage);
         Some((
             Table {
                 repr: Repr::Map { map, len },
@@ -221,7 +200,7 @@ impl<T: Pod> Table<T> {
         }
     }
 
-    /// Whether the table lives in a memory map (128 KiB or more, unless
+    /// Whether the table lives in a memory map (2 MiB or more, unless
     /// `SUBDIV_HUGE_PAGES=0`).
     pub fn is_mapped(&self) -> bool {
         matches!(self.repr, Repr::Map { .. })
@@ -246,7 +225,7 @@ impl<T: Pod> Drop for Table<T> {
 }
 
 /// Releases the memory of dropped tables that is kept for reuse
-/// (maps of 128 KiB and more, transparent huge pages from 2 MiB), and returns how many bytes
+/// (transparent huge-page maps of 2 MiB and more), and returns how many bytes
 /// that was.
 ///
 /// Dropping a large [`Table`] keeps its map, up to 256 MiB in all, so that
