@@ -123,9 +123,9 @@ pub(crate) fn child_features(
     split
         .child_vertex_parent
         .iter()
-        .zip(&split.child_vertex_incomplete)
-        .map(|(&p, &incomplete)| {
-            let mut f = match p {
+        .map(|&p| {
+            let incomplete = p.incomplete();
+            let mut f = match p.get() {
                 VertexParent::Face(f) => Features {
                     xordinary: parent.depth == 0
                         && parent.face_vertices.count(f as usize) != reg_face,

@@ -103,7 +103,7 @@ impl Children for SparseSplit {
     }
     #[inline]
     fn complete(&self, c: usize) -> bool {
-        !self.child_vertex_incomplete[c]
+        !self.child_vertex_incomplete(c)
     }
     fn vertex_runs(&self, _parent: &Level) -> [(u32, usize, usize); 3] {
         [

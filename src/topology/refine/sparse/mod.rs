@@ -115,6 +115,53 @@ pub enum VertexParent {
     Vertex(u32),
 }
 
+/// A [`VertexParent`] as plain data, so that the parents of a level's child
+/// vertices fit a [`Table`] (recycled memory, not fresh pages each level).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PackedParent {
+    /// 0: a face, 1: an edge, 2: a vertex.
+    kind: u16,
+    /// 1 when the child is incomplete (see
+    /// [`SparseSplit::child_vertex_incomplete`]), else 0.
+    incomplete: u16,
+    /// The parent's index.
+    index: u32,
+}
+
+impl PackedParent {
+    /// Packs `p`, and whether the child is incomplete.
+    #[inline]
+    pub fn new(p: VertexParent, incomplete: bool) -> Self {
+        let (kind, index) = match p {
+            VertexParent::Face(i) => (0, i),
+            VertexParent::Edge(i) => (1, i),
+            VertexParent::Vertex(i) => (2, i),
+        };
+        PackedParent {
+            kind,
+            incomplete: incomplete as u16,
+            index,
+        }
+    }
+
+    /// Whether the child is incomplete: its parent was not selected.
+    #[inline]
+    pub fn incomplete(self) -> bool {
+        self.incomplete != 0
+    }
+
+    /// The parent.
+    #[inline]
+    pub fn get(self) -> VertexParent {
+        match self.kind {
+            0 => VertexParent::Face(self.index),
+            1 => VertexParent::Edge(self.index),
+            _ => VertexParent::Vertex(self.index),
+        }
+    }
+}
+
 /// The numbering of one sparse step, both ways: parent components to their
 /// children ([`INVALID`] where not created) and children to their parents.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -145,23 +192,30 @@ pub struct SparseSplit {
     pub child_edge_parent: Table<u32>,
     /// For a child edge of a parent edge, the end of the parent it touches
     /// (0 or 1); for a child edge of a face, its corner in the face.
-    pub child_edge_in_parent: Vec<u8>,
+    pub child_edge_in_parent: Table<u8>,
     /// Number of child edges inside parent faces (numbered first).
     pub edges_from_faces: usize,
-    /// The parent of each child vertex.
-    pub child_vertex_parent: Vec<VertexParent>,
-    /// Whether each child vertex is incomplete: its parent was not selected,
-    /// so only part of its neighbourhood exists in the child level.
-    pub child_vertex_incomplete: Vec<bool>,
+    /// The parent of each child vertex, and whether the child is
+    /// incomplete ([`SparseSplit::child_vertex_incomplete`]).
+    pub child_vertex_parent: Table<PackedParent>,
     /// For each parent face that was not selected but has children, which of
     /// its edges (bit `j` for edge `j`, all bits merged into bit 0 for faces
     /// of more than four sides) have a selected face on one side only.
-    pub face_transitional: Vec<u8>,
+    pub face_transitional: Table<u8>,
     /// Whether each parent edge has faces selected on one side only.
     pub edge_transitional: Vec<bool>,
     /// Whether the split is Loop's (four children per triangle, no face
     /// points) rather than the quad split (one child per corner).
     pub triangles: bool,
+}
+
+impl SparseSplit {
+    /// Whether child vertex `c` is incomplete: its parent was not selected,
+    /// so only part of its neighbourhood exists in the child level.
+    #[inline]
+    pub fn child_vertex_incomplete(&self, c: usize) -> bool {
+        self.child_vertex_parent[c].incomplete()
+    }
 }
 
 /// Whether a child is created: marked selected or neighbouring.
@@ -233,7 +287,7 @@ struct FaceMarks {
     child_faces: Table<u32>,
     child_edges: Table<u32>,
     child_vertex: Table<u32>,
-    transitional: Vec<u8>,
+    transitional: Table<u8>,
 }
 
 /// Marks and numbers the children of `parent` under `selection`, in
@@ -256,20 +310,19 @@ fn number_children(
 
     // Edges: both halves and the edge point of a selected edge; the half at
     // a selected end of any other edge, and its edge point.
-    let mut edge_child_edges = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_child_vertex = Table::<u32>::zeroed(ne);
+    // Every mark is written, marked or not (the tables are not cleared
+    // first).
+    let mut edge_child_edges = Table::<[u32; 2]>::for_overwrite(ne);
+    let mut edge_child_vertex = Table::<u32>::for_overwrite(ne);
     let mut edge_transitional = vec![false; ne];
     for e in 0..ne {
         if sel.edge(e) {
             edge_child_edges[e] = [MARKED; 2];
             edge_child_vertex[e] = MARKED;
         } else {
-            for (half, &end) in edge_child_edges[e].iter_mut().zip(&parent.edge_vertices[e]) {
-                if sel.vertex(end as usize) {
-                    *half = MARKED;
-                    edge_child_vertex[e] = MARKED;
-                }
-            }
+            let ends = parent.edge_vertices[e].map(|end| sel.vertex(end as usize));
+            edge_child_edges[e] = ends.map(|m| m as u32 * MARKED);
+            edge_child_vertex[e] = (ends[0] || ends[1]) as u32 * MARKED;
         }
         // Only a selected edge has a selected face on either side.
         edge_transitional[e] = sel.edge(e)
@@ -316,9 +369,10 @@ fn number_children(
     let child_vertices = first as usize;
 
     // Children to parents.
-    let mut child_face_parent = Table::<u32>::zeroed(child_faces);
-    let mut child_edge_parent = Table::<u32>::zeroed(edges_from_faces + edges_from_edges);
-    let mut child_edge_in_parent = vec![0u8; edges_from_faces + edges_from_edges];
+    // Every child has one parent: each entry is written once.
+    let mut child_face_parent = Table::<u32>::for_overwrite(child_faces);
+    let mut child_edge_parent = Table::<u32>::for_overwrite(edges_from_faces + edges_from_edges);
+    let mut child_edge_in_parent = Table::<u8>::for_overwrite(edges_from_faces + edges_from_edges);
     if !triangles && parent.face_vertices.uniform_size() == Some(4) {
         // Every parent face a quad: corner `i` is corner `i % 4` of face
         // `i / 4`, a flat pass over the corners.
@@ -353,24 +407,24 @@ fn number_children(
             }
         }
     }
-    let mut child_vertex_parent = vec![VertexParent::Vertex(0); child_vertices];
-    let mut child_vertex_incomplete = vec![true; child_vertices];
+    // Every child vertex has one parent: each entry is written once.
+    let mut child_vertex_parent = Table::<PackedParent>::for_overwrite(child_vertices);
     for (f, &c) in face_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Face(f as u32);
-            child_vertex_incomplete[c as usize] = !sel.face(f);
+            child_vertex_parent[c as usize] =
+                PackedParent::new(VertexParent::Face(f as u32), !sel.face(f));
         }
     }
     for (e, &c) in edge_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Edge(e as u32);
-            child_vertex_incomplete[c as usize] = !sel.edge(e);
+            child_vertex_parent[c as usize] =
+                PackedParent::new(VertexParent::Edge(e as u32), !sel.edge(e));
         }
     }
     for (v, &c) in vertex_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] = VertexParent::Vertex(v as u32);
-            child_vertex_incomplete[c as usize] = !sel.vertex(v);
+            child_vertex_parent[c as usize] =
+                PackedParent::new(VertexParent::Vertex(v as u32), !sel.vertex(v));
         }
     }
 
@@ -387,7 +441,6 @@ fn number_children(
         child_edge_in_parent,
         edges_from_faces,
         child_vertex_parent,
-        child_vertex_incomplete,
         face_transitional,
         edge_transitional,
         triangles,

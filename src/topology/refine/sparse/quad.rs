@@ -30,10 +30,12 @@ fn mark_faces_of<const QUADS: bool>(
     let (nf, corners) = (parent.face_count(), parent.face_vertices.members.len());
     // Faces: everything of a selected face; of any other, the child face at
     // each selected corner, the two inner edges beside it and the face point.
-    let mut face_child_faces = Table::<u32>::zeroed(corners);
-    let mut face_child_edges = Table::<u32>::zeroed(corners);
-    let mut face_child_vertex = Table::<u32>::zeroed(nf);
-    let mut face_transitional = vec![0u8; nf];
+    // Every mark is written, marked or not (the tables are not cleared
+    // first).
+    let mut face_child_faces = Table::<u32>::for_overwrite(corners);
+    let mut face_child_edges = Table::<u32>::for_overwrite(corners);
+    let mut face_child_vertex = Table::<u32>::for_overwrite(nf);
+    let mut face_transitional = Table::<u8>::zeroed(nf);
     for f in 0..nf {
         let range = faces.range(f);
         let n = range.len();
@@ -46,15 +48,16 @@ fn mark_faces_of<const QUADS: bool>(
         }
         let mut marked = false;
         for (j, &v) in verts.iter().enumerate() {
-            if sel.vertex(v as usize) {
-                face_child_faces[range.start + j] = MARKED;
-                face_child_edges[range.start + j] = MARKED;
-                face_child_edges[range.start + prev(j, n)] = MARKED;
-                marked = true;
-            }
+            let here = sel.vertex(v as usize);
+            // The inner edge towards edge `j` lies beside corners `j` and
+            // `j + 1`.
+            let beside = here || sel.vertex(verts[next(j, n)] as usize);
+            face_child_faces[range.start + j] = here as u32 * MARKED;
+            face_child_edges[range.start + j] = beside as u32 * MARKED;
+            marked |= here;
         }
+        face_child_vertex[f] = marked as u32 * MARKED;
         if marked {
-            face_child_vertex[f] = MARKED;
             let edges = &faces.edges[range];
             face_transitional[f] = if n <= 4 {
                 edges
@@ -172,37 +175,18 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
             edge_faces.end();
         }
     }
-    super::edge_halves(
-        parent,
-        s,
-        &mut edge_vertices,
-        &mut edge_faces,
-        |pf, in_face| faces.corner(pf, in_face),
-        |pf, in_face, of_edge| {
-            let range = faces.range(pf);
-            let n = range.len();
-            let local = if n == 4 {
-                in_face
-            } else if of_edge == 1 {
-                3
-            } else {
-                0
-            };
-            let corner = if of_edge == 0 {
-                in_face
-            } else {
-                next(in_face, n)
-            };
-            (s.face_child_faces[range.start + corner], local)
-        },
-    );
-
     // Vertex-faces and vertex-edges, child vertices in index order.
     let mut vertex_faces = Filler::new(nv, room.vertex_faces);
     let mut vertex_edges = Filler::new(nv, room.vertex_edges);
-    for (c, &p) in s.child_vertex_parent.iter().enumerate() {
+    // The halves' edge-vertices and edge-faces are written in the same pass
+    // over the parent's edges as the edge points' faces and edges (both in
+    // parent edge order, the halves after the edges inside faces, the edge
+    // points one contiguous block of child vertices): one walk of the
+    // edges' faces instead of two.
+    let mut c = 0;
+    while c < nv {
         debug_assert_eq!(vertex_faces.elements, c);
-        match p {
+        match s.child_vertex_parent[c].get() {
             VertexParent::Face(f) => {
                 let range = faces.range(f as usize);
                 let n = range.len();
@@ -219,47 +203,22 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
                     }
                 }
             }
-            VertexParent::Edge(e) => {
-                let e = e as usize;
-                let ends = parent_edge_vertices[e];
-                let first = vertex_edges.len();
-                for &half in &s.edge_child_edges[e] {
-                    if valid(half) {
-                        vertex_edges.push(half, 0);
-                    }
-                }
-                let edge_faces = parent.edge_faces_of(e);
-                for (i, (&pf, &in_face)) in edge_faces
-                    .iter()
-                    .zip(parent.edge_face_locals(e))
-                    .enumerate()
-                {
-                    let (pf, in_face) = (pf as usize, in_face as usize);
-                    let range = faces.range(pf);
-                    let n = range.len();
-                    let (c0, c1) = (in_face, next(in_face, n));
-                    let children = &s.face_child_faces[range.clone()];
-                    let f1 = children[c1];
-                    if valid(f1) {
-                        vertex_faces.push(f1, if n == 4 { c0 } else { 3 });
-                    }
-                    let f0 = children[c0];
-                    if valid(f0) {
-                        vertex_faces.push(f0, if n == 4 { c1 } else { 1 });
-                    }
-                    let inner = s.face_child_edges[range.start + in_face];
-                    if valid(inner) {
-                        vertex_edges.push(inner, 1);
-                        // Order [half, inner edge of the first face, half, ...],
-                        // the halves as the edge runs in that face.
-                        if i == 0 && vertex_edges.len() - first == 3 {
-                            if ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0] {
-                                vertex_edges.swap(first, first + 1);
-                            }
-                            vertex_edges.swap(first + 1, first + 2);
-                        }
-                    }
-                }
+            VertexParent::Edge(_) => {
+                let points = edges_and_edge_points(
+                    parent,
+                    s,
+                    faces,
+                    &mut edge_vertices,
+                    &mut edge_faces,
+                    (&mut vertex_faces, &mut vertex_edges),
+                );
+                debug_assert!(
+                    s.child_vertex_parent[c..c + points]
+                        .iter()
+                        .all(|p| matches!(p.get(), VertexParent::Edge(_)))
+                );
+                c += points;
+                continue;
             }
             VertexParent::Vertex(v) => {
                 super::vertex_point(
@@ -277,6 +236,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
         }
         vertex_faces.end();
         vertex_edges.end();
+        c += 1;
     }
 
     Topology {
@@ -287,4 +247,102 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
         vertex_faces,
         vertex_edges,
     }
+}
+
+/// One pass over the parent's edges, in order: the edge-vertices and
+/// edge-faces of each half that exists, then the faces and edges of the
+/// edge point (every edge point: one exists exactly where a half does).
+/// Returns the number of edge points ended.
+fn edges_and_edge_points<const QUADS: bool>(
+    parent: &Level,
+    s: &SparseSplit,
+    faces: Faces<'_, QUADS>,
+    edge_vertices: &mut Table<[u32; 2]>,
+    edge_faces: &mut Filler,
+    (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
+) -> usize {
+    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
+    let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
+    let mut points = 0;
+    for (e, (&halves, &ends)) in s
+        .edge_child_edges
+        .iter()
+        .zip(parent_edge_vertices)
+        .enumerate()
+    {
+        if !valid(halves[0]) && !valid(halves[1]) {
+            continue;
+        }
+        let point = s.edge_child_vertex[e];
+        let pfaces = parent.edge_faces_of(e);
+        let locals = parent.edge_face_locals(e);
+        // The halves (`edge_halves`).
+        for (j, &h) in halves.iter().enumerate() {
+            if !valid(h) {
+                continue;
+            }
+            child_edge_vertices[h as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
+            for (&pf, &k) in pfaces.iter().zip(locals) {
+                let (pf, k) = (pf as usize, k as usize);
+                let range = faces.range(pf);
+                let n = range.len();
+                // Which child of the face the half lies in (a degenerate
+                // edge: by the half's own end).
+                let end = if ends[0] == ends[1] {
+                    j
+                } else {
+                    (faces.verts[range.start + k] != ends[j]) as usize
+                };
+                let (corner, local) = if end == 0 {
+                    (k, if n == 4 { k } else { 0 })
+                } else {
+                    (next(k, n), if n == 4 { k } else { 3 })
+                };
+                let cf = s.face_child_faces[range.start + corner];
+                if valid(cf) {
+                    edge_faces.push(cf, local);
+                }
+            }
+            edge_faces.end();
+        }
+        // The edge point.
+        debug_assert!(valid(point));
+        let first = vertex_edges.len();
+        for &half in &halves {
+            if valid(half) {
+                vertex_edges.push(half, 0);
+            }
+        }
+        for (i, (&pf, &in_face)) in pfaces.iter().zip(locals).enumerate() {
+            let (pf, in_face) = (pf as usize, in_face as usize);
+            let range = faces.range(pf);
+            let n = range.len();
+            let (c0, c1) = (in_face, next(in_face, n));
+            let children = &s.face_child_faces[range.clone()];
+            let f1 = children[c1];
+            if valid(f1) {
+                vertex_faces.push(f1, if n == 4 { c0 } else { 3 });
+            }
+            let f0 = children[c0];
+            if valid(f0) {
+                vertex_faces.push(f0, if n == 4 { c1 } else { 1 });
+            }
+            let inner = s.face_child_edges[range.start + in_face];
+            if valid(inner) {
+                vertex_edges.push(inner, 1);
+                // Order [half, inner edge of the first face, half, ...],
+                // the halves as the edge runs in that face.
+                if i == 0 && vertex_edges.len() - first == 3 {
+                    if ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0] {
+                        vertex_edges.swap(first, first + 1);
+                    }
+                    vertex_edges.swap(first + 1, first + 2);
+                }
+            }
+        }
+        vertex_faces.end();
+        vertex_edges.end();
+        points += 1;
+    }
+    points
 }

@@ -68,7 +68,7 @@ pub(super) fn subdivide_sharpness(
         }
         let semi = |h: u32| valid(h) && child.edge_tag(h as usize).semi_sharp();
         let [h0, h1] = s.edge_child_edges[e];
-        let rule = if s.child_vertex_incomplete[c as usize] {
+        let rule = if s.child_vertex_incomplete(c as usize) {
             if semi(h0) || semi(h1) {
                 crate::rules::Rule::Crease
             } else {

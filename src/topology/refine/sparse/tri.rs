@@ -18,7 +18,7 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
     let nf = parent.face_count();
     let mut child_faces = Table::<u32>::zeroed(4 * nf);
     let mut child_edges = Table::<u32>::zeroed(parent.face_vertices.members.len());
-    let mut transitional = vec![0u8; nf];
+    let mut transitional = Table::<u8>::zeroed(nf);
     for f in 0..nf {
         let edges = parent.face_vertices.range(f);
         if sel.face(f) {
@@ -134,8 +134,8 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> T
     // Vertex-faces and vertex-edges, child vertices in index order.
     let mut vertex_faces = Filler::new(nv, room.vertex_faces);
     let mut vertex_edges = Filler::new(nv, room.vertex_edges);
-    for &p in &s.child_vertex_parent {
-        match p {
+    for &p in s.child_vertex_parent.iter() {
+        match p.get() {
             VertexParent::Edge(e) => {
                 let e = e as usize;
                 let ends = parent.edge_vertices[e];
