@@ -313,16 +313,7 @@ impl Surface {
             for &from in &irregular.local_order {
                 native.extend_from_slice(layout.point(patch_points, from));
             }
-            let locations = self.locations(coords)?;
-            return evaluate_data(
-                &irregular.map,
-                &irregular.table,
-                PatchData::Vertex,
-                &native,
-                width,
-                &locations,
-                derivatives,
-            );
+            return self.evaluate_irregular(irregular, &native, width, coords, derivatives);
         }
         // The other forms' stencils weigh the control points, which lead
         // the patch points.
@@ -459,17 +450,30 @@ impl Surface {
         let width = layout.size;
         let control = self.control_values(points, layout)?;
         let native = native_patch_points(irregular, width, &control)?;
+        self.evaluate_irregular(irregular, &native, width, coords, derivatives)
+            .map(Irregularly::Samples)
+    }
+
+    /// An irregular surface at `coords` through its own patch table, from
+    /// its patch points in the table's order (`native`, `width` values each).
+    fn evaluate_irregular(
+        &self,
+        irregular: &Irregular,
+        native: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Result<SurfaceSamples> {
         let locations = self.locations(coords)?;
         evaluate_data(
             &irregular.map,
             &irregular.table,
             PatchData::Vertex,
-            &native,
+            native,
             width,
             &locations,
             derivatives,
         )
-        .map(Irregularly::Samples)
     }
 
     /// [`Surface::evaluate`] written into `out`: one slice per kind of
