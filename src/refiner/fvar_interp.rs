@@ -32,7 +32,7 @@ use crate::output;
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::{ChannelLevel, Children, missing};
-use crate::topology::{Level, Split, Table};
+use crate::topology::{Around, AroundBuf, Level, Split, Table};
 
 /// The columns one pass computes of values `stride` wide: `count` of them
 /// from `offset` (every column, for the usual widths).
@@ -291,7 +291,7 @@ impl Refiner {
         FVarStep {
             rules: &self.rules,
             options: &self.options,
-            parent: &self.levels[level - 1],
+            parent: self.around(level - 1),
             child: &self.levels[level],
             r: &self.refinements[level - 1],
             pf: &self.fvar[channel][level - 1],
@@ -335,7 +335,8 @@ pub(crate) fn fvar_call_levels(
 pub(crate) struct FVarStep<'a, R> {
     pub rules: &'a SchemeRules,
     pub options: &'a Options,
-    pub parent: &'a Level,
+    /// The parent level, its relations stored or derived.
+    pub parent: Around<'a>,
     pub child: &'a Level,
     pub r: &'a R,
     pub pf: &'a ChannelLevel,
@@ -385,7 +386,7 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
 ) {
     let cf = step.cf;
     let pass = Pass::new(step);
-    let blocks = step.r.vertex_runs(step.parent);
+    let blocks = step.r.vertex_runs(step.parent.level);
     // The values of each kind of child vertex are one run of `dst`.
     let run = |(first, count, _): (u32, usize, usize)| {
         let (a, b) = (first as usize, first as usize + count);
@@ -457,7 +458,7 @@ fn fvar_pass<T: Real, C: Cols, R: Children + Sync>(
 /// value of the channel at the child level comes once.
 pub(crate) fn fvar_terms<T: Real, R: Children>(step: &FVarStep<'_, R>, emit: &mut Emit<'_, T>) {
     let pass = Pass::<T, R>::new(step);
-    let blocks = step.r.vertex_runs(step.parent);
+    let blocks = step.r.vertex_runs(step.parent.level);
     let mut sink = Terms {
         terms: Vec::new(),
         emit,
@@ -645,6 +646,8 @@ struct Pass<'a, T, R> {
     rules: &'a SchemeRules,
     options: &'a Options,
     parent: &'a Level,
+    /// `parent` with its relations, stored or derived.
+    around: Around<'a>,
     child: &'a Level,
     r: &'a R,
     pf: &'a ChannelLevel,
@@ -660,7 +663,8 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
         Pass {
             rules: step.rules,
             options: step.options,
-            parent: step.parent,
+            parent: step.parent.level,
+            around: step.parent,
             child: step.child,
             r: step.r,
             pf: step.pf,
@@ -713,15 +717,16 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
             if cf.vertex_value_tags(c)[0].is_mismatch() {
                 // One midpoint per value, from the face the value comes from.
                 for i in 0..cf.vertex_value_count(c) {
-                    let [a, b] = pf.edge_face_values(parent, e, i);
+                    let [a, b] = pf.edge_face_values(&self.around, e, i);
                     sink.parent(a, half);
                     sink.parent(b, half);
                     sink.finish(first + i as u32);
                 }
                 continue;
             }
-            let e_faces = parent.edge_faces_of(e);
-            let [a, b] = pf.edge_face_values(parent, e, 0);
+            let e_faces = self.around.edge_faces(e);
+            let e_faces = e_faces.as_slice();
+            let [a, b] = pf.edge_face_values(&self.around, e, 0);
             if self.linear {
                 sink.parent(a, half);
                 sink.parent(b, half);
@@ -793,6 +798,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
         let mut edge_sharpness = Vec::new();
         let mut child_edge_sharpness = Vec::new();
         let mut edge_values = Vec::new();
+        let mut buf = AroundBuf::default();
         let corner_weight = T::from_f64(0.75);
         let end_weight = T::from_f64(0.125);
         for v in vertices {
@@ -810,8 +816,8 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
                     sink.finish(first);
                     continue;
                 }
-                let edges = parent.vertex_edges_of(v);
-                let v_faces = parent.vertex_faces_of(v);
+                let hood = self.around.vertex_hood(v, &mut buf);
+                let (edges, v_faces) = (hood.edges, hood.faces);
                 let p_rule = parent.vertex_tag(v).rule();
                 let m = if takes_smooth_mask(p_rule, v_faces.len(), edges.len()) {
                     // The kernel's smooth vertex (as the rules give it).
@@ -842,7 +848,7 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
                     sink.centre(self.centre(f), w);
                 }
                 if !m.edge.is_empty() {
-                    pf.vertex_edge_values(parent, v, &mut edge_values);
+                    pf.vertex_edge_values(&self.around, &hood, v, &mut edge_values);
                     for (&x, &w) in edge_values.iter().zip(&m.edge) {
                         sink.parent(x, w);
                     }
@@ -854,12 +860,13 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
             // Each value on its own: a corner, a crease, or a corner decaying
             // into a crease.
             let p_tags = pf.vertex_value_tags(v);
+            let hood = self.around.vertex_hood(v, &mut buf);
             for (s, &tag) in c_tags.iter().enumerate() {
                 let own = pf.vertex_value(v, s);
                 if self.linear || tag.is_corner() {
                     sink.parent(own, T::ONE);
                 } else {
-                    let [e0, e1] = pf.crease_end_values(parent, v, s);
+                    let [e0, e1] = pf.crease_end_values(parent, &hood, v, s);
                     let (mut vw, mut ew) = (corner_weight, end_weight);
                     if p_tags[s].is_semi_sharp() {
                         // A value sharpened by its sibling decays with it.
@@ -868,7 +875,14 @@ impl<'a, T: Real, R: Children> Pass<'a, T, R> {
                         } else {
                             s
                         };
-                        let w = pf.fractional_weight((parent, child), v, from, c, options.creasing);
+                        let w = pf.fractional_weight(
+                            (parent, child),
+                            &hood,
+                            v,
+                            from,
+                            c,
+                            options.creasing,
+                        );
                         let corner = T::from_f32(w);
                         let crease = T::ONE - corner;
                         vw = crease * corner_weight + corner;
@@ -921,6 +935,8 @@ impl Refiner {
             let mut mask = crate::rules::Mask::<T>::new();
             let mut edge_sharpness = Vec::new();
             let mut edge_values = Vec::new();
+            let around = Around::stored(level);
+            let mut buf = AroundBuf::default();
             let row = |i: u32| &src[i as usize * width..(i as usize + 1) * width];
             let add = |acc: &mut [T], r: &[T], w: T| {
                 for (a, &s) in acc.iter_mut().zip(r) {
@@ -932,7 +948,8 @@ impl Refiner {
             let two_thirds = T::from_f32(2.0f32 / 3.0f32);
             for v in 0..level.vertex_count {
                 let count = fvar.vertex_value_count(v);
-                let edges = level.vertex_edges_of(v);
+                let hood = around.vertex_hood(v, &mut buf);
+                let edges = hood.edges;
                 let store = |dst: &mut [T], value: u32, acc: &[T]| {
                     let i = value as usize * width;
                     dst[i..i + width].copy_from_slice(acc);
@@ -949,8 +966,8 @@ impl Refiner {
                     edge_sharpness.clear();
                     edge_sharpness
                         .extend(edges.iter().map(|&e| level.edge_sharpness_at(e as usize)));
-                    let faces = level.vertex_faces_of(v);
-                    let hood = crate::rules::VertexNeighborhood {
+                    let faces = hood.faces;
+                    let v_hood = crate::rules::VertexNeighborhood {
                         sharpness: level.vertex_sharpness_at(v),
                         edge_sharpness: &edge_sharpness,
                         face_count: faces.len(),
@@ -958,24 +975,20 @@ impl Refiner {
                         child_edge_sharpness: &[],
                     };
                     self.rules.vertex_limit_position_mask(
-                        &hood,
+                        &v_hood,
                         level.vertex_tag(v).rule(),
                         &mut mask,
                     );
                     let value = fvar.vertex_value(v, 0);
                     acc.fill(T::ZERO);
                     if !mask.face.is_empty() {
-                        for ((&f, &k), &w) in faces
-                            .iter()
-                            .zip(level.vertex_face_locals(v))
-                            .zip(&mask.face)
-                        {
+                        for ((&f, &k), &w) in faces.iter().zip(hood.face_locals).zip(&mask.face) {
                             let values = fvar.face_values_of(level, f as usize);
                             add(&mut acc, row(values[(k as usize + 2) % values.len()]), w);
                         }
                     }
                     if !mask.edge.is_empty() {
-                        fvar.vertex_edge_values(level, v, &mut edge_values);
+                        fvar.vertex_edge_values(&around, &hood, v, &mut edge_values);
                         for (&ev, &w) in edge_values.iter().zip(&mask.edge) {
                             add(&mut acc, row(ev), w);
                         }
@@ -988,7 +1001,7 @@ impl Refiner {
                         if tag.is_corner() {
                             store(&mut dst, value, row(value));
                         } else {
-                            let [a, b] = fvar.crease_end_values(level, v, s);
+                            let [a, b] = fvar.crease_end_values(level, &hood, v, s);
                             acc.fill(T::ZERO);
                             add(&mut acc, row(a), sixth);
                             add(&mut acc, row(b), sixth);

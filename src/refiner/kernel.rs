@@ -9,11 +9,11 @@ use super::{Kind, Refiner, Source, opposite_vertex};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Mask, Rule, SchemeRules, VertexNeighborhood};
-use crate::topology::Level;
 use crate::topology::refine::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
-    derive_smooth_hood,
+    derive_quad_edge_faces_in_order, derive_smooth_hood,
 };
+use crate::topology::{AroundBuf, Level};
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -23,22 +23,16 @@ pub(crate) struct Scratch<T> {
     pub edge_sharpness: Vec<f32>,
     pub child_edge_sharpness: Vec<f32>,
     /// A vertex's relations where its level derives them.
-    pub hood: HoodBuf,
+    pub hood: AroundBuf,
     /// The parent edge whose halves' faces were derived last, and those
     /// faces (the two halves are consecutive child edges).
     pub halves: (usize, [[u32; 2]; 2]),
     /// The same for the vertices opposite the halves under Loop's split
     /// (`None`: not derivable).
     pub wings: (usize, Option<[[u32; 2]; 2]>),
-}
-
-/// Room for the faces and edges of one vertex of a level that derives its
-/// vertex relations ([`Refiner::vertex_hood`]).
-#[derive(Debug, Default)]
-pub(crate) struct HoodBuf {
-    faces: Vec<u32>,
-    edges: Vec<u32>,
-    edge_list: Vec<(u32, u16)>,
+    /// The parent face of the last edge inside a face whose faces were
+    /// derived (edges come in order: the next is likely in the same face).
+    pub face: usize,
 }
 
 impl Refiner {
@@ -51,21 +45,9 @@ impl Refiner {
         &'a self,
         level: usize,
         v: usize,
-        buf: &'a mut HoodBuf,
+        buf: &'a mut AroundBuf,
     ) -> (&'a [u32], &'a [u32]) {
-        let l = &self.levels[level];
-        if l.derived_relations {
-            crate::topology::refine::derive_vertex_relations(
-                &self.levels[level - 1],
-                &self.refinements[level - 1],
-                self.options.scheme == Scheme::Loop,
-                v,
-                (&mut buf.faces, &mut buf.edges, &mut buf.edge_list),
-            );
-            (&buf.faces, &buf.edges)
-        } else {
-            (l.vertex_faces_of(v), l.vertex_edges_of(v))
-        }
+        self.around(level).vertex_faces_and_edges(v, buf)
     }
 }
 
@@ -77,9 +59,10 @@ impl<T: Real> Scratch<T> {
             face_sizes: Vec::new(),
             edge_sharpness: Vec::new(),
             child_edge_sharpness: Vec::new(),
-            hood: HoodBuf::default(),
+            hood: AroundBuf::default(),
             halves: (usize::MAX, [[0; 2]; 2]),
             wings: (usize::MAX, None),
+            face: 0,
         }
     }
 }
@@ -642,7 +625,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                     }),
                     i,
                 ),
-                None => derive_edge_faces(grand, gr, false, e),
+                None => derive_quad_edge_faces_in_order(grand, gr, e, &mut scratch.face),
             };
             let ev = parent.edge_vertices[e];
             let acc = smooth_edge_point(src, ev, ends, face_points, faces, face_weights, width);
@@ -678,7 +661,8 @@ fn run<T: Real, W: Width + Send + Sync>(
                             }),
                             i,
                         ),
-                        None => derive_edge_faces(grand, gr, triangles, e),
+                        None if triangles => derive_edge_faces(grand, gr, true, e),
+                        None => derive_quad_edge_faces_in_order(grand, gr, e, &mut scratch.face),
                     };
                     &derived_faces
                 }

@@ -35,7 +35,7 @@ mod limit;
 mod stencil_factory;
 
 pub use adaptive::AdaptiveRefiner;
-pub(crate) use kernel::{HoodBuf, Scratch, accumulate};
+pub(crate) use kernel::{Scratch, accumulate};
 pub use queries::Faces;
 pub use stencil_factory::FactorizedStencils;
 pub(crate) use whole::refine_last_with;
@@ -58,21 +58,6 @@ pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
     let f_edges = level.face_edges_of(f);
     let k = f_edges.iter().position(|&x| x as usize == e).unwrap_or(0);
     level.face_verts(f)[(k + 2) % f_edges.len()]
-}
-
-/// The faces of an edge: read from its level, or derived.
-pub(crate) enum EdgeFaces<'a> {
-    Stored(&'a [u32]),
-    Derived([u32; 2]),
-}
-
-impl EdgeFaces<'_> {
-    fn as_slice(&self) -> &[u32] {
-        match self {
-            EdgeFaces::Stored(f) => f,
-            EdgeFaces::Derived(f) => f,
-        }
-    }
 }
 
 /// Where a mask term reads its value.
@@ -228,11 +213,18 @@ impl Refiner {
                     uniform.level as usize,
                     !uniform.full_topology_in_last_level,
                     !self.fvar.is_empty(),
+                    parent,
                 ),
+            );
+            let around = queries::around(
+                &self.levels,
+                &self.refinements,
+                level as usize - 1,
+                self.options.scheme,
             );
             for channel in &mut self.fvar {
                 let parent_fvar = channel.last().expect("base channel");
-                let child_fvar = fvar::refine(parent, &child, &r, None, parent_fvar, &self.options);
+                let child_fvar = fvar::refine(around, &child, &r, None, parent_fvar, &self.options);
                 channel.push(child_fvar);
             }
             self.refinements.push(r);

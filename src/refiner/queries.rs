@@ -2,13 +2,13 @@
 //! `Far::TopologyLevel` (read, or derived where a level leaves them out),
 //! whole levels as [`LevelTopology`] and borrowed [`Faces`].
 
-use super::{EdgeFaces, HoodBuf, Refiner};
+use super::Refiner;
 use crate::alloc::{collect_n, copied, vec_or_unwind};
 use crate::error::{Element, Error, Result};
 use crate::options::Scheme;
 use crate::output::{ChildMaps, FVarTopology, INVALID_INDEX, LevelCounts, LevelTopology};
 use crate::rules::Rule;
-use crate::topology::{Level, Split};
+use crate::topology::{Around, AroundBuf, EdgeFaces, Level, Split};
 
 impl Refiner {
     /// Element counts of `level` (`TopologyLevel::GetNumVertices` and friends).
@@ -47,7 +47,7 @@ impl Refiner {
                 count: l.vertex_count,
             });
         }
-        let mut buf = HoodBuf::default();
+        let mut buf = AroundBuf::default();
         let (faces, edges) = self.vertex_hood(level as usize, v, &mut buf);
         Ok((faces.to_vec(), edges.to_vec()))
     }
@@ -78,17 +78,13 @@ impl Refiner {
     /// The faces of edge `e` of `level`, stored or derived
     /// ([`Level::derived_relations`]).
     pub(crate) fn edge_faces_of(&self, level: usize, e: usize) -> EdgeFaces<'_> {
-        let l = &self.levels[level];
-        if l.derived_relations {
-            EdgeFaces::Derived(crate::topology::refine::derive_edge_faces(
-                &self.levels[level - 1],
-                &self.refinements[level - 1],
-                self.options.scheme == Scheme::Loop,
-                e,
-            ))
-        } else {
-            EdgeFaces::Stored(l.edge_faces_of(e))
-        }
+        self.around(level).edge_faces(e)
+    }
+
+    /// Level `level`, its relations stored or derived from the level before
+    /// ([`Level::derived_relations`]).
+    pub(crate) fn around(&self, level: usize) -> Around<'_> {
+        around(&self.levels, &self.refinements, level, self.options.scheme)
     }
 
     /// The faces of edge `e` of `level`, in OpenSubdiv's order
@@ -364,4 +360,16 @@ pub(crate) fn topology_of(
         face_holes: collect_n(l.face_count(), (0..l.face_count()).map(|f| l.is_hole(f))),
         fvar,
     }
+}
+
+/// Level `level` of `levels` (split into each other by `refinements`), its
+/// relations stored or derived from the level before, under `scheme`.
+pub(crate) fn around<'a>(
+    levels: &'a [Level],
+    refinements: &'a [Split],
+    level: usize,
+    scheme: Scheme,
+) -> Around<'a> {
+    let before = level.checked_sub(1).map(|p| (&levels[p], &refinements[p]));
+    Around::new(&levels[level], before, scheme == Scheme::Loop)
 }

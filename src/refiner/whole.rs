@@ -92,18 +92,14 @@ pub(crate) fn refine_last_with<T: Real>(
                     uniform.level as usize,
                     !uniform.full_topology_in_last_level,
                     !r.fvar.is_empty(),
+                    &r.levels[level - 1],
                 ),
             );
+            let around =
+                super::queries::around(&r.levels, &r.refinements, level - 1, r.options.scheme);
             for channel in &mut r.fvar {
                 let parent = channel.last().expect("the parent level's channel");
-                let next = fvar::refine(
-                    &r.levels[level - 1],
-                    &child,
-                    &refinement,
-                    None,
-                    parent,
-                    &r.options,
-                );
+                let next = fvar::refine(around, &child, &refinement, None, parent, &r.options);
                 channel.push(next);
             }
             r.refinements.push(refinement);

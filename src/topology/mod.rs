@@ -30,9 +30,11 @@
 //! | `manifold.rs` | the base level of a mesh whose edges are all manifold, from each vertex's corners (no edge search) | `vtr/level.cpp` (`completeTopologyFromFaceVertices`, `orientIncidentComponents`) |
 //! | `lookup.rs` | the base level's lookups (an edge by its ends, a vertex's corner in a face), mapped past 32 edges or corners | `vtr/level.cpp` (`findEdge`) |
 //! | `refine/` | [`refine_level`]: one level split into the next ([`refine`] says which file does what) | `vtr/refinement.cpp`, `quadRefinement.cpp`, `triRefinement.cpp` |
+//! | `around.rs` | a level's relations around an edge or a vertex as face-varying code reads them: stored, or derived from the level before | — |
 //! | `fvar/` | face-varying channels at one level and their split | `vtr/fvarLevel.cpp`, `fvarRefinement.cpp` |
 //! | `tests.rs` | which tables each level stores, derived relations | — |
 
+mod around;
 mod base;
 pub mod fvar;
 mod level;
@@ -45,6 +47,7 @@ mod tags;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use around::{Around, AroundBuf, EdgeFaces, Hood};
 pub use base::build_base_level;
 pub use level::{Level, unpaired_smooth_vertex};
 pub use refine::{Build, Split, refine_level};

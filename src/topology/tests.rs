@@ -273,7 +273,7 @@ fn the_level_before_a_minimal_last_level_keeps_no_face_local_indices() {
 /// they are stored.
 #[test]
 fn derived_relations_equal_the_stored_ones() {
-    let mut buf = crate::refiner::HoodBuf::default();
+    let mut buf = super::AroundBuf::default();
     let meshes = [
         shapes::torus(6, 5),
         shapes::torus_mixed(6, 4),
@@ -362,6 +362,77 @@ fn derived_relations_equal_the_stored_ones() {
     for r in refiners(&mesh, 3, false) {
         assert!(!r.levels[2].derived_relations);
         assert!(!r.levels[2].vertex_faces.is_empty());
+    }
+}
+
+/// With a face-varying channel, the level before a minimal last one
+/// derives its relations too when its parent is smooth everywhere: read
+/// through [`Around`](super::Around) — local indices included — they are the
+/// ones a full level stores, and so are the channel's face values and each
+/// corner's sibling; with a crease in the parent, the level stores them.
+#[test]
+fn channels_read_derived_relations_as_stored() {
+    let meshes = [
+        shapes::with_torus_uvs(shapes::torus(6, 5), 6, 5),
+        shapes::with_torus_uvs(shapes::torus_mixed(6, 4), 6, 4),
+        shapes::with_torus_uvs(shapes::torus_triangles(6, 5), 6, 5),
+    ];
+    let (mut a, mut b) = (super::AroundBuf::default(), super::AroundBuf::default());
+    let mut derived_levels = 0;
+    for mesh in meshes {
+        for &scheme in mesh.applicable_schemes() {
+            for depth in 2..=3 {
+                let options = Options::default().with_scheme(scheme);
+                let uniform = UniformOptions::new(depth);
+                let mut minimal = Refiner::new(&mesh, &options).unwrap();
+                minimal.refine_uniform(uniform).unwrap();
+                let mut full = Refiner::new(&mesh, &options).unwrap();
+                full.refine_uniform(uniform.full_topology(true)).unwrap();
+                let l = depth as usize - 1;
+                assert!(minimal.levels[l].derived_relations, "{scheme:?} L{depth}");
+                derived_levels += 1;
+                let (derived, stored) = (minimal.around(l), full.around(l));
+                let level = stored.level;
+                for v in 0..level.vertex_count {
+                    let (d, s) = (
+                        derived.vertex_hood(v, &mut a),
+                        stored.vertex_hood(v, &mut b),
+                    );
+                    assert_eq!(d.faces, s.faces, "{scheme:?} L{depth} v{v}");
+                    assert_eq!(d.face_locals, s.face_locals, "{scheme:?} L{depth} v{v}");
+                    assert_eq!(d.edges, s.edges, "{scheme:?} L{depth} v{v}");
+                    assert_eq!(d.edge_locals, s.edge_locals, "{scheme:?} L{depth} v{v}");
+                }
+                for e in 0..level.edge_count() {
+                    assert_eq!(derived.edge_face_count(e), stored.edge_face_count(e));
+                    for i in 0..2 {
+                        assert_eq!(derived.edge_face(e, i), stored.edge_face(e, i), "e{e}");
+                    }
+                }
+                let (dc, sc) = (&minimal.fvar[0][l], &full.fvar[0][l]);
+                assert_eq!(dc.face_values(), sc.face_values(), "{scheme:?} L{depth}");
+                let mut mismatched = 0;
+                for v in 0..level.vertex_count {
+                    let hood = stored.vertex_hood(v, &mut b);
+                    for (i, (&f, &k)) in hood.faces.iter().zip(hood.face_locals).enumerate() {
+                        let (f, k) = (f as usize, k as usize);
+                        let s = sc.corner_sibling(level, v, f, k, i);
+                        assert_eq!(s, sc.vertex_face_siblings(level, v)[i]);
+                        assert_eq!(dc.corner_sibling(level, v, f, k, i), s, "v{v} f{f}");
+                        mismatched += usize::from(s > 0);
+                    }
+                }
+                assert!(mismatched > 0, "{scheme:?} L{depth}: no seam read");
+            }
+        }
+    }
+    assert_eq!(derived_levels, 2 * (2 + 2 + 3));
+    // A semi-sharp crease in the parent: the relations are stored.
+    let mut mesh = shapes::with_torus_uvs(shapes::torus(6, 5), 6, 5);
+    mesh.add_crease(0, 1, 3.0);
+    for r in refiners(&mesh, 3, false) {
+        assert!(!r.levels[2].derived_relations);
+        assert!(r.levels[2].has_local_indices());
     }
 }
 

@@ -70,7 +70,7 @@ impl AdaptiveRefiner {
         FVarStep {
             rules: &self.rules,
             options: &self.options,
-            parent: &self.levels[level - 1],
+            parent: crate::topology::Around::stored(&self.levels[level - 1]),
             child: &self.levels[level],
             r: &self.steps[level - 1],
             pf: &self.fvar[channel][level - 1],

@@ -224,7 +224,7 @@ impl Refiner {
                 let parent_fvar = channel.last().expect("base channel");
                 let parents = Some(split.child_face_parent.as_slice());
                 let child_fvar = crate::topology::fvar::refine(
-                    parent,
+                    crate::topology::Around::stored(parent),
                     &child,
                     &split,
                     parents,

@@ -52,10 +52,11 @@ mod base;
 mod refine;
 
 pub use base::build_base;
+pub use refine::Children;
 pub(crate) use refine::missing;
-pub use refine::{Children, refine};
+pub(crate) use refine::refine;
 
-use super::{Level, Table};
+use super::{Around, Hood, Level, Table};
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
 use crate::rules::crease;
 
@@ -300,19 +301,43 @@ impl ChannelLevel {
         &self.value_tags[self.value_offsets[v] as usize..self.value_offsets[v + 1] as usize]
     }
 
-    /// Which sibling each face of vertex `v` uses (in the level's vertex-face order).
+    /// Which sibling each face of vertex `v` uses (in the level's vertex-face
+    /// order), for a level that stores its vertex-faces (not one that
+    /// derives them: see [`ChannelLevel::corner_sibling`]).
     #[inline]
     pub fn vertex_face_siblings(&self, level: &Level, v: usize) -> &[u16] {
         &self.face_siblings[level.vertex_faces.range(v)]
     }
 
+    /// Which sibling of vertex `v` face `f` of `level` uses at its corner
+    /// `k` (where `v` is): stored with the vertex-faces, or — in a refined
+    /// level, where a value is numbered as its vertex value — read from the
+    /// corner's value.
+    #[inline]
+    pub(crate) fn corner_sibling(
+        &self,
+        level: &Level,
+        v: usize,
+        f: usize,
+        k: usize,
+        i: usize,
+    ) -> u16 {
+        if self.face_siblings.is_empty() {
+            debug_assert!(self.value_indices.is_empty());
+            let value = self.face_values[level.face_vertices.start(f) + k];
+            (value - self.value_offsets[v]) as u16
+        } else {
+            self.face_siblings[level.vertex_faces.start(v) + i]
+        }
+    }
+
     /// The values at the two ends of edge `e` (in the edge's vertex order) as
     /// seen from its `i`-th face.
-    pub fn edge_face_values(&self, level: &Level, e: usize, i: usize) -> [u32; 2] {
+    pub(crate) fn edge_face_values(&self, around: &Around, e: usize, i: usize) -> [u32; 2] {
+        let level = around.level;
         let [v0, v1] = level.edge_vertices[e];
         if self.vertex_value_count(v0 as usize) + self.vertex_value_count(v1 as usize) > 2 {
-            let f = level.edge_faces_of(e)[i] as usize;
-            let k = level.edge_face_locals(e)[i] as usize;
+            let (f, k) = around.edge_face(e, i);
             let values = self.face_values_of(level, f);
             let next = if k + 1 < values.len() { k + 1 } else { 0 };
             if level.face_verts(f)[k] == v0 {
@@ -328,14 +353,20 @@ impl ChannelLevel {
         }
     }
 
-    /// The value at the far end of each edge of vertex `v`, in the level's
-    /// vertex-edge order, for a vertex where the channel is continuous.
-    pub fn vertex_edge_values(&self, level: &Level, v: usize, out: &mut Vec<u32>) {
+    /// The value at the far end of each edge of vertex `v` (whose relations
+    /// are `hood`), in the level's vertex-edge order, for a vertex where the
+    /// channel is continuous.
+    pub(crate) fn vertex_edge_values(
+        &self,
+        around: &Around,
+        hood: &Hood,
+        v: usize,
+        out: &mut Vec<u32>,
+    ) {
         out.clear();
-        let edges = level.vertex_edges_of(v);
-        let ends = level.vertex_edge_locals(v);
-        let faces = level.vertex_faces_of(v);
-        let corners = level.vertex_face_locals(v);
+        let level = around.level;
+        let (edges, ends) = (hood.edges, hood.edge_locals);
+        let (faces, corners) = (hood.faces, hood.face_locals);
         let tag = level.vertex_tag(v);
         for (i, (&e, &end)) in edges.iter().zip(ends).enumerate() {
             let other = level.edge_vertices[e as usize][1 - end as usize] as usize;
@@ -355,8 +386,7 @@ impl ChannelLevel {
                 }
             } else {
                 // No order around v to rely on: read the edge's first face.
-                let f = level.edge_faces_of(e as usize)[0] as usize;
-                let k = level.edge_face_locals(e as usize)[0] as usize;
+                let (f, k) = around.edge_face(e as usize, 0);
                 let values = self.face_values_of(level, f);
                 if level.face_verts(f)[k] as usize == other {
                     values[k]
@@ -369,13 +399,18 @@ impl ChannelLevel {
     }
 
     /// The values at the two ends of the crease that sibling `s` of vertex `v`
-    /// lies on: the corner after `v` in the span's first face and the corner
-    /// before `v` in its last face. Only channels with smooth boundaries keep
-    /// crease spans.
-    pub fn crease_end_values(&self, level: &Level, v: usize, s: usize) -> [u32; 2] {
+    /// (whose relations are `hood`) lies on: the corner after `v` in the
+    /// span's first face and the corner before `v` in its last face. Only
+    /// channels with smooth boundaries keep crease spans.
+    pub(crate) fn crease_end_values(
+        &self,
+        level: &Level,
+        hood: &Hood,
+        v: usize,
+        s: usize,
+    ) -> [u32; 2] {
         let [start, end] = self.crease_ends[self.value_offsets[v] as usize + s];
-        let faces = level.vertex_faces_of(v);
-        let corners = level.vertex_face_locals(v);
+        let (faces, corners) = (hood.faces, hood.face_locals);
         let first = self.face_values_of(level, faces[start as usize] as usize);
         let last = self.face_values_of(level, faces[end as usize] as usize);
         let k0 = corners[start as usize] as usize;
@@ -389,11 +424,13 @@ impl ChannelLevel {
     /// The weight of the corner mask when sibling `s` of parent vertex `v`
     /// turns from a semi-sharp corner into a crease: the fractional weight of
     /// the vertex's sharpness and of the edges inside the value's span, as
-    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child).
-    /// Only channels with smooth boundaries keep crease spans.
-    pub fn fractional_weight(
+    /// they decay from `parent` to `child` (whose vertex `c` is `v`'s child;
+    /// `hood`: `v`'s relations in `parent`). Only channels with smooth
+    /// boundaries keep crease spans.
+    pub(crate) fn fractional_weight(
         &self,
         (parent, child): (&Level, &Level),
+        hood: &Hood,
         v: usize,
         s: usize,
         c: usize,
@@ -401,8 +438,8 @@ impl ChannelLevel {
     ) -> f32 {
         let [start, end] = self.crease_ends[self.value_offsets[v] as usize + s];
         let (start, end) = (start as usize, end as usize);
-        let p_edges = parent.vertex_edges_of(v);
-        let c_edges = child_vertex_edge_sharpness(parent, child, v, c, creasing);
+        let p_edges = hood.edges;
+        let c_edges = child_vertex_edge_sharpness((parent, child), hood, c, creasing);
         let mut p_sharpness = Vec::with_capacity(p_edges.len());
         let mut c_sharpness = Vec::with_capacity(p_edges.len());
         // The edges strictly inside the span: between its consecutive faces.
@@ -429,15 +466,15 @@ impl ChannelLevel {
     }
 }
 
-/// The sharpness of the edges of child vertex `c`, the child of parent
-/// vertex `v`, in the order of `v`'s edges: read from a child level that
-/// keeps its vertex-edges, or — in a minimal last level, which keeps no
-/// edges — the halves of `v`'s edges at `v` decayed from the parent as the
-/// child's tags are (`refine::child_edge`).
+/// The sharpness of the edges of child vertex `c`, the child of the parent
+/// vertex whose relations in `parent` are `hood`, in the order of that
+/// vertex's edges: read from a child level that keeps its vertex-edges, or —
+/// in a level that keeps none or derives them — the halves of the parent
+/// vertex's edges at that vertex decayed from the parent as the child's tags
+/// are (`refine::child_edge`).
 pub(super) fn child_vertex_edge_sharpness(
-    parent: &Level,
-    child: &Level,
-    v: usize,
+    (parent, child): (&Level, &Level),
+    hood: &Hood,
     c: usize,
     creasing: CreasingMethod,
 ) -> Vec<f32> {
@@ -449,10 +486,9 @@ pub(super) fn child_vertex_edge_sharpness(
             .collect();
     }
     let mut around = Vec::new();
-    parent
-        .vertex_edges_of(v)
+    hood.edges
         .iter()
-        .zip(parent.vertex_edge_locals(v))
+        .zip(hood.edge_locals)
         .map(|(&e, &end)| {
             crate::topology::refine::child_edge(
                 parent,

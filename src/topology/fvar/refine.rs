@@ -7,7 +7,7 @@ use crate::options::{CreasingMethod, Options, Scheme};
 use crate::output::INVALID_INDEX;
 use crate::rules::crease;
 use crate::topology::refine::sparse::SparseSplit;
-use crate::topology::{Level, Split, Table};
+use crate::topology::{Around, AroundBuf, Level, Split, Table};
 
 /// How a refinement step numbers the children of its parent: uniformly
 /// ([`Split`]: every child exists) or sparsely ([`SparseSplit`]: a child not
@@ -169,14 +169,16 @@ impl FaceSplit {
 /// the children that exist get values, and as in OpenSubdiv the crease ends
 /// of an incomplete edge point stay unset (nothing refines it further).
 /// `child_face_parent` gives a child face's parent face in a sparse step.
-pub fn refine<R: Children>(
-    parent: &Level,
+/// `parent`'s relations are read stored or derived ([`Around`]).
+pub(crate) fn refine<R: Children>(
+    around: Around,
     child: &Level,
     r: &R,
     child_face_parent: Option<&[u32]>,
     parent_fvar: &ChannelLevel,
     options: &Options,
 ) -> ChannelLevel {
+    let parent = around.level;
     let p = parent_fvar;
     let split = FaceSplit::of(options.scheme);
     let mode = p.mode;
@@ -207,7 +209,7 @@ pub fn refine<R: Children>(
             continue;
         }
         value_offsets[c as usize + 1] = if p.edge_tags[e].is_mismatch() {
-            parent.edge_faces.count(e).max(1) as u32
+            around.edge_face_count(e).max(1) as u32
         } else {
             1
         };
@@ -234,13 +236,14 @@ pub fn refine<R: Children>(
 
     // A minimal last level keeps no vertex-faces: its face values come
     // straight from the parent's faces, and — nothing refines it further —
-    // it keeps no siblings, edge tags or crease spans.
+    // it keeps no siblings, edge tags or crease spans. A level that derives
+    // its relations keeps no vertex-faces either: its face values come from
+    // the parent's faces too, and its siblings are read from them when it is
+    // refined ([`ChannelLevel::corner_sibling`]).
     let with_siblings = child.vertex_faces.len() == child.vertex_count;
-    let last = !with_siblings;
-    // Sparse levels are built whole; a minimal level's parent keeps its
-    // local indices (`Build::for_level` with face-varying channels).
-    debug_assert!(!(R::SPARSE && last));
-    debug_assert!(!last || parent.vertex_face_local.len() == parent.vertex_faces.members.len());
+    let last = !with_siblings && !child.derived_relations;
+    // Sparse levels are built whole.
+    debug_assert!(!R::SPARSE || with_siblings);
     let mut fvar = ChannelLevel {
         mode,
         value_count: total,
@@ -267,8 +270,12 @@ pub fn refine<R: Children>(
 
     // Siblings of the faces around child vertices with several values.
     for e in (0..ne).filter(|_| with_siblings) {
-        let e_faces = parent.edge_faces_of(e);
-        if !p.edge_tags[e].is_mismatch() || e_faces.len() < 2 {
+        if !p.edge_tags[e].is_mismatch() {
+            continue;
+        }
+        let e_faces = around.edge_faces(e);
+        let e_faces = e_faces.as_slice();
+        if e_faces.len() < 2 {
             continue;
         }
         let c = r.edge_child(e);
@@ -289,6 +296,7 @@ pub fn refine<R: Children>(
             }
         }
     }
+    let mut buf = AroundBuf::default();
     for v in 0..nv {
         let c = r.vertex_child(v);
         if missing::<R>(c) {
@@ -297,7 +305,15 @@ pub fn refine<R: Children>(
         let c = c as usize;
         if count(&fvar.value_offsets, c) > 1 && with_siblings {
             let range = child.vertex_faces.range(c);
-            fvar.face_siblings[range].copy_from_slice(p.vertex_face_siblings(parent, v));
+            let hood = around.vertex_hood(v, &mut buf);
+            let corners = hood.faces.iter().zip(hood.face_locals);
+            for (i, (slot, (&f, &k))) in fvar.face_siblings[range]
+                .iter_mut()
+                .zip(corners)
+                .enumerate()
+            {
+                *slot = p.corner_sibling(parent, v, f as usize, k as usize, i);
+            }
         }
     }
 
@@ -381,12 +397,12 @@ pub fn refine<R: Children>(
         }
     }
     if mode.has_crease_ends() {
-        reclassify_semi_sharp(parent, child, r, p, &mut fvar, options.creasing);
+        reclassify_semi_sharp(around, child, r, p, &mut fvar, options.creasing);
     }
 
     // Face values: each corner's vertex value, offset by its sibling.
     fvar.face_values = if total > ncv && !with_siblings {
-        face_values_from_parent(parent, child, r, split, p, &fvar.value_offsets)
+        face_values_from_parent(around, child, r, split, p, &fvar.value_offsets)
     } else if total > ncv {
         let mut values = first_values(child, &fvar.value_offsets);
         for c in (0..ncv).filter(|&c| count(&fvar.value_offsets, c) > 1) {
@@ -428,13 +444,14 @@ fn first_values(child: &Level, offsets: &[u32]) -> Table<u32> {
 /// (the last position of that face among the edge's faces, as
 /// [`refine`] numbers them through the child's vertex-faces).
 fn face_values_from_parent<R: Children>(
-    parent: &Level,
+    around: Around,
     child: &Level,
     r: &R,
     split: FaceSplit,
     p: &ChannelLevel,
     offsets: &[u32],
 ) -> Table<u32> {
+    let parent = around.level;
     let mut values = first_values(child, offsets);
     // Where the children of parent face `f`'s corner `k` and of its edge
     // `k` lie among the child corners: the vertex child's corner, and the
@@ -476,6 +493,7 @@ fn face_values_from_parent<R: Children>(
             }
         }
     };
+    let mut buf = AroundBuf::default();
     for v in 0..parent.vertex_count {
         // Only a child with several values: a parent vertex whose first
         // value is not tagged mismatched passes one value on, whatever its
@@ -484,24 +502,25 @@ fn face_values_from_parent<R: Children>(
         if offsets[c + 1] - offsets[c] < 2 {
             continue;
         }
-        let siblings = p.vertex_face_siblings(parent, v);
-        for ((&f, &k), &s) in parent
-            .vertex_faces_of(v)
-            .iter()
-            .zip(parent.vertex_face_locals(v))
-            .zip(siblings)
-        {
+        let hood = around.vertex_hood(v, &mut buf);
+        for (i, (&f, &k)) in hood.faces.iter().zip(hood.face_locals).enumerate() {
+            let s = p.corner_sibling(parent, v, f as usize, k as usize, i);
             values[vertex_corner(f as usize, k as usize)] += u32::from(s);
         }
     }
     for e in 0..parent.edge_count() {
-        let faces = parent.edge_faces_of(e);
-        if !p.edge_tags[e].is_mismatch() || faces.len() < 2 {
+        if !p.edge_tags[e].is_mismatch() {
             continue;
         }
-        for (&f, &k) in faces.iter().zip(parent.edge_face_locals(e)) {
+        let faces = around.edge_faces(e);
+        let faces = faces.as_slice();
+        if faces.len() < 2 {
+            continue;
+        }
+        for (i, &f) in faces.iter().enumerate() {
+            let k = around.edge_face(e, i).1;
             let j = faces.iter().rposition(|&g| g == f).unwrap_or(0) as u32;
-            let (at, n) = edge_corners(f as usize, k as usize);
+            let (at, n) = edge_corners(f as usize, k);
             for &corner in &at[..n] {
                 values[corner] += j;
             }
@@ -514,13 +533,14 @@ fn face_values_from_parent<R: Children>(
 /// semi-sharp edge is left inside their span (or the vertex lost all its
 /// semi-sharp features).
 fn reclassify_semi_sharp<R: Children>(
-    parent: &Level,
+    around: Around,
     child: &Level,
     r: &R,
     p: &ChannelLevel,
     fvar: &mut ChannelLevel,
     creasing: CreasingMethod,
 ) {
+    let parent = around.level;
     for v in 0..parent.vertex_count {
         let c = r.vertex_child(v);
         if missing::<R>(c) || !r.complete(c as usize) {
@@ -547,7 +567,9 @@ fn reclassify_semi_sharp<R: Children>(
             }
             continue;
         }
-        let c_edges = super::child_vertex_edge_sharpness(parent, child, v, c, creasing);
+        let mut buf = AroundBuf::default();
+        let hood = around.vertex_hood(v, &mut buf);
+        let c_edges = super::child_vertex_edge_sharpness((parent, child), &hood, c, creasing);
         let p_first = p.value_offsets[v] as usize;
         let semi = |k: usize| crease::is_semi_sharp(c_edges[k]);
         for i in range.clone() {

@@ -313,10 +313,44 @@ pub(crate) fn derive_edge_faces(parent: &Level, r: &Split, triangles: bool, c: u
     } else {
         // Edge `j` inside face `f`: its children `j` and `j + 1`.
         let f = parent.face_vertices.element_of(c);
-        let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
-        let j = c - base;
-        [(base + j) as u32, (base + next(j, n)) as u32]
+        inner_quad_edge_faces(parent, f, c)
     }
+}
+
+/// The two faces of child edge `c` inside parent face `f` of a quad split:
+/// its children `j` and `j + 1`, for the face's edge `j`.
+#[inline(always)]
+fn inner_quad_edge_faces(parent: &Level, f: usize, c: usize) -> [u32; 2] {
+    let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
+    let j = c - base;
+    [(base + j) as u32, (base + next(j, n)) as u32]
+}
+
+/// [`derive_edge_faces`] of child edge `c` of a quad split, for edges met in
+/// order: the parent face of an edge inside a face is looked for first in
+/// `hint` (the face of the edge before, updated) and the face after it,
+/// searched for only when neither holds it (faces of mixed sizes).
+#[inline(always)]
+pub(crate) fn derive_quad_edge_faces_in_order(
+    parent: &Level,
+    r: &Split,
+    c: usize,
+    hint: &mut usize,
+) -> [u32; 2] {
+    if c >= r.parent_corners {
+        return derive_edge_faces(parent, r, false, c);
+    }
+    let fv = &parent.face_vertices;
+    let holds = |f: usize| f < fv.len() && c >= fv.start(f) && c < fv.start(f) + fv.count(f);
+    let f = if holds(*hint) {
+        *hint
+    } else if holds(*hint + 1) {
+        *hint + 1
+    } else {
+        fv.element_of(c)
+    };
+    *hint = f;
+    inner_quad_edge_faces(parent, f, c)
 }
 
 /// The faces of both halves of parent edge `e` ([`derive_edge_faces`] of

@@ -51,7 +51,8 @@ mod tri;
 
 pub(crate) use derive::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
-    derive_limit_ring, derive_smooth_hood, derive_vertex_relations,
+    derive_limit_ring, derive_quad_edge_faces_in_order, derive_smooth_hood,
+    derive_vertex_relations,
 };
 pub(crate) use tags::child_edge;
 pub use tags::child_edge_sharpness;
@@ -157,7 +158,9 @@ pub enum Build {
     /// Where the parent is smooth everywhere (no sharpness, no tags, two
     /// faces on every edge), the vertex-faces, vertex-edges and edge-faces
     /// are left out too and derived from the parent when interpolation reads
-    /// them ([`Level::derived_relations`]).
+    /// them ([`Level::derived_relations`]); face-varying refinement and
+    /// interpolation then derive the local indices as well, so a mesh with
+    /// channels builds this level only from such a parent.
     Relations,
     /// Only the face-vertices (with vertex sharpness, tags and holes): what
     /// a last level needs for interpolation, as OpenSubdiv builds it unless
@@ -170,15 +173,27 @@ pub enum Build {
 }
 
 impl Build {
-    /// What level `level` of a refinement to `last` builds, when the last
-    /// level is `minimal` or not, for a mesh with face-varying channels
-    /// (`fvar`: the level before a minimal last one keeps all of its
-    /// relations and their local indices, which face-varying refinement and
-    /// interpolation read) or without.
-    pub fn for_level(level: usize, last: usize, minimal: bool, fvar: bool) -> Build {
+    /// What level `level` of a refinement to `last` builds from `parent`
+    /// (level `level - 1`), when the last level is `minimal` or not, for a
+    /// mesh with face-varying channels (`fvar`) or without. With channels,
+    /// the level before a minimal last one keeps all of its relations and
+    /// their local indices, which face-varying refinement and interpolation
+    /// read — unless `parent` is smooth everywhere, so that the level
+    /// derives them from `parent` ([`Level::derived_relations`]), local
+    /// indices included, for the channels as for the vertex data.
+    pub fn for_level(
+        level: usize,
+        last: usize,
+        minimal: bool,
+        fvar: bool,
+        parent: &Level,
+    ) -> Build {
         match (minimal, fvar) {
             (true, _) if level == last => Build::Minimal,
             (true, false) if level + 1 == last => Build::Relations,
+            (true, true) if level + 1 == last && derive::vertex_relations_derivable(parent) => {
+                Build::Relations
+            }
             _ => Build::Full,
         }
     }
