@@ -40,7 +40,7 @@ use crate::stencil::StencilTable;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use rustc_hash::FxHashMap;
-use std::sync::atomic::AtomicUsize;
+use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
@@ -62,6 +62,10 @@ pub struct SurfaceFactory {
     /// Regular faces' evaluation plans: B-spline patches by boundary mask,
     /// then box-spline patches by boundary mask.
     regular_plans: Vec<Arc<Plans>>,
+    /// Per base face, whether the refiner's shortcut makes it regular, once
+    /// asked (0 not yet, 1 yes, 2 no): a mesher asks for each face's
+    /// validity, vertex and face-varying surfaces.
+    shortcut: Vec<AtomicU8>,
 }
 
 /// What makes two control hulls refine alike: their faces, sharpness and
@@ -171,12 +175,53 @@ pub(super) struct Irregular {
     pub(super) plans: Plans,
 }
 
+/// A surface's control points: inline up to a regular patch's 16 (no
+/// allocation for regular and linear surfaces, which a mesher builds face
+/// after face), else on the heap.
+#[derive(Debug, Clone)]
+pub(super) enum ControlPoints {
+    Inline { len: u8, points: [u32; 16] },
+    Heap(Vec<u32>),
+}
+
+impl ControlPoints {
+    /// A copy of `points`.
+    pub(super) fn from_slice(points: &[u32]) -> ControlPoints {
+        if points.len() <= 16 {
+            let mut inline = [0; 16];
+            inline[..points.len()].copy_from_slice(points);
+            ControlPoints::Inline {
+                len: points.len() as u8,
+                points: inline,
+            }
+        } else {
+            ControlPoints::Heap(points.to_vec())
+        }
+    }
+}
+
+impl std::ops::Deref for ControlPoints {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        match self {
+            ControlPoints::Inline { len, points } => &points[..usize::from(*len)],
+            ControlPoints::Heap(points) => points,
+        }
+    }
+}
+
+impl From<Vec<u32>> for ControlPoints {
+    fn from(points: Vec<u32>) -> ControlPoints {
+        ControlPoints::Heap(points)
+    }
+}
+
 /// One base face's limit surface (`Bfr::Surface<double>`).
 #[derive(Debug)]
 pub struct Surface {
     pub(super) face: usize,
     pub(super) param: Parameterization,
-    pub(super) control_points: Vec<u32>,
+    pub(super) control_points: ControlPoints,
     pub(super) patch_points: usize,
     pub(super) form: Form,
 }
@@ -199,8 +244,11 @@ impl SurfaceFactory {
         let refiner = Refiner::new(mesh, options)?;
         let features = base_features(&refiner.levels[0], options.scheme);
         let budget = Arc::new(AtomicUsize::new(PLAN_BUDGET));
+        let faces = refiner.levels[0].face_count();
+        let mut shortcut = Vec::new();
+        crate::alloc::reserve(&mut shortcut, faces)?;
+        shortcut.extend((0..faces).map(|_| AtomicU8::new(0)));
         Ok(SurfaceFactory {
-            refiner,
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
@@ -208,6 +256,8 @@ impl SurfaceFactory {
                 .map(|_| Arc::new(Plans::new(budget.clone())))
                 .collect(),
             plan_budget: budget,
+            shortcut,
+            refiner,
         })
     }
 
@@ -248,6 +298,18 @@ impl SurfaceFactory {
         self.refiner.options.scheme
     }
 
+    /// The base level's edges (the edge of each face corner, each edge's
+    /// vertices) when every pair of vertices has one edge: no vertex is
+    /// non-manifold (degenerate edges and edges twice in a face get one
+    /// edge per instance, and tag their vertices).
+    pub(super) fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
+        let base = &self.refiner.levels[0];
+        if (0..base.vertex_count).any(|v| base.vertex_tag(v).non_manifold()) {
+            return None;
+        }
+        Some((&base.face_edges, &base.edge_vertices))
+    }
+
     fn reg_size(&self) -> usize {
         if self.scheme() == Scheme::Loop { 3 } else { 4 }
     }
@@ -265,7 +327,22 @@ impl SurfaceFactory {
         if self.scheme() == Scheme::Bilinear {
             return Ok(Neighbourhood::Linear(param));
         }
-        if self.shortcut_regular(base, face) {
+        let known = self
+            .shortcut
+            .get(face)
+            .map_or(0, |s| s.load(Ordering::Relaxed));
+        let shortcut = match known {
+            1 => true,
+            2 => false,
+            _ => {
+                let regular = self.shortcut_regular(base, face);
+                if let Some(s) = self.shortcut.get(face) {
+                    s.store(if regular { 1 } else { 2 }, Ordering::Relaxed);
+                }
+                regular
+            }
+        };
+        if shortcut {
             return Ok(Neighbourhood::Shortcut(param));
         }
         match self.corners(face) {
@@ -323,8 +400,8 @@ impl SurfaceFactory {
             Neighbourhood::Invalid(param) => Ok(Surface::invalid(face, param)),
             Neighbourhood::Linear(param) => Ok(self.linear(face, param, base.face_verts(face))),
             Neighbourhood::Shortcut(param) => {
-                let (control_points, mask) = shortcut_points(base, face, |f| base.face_verts(f));
-                Ok(self.regular(face, param, control_points, mask))
+                let (points, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+                Ok(self.regular(face, param, &points[..len], mask))
             }
             Neighbourhood::Corners {
                 param,
@@ -361,8 +438,8 @@ impl SurfaceFactory {
             }
             Neighbourhood::Shortcut(param) => {
                 if fvar_topology_matches(base, chan, face) {
-                    let (control_points, mask) = shortcut_points(base, face, values);
-                    return Ok(self.regular(face, param, control_points, mask));
+                    let (points, len, mask) = shortcut_points(base, face, values);
+                    return Ok(self.regular(face, param, &points[..len], mask));
                 }
                 match self.corners(face) {
                     Some((corners, subsets)) => (param, corners, subsets),
@@ -396,7 +473,7 @@ impl SurfaceFactory {
         &self,
         face: usize,
         param: Parameterization,
-        control_points: Vec<u32>,
+        control_points: &[u32],
         mask: u16,
     ) -> Surface {
         let (patch, plans) = if self.reg_size() == 4 {
@@ -408,7 +485,7 @@ impl SurfaceFactory {
             face,
             param,
             patch_points: control_points.len(),
-            control_points,
+            control_points: ControlPoints::from_slice(control_points),
             form: Form::Regular {
                 patch,
                 mask,
@@ -432,7 +509,7 @@ impl SurfaceFactory {
             .fold(CornerTag::default(), |t, s| t.or(s.tag));
         if is_regular(subsets, tag, self.reg_size()) {
             let control_points = subset_points(corners, subsets);
-            return Ok(self.regular(face, param, control_points, subset_mask(subsets)));
+            return Ok(self.regular(face, param, &control_points, subset_mask(subsets)));
         }
         let options = self.refiner.options;
         let hull = hull(corners, subsets, tag);
@@ -482,7 +559,7 @@ impl SurfaceFactory {
         Ok(Surface {
             face,
             param,
-            control_points: hull.control_points,
+            control_points: hull.control_points.into(),
             patch_points: base_count + refined + end_caps,
             form: Form::Irregular(irregular),
         })
@@ -508,7 +585,7 @@ impl SurfaceFactory {
         Surface {
             face,
             param,
-            control_points: verts.to_vec(),
+            control_points: ControlPoints::from_slice(verts),
             patch_points: if regular {
                 verts.len()
             } else {
@@ -525,10 +602,11 @@ impl SurfaceFactory {
         if verts.len() != self.reg_size() {
             return false;
         }
-        let tags: Vec<Tag> = verts
-            .iter()
-            .map(|&v| Tag::of(base, &self.features, v as usize))
-            .collect();
+        let mut tags = [Tag::default(); 4];
+        for (t, &v) in tags.iter_mut().zip(verts) {
+            *t = Tag::of(base, &self.features, v as usize);
+        }
+        let tags = &tags[..verts.len()];
         let f = tags.iter().fold(Tag::default(), |a, &b| a.or(b));
         if f.features.xordinary
             || f.non_manifold
@@ -542,7 +620,7 @@ impl SurfaceFactory {
         if !f.boundary {
             return !(f.inf_sharp || f.inf_sharp_edges);
         }
-        verts.iter().zip(&tags).all(|(&v, t)| {
+        verts.iter().zip(tags).all(|(&v, t)| {
             let rule = base.vertex_tag(v as usize).rule();
             if !t.boundary {
                 rule == Rule::Smooth

@@ -130,6 +130,9 @@ impl FaceSurfaces for MeshSurfaces {
         let surface = self.factory.vertex_surface(face)?;
         surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
     }
+    fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
+        self.factory.base_edges()
+    }
     fn evaluate_fvar_into(
         &self,
         face: usize,
