@@ -32,7 +32,7 @@ use crate::options::{
     AdaptiveOptions, BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options,
     Scheme, TriangleSubdivision,
 };
-use crate::patches::{EndCapType, PatchMap, PatchOptions, PatchTable, PatchType};
+use crate::patches::{Derivatives, EndCapType, PatchMap, PatchOptions, PatchTable, PatchType};
 use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::rules::Rule;
@@ -409,6 +409,44 @@ impl SurfaceFactory {
                 subsets,
             } => self.nonlinear(face, param, &corners, &subsets),
         }
+    }
+
+    /// The vertex surface of base face `face` (points of 3 values in
+    /// `points`) evaluated at `coords` into `out` without building it, when
+    /// the refiner's shortcut makes it a B-spline patch and its kind keeps a
+    /// plan for `coords` (`plans.rs`): the plan applied straight to the
+    /// shortcut's 16 points, as [`Surface::evaluate_into`] would. `None`
+    /// otherwise: the caller builds the surface.
+    pub(super) fn evaluate_shortcut_into(
+        &self,
+        face: usize,
+        points: &[f64],
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Option<()> {
+        if self.reg_size() != 4
+            || out.len() != derivatives.columns()
+            || out.iter().any(|c| c.len() != 3 * coords.len())
+            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
+        {
+            return None;
+        }
+        let base = &self.refiner.levels[0];
+        let (control, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+        let control = &control[..len];
+        if len != 16 || control.iter().any(|&v| 3 * (v as usize + 1) > points.len()) {
+            return None;
+        }
+        let plan = self
+            .regular_plans
+            .get((mask & 15) as usize)?
+            .kept(coords, derivatives)?;
+        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
+            return None;
+        }
+        super::surface_eval::apply_dense::<3>(&plan, control, points, 3.into(), out);
+        Some(())
     }
 
     /// The surface of face-varying channel `channel` over base face `face`

@@ -127,6 +127,14 @@ impl FaceSurfaces for MeshSurfaces {
         derivatives: Derivatives,
         out: &mut [&mut [f64]],
     ) -> Result<()> {
+        // A regular face whose plan is kept: no surface built.
+        if self
+            .factory
+            .evaluate_shortcut_into(face, &self.points, coords, derivatives, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         let surface = self.factory.vertex_surface(face)?;
         surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
     }

@@ -171,6 +171,8 @@ pub struct TessellatedMesh {
 /// its coordinates and facets (pattern indices, `-1` padding a short
 /// facet), computed once.
 struct Pattern {
+    /// The rate of each edge (their number: the face's size).
+    rates: Vec<u32>,
     tess: Tessellation,
     coords: Vec<[f64; 2]>,
     facets: Vec<i32>,
@@ -308,22 +310,29 @@ pub fn tessellate(
         let face_edges = &corner_edge[mesh.face_offsets[f] as usize..][..n];
         rates.clear();
         rates.extend(face_edges.iter().map(|&e| edge_rate[e as usize]));
-        let pattern = match pattern_of.get(rates.as_slice()) {
-            Some(&p) => p,
-            None => {
-                let param = Parameterization::new(scheme, n)?;
-                let tess = Tessellation::new(param, &rates, tess_options)?;
-                let facets = tess.facets()?;
-                patterns.push(Pattern {
-                    coords: tess.coords::<f64>()?,
-                    corners: facets.iter().filter(|&&c| c >= 0).count(),
-                    facets,
-                    tess,
-                });
-                let p = (patterns.len() - 1) as u32;
-                pattern_of.insert(rates.clone(), p);
-                p
-            }
+        // The previous face's pattern when the rates are the same (at a
+        // uniform rate, nearly every face): no hashing.
+        let last = plans.last().map(|p: &FacePlan| p.pattern);
+        let pattern = match last.filter(|&p| patterns[p as usize].rates == rates) {
+            Some(p) => p,
+            None => match pattern_of.get(rates.as_slice()) {
+                Some(&p) => p,
+                None => {
+                    let param = Parameterization::new(scheme, n)?;
+                    let tess = Tessellation::new(param, &rates, tess_options)?;
+                    let facets = tess.facets()?;
+                    patterns.push(Pattern {
+                        rates: rates.clone(),
+                        coords: tess.coords::<f64>()?,
+                        corners: facets.iter().filter(|&&c| c >= 0).count(),
+                        facets,
+                        tess,
+                    });
+                    let p = (patterns.len() - 1) as u32;
+                    pattern_of.insert(rates.clone(), p);
+                    p
+                }
+            },
         };
         room = room.saturating_add(patterns[pattern as usize].tess.num_coords());
         plans.push(FacePlan {

@@ -78,6 +78,17 @@ pub(crate) fn shortcut_points<'a>(
         };
         let mine = vfaces.iter().position(|&f| f as usize == face).unwrap_or(0);
         let reg = if quad { 4 } else { 6 };
+        if quad && vfaces.len() == 4 {
+            // The opposite quad's points, its indices looked up once.
+            let opp = wrap(mine + 2, 4);
+            let (f, l) = (fv(opp), usize::from(locals[opp]));
+            if f.len() == 4 {
+                for (d, &slot) in corner.iter().enumerate() {
+                    p[slot] = i64::from(f[(l + d) & 3]);
+                }
+                continue;
+            }
+        }
         if vfaces.len() == reg {
             let opp = wrap(mine + reg / 2, reg);
             if quad {

@@ -521,9 +521,9 @@ impl Surface {
                             && plan.indices.len() == 16 * coords.len() =>
                     {
                         match layout.size {
-                            1 => self.apply_dense::<1>(&plan, points, layout, out),
-                            2 => self.apply_dense::<2>(&plan, points, layout, out),
-                            3 => self.apply_dense::<3>(&plan, points, layout, out),
+                            1 => apply_dense::<1>(&plan, &self.control_points, points, layout, out),
+                            2 => apply_dense::<2>(&plan, &self.control_points, points, layout, out),
+                            3 => apply_dense::<3>(&plan, &self.control_points, points, layout, out),
                             _ => return self.apply_plan(&plan, points, layout, out),
                         }
                         Ok(())
@@ -744,34 +744,6 @@ impl Surface {
         Ok(())
     }
 
-    /// A B-spline patch's plan (16 weights per coordinate over the 16
-    /// control points in order, coordinates in order) applied to points of
-    /// `N` values: [`apply_terms`] without the indices, the same sums in
-    /// the same order.
-    fn apply_dense<const N: usize>(
-        &self,
-        plan: &LocationStencils,
-        points: &[f64],
-        layout: PointDescriptor,
-        columns: &mut [&mut [f64]],
-    ) {
-        let mut control = [[0.0; N]; 16];
-        for (d, &cv) in control.iter_mut().zip(self.control_points.iter()) {
-            d.copy_from_slice(layout.point(points, cv as usize));
-        }
-        for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
-            for (w, out) in weights.chunks_exact(16).zip(column.chunks_exact_mut(N)) {
-                let mut acc = [0.0; N];
-                for (&wt, p) in w.iter().zip(&control) {
-                    for k in 0..N {
-                        acc[k] += wt * p[k];
-                    }
-                }
-                out.copy_from_slice(&acc);
-            }
-        }
-    }
-
     /// The stencils at `coords` applied to `points`, the stencils' weights
     /// going to the points at `indices`.
     fn apply_stencils(
@@ -807,6 +779,35 @@ impl Surface {
             width,
             values: Partials::from_columns(columns),
         })
+    }
+}
+
+/// A B-spline patch's plan (16 weights per coordinate over the 16
+/// control points in order, coordinates in order) applied to points of
+/// `N` values (`control_points` the patch's 16 indices into `points`):
+/// [`apply_terms`] without the indices, the same sums in
+/// the same order.
+pub(super) fn apply_dense<const N: usize>(
+    plan: &LocationStencils,
+    control_points: &[u32],
+    points: &[f64],
+    layout: PointDescriptor,
+    columns: &mut [&mut [f64]],
+) {
+    let mut control = [[0.0; N]; 16];
+    for (d, &cv) in control.iter_mut().zip(control_points) {
+        d.copy_from_slice(layout.point(points, cv as usize));
+    }
+    for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
+        for (w, out) in weights.chunks_exact(16).zip(column.chunks_exact_mut(N)) {
+            let mut acc = [0.0; N];
+            for (&wt, p) in w.iter().zip(&control) {
+                for k in 0..N {
+                    acc[k] += wt * p[k];
+                }
+            }
+            out.copy_from_slice(&acc);
+        }
     }
 }
 
