@@ -449,6 +449,62 @@ impl SurfaceFactory {
         Some(())
     }
 
+    /// [`SurfaceFactory::evaluate_shortcut_into`] for face-varying channel
+    /// `channel` (its `values`, `width` each, at most 3): when its surface
+    /// over `face` is the B-spline patch of the refiner's shortcut (the
+    /// channel matches the vertex topology around the face, as
+    /// [`SurfaceFactory::fvar_surface`] asks) and a plan for `coords` is
+    /// kept.
+    pub(super) fn evaluate_fvar_shortcut_into(
+        &self,
+        face: usize,
+        channel: usize,
+        values: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        out: &mut [f64],
+    ) -> Option<()> {
+        let linear = self.scheme() == Scheme::Bilinear
+            || self.refiner.options.fvar == FVarLinearInterpolation::All;
+        if linear
+            || self.reg_size() != 4
+            || !(1..=3).contains(&width)
+            || out.len() != width * coords.len()
+            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
+        {
+            return None;
+        }
+        let base = &self.refiner.levels[0];
+        let chan = self.refiner.fvar.get(channel)?.first()?;
+        if !fvar_topology_matches(base, chan, face) {
+            return None;
+        }
+        let (control, len, mask) = shortcut_points(base, face, |f| chan.face_values_of(base, f));
+        let control = &control[..len];
+        if len != 16
+            || control
+                .iter()
+                .any(|&v| width * (v as usize + 1) > values.len())
+        {
+            return None;
+        }
+        let plan = self
+            .regular_plans
+            .get((mask & 15) as usize)?
+            .kept(coords, Derivatives::None)?;
+        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
+            return None;
+        }
+        let layout = width.into();
+        let out = &mut [out];
+        match width {
+            1 => super::surface_eval::apply_dense::<1>(&plan, control, values, layout, out),
+            2 => super::surface_eval::apply_dense::<2>(&plan, control, values, layout, out),
+            _ => super::surface_eval::apply_dense::<3>(&plan, control, values, layout, out),
+        }
+        Some(())
+    }
+
     /// The surface of face-varying channel `channel` over base face `face`
     /// (`InitFaceVaryingSurface`): linear where the channel is (the
     /// bilinear scheme, `FVarLinearInterpolation::All`), else built as the

@@ -152,6 +152,14 @@ impl FaceSurfaces for MeshSurfaces {
             channel,
             count: self.fvar.len(),
         })?;
+        // A regular face whose plan is kept: no surface built.
+        if self
+            .factory
+            .evaluate_fvar_shortcut_into(face, channel, values, *width, coords, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         let surface: Surface = self.factory.fvar_surface(face, channel)?;
         surface.evaluate_into(
             values,
