@@ -32,7 +32,7 @@ use crate::options::{
     AdaptiveOptions, BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Options,
     Scheme, TriangleSubdivision,
 };
-use crate::patches::{EndCapType, PatchMap, PatchOptions, PatchTable, PatchType};
+use crate::patches::{Derivatives, EndCapType, PatchMap, PatchOptions, PatchTable, PatchType};
 use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::rules::Rule;
@@ -40,7 +40,7 @@ use crate::stencil::StencilTable;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use rustc_hash::FxHashMap;
-use std::sync::atomic::AtomicUsize;
+use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
@@ -62,6 +62,10 @@ pub struct SurfaceFactory {
     /// Regular faces' evaluation plans: B-spline patches by boundary mask,
     /// then box-spline patches by boundary mask.
     regular_plans: Vec<Arc<Plans>>,
+    /// Per base face, whether the refiner's shortcut makes it regular, once
+    /// asked (0 not yet, 1 yes, 2 no): a mesher asks for each face's
+    /// validity, vertex and face-varying surfaces.
+    shortcut: Vec<AtomicU8>,
 }
 
 /// What makes two control hulls refine alike: their faces, sharpness and
@@ -171,12 +175,53 @@ pub(super) struct Irregular {
     pub(super) plans: Plans,
 }
 
+/// A surface's control points: inline up to a regular patch's 16 (no
+/// allocation for regular and linear surfaces, which a mesher builds face
+/// after face), else on the heap.
+#[derive(Debug, Clone)]
+pub(super) enum ControlPoints {
+    Inline { len: u8, points: [u32; 16] },
+    Heap(Vec<u32>),
+}
+
+impl ControlPoints {
+    /// A copy of `points`.
+    pub(super) fn from_slice(points: &[u32]) -> ControlPoints {
+        if points.len() <= 16 {
+            let mut inline = [0; 16];
+            inline[..points.len()].copy_from_slice(points);
+            ControlPoints::Inline {
+                len: points.len() as u8,
+                points: inline,
+            }
+        } else {
+            ControlPoints::Heap(points.to_vec())
+        }
+    }
+}
+
+impl std::ops::Deref for ControlPoints {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        match self {
+            ControlPoints::Inline { len, points } => &points[..usize::from(*len)],
+            ControlPoints::Heap(points) => points,
+        }
+    }
+}
+
+impl From<Vec<u32>> for ControlPoints {
+    fn from(points: Vec<u32>) -> ControlPoints {
+        ControlPoints::Heap(points)
+    }
+}
+
 /// One base face's limit surface (`Bfr::Surface<double>`).
 #[derive(Debug)]
 pub struct Surface {
     pub(super) face: usize,
     pub(super) param: Parameterization,
-    pub(super) control_points: Vec<u32>,
+    pub(super) control_points: ControlPoints,
     pub(super) patch_points: usize,
     pub(super) form: Form,
 }
@@ -199,8 +244,11 @@ impl SurfaceFactory {
         let refiner = Refiner::new(mesh, options)?;
         let features = base_features(&refiner.levels[0], options.scheme);
         let budget = Arc::new(AtomicUsize::new(PLAN_BUDGET));
+        let faces = refiner.levels[0].face_count();
+        let mut shortcut = Vec::new();
+        crate::alloc::reserve(&mut shortcut, faces)?;
+        shortcut.extend((0..faces).map(|_| AtomicU8::new(0)));
         Ok(SurfaceFactory {
-            refiner,
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
@@ -208,6 +256,8 @@ impl SurfaceFactory {
                 .map(|_| Arc::new(Plans::new(budget.clone())))
                 .collect(),
             plan_budget: budget,
+            shortcut,
+            refiner,
         })
     }
 
@@ -248,6 +298,18 @@ impl SurfaceFactory {
         self.refiner.options.scheme
     }
 
+    /// The base level's edges (the edge of each face corner, each edge's
+    /// vertices) when every pair of vertices has one edge: no vertex is
+    /// non-manifold (degenerate edges and edges twice in a face get one
+    /// edge per instance, and tag their vertices).
+    pub(super) fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
+        let base = &self.refiner.levels[0];
+        if (0..base.vertex_count).any(|v| base.vertex_tag(v).non_manifold()) {
+            return None;
+        }
+        Some((&base.face_edges, &base.edge_vertices))
+    }
+
     fn reg_size(&self) -> usize {
         if self.scheme() == Scheme::Loop { 3 } else { 4 }
     }
@@ -265,7 +327,22 @@ impl SurfaceFactory {
         if self.scheme() == Scheme::Bilinear {
             return Ok(Neighbourhood::Linear(param));
         }
-        if self.shortcut_regular(base, face) {
+        let known = self
+            .shortcut
+            .get(face)
+            .map_or(0, |s| s.load(Ordering::Relaxed));
+        let shortcut = match known {
+            1 => true,
+            2 => false,
+            _ => {
+                let regular = self.shortcut_regular(base, face);
+                if let Some(s) = self.shortcut.get(face) {
+                    s.store(if regular { 1 } else { 2 }, Ordering::Relaxed);
+                }
+                regular
+            }
+        };
+        if shortcut {
             return Ok(Neighbourhood::Shortcut(param));
         }
         match self.corners(face) {
@@ -323,8 +400,8 @@ impl SurfaceFactory {
             Neighbourhood::Invalid(param) => Ok(Surface::invalid(face, param)),
             Neighbourhood::Linear(param) => Ok(self.linear(face, param, base.face_verts(face))),
             Neighbourhood::Shortcut(param) => {
-                let (control_points, mask) = shortcut_points(base, face, |f| base.face_verts(f));
-                Ok(self.regular(face, param, control_points, mask))
+                let (points, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+                Ok(self.regular(face, param, &points[..len], mask))
             }
             Neighbourhood::Corners {
                 param,
@@ -332,6 +409,100 @@ impl SurfaceFactory {
                 subsets,
             } => self.nonlinear(face, param, &corners, &subsets),
         }
+    }
+
+    /// The vertex surface of base face `face` (points of 3 values in
+    /// `points`) evaluated at `coords` into `out` without building it, when
+    /// the refiner's shortcut makes it a B-spline patch and its kind keeps a
+    /// plan for `coords` (`plans.rs`): the plan applied straight to the
+    /// shortcut's 16 points, as [`Surface::evaluate_into`] would. `None`
+    /// otherwise: the caller builds the surface.
+    pub(super) fn evaluate_shortcut_into(
+        &self,
+        face: usize,
+        points: &[f64],
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Option<()> {
+        if self.reg_size() != 4
+            || out.len() != derivatives.columns()
+            || out.iter().any(|c| c.len() != 3 * coords.len())
+            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
+        {
+            return None;
+        }
+        let base = &self.refiner.levels[0];
+        let (control, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+        let control = &control[..len];
+        if len != 16 || control.iter().any(|&v| 3 * (v as usize + 1) > points.len()) {
+            return None;
+        }
+        let plan = self
+            .regular_plans
+            .get((mask & 15) as usize)?
+            .kept(coords, derivatives)?;
+        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
+            return None;
+        }
+        super::surface_eval::apply_dense::<3>(&plan, control, points, 3.into(), out);
+        Some(())
+    }
+
+    /// [`SurfaceFactory::evaluate_shortcut_into`] for face-varying channel
+    /// `channel` (its `values`, `width` each, at most 3): when its surface
+    /// over `face` is the B-spline patch of the refiner's shortcut (the
+    /// channel matches the vertex topology around the face, as
+    /// [`SurfaceFactory::fvar_surface`] asks) and a plan for `coords` is
+    /// kept.
+    pub(super) fn evaluate_fvar_shortcut_into(
+        &self,
+        face: usize,
+        channel: usize,
+        values: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        out: &mut [f64],
+    ) -> Option<()> {
+        let linear = self.scheme() == Scheme::Bilinear
+            || self.refiner.options.fvar == FVarLinearInterpolation::All;
+        if linear
+            || self.reg_size() != 4
+            || !(1..=3).contains(&width)
+            || out.len() != width * coords.len()
+            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
+        {
+            return None;
+        }
+        let base = &self.refiner.levels[0];
+        let chan = self.refiner.fvar.get(channel)?.first()?;
+        if !fvar_topology_matches(base, chan, face) {
+            return None;
+        }
+        let (control, len, mask) = shortcut_points(base, face, |f| chan.face_values_of(base, f));
+        let control = &control[..len];
+        if len != 16
+            || control
+                .iter()
+                .any(|&v| width * (v as usize + 1) > values.len())
+        {
+            return None;
+        }
+        let plan = self
+            .regular_plans
+            .get((mask & 15) as usize)?
+            .kept(coords, Derivatives::None)?;
+        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
+            return None;
+        }
+        let layout = width.into();
+        let out = &mut [out];
+        match width {
+            1 => super::surface_eval::apply_dense::<1>(&plan, control, values, layout, out),
+            2 => super::surface_eval::apply_dense::<2>(&plan, control, values, layout, out),
+            _ => super::surface_eval::apply_dense::<3>(&plan, control, values, layout, out),
+        }
+        Some(())
     }
 
     /// The surface of face-varying channel `channel` over base face `face`
@@ -361,8 +532,8 @@ impl SurfaceFactory {
             }
             Neighbourhood::Shortcut(param) => {
                 if fvar_topology_matches(base, chan, face) {
-                    let (control_points, mask) = shortcut_points(base, face, values);
-                    return Ok(self.regular(face, param, control_points, mask));
+                    let (points, len, mask) = shortcut_points(base, face, values);
+                    return Ok(self.regular(face, param, &points[..len], mask));
                 }
                 match self.corners(face) {
                     Some((corners, subsets)) => (param, corners, subsets),
@@ -396,7 +567,7 @@ impl SurfaceFactory {
         &self,
         face: usize,
         param: Parameterization,
-        control_points: Vec<u32>,
+        control_points: &[u32],
         mask: u16,
     ) -> Surface {
         let (patch, plans) = if self.reg_size() == 4 {
@@ -408,7 +579,7 @@ impl SurfaceFactory {
             face,
             param,
             patch_points: control_points.len(),
-            control_points,
+            control_points: ControlPoints::from_slice(control_points),
             form: Form::Regular {
                 patch,
                 mask,
@@ -432,7 +603,7 @@ impl SurfaceFactory {
             .fold(CornerTag::default(), |t, s| t.or(s.tag));
         if is_regular(subsets, tag, self.reg_size()) {
             let control_points = subset_points(corners, subsets);
-            return Ok(self.regular(face, param, control_points, subset_mask(subsets)));
+            return Ok(self.regular(face, param, &control_points, subset_mask(subsets)));
         }
         let options = self.refiner.options;
         let hull = hull(corners, subsets, tag);
@@ -482,7 +653,7 @@ impl SurfaceFactory {
         Ok(Surface {
             face,
             param,
-            control_points: hull.control_points,
+            control_points: hull.control_points.into(),
             patch_points: base_count + refined + end_caps,
             form: Form::Irregular(irregular),
         })
@@ -508,7 +679,7 @@ impl SurfaceFactory {
         Surface {
             face,
             param,
-            control_points: verts.to_vec(),
+            control_points: ControlPoints::from_slice(verts),
             patch_points: if regular {
                 verts.len()
             } else {
@@ -525,10 +696,11 @@ impl SurfaceFactory {
         if verts.len() != self.reg_size() {
             return false;
         }
-        let tags: Vec<Tag> = verts
-            .iter()
-            .map(|&v| Tag::of(base, &self.features, v as usize))
-            .collect();
+        let mut tags = [Tag::default(); 4];
+        for (t, &v) in tags.iter_mut().zip(verts) {
+            *t = Tag::of(base, &self.features, v as usize);
+        }
+        let tags = &tags[..verts.len()];
         let f = tags.iter().fold(Tag::default(), |a, &b| a.or(b));
         if f.features.xordinary
             || f.non_manifold
@@ -542,7 +714,7 @@ impl SurfaceFactory {
         if !f.boundary {
             return !(f.inf_sharp || f.inf_sharp_edges);
         }
-        verts.iter().zip(&tags).all(|(&v, t)| {
+        verts.iter().zip(tags).all(|(&v, t)| {
             let rule = base.vertex_tag(v as usize).rule();
             if !t.boundary {
                 rule == Rule::Smooth

@@ -127,8 +127,19 @@ impl FaceSurfaces for MeshSurfaces {
         derivatives: Derivatives,
         out: &mut [&mut [f64]],
     ) -> Result<()> {
+        // A regular face whose plan is kept: no surface built.
+        if self
+            .factory
+            .evaluate_shortcut_into(face, &self.points, coords, derivatives, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         let surface = self.factory.vertex_surface(face)?;
         surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
+    }
+    fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
+        self.factory.base_edges()
     }
     fn evaluate_fvar_into(
         &self,
@@ -141,6 +152,14 @@ impl FaceSurfaces for MeshSurfaces {
             channel,
             count: self.fvar.len(),
         })?;
+        // A regular face whose plan is kept: no surface built.
+        if self
+            .factory
+            .evaluate_fvar_shortcut_into(face, channel, values, *width, coords, out)
+            .is_some()
+        {
+            return Ok(());
+        }
         let surface: Surface = self.factory.fvar_surface(face, channel)?;
         surface.evaluate_into(
             values,

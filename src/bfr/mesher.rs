@@ -60,6 +60,14 @@ pub trait FaceSurfaces: Sync {
             .values
             .copy_into(out)
     }
+    /// The base mesh's edges as the engine numbers them, when it has them
+    /// and each pair of vertices has one edge: the edge of every face corner
+    /// (from the corner to the next, in the order of the right-handed
+    /// mesh's face vertices) and each edge's two vertices. `None` (the
+    /// default) lets [`tessellate`] find them itself.
+    fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
+        None
+    }
     /// [`FaceSurfaces::evaluate_fvar`] written into `out` (the channel's
     /// width per coordinate, every value overwritten). By default a copy of
     /// what `evaluate_fvar` returns.
@@ -163,6 +171,8 @@ pub struct TessellatedMesh {
 /// its coordinates and facets (pattern indices, `-1` padding a short
 /// facet), computed once.
 struct Pattern {
+    /// The rate of each edge (their number: the face's size).
+    rates: Vec<u32>,
     tess: Tessellation,
     coords: Vec<[f64; 2]>,
     facets: Vec<i32>,
@@ -219,32 +229,49 @@ pub fn tessellate(
     };
     let scheme = surfaces.scheme();
 
-    // Base edges by vertex pair, in order of first use, and the edge of
-    // every face corner (from the corner to the next), found once.
-    let mut edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    edges.reserve(mesh.face_vertices.len() / 2);
-    let mut edge_rate: Vec<u32> = Vec::new();
-    alloc::reserve(&mut edge_rate, mesh.face_vertices.len() / 2)?;
-    let mut corner_edge: Vec<u32> = Vec::new();
-    alloc::reserve(&mut corner_edge, mesh.face_vertices.len())?;
-    for f in 0..mesh.face_count() {
-        let fv = mesh.face(f);
-        for (i, &a) in fv.iter().enumerate() {
-            let b = fv[(i + 1) % fv.len()];
-            let next = edge_rate.len() as u32;
-            let e = *edges.entry((a.min(b), a.max(b))).or_insert(next);
-            if e == next {
-                edge_rate.push(match options.edge_length {
-                    None => options.rate,
-                    Some(l) => {
-                        let len = mesh.positions[a as usize].distance(mesh.positions[b as usize]);
-                        (1.0 + (len / l).floor()).min(f64::from(crate::bfr::MAX_RATE)) as u32
-                    }
-                });
-            }
-            corner_edge.push(e);
+    // The rate of the edge from vertex `a` to `b`.
+    let rate_of = |a: u32, b: u32| match options.edge_length {
+        None => options.rate,
+        Some(l) => {
+            let len = mesh.positions[a as usize].distance(mesh.positions[b as usize]);
+            (1.0 + (len / l).floor()).min(f64::from(crate::bfr::MAX_RATE)) as u32
         }
-    }
+    };
+    // The base edges and the edge of every face corner (from the corner to
+    // the next): the engine's when it has them and they are this mesh's,
+    // else found by vertex pair, in order of first use.
+    let (corner_edge, edge_rate) = match surfaces
+        .base_edges()
+        .and_then(|(corners, ends)| engine_edges(mesh, corners, ends))
+    {
+        Some((corners, ends)) => {
+            let mut edge_rate: Vec<u32> = Vec::new();
+            alloc::reserve(&mut edge_rate, ends.len())?;
+            edge_rate.extend(ends.iter().map(|&[a, b]| rate_of(a, b)));
+            (std::borrow::Cow::Borrowed(corners), edge_rate)
+        }
+        None => {
+            let mut edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+            edges.reserve(mesh.face_vertices.len() / 2);
+            let mut edge_rate: Vec<u32> = Vec::new();
+            alloc::reserve(&mut edge_rate, mesh.face_vertices.len() / 2)?;
+            let mut corner_edge: Vec<u32> = Vec::new();
+            alloc::reserve(&mut corner_edge, mesh.face_vertices.len())?;
+            for f in 0..mesh.face_count() {
+                let fv = mesh.face(f);
+                for (i, &a) in fv.iter().enumerate() {
+                    let b = fv[(i + 1) % fv.len()];
+                    let next = edge_rate.len() as u32;
+                    let e = *edges.entry((a.min(b), a.max(b))).or_insert(next);
+                    if e == next {
+                        edge_rate.push(rate_of(a, b));
+                    }
+                    corner_edge.push(e);
+                }
+            }
+            (std::borrow::Cow::Owned(corner_edge), edge_rate)
+        }
+    };
 
     // Plan: every face's pattern and the points it creates.
     let mut vertex_point: Vec<u32> = alloc::try_vec(u32::MAX, mesh.positions.len())?;
@@ -271,36 +298,58 @@ pub fn tessellate(
         }
         Ok(first as u32)
     };
+    // First every face's pattern (and the room its points take), then its
+    // points: the arrays are reserved once.
     let mut rates: Vec<u32> = Vec::new();
+    let mut room = 0usize;
     for f in 0..mesh.face_count() {
         if !surfaces.has_surface(f) {
             continue;
         }
-        let fv = mesh.face(f);
-        let n = fv.len();
+        let n = mesh.face(f).len();
         let face_edges = &corner_edge[mesh.face_offsets[f] as usize..][..n];
         rates.clear();
         rates.extend(face_edges.iter().map(|&e| edge_rate[e as usize]));
-        let pattern = match pattern_of.get(rates.as_slice()) {
-            Some(&p) => p,
-            None => {
-                let param = Parameterization::new(scheme, n)?;
-                let tess = Tessellation::new(param, &rates, tess_options)?;
-                let facets = tess.facets()?;
-                patterns.push(Pattern {
-                    coords: tess.coords::<f64>()?,
-                    corners: facets.iter().filter(|&&c| c >= 0).count(),
-                    facets,
-                    tess,
-                });
-                let p = (patterns.len() - 1) as u32;
-                pattern_of.insert(rates.clone(), p);
-                p
-            }
+        // The previous face's pattern when the rates are the same (at a
+        // uniform rate, nearly every face): no hashing.
+        let last = plans.last().map(|p: &FacePlan| p.pattern);
+        let pattern = match last.filter(|&p| patterns[p as usize].rates == rates) {
+            Some(p) => p,
+            None => match pattern_of.get(rates.as_slice()) {
+                Some(&p) => p,
+                None => {
+                    let param = Parameterization::new(scheme, n)?;
+                    let tess = Tessellation::new(param, &rates, tess_options)?;
+                    let facets = tess.facets()?;
+                    patterns.push(Pattern {
+                        rates: rates.clone(),
+                        coords: tess.coords::<f64>()?,
+                        corners: facets.iter().filter(|&&c| c >= 0).count(),
+                        facets,
+                        tess,
+                    });
+                    let p = (patterns.len() - 1) as u32;
+                    pattern_of.insert(rates.clone(), p);
+                    p
+                }
+            },
         };
-        let tess = &patterns[pattern as usize].tess;
+        room = room.saturating_add(patterns[pattern as usize].tess.num_coords());
+        plans.push(FacePlan {
+            face: f,
+            pattern,
+            points: 0..0,
+            owned: 0..0,
+        });
+    }
+    alloc::reserve(&mut all_points, room)?;
+    alloc::reserve(&mut all_owned, room)?;
+    for plan in &mut plans {
+        let fv = mesh.face(plan.face);
+        let n = fv.len();
+        let face_edges = &corner_edge[mesh.face_offsets[plan.face] as usize..][..n];
+        let tess = &patterns[plan.pattern as usize].tess;
         let (points_start, owned_start) = (all_points.len(), all_owned.len());
-        alloc::reserve(&mut all_points, tess.num_coords())?;
         let (points, owned) = (&mut all_points, &mut all_owned);
         // The index in this face's points of the next one pushed.
         let here = |points: &Vec<u32>| (points.len() - points_start) as u32;
@@ -311,8 +360,8 @@ pub fn tessellate(
                 owned.push(here(points));
             }
             points.push(vertex_point[a as usize]);
-            let inner = rates[i] as usize - 1;
             let e = face_edges[i] as usize;
+            let inner = edge_rate[e] as usize - 1;
             if edge_points[e].0 == u32::MAX {
                 edge_points[e] = (take(inner)?, a);
                 let first = here(points);
@@ -328,12 +377,8 @@ pub fn tessellate(
         let interior = take(tess.num_interior_coords())?;
         owned.extend(here(points)..tess.num_coords() as u32);
         points.extend((0..tess.num_interior_coords() as u32).map(|k| interior + k));
-        plans.push(FacePlan {
-            face: f,
-            pattern,
-            points: points_start..all_points.len(),
-            owned: owned_start..all_owned.len(),
-        });
+        plan.points = points_start..all_points.len();
+        plan.owned = owned_start..all_owned.len();
     }
     let total = next as usize;
     let pattern = |p: &FacePlan| &patterns[p.pattern as usize];
@@ -391,55 +436,33 @@ pub fn tessellate(
         facet_faces: Table::for_overwrite(facets),
     };
     out.face_offsets[0] = 0;
-    let owned = |p: &FacePlan| p.owned.len();
-    let span = |i: usize, f: fn(&Starts) -> u64| (f(&starts[i + 1]) - f(&starts[i])) as usize;
-    let pos_chunks = split_by(&mut out.positions, plans.iter().map(owned));
-    let normal_chunks = split_by(
-        &mut out.normals,
-        plans
-            .iter()
-            .map(|p| if options.normals { owned(p) } else { 0 }),
-    );
-    let uv_chunks = split_by(
-        &mut out.uvs,
-        (0..plans.len()).map(|i| 2 * span(i, |s| s.uv)),
-    );
-    let offset_chunks = split_by(
-        &mut out.face_offsets[1..],
-        (0..plans.len()).map(|i| span(i, |s| s.facet)),
-    );
-    let face_chunks = split_by(
-        &mut out.facet_faces,
-        (0..plans.len()).map(|i| span(i, |s| s.facet)),
-    );
-    let corner_chunks = split_by(
-        &mut out.face_vertices,
-        (0..plans.len()).map(|i| span(i, |s| s.corner)),
-    );
-    let uv_index_chunks = split_by(
-        &mut out.uv_indices,
-        (0..plans.len()).map(|i| if uvs { span(i, |s| s.corner) } else { 0 }),
-    );
-    let outputs = pos_chunks
-        .into_iter()
-        .zip(normal_chunks)
-        .zip(uv_chunks)
-        .zip(offset_chunks)
-        .zip(face_chunks)
-        .zip(corner_chunks)
-        .zip(uv_index_chunks)
-        .map(
-            |((((((position, normal), uv), offset), facet_face), corner), uv_index)| FaceOutputs {
-                position,
-                normal,
-                uv,
-                offset,
-                facet_face,
-                corner,
-                uv_index,
-            },
-        )
-        .collect::<Vec<_>>();
+    // Each face's share of every output, cut in one pass.
+    let mut outputs: Vec<FaceOutputs<'_>> = Vec::new();
+    alloc::reserve(&mut outputs, plans.len())?;
+    {
+        let mut position = &mut out.positions[..];
+        let mut normal = &mut out.normals[..];
+        let mut uv = &mut out.uvs[..];
+        let mut offset = &mut out.face_offsets[1..];
+        let mut facet_face = &mut out.facet_faces[..];
+        let mut corner = &mut out.face_vertices[..];
+        let mut uv_index = &mut out.uv_indices[..];
+        for (i, plan) in plans.iter().enumerate() {
+            let (s, e) = (&starts[i], &starts[i + 1]);
+            let owned = plan.owned.len();
+            let facets = (e.facet - s.facet) as usize;
+            let corners = (e.corner - s.corner) as usize;
+            outputs.push(FaceOutputs {
+                position: cut(&mut position, owned),
+                normal: cut(&mut normal, if options.normals { owned } else { 0 }),
+                uv: cut(&mut uv, 2 * (e.uv - s.uv) as usize),
+                offset: cut(&mut offset, facets),
+                facet_face: cut(&mut facet_face, facets),
+                corner: cut(&mut corner, corners),
+                uv_index: cut(&mut uv_index, if uvs { corners } else { 0 }),
+            });
+        }
+    }
     plans
         .par_iter()
         .zip(&starts[..plans.len()])
@@ -504,6 +527,31 @@ pub fn tessellate(
             },
         )?;
     Ok(out)
+}
+
+/// An engine's base edges (`corners`: the edge of each face corner,
+/// `ends`: each edge's vertices) if they are `mesh`'s: one edge per corner,
+/// joining the corner to the next.
+fn engine_edges<'a>(
+    mesh: &Mesh,
+    corners: &'a [u32],
+    ends: &'a [[u32; 2]],
+) -> Option<(&'a [u32], &'a [[u32; 2]])> {
+    if corners.len() != mesh.face_vertices.len() {
+        return None;
+    }
+    for f in 0..mesh.face_count() {
+        let fv = mesh.face(f);
+        let edges = corners.get(mesh.face_offsets[f] as usize..)?;
+        for (i, (&a, &e)) in fv.iter().zip(edges).enumerate() {
+            let b = fv[if i + 1 == fv.len() { 0 } else { i + 1 }];
+            let [x, y] = *ends.get(e as usize)?;
+            if !(x == a && y == b || x == b && y == a) {
+                return None;
+            }
+        }
+    }
+    Some((corners, ends))
 }
 
 /// A thread's scratch space while it evaluates faces.
@@ -580,14 +628,10 @@ fn write_facets(
     }
 }
 
-/// `slice` cut into consecutive pieces of `sizes` (which sum to at most its
-/// length).
-fn split_by<T>(mut slice: &mut [T], sizes: impl Iterator<Item = usize>) -> Vec<&mut [T]> {
-    let mut out = Vec::new();
-    for n in sizes {
-        let (piece, rest) = std::mem::take(&mut slice).split_at_mut(n);
-        out.push(piece);
-        slice = rest;
-    }
-    out
+/// The first `n` values of `slice` (which has them), `slice` left with
+/// the rest.
+fn cut<'a, T>(slice: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+    let (piece, rest) = std::mem::take(slice).split_at_mut(n);
+    *slice = rest;
+    piece
 }

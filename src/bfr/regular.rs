@@ -45,18 +45,20 @@ fn mask_of(points: &[i64]) -> u16 {
 
 /// The points of base face `face` if the refiner's tags make its patch
 /// regular: the shortcut's points (missing ones replaced by point 5: the
-/// face's first vertex in a quad's patch, its second in a triangle's) and
-/// the boundary mask.
+/// face's first vertex in a quad's patch, its second in a triangle's; the
+/// first 16 or 12 of the array), their number and the boundary mask.
 /// `values(f)` gives face `f`'s indices: its vertices, or a face-varying
 /// channel's values.
 pub(crate) fn shortcut_points<'a>(
     level: &Level,
     face: usize,
     values: impl Fn(usize) -> &'a [u32],
-) -> (Vec<u32>, u16) {
+) -> ([u32; 16], usize, u16) {
     let fverts = level.face_verts(face);
     let quad = fverts.len() == 4;
-    let mut p = vec![MISSING; if quad { 16 } else { 12 }];
+    let len = if quad { 16 } else { 12 };
+    let mut all = [MISSING; 16];
+    let p = &mut all[..len];
     const QUAD: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
     const TRI: [[usize; 4]; 3] = [[4, 3, 0, 1], [5, 2, 6, 9], [8, 11, 10, 7]];
     let n = fverts.len();
@@ -66,20 +68,35 @@ pub(crate) fn shortcut_points<'a>(
         let vfaces = level.vertex_faces_of(v);
         let locals = level.vertex_face_locals(v);
         let fv = |k: usize| values(vfaces[k] as usize);
+        // (Local indices are below `n` and `d` below 4: one subtraction
+        // at most instead of a division.)
+        let wrap = |i: usize, n: usize| if i >= n { i - n } else { i };
         let at = |k: usize, d: usize| -> i64 {
             let f = fv(k);
-            i64::from(f[(usize::from(locals[k]) + d) % n])
+            let i = usize::from(locals[k]) + d;
+            i64::from(f[if i >= n { wrap(i - n, n) } else { i }])
         };
         let mine = vfaces.iter().position(|&f| f as usize == face).unwrap_or(0);
         let reg = if quad { 4 } else { 6 };
+        if quad && vfaces.len() == 4 {
+            // The opposite quad's points, its indices looked up once.
+            let opp = wrap(mine + 2, 4);
+            let (f, l) = (fv(opp), usize::from(locals[opp]));
+            if f.len() == 4 {
+                for (d, &slot) in corner.iter().enumerate() {
+                    p[slot] = i64::from(f[(l + d) & 3]);
+                }
+                continue;
+            }
+        }
         if vfaces.len() == reg {
-            let opp = (mine + reg / 2) % reg;
+            let opp = wrap(mine + reg / 2, reg);
             if quad {
                 for (d, &slot) in corner.iter().enumerate() {
                     p[slot] = at(opp, d);
                 }
             } else {
-                let next = (opp + 1) % reg;
+                let next = wrap(opp + 1, reg);
                 p[corner[0]] = at(opp, 0);
                 p[corner[1]] = at(opp, 1);
                 p[corner[2]] = at(opp, 2);
@@ -107,14 +124,14 @@ pub(crate) fn shortcut_points<'a>(
             p[corner[3]] = at(0, 2);
         }
     }
-    let mask = mask_of(&p);
+    let mask = mask_of(p);
     // Point 5 for triangles too (their second vertex), as Bfr does.
     let phantom = p[5];
-    let points = p
-        .iter()
-        .map(|&x| if x < 0 { phantom } else { x } as u32)
-        .collect();
-    (points, mask)
+    let mut points = [0u32; 16];
+    for (dst, &x) in points.iter_mut().zip(p.iter()) {
+        *dst = if x < 0 { phantom } else { x } as u32;
+    }
+    (points, len, mask)
 }
 
 /// The boundary mask of a regular patch from its corners' subsets

@@ -6,7 +6,7 @@
 
 use super::ParameterizationType;
 use super::bspline_eval;
-use super::face_surface::{Form, Irregular, Surface};
+use super::face_surface::{ControlPoints, Form, Irregular, Surface};
 use super::parameterization::Parameterization;
 use crate::alloc;
 use crate::error::{Error, Result};
@@ -36,7 +36,7 @@ impl Surface {
         Surface {
             face,
             param,
-            control_points: Vec::new(),
+            control_points: ControlPoints::from_slice(&[]),
             patch_points: 0,
             form: Form::Invalid,
         }
@@ -336,7 +336,7 @@ impl Surface {
             &mut control,
             self.control_points.len().saturating_mul(layout.size),
         )?;
-        for &cv in &self.control_points {
+        for &cv in self.control_points.iter() {
             control.extend_from_slice(layout.point(points, cv as usize));
         }
         Ok(control)
@@ -512,6 +512,22 @@ impl Surface {
                     self.regular_plan(patch, mask, coords, derivatives)
                 })?;
                 match plan {
+                    // A B-spline patch's plan: 16 weights per coordinate, the
+                    // control points in order (`regular_plan`).
+                    Some(plan)
+                        if patch == PatchType::Regular
+                            && self.control_points.len() == 16
+                            && plan.locations.len() == coords.len()
+                            && plan.indices.len() == 16 * coords.len() =>
+                    {
+                        match layout.size {
+                            1 => apply_dense::<1>(&plan, &self.control_points, points, layout, out),
+                            2 => apply_dense::<2>(&plan, &self.control_points, points, layout, out),
+                            3 => apply_dense::<3>(&plan, &self.control_points, points, layout, out),
+                            _ => return self.apply_plan(&plan, points, layout, out),
+                        }
+                        Ok(())
+                    }
                     Some(plan) => self.apply_plan(&plan, points, layout, out),
                     None => self.evaluate_regular(
                         patch,
@@ -707,7 +723,7 @@ impl Surface {
         const ON_STACK: usize = 32;
         let n = self.control_points.len();
         let gather = |dst: &mut [[f64; N]]| {
-            for (d, &cv) in dst.iter_mut().zip(&self.control_points) {
+            for (d, &cv) in dst.iter_mut().zip(self.control_points.iter()) {
                 d.copy_from_slice(layout.point(points, cv as usize));
             }
         };
@@ -763,6 +779,35 @@ impl Surface {
             width,
             values: Partials::from_columns(columns),
         })
+    }
+}
+
+/// A B-spline patch's plan (16 weights per coordinate over the 16
+/// control points in order, coordinates in order) applied to points of
+/// `N` values (`control_points` the patch's 16 indices into `points`):
+/// [`apply_terms`] without the indices, the same sums in
+/// the same order.
+pub(super) fn apply_dense<const N: usize>(
+    plan: &LocationStencils,
+    control_points: &[u32],
+    points: &[f64],
+    layout: PointDescriptor,
+    columns: &mut [&mut [f64]],
+) {
+    let mut control = [[0.0; N]; 16];
+    for (d, &cv) in control.iter_mut().zip(control_points) {
+        d.copy_from_slice(layout.point(points, cv as usize));
+    }
+    for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
+        for (w, out) in weights.chunks_exact(16).zip(column.chunks_exact_mut(N)) {
+            let mut acc = [0.0; N];
+            for (&wt, p) in w.iter().zip(&control) {
+                for k in 0..N {
+                    acc[k] += wt * p[k];
+                }
+            }
+            out.copy_from_slice(&acc);
+        }
     }
 }
 
