@@ -15,6 +15,7 @@
 use super::fast;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// What one chunk read.
 #[derive(Default)]
@@ -35,11 +36,11 @@ pub(super) struct Chunk<'a> {
     /// the chunk, 1-based); every face of the chunk agrees with it.
     pub first_face: Option<(bool, usize)>,
     /// Lines for the general parser, with their line numbers in the chunk.
-    pub deferred: Vec<(usize, &'a str)>,
+    pub deferred: Vec<(usize, Cow<'a, str>)>,
 }
 
 /// Reads one chunk; `None` when a line needs the sequential reader.
-fn read_chunk(text: &str) -> Option<Chunk<'_>> {
+fn read_chunk(text: &[u8]) -> Option<Chunk<'_>> {
     let mut c = Chunk::default();
     let mut cursor = fast::Cursor::new(text);
     let mut line = 0;
@@ -86,13 +87,13 @@ fn read_chunk(text: &str) -> Option<Chunk<'_>> {
                 if !fast::ignored(&rest[..end]) {
                     let text = cursor.take_line();
                     // What the general parser takes for the keyword.
-                    match text
+                    let keyword = text
                         .split('#')
                         .next()
                         .unwrap_or("")
                         .split_ascii_whitespace()
-                        .next()
-                    {
+                        .next();
+                    match keyword {
                         None => {}
                         Some("v" | "vt" | "f") => return None,
                         Some(_) => c.deferred.push((line, text)),
@@ -107,14 +108,14 @@ fn read_chunk(text: &str) -> Option<Chunk<'_>> {
     Some(c)
 }
 
-/// `text` (no byte-order mark) cut into `count` chunks of whole lines, read
+/// `text` (no byte-order mark; UTF-8 or not, as [`fast::Cursor`] reads it) cut into `count` chunks of whole lines, read
 /// in parallel; `None` when some chunk needs the sequential reader.
-pub(super) fn read_chunks(text: &str, count: usize) -> Option<Vec<Chunk<'_>>> {
+pub(super) fn read_chunks(text: &[u8], count: usize) -> Option<Vec<Chunk<'_>>> {
     let mut pieces = Vec::with_capacity(count);
     let mut rest = text;
     for k in (1..count).rev() {
         let target = rest.len() / (k + 1);
-        let cut = match rest.as_bytes()[target..].iter().position(|&b| b == b'\n') {
+        let cut = match rest[target..].iter().position(|&b| b == b'\n') {
             Some(p) => target + p + 1,
             None => rest.len(),
         };
@@ -145,11 +146,11 @@ mod tests {
         let general = parse_obj_general(&text, file);
         assert!(general.is_ok());
         for pieces in [1, 2, 3, 5, 16, 200] {
-            let read = read_chunks(&text, pieces).expect("every line is read in chunks");
+            let read = read_chunks(text.as_bytes(), pieces).expect("every line is read in chunks");
             assert_eq!(read.len(), pieces);
             let lines: usize = read.iter().map(|c| c.lines).sum();
             assert_eq!(lines, text.lines().count());
-            assert_eq!(lines, fast::lines(&text).count());
+            assert_eq!(lines, fast::lines(text.as_bytes()).count());
             assert_eq!(parse_obj_chunked(&text, file, pieces), general, "{pieces}");
         }
         // A face before the vertex it names: the chunks read, the join
@@ -160,7 +161,7 @@ mod tests {
             expected.as_ref().is_err_and(|e| e.line == 1),
             "{expected:?}"
         );
-        assert!(read_chunks(&early, 3).is_some());
+        assert!(read_chunks(early.as_bytes(), 3).is_some());
         assert_eq!(parse_obj_chunked(&early, file, 3), expected);
     }
 }

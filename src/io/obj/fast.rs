@@ -10,20 +10,27 @@
 //! syntax (`[+-]digits[.digits][e[+-]digits]`), which it and Rust's own
 //! parser both round correctly, to the same value.
 
+use std::borrow::Cow;
+
 /// A reading position in a text, at the start of a line. The fast path
 /// reads the line where it stands ([`Cursor::rest`]: the text from the
 /// line on, which the fast path reads up to the line feed) and moves past
 /// it ([`Cursor::skip`]); the general parser takes the line as `str::lines`
 /// cuts it ([`Cursor::take_line`]). So the fast path's lines are found by
 /// the parsers' own pass over their bytes, and only the others by a search.
+///
+/// The text is bytes, not yet checked to be UTF-8: the fast path takes
+/// only lines of ASCII characters, and the general parser's lines are
+/// checked (or their bad bytes replaced) one at a time, as the whole text
+/// would have been — a line feed is never part of a longer UTF-8 sequence.
 pub(super) struct Cursor<'a> {
-    text: &'a str,
+    text: &'a [u8],
     at: usize,
 }
 
 impl<'a> Cursor<'a> {
     /// At the first line of `text`.
-    pub(super) fn new(text: &'a str) -> Self {
+    pub(super) fn new(text: &'a [u8]) -> Self {
         Cursor { text, at: 0 }
     }
 
@@ -35,7 +42,7 @@ impl<'a> Cursor<'a> {
 
     /// The text from the line at the cursor to the end.
     pub(super) fn rest(&self) -> &'a [u8] {
-        &self.text.as_bytes()[self.at..]
+        &self.text[self.at..]
     }
 
     /// Moves past the line the fast path read, whose end (its line feed, or
@@ -46,28 +53,28 @@ impl<'a> Cursor<'a> {
 
     /// The line at the cursor as `str::lines` cuts it — up to the line feed,
     /// a carriage return before it dropped — found by `memchr`'s vectorised
-    /// search; the cursor moves past it.
-    pub(super) fn take_line(&mut self) -> &'a str {
+    /// search, with bytes that are not UTF-8 replaced as
+    /// `String::from_utf8_lossy` replaces them; the cursor moves past it.
+    pub(super) fn take_line(&mut self) -> Cow<'a, str> {
         let rest = &self.text[self.at..];
-        match memchr::memchr(b'\n', rest.as_bytes()) {
-            // `\n` is one byte of its own in UTF-8: the cuts are on
-            // character boundaries.
+        let line = match memchr::memchr(b'\n', rest) {
             Some(end) => {
                 self.at += end + 1;
                 let line = &rest[..end];
-                line.strip_suffix('\r').unwrap_or(line)
+                line.strip_suffix(b"\r").unwrap_or(line)
             }
             None => {
                 self.at = self.text.len();
                 rest
             }
-        }
+        };
+        String::from_utf8_lossy(line)
     }
 }
 
 /// The lines of `text` as `str::lines` cuts them, by [`Cursor::take_line`].
 #[cfg(test)]
-pub(super) fn lines(text: &str) -> impl Iterator<Item = &str> {
+pub(super) fn lines(text: &[u8]) -> impl Iterator<Item = Cow<'_, str>> {
     let mut cursor = Cursor::new(text);
     std::iter::from_fn(move || (!cursor.is_done()).then(|| cursor.take_line()))
 }
@@ -375,7 +382,7 @@ mod tests {
             "é\n\r\nü",
             " \r\r",
         ] {
-            let ours: Vec<&str> = lines(text).collect();
+            let ours: Vec<Cow<'_, str>> = lines(text.as_bytes()).collect();
             assert_eq!(ours, text.lines().collect::<Vec<_>>(), "{text:?}");
         }
     }

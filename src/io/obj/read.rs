@@ -22,14 +22,11 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
         line: 0,
         kind: ObjErrorKind::Io(e.to_string()),
     })?;
-    let result = {
-        // The usual case, valid UTF-8, checked by the faster validator.
-        let text: Cow<'_, str> = match std::str::from_utf8(&bytes) {
-            Ok(text) => Cow::Borrowed(text),
-            Err(_) => String::from_utf8_lossy(&bytes),
-        };
-        parse_obj(&text, path)
-    };
+    // Read as bytes: the fast path's lines are ASCII by construction, and
+    // only the general parser's lines are checked for UTF-8 (and their bad
+    // bytes replaced), which reads the same text as checking and replacing
+    // first.
+    let result = parse(&bytes, path, true);
     // The text back to the system, not to the pool of tables: the peak
     // memory of reading and refining stays what it was with a vector.
     bytes.free();
@@ -39,21 +36,47 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
 /// The whole file, read into a table (a huge-page map from 2 MiB: a large
 /// file costs a few hundred page faults instead of one per 4 KiB); the
 /// standard library's `fs::read` when the file changes size while read.
+/// A file the parser reads in chunks ([`PARALLEL_BYTES`] and more, on a
+/// pool of several threads) is read in as many pieces at once, one per
+/// thread, so that the copy out of the page cache and the table's page
+/// faults are shared too.
 fn read_bytes(path: &Path) -> std::io::Result<crate::topology::Table<u8>> {
-    use std::io::Read;
     let mut file = std::fs::File::open(path)?;
     let len = usize::try_from(file.metadata()?.len()).unwrap_or(usize::MAX);
     // Memory refused: `fs::read` reports it as an I/O error.
     let table = crate::alloc::guard(None, || {
         Ok(crate::topology::Table::<u8>::for_overwrite(len))
     });
-    if let Ok(mut table) = table {
-        let mut more = [0u8; 1];
-        if file.read_exact(&mut table).is_ok() && file.read(&mut more)? == 0 {
-            return Ok(table);
-        }
+    if let Ok(mut table) = table
+        && read_whole(&mut file, &mut table)?
+    {
+        return Ok(table);
     }
     Ok(crate::topology::Table::from(std::fs::read(path)?))
+}
+
+/// Whether `file` filled `buffer` exactly (no fewer bytes, none more); an
+/// error only where the check for more bytes fails.
+fn read_whole(file: &mut std::fs::File, buffer: &mut [u8]) -> std::io::Result<bool> {
+    #[cfg(unix)]
+    {
+        use rayon::prelude::*;
+        use std::os::unix::fs::FileExt;
+        let threads = rayon::current_num_threads();
+        if threads > 1 && buffer.len() >= PARALLEL_BYTES {
+            let piece = buffer.len().div_ceil(threads);
+            let file = &*file;
+            let filled = buffer
+                .par_chunks_mut(piece)
+                .enumerate()
+                .all(|(k, part)| file.read_exact_at(part, (k * piece) as u64).is_ok());
+            let mut more = [0u8; 1];
+            return Ok(filled && file.read_at(&mut more, buffer.len() as u64)? == 0);
+        }
+    }
+    use std::io::Read;
+    let mut more = [0u8; 1];
+    Ok(file.read_exact(buffer).is_ok() && file.read(&mut more)? == 0)
 }
 
 /// Parses the text of an OBJ shape file; `file` only names it in errors
@@ -72,14 +95,14 @@ fn read_bytes(path: &Path) -> std::io::Result<crate::topology::Table<u8>> {
 /// # Ok::<(), subdiv::ObjError>(())
 /// ```
 pub fn parse_obj(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
-    parse(text, file, true)
+    parse(text.as_bytes(), file, true)
 }
 
 /// [`parse_obj`] with every line read by the general parser, none by the
 /// fast path: the reference the fast path is tested and fuzzed against.
 #[doc(hidden)]
 pub fn parse_obj_general(text: &str, file: &Path) -> Result<ShapeFile, ObjError> {
-    parse(text, file, false)
+    parse(text.as_bytes(), file, false)
 }
 
 /// [`parse_obj`] reading the text in `chunks` pieces in parallel (when every
@@ -87,15 +110,22 @@ pub fn parse_obj_general(text: &str, file: &Path) -> Result<ShapeFile, ObjError>
 /// parallel reader is tested and fuzzed with it.
 #[doc(hidden)]
 pub fn parse_obj_chunked(text: &str, file: &Path, chunks: usize) -> Result<ShapeFile, ObjError> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = strip_bom(text.as_bytes());
     parse_chunked(text, file, chunks.max(1)).unwrap_or_else(|| parse_lines(text, file, true))
 }
 
 /// Files from this size are read on every thread of the pool.
 const PARALLEL_BYTES: usize = 1 << 22;
 
-fn parse(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+/// `text` without its byte-order mark (U+FEFF in UTF-8), if it has one.
+fn strip_bom(text: &[u8]) -> &[u8] {
+    text.strip_prefix("\u{feff}".as_bytes()).unwrap_or(text)
+}
+
+/// The text (UTF-8 or not: [`fast::Cursor`]) read by the chunks or line
+/// by line.
+fn parse(text: &[u8], file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
+    let text = strip_bom(text);
     let threads = rayon::current_num_threads();
     if fast_path
         && threads > 1
@@ -131,7 +161,7 @@ fn join<T: Copy>(parts: Vec<Vec<T>>) -> Vec<T> {
 
 /// The text read in `count` chunks in parallel ([`chunks`]) and joined;
 /// `None` when it must be read line by line instead.
-fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFile, ObjError>> {
+fn parse_chunked(text: &[u8], file: &Path, count: usize) -> Option<Result<ShapeFile, ObjError>> {
     let mut read = chunks::read_chunks(text, count)?;
     let mut p = Parser::default();
     let (mut vertices_before, mut uvs_before) = (0, 0);
@@ -141,7 +171,7 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
         .face_offsets
         .reserve_exact(read.iter().map(|c| c.face_ends.len()).sum());
     let mut corners_before = 0;
-    for c in &read {
+    for c in &mut read {
         if c.needs.0 > vertices_before || c.needs.1 > uvs_before {
             return None;
         }
@@ -159,7 +189,11 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
         vertices_before += c.positions.len();
         uvs_before += c.uv_values.len() / 2;
         corners_before += c.face_vertices.len();
-        deferred.extend(c.deferred.iter().map(|&(line, s)| (first_line + line, s)));
+        deferred.extend(
+            std::mem::take(&mut c.deferred)
+                .into_iter()
+                .map(|(line, s)| (first_line + line, s)),
+        );
         first_line += c.lines;
     }
     p.mesh.positions = join(
@@ -183,7 +217,7 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
             .collect(),
     );
     for (line, statement) in deferred {
-        if let Err(kind) = p.statement(line, statement) {
+        if let Err(kind) = p.statement(line, &statement) {
             return Some(Err(error_at(file, line, kind)));
         }
     }
@@ -195,7 +229,7 @@ fn parse_chunked(text: &str, file: &Path, count: usize) -> Option<Result<ShapeFi
 
 /// The text read line by line (by the fast path where it can, when
 /// `fast_path`).
-fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
+fn parse_lines(text: &[u8], file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
     let error = |line: usize, kind: ObjErrorKind| error_at(file, line, kind);
     let mut parser = Parser::default();
     let mut cursor = fast::Cursor::new(text);
@@ -207,7 +241,7 @@ fn parse_lines(text: &str, file: &Path, fast_path: bool) -> Result<ShapeFile, Ob
             continue;
         }
         parser
-            .statement(line, cursor.take_line())
+            .statement(line, &cursor.take_line())
             .map_err(|kind| error(line, kind))?;
     }
     parser.finish().map_err(|(line, kind)| error(line, kind))
@@ -956,6 +990,15 @@ mod read_tests {
         // (Unless maps are turned off for the run.)
         assert!(read.is_mapped() || std::env::var("SUBDIV_HUGE_PAGES").as_deref() == Ok("0"));
         assert!(read.as_slice() == bytes.as_slice());
+        // In pieces, one per thread of the pool.
+        for threads in [2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let read = pool.install(|| read_bytes(&path)).unwrap();
+            assert!(read.as_slice() == bytes.as_slice(), "{threads} threads");
+        }
         let status = read_bytes(Path::new("/proc/self/status")).unwrap();
         assert!(
             status.starts_with(b"Name:"),
@@ -963,5 +1006,66 @@ mod read_tests {
             &status[..status.len().min(20)]
         );
         assert!(read_bytes(&dir.path().join("missing.obj")).is_err());
+    }
+
+    /// Text that is not UTF-8 everywhere — bad bytes in numbers, keywords,
+    /// tags, comments and ignored statements, at line ends, before a
+    /// carriage return, cut sequences, a byte-order mark — reads as its
+    /// `String::from_utf8_lossy` replacement reads: the same mesh, warnings
+    /// and first error, line by line and in chunks.
+    #[test]
+    fn bytes_read_as_their_lossy_text() {
+        let pieces: [&[u8]; 16] = [
+            b"v 0 0 0\n",
+            b"v 1 0 0\r\n",
+            b"vt 0 1\n",
+            b"f 1 2 3\n",
+            b"f 1/1 2/1 3/1\n",
+            b"# \xff\xfe comment\n",
+            b"vn 0 \xe2\x82 1\n",
+            b"g \xc3\n",
+            b"v 1 \xff 0\n",
+            b"\xffv 0 0 0\n",
+            b"x\xe2\x82\r\n",
+            b"t crease 2/1/0 0 1 \xf0\x9f\x98\n",
+            b"s off\xe9\n",
+            b"v 2 2 2 # \xe9\xe9\n",
+            b"\xef\xbb\xbf\n",
+            b"f 1 2 3 \xc0\n",
+        ];
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let file = Path::new("u.obj");
+        for round in 0..600u32 {
+            let mut text: Vec<u8> = if round.is_multiple_of(5) {
+                b"\xef\xbb\xbf".to_vec()
+            } else {
+                Vec::new()
+            };
+            text.extend_from_slice(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\n");
+            for _ in 0..1 + round % 9 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                // Mostly good lines, now and then a bad one.
+                let pick = if x.is_multiple_of(3) {
+                    x >> 8
+                } else {
+                    (x >> 8) % 5
+                };
+                text.extend_from_slice(pieces[pick as usize % pieces.len()]);
+            }
+            if x.is_multiple_of(4) {
+                text.pop();
+            }
+            let lossy = String::from_utf8_lossy(&text);
+            let want = parse_obj_general(&lossy, file);
+            assert_eq!(parse(&text, file, true), want, "{lossy:?}");
+            for chunks in [2, 3] {
+                let text = strip_bom(&text);
+                let got = parse_chunked(text, file, chunks)
+                    .unwrap_or_else(|| parse_lines(text, file, true));
+                assert_eq!(got, want, "{chunks} chunks: {lossy:?}");
+            }
+        }
     }
 }
