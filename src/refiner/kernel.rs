@@ -47,6 +47,10 @@ impl Refiner {
         v: usize,
         buf: &'a mut AroundBuf,
     ) -> (&'a [u32], &'a [u32]) {
+        let l = &self.levels[level];
+        if !l.derived_relations {
+            return (l.vertex_faces_of(v), l.vertex_edges_of(v));
+        }
         self.around(level).vertex_faces_and_edges(v, buf)
     }
 }
@@ -708,6 +712,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Empty vertex tags: every parent vertex is smooth (what
     // `Level::vertex_tag` reads, tested once here).
     let has_tags = !parent.vertex_tags.is_empty();
+    let around = r.around(level - 1);
     let (quad4, loop6) = match derived {
         Some(_) if triangles => (None, Regular::<T, 6>::new(r)),
         Some(_) => (Regular::<T, 4>::new(r), None),
@@ -744,7 +749,7 @@ fn run<T: Real, W: Width + Send + Sync>(
             }
         }
         let mut hood = std::mem::take(&mut scratch.hood);
-        let (faces, edges) = r.vertex_hood(level - 1, v, &mut hood);
+        let (faces, edges) = around.vertex_faces_and_edges(v, &mut hood);
         let rule = if has_tags {
             parent.vertex_tags[v].rule()
         } else {
