@@ -28,9 +28,10 @@ BfrInventory bfr_inventory(OpenSubdiv::Bfr::Parameterization const &p, int32_t c
 // the reasons are spelled out): at most SDV_BFR_MAX_SURFACE_FACE_SIZE
 // vertices, no corner of more than SDV_BFR_MAX_SURFACE_VALENCE faces
 // (SDV_ERR_UNSAFE), and for a surface that is not linear (`nonlinear`) none
-// of OpenSubdiv 3.5.0's valence-2 fault (SDV_ERR_UNSAFE; `fvar`: a
-// face-varying surface, whose subsets may have a boundary at any seam).
-void check_bfr_surface_face(Far::TopologyLevel const &base, int face, bool nonlinear, bool fvar);
+// of OpenSubdiv 3.5.0's two valence-2 faults (SDV_ERR_UNSAFE; `channel`: the
+// face-varying channel of a face-varying surface, whose subsets may have a
+// boundary at any seam, or -1 for a vertex surface).
+void check_bfr_surface_face(Far::TopologyLevel const &base, int face, bool nonlinear, int channel);
 
 // Every control point of `surface` (of `face`) names one of `available`
 // points; else an internal error (defined in bfr_surface.cpp).

@@ -151,8 +151,8 @@ void check_input(Far::TopologyRefiner const &tr, const sdv_bfr_mesh_input &in) {
 bool may_have_surface(Far::TopologyLevel const &base, Factory const &factory, int face, bool linear_scheme,
                       bool linear_fvar, bool uvs) {
     if (base.IsFaceHole(face)) return false;
-    check_bfr_surface_face(base, face, !linear_scheme, false);
-    if (uvs) check_bfr_surface_face(base, face, !linear_fvar, true);
+    check_bfr_surface_face(base, face, !linear_scheme, -1);
+    if (uvs) check_bfr_surface_face(base, face, !linear_fvar, 0);
     return factory.GetFaceParameterization(face).IsValid();
 }
 

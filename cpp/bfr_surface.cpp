@@ -39,6 +39,20 @@
 //   51eb6a04, "Fix bug in Bfr::SurfaceFactory with valence-2 interior
 //   vertex", four lines: the pointers advance past the gathered edges).
 //   The bridge refuses such faces conservatively (see check_valence2).
+// * valence-2 interior vertices with an infinitely sharp edge (a dart, or a
+//   face-varying seam): the Gregory patches next to such a vertex in a
+//   face's refined neighbourhood have a corner ring that names one point
+//   past the patch's source points (Far::SourcePatch counts the points of
+//   a corner beside a valence-2 corner one short when that corner's span
+//   stops at the sharp edge). Far's PatchTableFactory gathers the points
+//   into a 64-entry stack buffer, so the extra one lands there and is read
+//   back; Bfr's PatchTreeBuilder::getIrregularPatchConversion sizes a
+//   std::vector to the point count, so PatchBuilder::
+//   GetIrregularPatchSourcePoints writes one past its end (out of bounds
+//   unless the vector has spare capacity from a previous patch), and the
+//   conversion then reads that point without the level's offset, as a
+//   control point it is not. Unchanged in 3.6.0. Refused conservatively
+//   (see check_valence2_dart).
 // * approximation levels: the levels are unsigned chars and the adaptive
 //   refinement of a face's neighbourhood goes that deep; its patches'
 //   Far::PatchParam hold 10 bits of u and v, which wrap beyond level 10 and
@@ -118,25 +132,6 @@ void check_kind(const sdv_surfaces &s, int32_t kind, int32_t channel) {
     }
 }
 
-// Whether corner `i` of `face` is, as Bfr sees it, an interior corner of
-// valence 2: both of the face's edges at the corner are shared with one
-// and the same other face and with no third, so the corner's fan is that
-// pair of faces, closed (two faces folded onto each other there). A
-// manifold interior vertex of two faces is one whatever its edges.
-bool is_valence2_corner(Far::TopologyLevel const &base, int face, int i) {
-    Far::ConstIndexArray fv = base.GetFaceVertices(face);
-    Far::ConstIndexArray fe = base.GetFaceEdges(face);
-    int n = fv.size();
-    Far::Index v = fv[i];
-    if (!base.IsVertexNonManifold(v) && !base.IsVertexBoundary(v) && base.GetVertexFaces(v).size() == 2) return true;
-    Far::ConstIndexArray lead = base.GetEdgeFaces(fe[i]);
-    Far::ConstIndexArray trail = base.GetEdgeFaces(fe[(i + n - 1) % n]);
-    if (lead.size() != 2 || trail.size() != 2) return false;
-    Far::Index a = lead[0] == face ? lead[1] : lead[0];
-    Far::Index b = trail[0] == face ? trail[1] : trail[0];
-    return a == b && a != face;
-}
-
 // A vertex whose faces are not one closed fan: a boundary, or non-manifold
 // (one of its fans may be open).
 bool may_be_boundary(Far::TopologyLevel const &base, Far::Index v) {
@@ -186,11 +181,38 @@ void check_valence2(Far::TopologyLevel const &base, int face, bool fvar) {
                 "them, out of bounds");
 }
 
+// OpenSubdiv's second valence-2 fault (see the top of this file) needs an
+// interior corner of valence 2 whose span, in the refined neighbourhood,
+// meets a corner whose own span stops at an infinitely sharp edge: the
+// children of the corner's two edges, sharp when the edge is infinitely
+// sharp or, for a face-varying surface, a seam (face-varying topology that
+// differs from the vertices' at the edge or at the corner's vertex).
+// Refused on the base level's topology: such a corner with such an edge.
+void check_valence2_dart(Far::TopologyLevel const &base, int face, int channel) {
+    Far::ConstIndexArray fv = base.GetFaceVertices(face);
+    Far::ConstIndexArray fe = base.GetFaceEdges(face);
+    int n = fv.size();
+    for (int i = 0; i < n; ++i) {
+        if (!is_valence2_corner(base, face, i)) continue;
+        bool vertex_seam = channel >= 0 && !base.DoesVertexFVarTopologyMatch(fv[i], channel);
+        for (Far::Index e : {fe[i], fe[(i + n - 1) % n]}) {
+            bool inf_sharp = Sdc::Crease::IsInfinite(base.GetEdgeSharpness(e));
+            bool seam = channel >= 0 && (vertex_seam || !base.DoesEdgeFVarTopologyMatch(e, channel));
+            if (!inf_sharp && !seam) continue;
+            fail_unsafe("face " + str(face) + ": its corner vertex " + str(fv[i]) +
+                        " is an interior vertex of valence 2 (two faces folded onto each other) and its edge " +
+                        str(e) + (inf_sharp ? " is infinitely sharp" : " is a face-varying seam") +
+                        ": OpenSubdiv's Bfr (PatchTreeBuilder::getIrregularPatchConversion) then writes a source "
+                        "point past the end of its array and reads it as a control point it is not");
+        }
+    }
+}
+
 }  // namespace
 
 // What a surface of `face` needs of its topology before OpenSubdiv builds
 // it (shared: see bfr_internal.h).
-void sdv_internal::check_bfr_surface_face(Far::TopologyLevel const &base, int face, bool nonlinear, bool fvar) {
+void sdv_internal::check_bfr_surface_face(Far::TopologyLevel const &base, int face, bool nonlinear, int channel) {
     Far::ConstIndexArray fv = base.GetFaceVertices(face);
     if (fv.size() > SDV_BFR_MAX_SURFACE_FACE_SIZE)
         fail_unsafe("face " + str(face) + " has " + str(fv.size()) + " vertices: Bfr keeps a face's size in a short "
@@ -203,25 +225,27 @@ void sdv_internal::check_bfr_surface_face(Far::TopologyLevel const &base, int fa
                         "2 * valence face-edges in shorts (the bridge takes up to " +
                         str(SDV_BFR_MAX_SURFACE_VALENCE) + " faces at a vertex)");
     }
-    if (nonlinear) check_valence2(base, face, fvar);
+    if (!nonlinear) return;
+    check_valence2(base, face, channel >= 0);
+    check_valence2_dart(base, face, channel);
 }
 
 namespace {
 
 // What every surface of `face` needs of its topology before OpenSubdiv
 // builds it.
-void check_face_topology(const sdv_surfaces &s, int32_t face, int32_t kind) {
+void check_face_topology(const sdv_surfaces &s, int32_t face, int32_t kind, int32_t channel) {
     bool nonlinear = kind == SDV_SURFACE_VERTEX ? !s.linear_scheme
                      : kind == SDV_SURFACE_FACE_VARYING ? !s.linear_fvar
                                                         : false;
-    check_bfr_surface_face(base_of(s), face, nonlinear, kind == SDV_SURFACE_FACE_VARYING);
+    check_bfr_surface_face(base_of(s), face, nonlinear, kind == SDV_SURFACE_FACE_VARYING ? channel : -1);
 }
 
 // Builds the surface of `face` (false: no limit surface). OpenSubdiv's
 // errors while building (its local refiners report through Far::Error)
 // fail the call.
 bool init_surface(const sdv_surfaces &s, int32_t face, int32_t kind, int32_t channel, Surface &surface) {
-    check_face_topology(s, face, kind);
+    check_face_topology(s, face, kind, channel);
     osd_errors().clear();
     bool ok = kind == SDV_SURFACE_VERTEX    ? s.factory->InitVertexSurface<double>(face, &surface)
               : kind == SDV_SURFACE_VARYING ? s.factory->InitVaryingSurface<double>(face, &surface)

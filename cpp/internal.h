@@ -107,8 +107,13 @@ inline void check_cap(size_t cap, long long need_n, const char *what) {
 // int beyond 46,340 faces, not used from level `parent` (`channel` -1 for
 // vertex data). patches.cpp: no face of the base level repeating a vertex
 // (OpenSubdiv's adaptive patch builders overrun on them); a parametric
-// coordinate in [0, 1].
+// coordinate in [0, 1]; is_valence2_corner: whether corner `i` of `face`
+// is an interior corner of valence 2 (two faces folded onto each other
+// there); no irregular patch next to one whose source points overflow the
+// 64 entries OpenSubdiv gathers them into.
 void check_channel(const sdv_refiner *r, int32_t channel);
+bool is_valence2_corner(Far::TopologyLevel const &base, int face, int i);
+void check_valence2_source_points(Far::TopologyRefiner const &tr);
 void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int channel);
 void check_no_repeated_vertices(Far::TopologyLevel const &base);
 void check_loop_folded_triangles(Far::TopologyRefiner const &tr);

@@ -88,6 +88,7 @@ int sdv_limit_stencils_create(const sdv_refiner *r, const sdv_limit_stencil_opti
                          "others, which limit stencils are built from, are undefined");
             check_no_repeated_vertices(tr.GetLevel(0));
             check_loop_folded_triangles(tr);
+            check_valence2_source_points(tr);
             // Face-varying stencils over the non-linear face-varying patches
             // of a refinement that considered the channels:
             // appendLocalPointStencilTable reads uninitialised weights there

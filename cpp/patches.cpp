@@ -21,6 +21,62 @@ using namespace sdv_internal;
 
 namespace sdv_internal {
 
+// Whether corner `i` of `face` is, as Bfr and Far's patch builder see it,
+// an interior corner of
+// of valence 2: both of the face's edges at the corner are shared with one
+// and the same other face and with no third, so the corner's fan is that
+// pair of faces, closed (two faces folded onto each other there). A
+// manifold interior vertex of two faces is one whatever its edges.
+bool is_valence2_corner(Far::TopologyLevel const &base, int face, int i) {
+    Far::ConstIndexArray fv = base.GetFaceVertices(face);
+    Far::ConstIndexArray fe = base.GetFaceEdges(face);
+    int n = fv.size();
+    Far::Index v = fv[i];
+    if (!base.IsVertexNonManifold(v) && !base.IsVertexBoundary(v) && base.GetVertexFaces(v).size() == 2) return true;
+    Far::ConstIndexArray lead = base.GetEdgeFaces(fe[i]);
+    Far::ConstIndexArray trail = base.GetEdgeFaces(fe[(i + n - 1) % n]);
+    if (lead.size() != 2 || trail.size() != 2) return false;
+    Far::Index a = lead[0] == face ? lead[1] : lead[0];
+    Far::Index b = trail[0] == face ? trail[1] : trail[0];
+    return a == b && a != face;
+}
+
+// Next to an interior corner of valence 2, Far::SourcePatch can count a
+// neighbouring corner's ring one point short (where that corner's span
+// stops at an infinitely sharp edge, a boundary or a seam), and a ring then
+// names a point past the patch's count: PatchBuilder::
+// GetIrregularPatchSourcePoints writes it there. PatchTableFactory gathers
+// the points into a StackBuffer of 64 inline entries sized to the count:
+// beyond 63 points the buffer is on the heap and the write is out of bounds
+// (Valgrind: a 40-gon beside an infinitely sharp dart of valence 2, one
+// level of isolation). Refused, conservatively, wherever a patch with such
+// a corner may have 64 points or more: the face itself (a patch of the base
+// level when it is a quad or triangle: four points and each corner's ring,
+// at most 2 * faces + 1) or its child at the corner (the corner, two edge
+// children of four faces and the face's centre of as many faces as the
+// face has vertices). Deeper patches there have small rings throughout.
+void check_valence2_source_points(Far::TopologyRefiner const &tr) {
+    const int inline_points = 64;
+    Far::TopologyLevel const &base = tr.GetLevel(0);
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = base.GetFaceVertices(f);
+        int n = fv.size();
+        int corner = -1;
+        for (int i = 0; i < n && corner < 0; ++i)
+            if (is_valence2_corner(base, f, i)) corner = i;
+        if (corner < 0) continue;
+        long long at_base = 4;
+        for (int i = 0; i < n; ++i) at_base += 2LL * base.GetVertexFaces(fv[i]).size() + 1;
+        long long child = 4 + 5 + 9 + 9 + 2LL * n + 1;
+        long long bound = std::max(n <= 4 ? at_base : 0, child);
+        if (bound >= inline_points)
+            fail_unsafe("face " + str(f) + ": its corner vertex " + str(fv[corner]) +
+                        " is an interior vertex of valence 2 (two faces folded onto each other) and a patch there "
+                        "may gather up to " + str(bound) + " source points: OpenSubdiv's patch builder can write "
+                        "one past them, out of bounds beyond 63");
+    }
+}
+
 // OpenSubdiv's patch builders assume faces without repeated vertices: on a
 // face that uses a vertex twice, the B-spline end-cap converter writes out
 // of bounds and the legacy Gregory tables read and write past their
@@ -235,6 +291,7 @@ int sdv_patches_create(const sdv_refiner *r, const sdv_patch_options *o, const i
         // builders that overrun on repeated vertices.
         if (!tr.IsUniform()) check_no_repeated_vertices(tr.GetLevel(0));
         if (!legacy) check_loop_folded_triangles(tr);
+        if (!legacy && !tr.IsUniform()) check_valence2_source_points(tr);
         if (f.endCapType == Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS ||
             f.endCapType == Far::PatchTableFactory::Options::ENDCAP_NONE)
             check_bspline_end_caps(tr.GetLevel(0));

@@ -732,7 +732,6 @@ fn loop_end_caps_at_odd_corners_match_opensubdiv() {
 #[test]
 fn folded_loop_triangles_left_unrefined_are_refused_by_the_bridge() {
     use glam::DVec3;
-    use subdiv::patches::LimitStencilOptions;
     let positions = vec![
         DVec3::new(-1.4375, 0.0, 5.4375),
         DVec3::new(-5.125, 6.0625, -5.0),
@@ -743,33 +742,91 @@ fn folded_loop_triangles_left_unrefined_are_refused_by_the_bridge() {
     mesh.holes.push(0);
     let options = Options::shape_file_defaults().with_scheme(Scheme::Loop);
     let ao = AdaptiveOptions::new(6).secondary(0);
-    let native = Refiner::new(&mesh, &options)
-        .unwrap()
-        .refine_adaptive(ao, &[])
-        .unwrap();
-    let mut theirs = osd::TopologyRefiner::new(&mesh, &options).unwrap();
-    theirs.refine_adaptive(ao, &[]).unwrap();
-    let unsafe_refusal =
-        |e: Error| matches!(e, Error::Osd(o) if o.kind == subdiv::OsdErrorKind::Unsafe);
     for end_caps in [
         EndCapType::GregoryBasis,
         EndCapType::BSplineBasis,
         EndCapType::BilinearBasis,
     ] {
         let po = PatchOptions::new().max_isolation(6).end_caps(end_caps);
-        let table = native.patch_table(&po, &[]).unwrap();
-        assert!(table.local_points > 0, "{end_caps:?}");
-        let Err(e) = theirs.patch_table(&po, &[]) else {
-            panic!("{end_caps:?}: the bridge built the table");
-        };
-        assert!(unsafe_refusal(e), "{end_caps:?}");
+        refused_by_the_bridge(&mesh, &options, ao, &po, 1);
     }
-    let at = [(1, 0.25, 0.5)];
+}
+
+/// After refining `mesh` adaptively with `ao`, the native engine builds
+/// `po`'s table (with local points) and limit stencils at ptex face `face`;
+/// the bridge refuses both as unsafe. Returns the bridge's refusal of the
+/// table.
+fn refused_by_the_bridge(
+    mesh: &Mesh,
+    options: &Options,
+    ao: AdaptiveOptions,
+    po: &PatchOptions,
+    face: u32,
+) -> Error {
+    use subdiv::patches::LimitStencilOptions;
+    let native = Refiner::new(mesh, options)
+        .unwrap()
+        .refine_adaptive(ao, &[])
+        .unwrap();
+    let mut theirs = osd::TopologyRefiner::new(mesh, options).unwrap();
+    theirs.refine_adaptive(ao, &[]).unwrap();
+    let unsafe_refusal =
+        |e: &Error| matches!(e, Error::Osd(o) if o.kind == subdiv::OsdErrorKind::Unsafe);
+    let table = native.patch_table(po, &[]).unwrap();
+    assert!(table.local_points > 0, "{po:?}");
+    let Err(e) = theirs.patch_table(po, &[]) else {
+        panic!("{po:?}: the bridge built the table");
+    };
+    assert!(unsafe_refusal(&e), "{po:?}: {e}");
+    let at = [(face, 0.25, 0.5)];
     let o = LimitStencilOptions::new();
     assert_eq!(native.location_stencils(&at, &o).unwrap().len(), 1);
     assert!(unsafe_refusal(
-        theirs.location_stencils(&at, &o).unwrap_err()
+        &theirs.location_stencils(&at, &o).unwrap_err()
     ));
+    e
+}
+
+/// An n-gon and a quad folded onto it along two edges at vertex 0, an
+/// interior vertex of valence 2, one of whose edges is infinitely sharp (a
+/// dart). Beside it a Gregory patch's corner ring names one source point
+/// past the patch's count: OpenSubdiv writes it into its 64-entry buffer
+/// and reads it back, and the native tables do the same — identical on the
+/// hexagon. The 40-gon's patch beside the dart gathers more than 64 points,
+/// OpenSubdiv's buffer is then on the heap and the write lands past it
+/// (Valgrind): the bridge refuses it (tables and limit stencils), the native
+/// engine builds both.
+#[test]
+fn valence2_darts_beside_large_faces_are_refused_by_the_bridge() {
+    let options = Options::default().with_boundary(BoundaryInterpolation::EdgeOnly);
+    let ao = AdaptiveOptions::new(1).inf_sharp_patch(true);
+    for n in [6u32, 40] {
+        let positions = (0..=n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                let r = if i == n { 0.5 } else { 1.0 };
+                glam::DVec3::new(r * a.cos(), r * a.sin(), 0.1 * f64::from(i % 3))
+            })
+            .collect();
+        let ngon: Vec<u32> = (0..n).collect();
+        let mut mesh = Mesh::from_faces(positions, &[&ngon, &[1, 0, n - 1, n]]);
+        mesh.add_crease(0, n - 1, 10.0);
+        for end_caps in [EndCapType::GregoryBasis, EndCapType::BilinearBasis] {
+            let po = PatchOptions::new()
+                .max_isolation(1)
+                .inf_sharp_patch(true)
+                .end_caps(end_caps);
+            if n == 6 {
+                let mut t = Tally::default();
+                compare_refined("hexagon dart", &mesh, &options, ao, &po, &[], &mut t);
+                assert_eq!((t.identical, t.osd_unsafe), (1, 0), "{end_caps:?}");
+                assert!(t.local_points > 0);
+                continue;
+            }
+            let e = refused_by_the_bridge(&mesh, &options, ao, &po, 0);
+            assert!(e.to_string().contains("valence 2"), "{e}");
+        }
+    }
 }
 
 /// Uniform patch tables (`BuildUniformPolygons`): every scheme, levels 0-3,

@@ -41,6 +41,13 @@
 //!   vertex indices from memory never written and looks edges up with
 //!   them, out of bounds (fixed in 3.5.1, commit 51eb6a04). The test is
 //!   conservative: it refuses some faces the fault spares.
+//! - kind `Unsafe`: under a non-linear scheme, a face with an interior
+//!   corner of valence 2 whose edge there is infinitely sharp (a dart) or,
+//!   for face-varying surfaces, a seam. Beside such a corner a Gregory
+//!   patch's ring names one source point past the patch's count, which
+//!   `PatchTreeBuilder::getIrregularPatchConversion` writes past the end of
+//!   its vector and reads back as a control point it is not (still so in
+//!   3.6.0; docs/CONFORMANCE.md).
 //!
 //! # OpenSubdiv's caching and threads
 //! The factory's topology cache is off: it is keyed by a 64-bit hash alone

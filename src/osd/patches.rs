@@ -62,9 +62,11 @@ impl TopologyRefiner {
     /// (kind `Unsafe`; docs/CONFORMANCE.md): a face repeating a vertex,
     /// B-spline end caps at an interior vertex of valence 2, Loop end caps
     /// on a base triangle left unrefined with two interior vertices of
-    /// valence 2 (two triangles folded onto each other), legacy Gregory end
-    /// caps with an irregular patch above the last level, a non-quad or a
-    /// non-manifold vertex in it.
+    /// valence 2 (two triangles folded onto each other), Gregory or bilinear
+    /// end caps where a patch at an interior vertex of valence 2 may gather
+    /// 64 source points or more (OpenSubdiv then writes one past them),
+    /// legacy Gregory end caps with an irregular patch above the last level,
+    /// a non-quad or a non-manifold vertex in it.
     ///
     /// ```
     /// use subdiv::{osd, patches::{PatchOptions, PatchType}, shapes, Options};

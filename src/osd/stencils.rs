@@ -299,8 +299,10 @@ impl TopologyRefiner {
     /// refiner adaptively refined around selected faces only (the other
     /// faces' patches are undefined), faces repeating a vertex after
     /// adaptive refinement, a Loop base triangle left unrefined with two
-    /// interior vertices of valence 2 (as for patch tables), face-varying stencils after adaptive refinement
-    /// that considered the face-varying channels (OpenSubdiv 3.5 reads
+    /// interior vertices of valence 2 and a patch at an interior vertex of
+    /// valence 2 that may gather 64 source points or more (as for patch
+    /// tables), face-varying stencils after adaptive refinement that
+    /// considered the face-varying channels (OpenSubdiv 3.5 reads
     /// uninitialised local-point weights there and returns wrong stencils:
     /// found by Valgrind), and the Catmull-Clark vertex masks that overflow
     /// (as for every stencil table).
