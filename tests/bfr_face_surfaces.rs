@@ -131,12 +131,6 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> u
         for (p, q) in ours.values.point.iter().zip(&theirs.values.point) {
             assert!((p - q).abs() <= 1e-12 * scale, "{what} varying: {p} vs {q}");
         }
-        if is_pillow(mesh, face) {
-            // See CONFORMANCE.md: OpenSubdiv's Bfr departs from its own
-            // Far patches there; the native surface follows Far.
-            compared += 1;
-            continue;
-        }
         let ours = s.evaluate_stencil(&coords, Derivatives::Second).unwrap();
         if !info.regular && info.patch_points == info.control_points.len() {
             // OpenSubdiv's fault (see CONFORMANCE.md): the stencils of one
@@ -156,9 +150,9 @@ fn compare(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions) -> u
 }
 
 /// The surface's patch points: as many as counted, the control points
-/// first, OpenSubdiv's `PreparePatchPoints` within 1e-12 (away from folded
-/// faces), and evaluating them gives what evaluating the mesh's points does
-/// — and, away from folded faces, OpenSubdiv's values.
+/// first, OpenSubdiv's `PreparePatchPoints` within 1e-12, and evaluating
+/// them gives what evaluating the mesh's points does and OpenSubdiv's
+/// values — folded faces (every corner of valence 2) included.
 fn patch_points_match_evaluation(
     what: &str,
     mesh: &Mesh,
@@ -171,17 +165,15 @@ fn patch_points_match_evaluation(
     let patch = s.patch_points(&points, 3).unwrap();
     assert_eq!(patch.len(), 3 * s.patch_point_count(), "{what}");
     let scale = points.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    if !is_pillow(mesh, face) {
-        let theirs = osd.patch_points(face).unwrap();
-        assert_eq!(patch.len(), theirs.len(), "{what}");
-        for (i, (p, q)) in patch.iter().zip(&theirs).enumerate() {
-            assert!(
-                (p - q).abs() <= 1e-12 * scale,
-                "{what}: patch point {} component {}: {p} vs {q}",
-                i / 3,
-                i % 3
-            );
-        }
+    let theirs = osd.patch_points(face).unwrap();
+    assert_eq!(patch.len(), theirs.len(), "{what}");
+    for (i, (p, q)) in patch.iter().zip(&theirs).enumerate() {
+        assert!(
+            (p - q).abs() <= 1e-12 * scale,
+            "{what}: patch point {} component {}: {p} vs {q}",
+            i / 3,
+            i % 3
+        );
     }
     for (k, &cv) in s.control_points().iter().enumerate() {
         assert_eq!(
@@ -195,7 +187,6 @@ fn patch_points_match_evaluation(
     let b = s.evaluate(&points, 3, coords, Derivatives::Second).unwrap();
     interleaved_data_evaluates_alike(what, s, &points, &patch, coords, &b);
     let theirs = osd.evaluate(face, coords, Derivatives::Second).unwrap();
-    let pillow = is_pillow(mesh, face);
     for (c, ((x, y), z)) in columns(&a.values)
         .iter()
         .zip(columns(&b.values))
@@ -205,12 +196,10 @@ fn patch_points_match_evaluation(
         let tol = 1e-9 * scale * 4f64.powi([0, 1, 1, 2, 2, 2][c]);
         for ((p, q), r) in x.iter().zip(y).zip(z) {
             assert!((p - q).abs() <= tol, "{what} column {c}: {p} vs {q}");
-            if !pillow {
-                assert!(
-                    (p - r).abs() <= tol,
-                    "{what} column {c} vs OpenSubdiv: {p} vs {r}"
-                );
-            }
+            assert!(
+                (p - r).abs() <= tol,
+                "{what} column {c} vs OpenSubdiv: {p} vs {r}"
+            );
         }
     }
 }
@@ -295,17 +284,6 @@ fn interleaved_data_evaluates_alike(
             Err(subdiv::Error::BufferLength { .. })
         ));
     }
-}
-
-/// Whether every corner of `face` is a vertex of exactly two face corners
-/// (a face folded onto another one: a "pillow").
-fn is_pillow(mesh: &Mesh, face: usize) -> bool {
-    mesh.face(face).iter().all(|&v| {
-        mesh.faces()
-            .map(|f| f.iter().filter(|&&x| x == v).count())
-            .sum::<usize>()
-            == 2
-    })
 }
 
 /// The native stencils of `face` applied to the mesh's positions against
@@ -489,9 +467,7 @@ fn compare_fvar(name: &str, mesh: &Mesh, opts: &Options, approx: SurfaceOptions)
                 continue;
             }
             compared += 1;
-            if is_pillow(mesh, face)
-                || (!info.regular && info.patch_points == info.control_points.len())
-            {
+            if !info.regular && info.patch_points == info.control_points.len() {
                 continue;
             }
             let scale = c.values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
