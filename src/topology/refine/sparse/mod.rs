@@ -695,42 +695,63 @@ fn edge_halves(
     corner: impl Fn(usize, usize) -> u32,
     child_face: impl Fn(usize, usize, usize) -> (u32, usize),
 ) {
-    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
     let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
-    for (e, (&halves, &ends)) in s
-        .edge_child_edges
-        .iter()
-        .zip(parent_edge_vertices)
-        .enumerate()
-    {
-        if !valid(halves[0]) && !valid(halves[1]) {
+    let half_face = |pf: usize, k: usize, j: usize, ends: [u32; 2]| {
+        child_face(pf, k, half_end(ends, j, corner(pf, k)))
+    };
+    for e in 0..s.edge_child_edges.len() {
+        halves_of_edge(parent, s, e, child_edge_vertices, edge_faces, &half_face);
+    }
+}
+
+/// Which end of a parent edge (its ends `ends`, the face's corner at the
+/// edge's start being `corner`) half `j` lies at as the face runs: 0 at the
+/// face's corner, 1 at the next (a degenerate edge: by the half's own end).
+#[inline]
+fn half_end(ends: [u32; 2], j: usize, corner: u32) -> usize {
+    if ends[0] == ends[1] {
+        j
+    } else {
+        (corner != ends[j]) as usize
+    }
+}
+
+/// The halves of parent edge `e` that exist ([`edge_halves`]): their
+/// vertices and their faces (`half_face(pf, k, j, ends)`: the child of
+/// parent face `pf`, whose edge `k` this is, holding half `j`, and its local
+/// index of the half), each half's faces ended. Returns whether one exists
+/// (then the edge has a point).
+#[inline]
+fn halves_of_edge(
+    parent: &Level,
+    s: &SparseSplit,
+    e: usize,
+    child_edge_vertices: &mut [[u32; 2]],
+    edge_faces: &mut Filler,
+    half_face: &impl Fn(usize, usize, usize, [u32; 2]) -> (u32, usize),
+) -> bool {
+    let halves = s.edge_child_edges[e];
+    if !valid(halves[0]) && !valid(halves[1]) {
+        return false;
+    }
+    let ends = parent.edge_vertices[e];
+    let point = s.edge_child_vertex[e];
+    let faces = parent.edge_faces_of(e);
+    let locals = parent.edge_face_locals(e);
+    for (j, &c) in halves.iter().enumerate() {
+        if !valid(c) {
             continue;
         }
-        let point = s.edge_child_vertex[e];
-        let faces = parent.edge_faces_of(e);
-        let locals = parent.edge_face_locals(e);
-        for (j, &c) in halves.iter().enumerate() {
-            if !valid(c) {
-                continue;
+        child_edge_vertices[c as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
+        for (&pf, &k) in faces.iter().zip(locals) {
+            let (cf, local) = half_face(pf as usize, k as usize, j, ends);
+            if valid(cf) {
+                edge_faces.push(cf, local);
             }
-            child_edge_vertices[c as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
-            for (&pf, &k) in faces.iter().zip(locals) {
-                let (pf, k) = (pf as usize, k as usize);
-                // Which child of the face the half lies in (a degenerate
-                // edge: by the half's own end).
-                let end = if ends[0] == ends[1] {
-                    j
-                } else {
-                    (corner(pf, k) != ends[j]) as usize
-                };
-                let (cf, local) = child_face(pf, k, end);
-                if valid(cf) {
-                    edge_faces.push(cf, local);
-                }
-            }
-            edge_faces.end();
         }
+        edge_faces.end();
     }
+    true
 }
 
 /// The faces and edges of the child of parent vertex `v`: the child at the

@@ -261,50 +261,28 @@ fn edges_and_edge_points<const QUADS: bool>(
     edge_faces: &mut Filler,
     (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
 ) -> usize {
-    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
     let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
+    let half_face = |pf: usize, k: usize, j: usize, ends: [u32; 2]| {
+        let range = faces.range(pf);
+        let n = range.len();
+        let end = super::half_end(ends, j, faces.verts[range.start + k]);
+        let (corner, local) = if end == 0 {
+            (k, if n == 4 { k } else { 0 })
+        } else {
+            (next(k, n), if n == 4 { k } else { 3 })
+        };
+        (s.face_child_faces[range.start + corner], local)
+    };
     let mut points = 0;
-    for (e, (&halves, &ends)) in s
-        .edge_child_edges
-        .iter()
-        .zip(parent_edge_vertices)
-        .enumerate()
-    {
-        if !valid(halves[0]) && !valid(halves[1]) {
+    for e in 0..s.edge_child_edges.len() {
+        // The halves (`edge_halves`).
+        if !super::halves_of_edge(parent, s, e, child_edge_vertices, edge_faces, &half_face) {
             continue;
         }
+        let (halves, ends) = (s.edge_child_edges[e], parent.edge_vertices[e]);
         let point = s.edge_child_vertex[e];
         let pfaces = parent.edge_faces_of(e);
         let locals = parent.edge_face_locals(e);
-        // The halves (`edge_halves`).
-        for (j, &h) in halves.iter().enumerate() {
-            if !valid(h) {
-                continue;
-            }
-            child_edge_vertices[h as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
-            for (&pf, &k) in pfaces.iter().zip(locals) {
-                let (pf, k) = (pf as usize, k as usize);
-                let range = faces.range(pf);
-                let n = range.len();
-                // Which child of the face the half lies in (a degenerate
-                // edge: by the half's own end).
-                let end = if ends[0] == ends[1] {
-                    j
-                } else {
-                    (faces.verts[range.start + k] != ends[j]) as usize
-                };
-                let (corner, local) = if end == 0 {
-                    (k, if n == 4 { k } else { 0 })
-                } else {
-                    (next(k, n), if n == 4 { k } else { 3 })
-                };
-                let cf = s.face_child_faces[range.start + corner];
-                if valid(cf) {
-                    edge_faces.push(cf, local);
-                }
-            }
-            edge_faces.end();
-        }
         // The edge point.
         debug_assert!(valid(point));
         let first = vertex_edges.len();
