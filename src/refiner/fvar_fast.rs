@@ -80,14 +80,7 @@ impl Refiner {
         let nf = parent.face_count();
         // The faces that are not clean (their face points are left to the
         // face-varying pass) and the vertices around them.
-        let unclean = select(nf, |f| {
-            let verts = parent.face_verts(f);
-            let values = pf.face_values_of(parent, f);
-            verts
-                .iter()
-                .zip(values)
-                .any(|(&v, &x)| pf.vertex_value(v as usize, 0) != x)
-        });
+        let unclean = pf.faces_off_first_values(parent);
         if ((nf - unclean.len()) as f64) < MIN_CLEAN_SHARE * nf as f64 {
             return None;
         }
@@ -134,31 +127,42 @@ impl Refiner {
         // A child's value is mismatched where its parent's is: an edge point
         // on a split or linear edge, a vertex's child when the vertex's
         // value is.
+        debug_assert_eq!(pf.edge_tags().len(), parent.edge_count());
         let left = Fast {
             faces: if split.has_face_points() {
                 unclean
             } else {
                 Vec::new()
             },
-            edges: select(parent.edge_count(), |e| {
-                let t = pf.edge_tag(e);
-                let [a, b] = parent.edge_vertices[e];
-                t.is_mismatch()
-                    || t.is_linear()
-                    || !clean_vertices[a as usize]
-                    || !clean_vertices[b as usize]
-            }),
-            vertices: select(parent.vertex_count, |v| {
-                !clean_vertices[v] || pf.vertex_value_tags(v)[0].is_mismatch()
-            }),
+            // (Per-edge and per-vertex tables, one entry each.)
+            edges: select(
+                pf.edge_tags().iter().zip(parent.edge_vertices.iter()),
+                |(t, &[a, b])| {
+                    t.is_mismatch()
+                        || t.is_linear()
+                        || !clean_vertices[a as usize]
+                        || !clean_vertices[b as usize]
+                },
+            ),
+            vertices: select(
+                clean_vertices.iter().zip(pf.first_value_tags()),
+                |(&clean, t)| !clean || t.is_mismatch(),
+            ),
         };
         Some(left)
     }
 }
 
-/// The elements of `0..n` for which `pred` holds, in order.
-fn select(n: usize, pred: impl Fn(usize) -> bool) -> Vec<u32> {
-    (0..n).filter(|&i| pred(i)).map(|i| i as u32).collect()
+/// The indices of the elements of `items` for which `pred` holds, in
+/// order.
+fn select<I: Iterator>(items: I, mut pred: impl FnMut(I::Item) -> bool) -> Vec<u32> {
+    let mut out = Vec::new();
+    for (i, item) in items.enumerate() {
+        if pred(item) {
+            out.push(i as u32);
+        }
+    }
+    out
 }
 
 /// Moves rows `0..child_count` of `dst` (`W` values each) to the rows of

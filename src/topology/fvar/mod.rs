@@ -260,10 +260,59 @@ impl ChannelLevel {
         self.edge_tags[e]
     }
 
+    /// The tags of every edge for this channel, in edge order.
+    #[inline]
+    pub(crate) fn edge_tags(&self) -> &[FVarEdgeTag] {
+        &self.edge_tags
+    }
+
+    /// The tags of every vertex's first value (sibling 0), in vertex order.
+    pub(crate) fn first_value_tags(&self) -> impl Iterator<Item = ValueTag> + '_ {
+        let vertices = self.value_offsets.len().saturating_sub(1);
+        self.value_offsets[..vertices]
+            .iter()
+            .map(|&o| self.value_tags[o as usize])
+    }
+
     /// The values of the corners of face `f` of `level`.
     #[inline]
     pub fn face_values_of(&self, level: &Level, f: usize) -> &[u32] {
         &self.face_values[level.face_vertices.range(f)]
+    }
+
+    /// The faces of `level` with a corner whose value is not its vertex's
+    /// first (sibling 0), in order. Faces of one size (every refined level
+    /// but Catmull-Clark's first) are read as fixed-size chunks.
+    pub(crate) fn faces_off_first_values(&self, level: &Level) -> Vec<u32> {
+        let first = |v: u32| self.vertex_value(v as usize, 0);
+        let off =
+            |verts: &[u32], values: &[u32]| verts.iter().zip(values).any(|(&v, &x)| first(v) != x);
+        let verts: &[u32] = &level.face_vertices.members;
+        let values: &[u32] = &self.face_values;
+        debug_assert_eq!(verts.len(), values.len());
+        let mut out = Vec::new();
+        match level.face_vertices.offsets {
+            super::Offsets::Uniform { size, .. } if size > 0 => {
+                for (f, (vs, xs)) in verts
+                    .chunks_exact(size)
+                    .zip(values.chunks_exact(size))
+                    .enumerate()
+                {
+                    if off(vs, xs) {
+                        out.push(f as u32);
+                    }
+                }
+            }
+            _ => {
+                for f in 0..level.face_count() {
+                    let range = level.face_vertices.range(f);
+                    if off(&verts[range.clone()], &values[range]) {
+                        out.push(f as u32);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// Whether the channel is interpolated linearly everywhere.
