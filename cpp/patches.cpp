@@ -22,11 +22,11 @@ using namespace sdv_internal;
 namespace sdv_internal {
 
 // Whether corner `i` of `face` is, as Bfr and Far's patch builder see it,
-// an interior corner of
-// of valence 2: both of the face's edges at the corner are shared with one
-// and the same other face and with no third, so the corner's fan is that
-// pair of faces, closed (two faces folded onto each other there). A
-// manifold interior vertex of two faces is one whatever its edges.
+// an interior corner of valence 2: both of the face's edges at the corner
+// are shared with one and the same other face and with no third, so the
+// corner's fan is that pair of faces, closed (two faces folded onto each
+// other there). A manifold interior vertex of two faces is one whatever
+// its edges.
 bool is_valence2_corner(Far::TopologyLevel const &base, int face, int i) {
     Far::ConstIndexArray fv = base.GetFaceVertices(face);
     Far::ConstIndexArray fe = base.GetFaceEdges(face);
