@@ -72,9 +72,21 @@ fn one_by_one(
     columns
 }
 
+/// Whether a batch of locations on `table` with `points` is evaluated in
+/// face order: when the data it reads do not stay in the caches (more than
+/// the 2 MiB below which locations are evaluated as given).
+fn in_face_order(table: &PatchTable, points: &[f64]) -> bool {
+    let patches: usize = table
+        .arrays
+        .iter()
+        .map(|a| a.control_vertices.len() * 4 + a.params.len() * 8)
+        .sum();
+    points.len() * 8 + patches > 2 << 20
+}
+
 #[test]
 fn a_batch_gives_each_location_its_own_value_in_order() {
-    let mesh = shapes::torus_mixed(12, 10);
+    let mesh = shapes::torus_mixed(24, 20);
     let (adaptive, table) = setup(&mesh);
     let map = PatchMap::new(&table);
     let locations = scattered(&table, &map, 20_000);
@@ -87,6 +99,7 @@ fn a_batch_gives_each_location_its_own_value_in_order() {
         .collect();
     for (width, base) in [(3, &base3), (4, &base4)] {
         let points = adaptive.patch_points(&table, width, base).unwrap();
+        assert!(in_face_order(&table, &points));
         for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
             let alone = one_by_one(&map, &table, &points, width, &locations, derivatives);
             for threads in [1, 2, 3] {
@@ -131,7 +144,7 @@ fn a_batch_gives_each_location_its_own_value_in_order() {
 
 #[test]
 fn a_batch_reports_its_first_bad_location() {
-    let mut mesh = shapes::torus_mixed(12, 10);
+    let mut mesh = shapes::torus_mixed(24, 20);
     // Two holes: the later hole's face comes first in face order.
     mesh.holes.extend([7, 40]);
     let (adaptive, table) = setup(&mesh);
@@ -139,6 +152,7 @@ fn a_batch_reports_its_first_bad_location() {
     let points = adaptive
         .patch_points(&table, 3, &mesh.flat_positions::<f64>())
         .unwrap();
+    assert!(in_face_order(&table, &points));
     // The (first) ptex faces of the holes.
     let ptex = PtexIndices::new(&Refiner::new(&mesh, &Options::default()).unwrap()).unwrap();
     let (early, late) = (ptex.face_id(7).unwrap(), ptex.face_id(40).unwrap());

@@ -149,7 +149,16 @@ fn curve<R: Real>(
     osd: fn(R) -> [[R; 4]; 3],
 ) -> [[R; 4]; 3] {
     match order {
-        Order::Native => native(t.to_f64()).map(|row| row.map(R::from_f64)),
+        Order::Native => {
+            // (Loops, not `map`: an array's `map` was an out-of-line call.)
+            let mut rounded = [[R::ZERO; 4]; 3];
+            for (to, from) in rounded.iter_mut().zip(native(t.to_f64())) {
+                for (x, y) in to.iter_mut().zip(from) {
+                    *x = R::from_f64(y);
+                }
+            }
+            rounded
+        }
         Order::OpenSubdiv => osd(t),
     }
 }
@@ -515,11 +524,22 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
         Derivatives::Second => 6,
     };
     {
-        let mut k = 0;
-        let mut tables: Tables<R> = buf.each_mut().map(|b| {
-            k += 1;
-            if k <= kinds { &mut b[..n] } else { &mut b[..0] }
-        });
+        // The tables asked for, `n` weights each, the others empty (an
+        // array literal: `each_mut().map` was an out-of-line call per
+        // location).
+        let [b0, b1, b2, b3, b4, b5] = buf;
+        fn cut<R>(b: &mut [R; 20], len: usize) -> &mut [R] {
+            &mut b[..len]
+        }
+        let len = |k: usize| if k < kinds { n } else { 0 };
+        let mut tables: Tables<R> = [
+            &mut b0[..n],
+            cut(b1, len(1)),
+            cut(b2, len(2)),
+            cut(b3, len(3)),
+            cut(b4, len(4)),
+            cut(b5, len(5)),
+        ];
         // A single-crease patch (a positive sharpness) names its crease
         // edge in its boundary mask.
         let crease = exact
@@ -537,18 +557,28 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
             PatchType::Triangles => linear_triangle(s, t, &mut tables),
             PatchType::Loop if order == Order::OpenSubdiv => {
                 for (table, (ds, dt)) in tables.iter_mut().zip(ORDERS) {
-                    if !table.is_empty() {
-                        triangle_basis::box_spline_osd(s, t, ds, dt, table);
-                        triangle_basis::fold_box_spline_phantoms(param.boundary(), table);
+                    // (A table asked for has the patch's twelve weights.)
+                    if let Some(w) = table.first_chunk_mut::<12>() {
+                        triangle_basis::box_spline_osd(s, t, ds, dt, w);
+                        triangle_basis::fold_box_spline_phantoms(param.boundary(), w);
                     }
                 }
             }
-            PatchType::Loop => in_f64(&mut tables, |tables| {
-                triangles(s.to_f64(), t.to_f64(), tables, |s, t, ds, dt, w| {
-                    triangle_basis::box_spline(s, t, ds, dt, w);
-                    triangle_basis::fold_box_spline_phantoms(param.boundary(), w);
-                });
-            }),
+            PatchType::Loop => {
+                // In `f64` on the stack, then rounded to `R` (a copy when
+                // `R` is `f64`).
+                let (s, t) = (s.to_f64(), t.to_f64());
+                for (table, (ds, dt)) in tables.iter_mut().zip(ORDERS) {
+                    if !table.is_empty() {
+                        let mut w = [0.0; 12];
+                        triangle_basis::box_spline(s, t, ds, dt, &mut w);
+                        triangle_basis::fold_box_spline_phantoms(param.boundary(), &mut w);
+                        for (d, x) in table.iter_mut().zip(w) {
+                            *d = R::from_f64(x);
+                        }
+                    }
+                }
+            }
             PatchType::GregoryTriangle => in_f64(&mut tables, |tables| {
                 triangles(
                     s.to_f64(),
@@ -585,7 +615,11 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
     };
     for (k, table) in buf.iter_mut().enumerate().take(kinds).skip(1) {
         let factor = if k < 3 { d1 } else { d2 };
-        table[..n].iter_mut().for_each(|x| *x *= factor);
+        // A factor of 1 changes nothing (and reading back the weights just
+        // written, in wider loads than they were stored with, stalls).
+        if factor != R::ONE {
+            table[..n].iter_mut().for_each(|x| *x *= factor);
+        }
     }
     Ok(n)
 }

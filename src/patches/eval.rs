@@ -387,6 +387,18 @@ pub(crate) struct Evaluator<'a> {
 }
 
 impl Evaluator<'_> {
+    /// The bytes of data locations read: the points, the patches' control
+    /// vertices (or values) and parameters.
+    pub(crate) fn data_bytes(&self) -> usize {
+        let patches: usize = self
+            .table
+            .arrays
+            .iter()
+            .map(|a| a.control_vertices.len() * 4 + a.params.len() * 8)
+            .sum();
+        self.points.len() * 8 + patches
+    }
+
     /// The number of ptex faces locations are on.
     pub(crate) fn ptex_faces(&self) -> usize {
         self.table.ptex_faces

@@ -19,6 +19,17 @@ use rayon::prelude::*;
 /// given).
 const ORDERED_FROM: usize = 4096;
 
+/// The most bytes of data a table's locations may read (points, control
+/// vertices, patch parameters) for them to be evaluated as given: data
+/// that stays in the caches gains nothing from the face order, which then
+/// costs its gathers and scatters. 1,000,000 random locations, positions
+/// and first derivatives, one thread of an EPYC with 1 MiB of L2 per core
+/// and 32 MiB of L3: an unrefined 10,000-face torus (1 MiB of data) 160 ms
+/// in face order, 136 ms as given; mixed tori at isolation 3 with 0.8,
+/// 1.8, 3.2, 5.1 and 7.9 MiB of data 181, 180, 182, 181 and 181 ms in face
+/// order, 146, 166, 192, 240 and 256 ms as given.
+const CACHED_BYTES: usize = 2 << 20;
+
 /// Locations per task on several threads.
 const CHUNK: usize = 8192;
 
@@ -31,7 +42,10 @@ pub(super) fn evaluate_all(
     locations: &[(u32, f64, f64)],
     columns: &mut [Vec<f64>],
 ) -> Result<()> {
-    if locations.len() < ORDERED_FROM || u32::try_from(locations.len()).is_err() {
+    if locations.len() < ORDERED_FROM
+        || evaluator.data_bytes() <= CACHED_BYTES
+        || u32::try_from(locations.len()).is_err()
+    {
         return in_given_order(evaluator, locations, columns);
     }
     match in_face_order(evaluator, locations, columns) {

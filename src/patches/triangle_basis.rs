@@ -66,40 +66,191 @@ const BOX_SPLINE: [[i32; 15]; 12] = [
 ];
 
 /// `n! / (n - d)!`: the factor a `d`-th derivative of `x^n` brings down.
-fn falling(n: usize, d: usize) -> f64 {
-    (0..d).map(|k| (n - k) as f64).product()
-}
-
-/// `x`'s powers 0 to 4, each `x.powi(k)` (computed once: a call each).
-fn powers(x: f64) -> [f64; 5] {
-    [1.0, x, x.powi(2), x.powi(3), x.powi(4)]
-}
-
-/// The `(ds, dt)` derivative of the monomial `s^a t^b`, from the powers
-/// of `s` and `t` ([`powers`]).
-fn monomial(ps: &[f64; 5], pt: &[f64; 5], (a, b): (usize, usize), ds: usize, dt: usize) -> f64 {
-    if ds > a || dt > b {
-        return 0.0;
+const fn falling(n: usize, d: usize) -> f64 {
+    let mut product = 1.0;
+    let mut k = 0;
+    while k < d {
+        product *= (n - k) as f64;
+        k += 1;
     }
-    falling(a, ds) * falling(b, dt) * ps[a - ds] * pt[b - dt]
+    product
+}
+
+/// The index in [`MONOMIALS`] of `s^a t^b`.
+const fn monomial_index(a: usize, b: usize) -> usize {
+    let mut j = 0;
+    while MONOMIALS[j].0 != a || MONOMIALS[j].1 != b {
+        j += 1;
+    }
+    j
+}
+
+/// One derivative of the box spline, worked out once: what each monomial
+/// becomes and which terms each point's weight sums.
+struct Derivative {
+    /// For each monomial `s^a t^b`: the factor the derivative brings down
+    /// (0 when it removes the monomial) and the powers of `s` and `t` left.
+    monomials: [(f64, usize, usize); 15],
+    /// For each point: its nonzero coefficients (twelve times the box
+    /// spline's) with the index of the monomial each multiplies, in
+    /// monomial order, and how many there are.
+    terms: [([(f64, usize); 15], usize); 12],
+    /// The same terms in OpenSubdiv's form: the derivative's coefficient
+    /// divided by twelve times [`Derivative::scale`], and the index of the
+    /// monomial `s^(a-ds) t^(b-dt)` it multiplies.
+    osd_terms: [([(f64, usize); 15], usize); 12],
+    /// OpenSubdiv's scale, applied last: 1/12, 1/6, 1 or 1/2.
+    scale: f64,
+}
+
+impl Derivative {
+    /// The `(ds, dt)` derivative.
+    const fn new(ds: usize, dt: usize) -> Derivative {
+        let (twelve_scale, scale) = match (ds, dt) {
+            (0, 0) => (1.0, 1.0 / 12.0),
+            (1, 0) | (0, 1) => (2.0, 1.0 / 6.0),
+            (1, 1) => (6.0, 0.5),
+            _ => (12.0, 1.0),
+        };
+        let mut monomials = [(0.0, 0, 0); 15];
+        let mut j = 0;
+        while j < 15 {
+            let (a, b) = MONOMIALS[j];
+            if a >= ds && b >= dt {
+                monomials[j] = (falling(a, ds) * falling(b, dt), a - ds, b - dt);
+            }
+            j += 1;
+        }
+        let mut terms = [([(0.0, 0); 15], 0); 12];
+        let mut osd_terms = [([(0.0, 0); 15], 0); 12];
+        let mut i = 0;
+        while i < 12 {
+            let mut j = 0;
+            while j < 15 {
+                let c = BOX_SPLINE[i][j];
+                let (a, b) = MONOMIALS[j];
+                if c != 0 && a >= ds && b >= dt {
+                    let (list, n) = &mut terms[i];
+                    list[*n] = (c as f64, j);
+                    *n += 1;
+                    let d = c as f64 * (falling(a, ds) * falling(b, dt)) / twelve_scale;
+                    let (list, n) = &mut osd_terms[i];
+                    list[*n] = (d, monomial_index(a - ds, b - dt));
+                    *n += 1;
+                }
+                j += 1;
+            }
+            i += 1;
+        }
+        Derivative {
+            monomials,
+            terms,
+            osd_terms,
+            scale,
+        }
+    }
+}
+
+/// The `(DS, DT)` derivative as a constant, so that each weight's sum is
+/// compiled with its coefficients and its monomials known.
+struct Of<const DS: usize, const DT: usize>;
+
+impl<const DS: usize, const DT: usize> Of<DS, DT> {
+    const D: Derivative = Derivative::new(DS, DT);
+
+    /// Twelve times the native weight of point `I`: its terms summed in
+    /// monomial order.
+    #[inline(always)]
+    fn native<const I: usize>(m: &[f64; 15]) -> f64 {
+        let (list, n) = const { Self::D.terms[I] };
+        let mut sum = -0.0;
+        for &(c, j) in &list[..n] {
+            sum += c * m[j];
+        }
+        sum
+    }
+
+    /// The weights of all twelve points from the powers of `s` and `t`.
+    #[inline(always)]
+    fn native_all(ps: &[f64; 5], pt: &[f64; 5], w: &mut [f64; 12]) {
+        // (Loops, not `map`: an array's `map` was an out-of-line call.)
+        let monomials = const { Self::D.monomials };
+        let mut m = [0.0; 15];
+        for (x, &(factor, a, b)) in m.iter_mut().zip(&monomials) {
+            *x = factor * ps[a] * pt[b];
+        }
+        let all = [
+            Self::native::<0>(&m),
+            Self::native::<1>(&m),
+            Self::native::<2>(&m),
+            Self::native::<3>(&m),
+            Self::native::<4>(&m),
+            Self::native::<5>(&m),
+            Self::native::<6>(&m),
+            Self::native::<7>(&m),
+            Self::native::<8>(&m),
+            Self::native::<9>(&m),
+            Self::native::<10>(&m),
+            Self::native::<11>(&m),
+        ];
+        // Divided side by side (vector divisions).
+        for (out, x) in w.iter_mut().zip(all) {
+            *out = x / 12.0;
+        }
+    }
+
+    /// OpenSubdiv's weight of point `I` from its monomials `m`: the first
+    /// term, then each next one added, times the scale.
+    #[inline(always)]
+    fn osd<R: Real, const I: usize>(m: &[R; 15]) -> R {
+        let (list, n) = const { Self::D.osd_terms[I] };
+        if n == 0 {
+            return R::ZERO;
+        }
+        let mut sum = R::from_f64(list[0].0) * m[list[0].1];
+        for &(c, j) in &list[1..n] {
+            sum += R::from_f64(c) * m[j];
+        }
+        R::from_f64(const { Self::D.scale }) * sum
+    }
+
+    /// OpenSubdiv's weights of all twelve points from the monomials.
+    #[inline(always)]
+    fn osd_all<R: Real>(m: &[R; 15], w: &mut [R; 12]) {
+        let all = [
+            Self::osd::<R, 0>(m),
+            Self::osd::<R, 1>(m),
+            Self::osd::<R, 2>(m),
+            Self::osd::<R, 3>(m),
+            Self::osd::<R, 4>(m),
+            Self::osd::<R, 5>(m),
+            Self::osd::<R, 6>(m),
+            Self::osd::<R, 7>(m),
+            Self::osd::<R, 8>(m),
+            Self::osd::<R, 9>(m),
+            Self::osd::<R, 10>(m),
+            Self::osd::<R, 11>(m),
+        ];
+        *w = all;
+    }
 }
 
 /// The weights of the box spline's twelve points for the `(ds, dt)`
-/// derivative at `(s, t)`.
-pub(super) fn box_spline(s: f64, t: f64, ds: usize, dt: usize, w: &mut [f64]) {
-    let (ps, pt) = (powers(s), powers(t));
-    let mut m = [0.0; 15];
-    for (x, &e) in m.iter_mut().zip(&MONOMIALS) {
-        *x = monomial(&ps, &pt, e, ds, dt);
-    }
-    for (out, row) in w.iter_mut().zip(&BOX_SPLINE) {
-        let sum: f64 = row
-            .iter()
-            .zip(&m)
-            .filter(|(c, _)| **c != 0)
-            .map(|(&c, x)| f64::from(c) * x)
-            .sum();
-        *out = sum / 12.0;
+/// derivative at `(s, t)`: each point's nonzero terms `c * m` summed in
+/// monomial order, `m` the derivative of the monomial (its factor times the
+/// powers of `s` and `t`, each `x.powi(k)`), the sum divided by twelve.
+/// Each sum is compiled with its terms known ([`Of`]): the derivative is
+/// chosen once, not per term.
+pub(super) fn box_spline(s: f64, t: f64, ds: usize, dt: usize, w: &mut [f64; 12]) {
+    let ps = [1.0, s, s.powi(2), s.powi(3), s.powi(4)];
+    let pt = [1.0, t, t.powi(2), t.powi(3), t.powi(4)];
+    match (ds, dt) {
+        (0, 0) => Of::<0, 0>::native_all(&ps, &pt, w),
+        (1, 0) => Of::<1, 0>::native_all(&ps, &pt, w),
+        (0, 1) => Of::<0, 1>::native_all(&ps, &pt, w),
+        (2, 0) => Of::<2, 0>::native_all(&ps, &pt, w),
+        (1, 1) => Of::<1, 1>::native_all(&ps, &pt, w),
+        _ => Of::<0, 2>::native_all(&ps, &pt, w),
     }
 }
 
@@ -111,12 +262,11 @@ pub(super) fn box_spline(s: f64, t: f64, ds: usize, dt: usize, w: &mut [f64]) {
 /// for positions, to 1/6 for first derivatives, 1 for `ss` and `tt` and
 /// 1/2 for `st`. The coefficients are [`BOX_SPLINE`]'s, differentiated and
 /// divided by twelve times that scale.
-pub(super) fn box_spline_osd<R: Real>(s: R, t: R, ds: usize, dt: usize, w: &mut [R]) {
-    let one = R::ONE;
+pub(super) fn box_spline_osd<R: Real>(s: R, t: R, ds: usize, dt: usize, w: &mut [R; 12]) {
     let (ss, st, tt) = (s * s, s * t, t * t);
     let (sss, sst, stt, ttt) = (ss * s, st * s, st * t, tt * t);
     let m = [
-        one,
+        R::ONE,
         s,
         t,
         ss,
@@ -132,30 +282,13 @@ pub(super) fn box_spline_osd<R: Real>(s: R, t: R, ds: usize, dt: usize, w: &mut 
         stt * t,
         ttt * t,
     ];
-    // Twelve times the scale, and the scale.
-    let (twelve_scale, scale) = match (ds, dt) {
-        (0, 0) => (1, R::from_f64(1.0 / 12.0)),
-        (1, 0) | (0, 1) => (2, R::from_f64(1.0 / 6.0)),
-        (1, 1) => (6, R::from_f64(0.5)),
-        _ => (12, one),
-    };
-    for (out, row) in w.iter_mut().zip(&BOX_SPLINE) {
-        let mut sum: Option<R> = None;
-        for (&c, &(a, b)) in row.iter().zip(&MONOMIALS) {
-            if c == 0 || a < ds || b < dt {
-                continue;
-            }
-            // The derivative's coefficient of the monomial s^(a-ds) t^(b-dt).
-            let factor = falling(a, ds) * falling(b, dt);
-            let d = f64::from(c) * factor / f64::from(twelve_scale);
-            let j = MONOMIALS
-                .iter()
-                .position(|&e| e == (a - ds, b - dt))
-                .unwrap_or(0);
-            let term = R::from_f64(d) * m[j];
-            sum = Some(sum.map_or(term, |acc| acc + term));
-        }
-        *out = sum.map_or(R::ZERO, |x| scale * x);
+    match (ds, dt) {
+        (0, 0) => Of::<0, 0>::osd_all(&m, w),
+        (1, 0) => Of::<1, 0>::osd_all(&m, w),
+        (0, 1) => Of::<0, 1>::osd_all(&m, w),
+        (2, 0) => Of::<2, 0>::osd_all(&m, w),
+        (1, 1) => Of::<1, 1>::osd_all(&m, w),
+        _ => Of::<0, 2>::osd_all(&m, w),
     }
 }
 
@@ -381,9 +514,9 @@ mod tests {
             assert!((a - b / 12.0).abs() < 1e-15);
         }
         check_derivatives(|s, t, ds, dt| {
-            let mut w = vec![0.0; 12];
+            let mut w = [0.0; 12];
             box_spline(s, t, ds, dt, &mut w);
-            w
+            w.to_vec()
         });
     }
 
