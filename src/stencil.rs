@@ -69,11 +69,7 @@ impl StencilTable {
         let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
         out.par_chunks_mut(width * 256)
             .enumerate()
-            .for_each(|(block, chunk)| {
-                for (k, dst) in chunk.chunks_exact_mut(width).enumerate() {
-                    self.apply_row(block * 256 + k, width, base, dst);
-                }
-            });
+            .for_each(|(block, chunk)| self.apply_rows_into(block * 256, width, base, chunk));
         Ok(out)
     }
 
@@ -181,13 +177,48 @@ impl StencilTable {
         Ok(count)
     }
 
-    #[inline]
-    fn apply_row(&self, i: usize, width: usize, base: &[f64], dst: &mut [f64]) {
-        let (idx, w) = self.row(i);
-        for (&v, &w) in idx.iter().zip(w) {
-            let v = v as usize * width;
-            for (d, s) in dst.iter_mut().zip(&base[v..v + width]) {
-                *d += w * s;
+    /// Rows `first..` of the table applied to `base` (`width` values per
+    /// vertex) into `out` (whole rows of `width` values): each row's terms
+    /// added in order to zero. Widths 1 to 4 are summed in registers (a
+    /// run-time width kept every partial sum in memory). An index past
+    /// `base` panics: callers check the table against `base` first or build
+    /// both together.
+    pub(crate) fn apply_rows_into(
+        &self,
+        first: usize,
+        width: usize,
+        base: &[f64],
+        out: &mut [f64],
+    ) {
+        fn rows<const W: usize>(t: &StencilTable, first: usize, base: &[f64], out: &mut [f64]) {
+            for (i, dst) in out.chunks_exact_mut(W).enumerate() {
+                let (idx, w) = t.row(first + i);
+                let mut acc = [0.0f64; W];
+                for (&v, &w) in idx.iter().zip(w) {
+                    let src = &base[v as usize * W..][..W];
+                    for (a, &s) in acc.iter_mut().zip(src) {
+                        *a += w * s;
+                    }
+                }
+                dst.copy_from_slice(&acc);
+            }
+        }
+        match width {
+            1 => rows::<1>(self, first, base, out),
+            2 => rows::<2>(self, first, base, out),
+            3 => rows::<3>(self, first, base, out),
+            4 => rows::<4>(self, first, base, out),
+            _ => {
+                for (i, dst) in out.chunks_exact_mut(width).enumerate() {
+                    let (idx, w) = self.row(first + i);
+                    dst.fill(0.0);
+                    for (&v, &w) in idx.iter().zip(w) {
+                        let v = v as usize * width;
+                        for (d, s) in dst.iter_mut().zip(&base[v..v + width]) {
+                            *d += w * s;
+                        }
+                    }
+                }
             }
         }
     }
@@ -196,9 +227,7 @@ impl StencilTable {
     pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
         self.check_apply(width, base)?;
         let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
-        for (i, dst) in out.chunks_exact_mut(width).enumerate() {
-            self.apply_row(i, width, base, dst);
-        }
+        self.apply_rows_into(0, width, base, &mut out);
         Ok(out)
     }
 }

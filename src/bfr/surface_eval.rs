@@ -882,17 +882,9 @@ fn stencil_options(derivatives: Derivatives) -> LimitStencilOptions {
 fn native_patch_points(irregular: &Irregular, width: usize, control: &[f64]) -> Result<Vec<f64>> {
     let (refined, locals) = (&irregular.refined, &irregular.locals);
     let mut out = alloc::try_vec(0.0, (refined.len() + locals.len()).saturating_mul(width))?;
-    let rows = (0..refined.len())
-        .map(|i| refined.row(i))
-        .chain((0..locals.len()).map(|i| locals.row(i)));
-    for (dst, (indices, weights)) in out.chunks_exact_mut(width).zip(rows) {
-        for (&i, &w) in indices.iter().zip(weights) {
-            let p = &control[i as usize * width..][..width];
-            for (d, &x) in dst.iter_mut().zip(p) {
-                *d += w * x;
-            }
-        }
-    }
+    let (head, tail) = out.split_at_mut(refined.len() * width);
+    refined.apply_rows_into(0, width, control, head);
+    locals.apply_rows_into(0, width, control, tail);
     Ok(out)
 }
 
