@@ -207,7 +207,8 @@ impl Refinement {
 ///
 /// Buffers of 2 MiB and more live in memory advised for transparent huge
 /// pages; when dropped, that memory goes to a pool (256 MiB at most) that
-/// the next refinement reuses without page faults, and
+/// the next refinement reuses without page faults, as do smaller buffers
+/// from 64 KiB up (heap vectors, 128 MiB at most), and
 /// [`release_buffer_pool`] hands it back to the system. `SUBDIV_HUGE_PAGES=0`
 /// makes every buffer an ordinary heap vector.
 #[derive(Clone, Default, PartialEq)]

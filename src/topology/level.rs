@@ -328,7 +328,7 @@ fn sparse_at<T: Pod>(table: &[T], i: usize) -> T {
 /// Sets entry `i` of a table of `len` entries stored empty while they are
 /// all the default: the first other value allocates it.
 #[inline]
-fn set_sparse<T: Pod>(table: &mut Table<T>, len: usize, i: usize, x: T) {
+fn set_sparse<T: Pod + Send>(table: &mut Table<T>, len: usize, i: usize, x: T) {
     if table.is_empty() {
         if is_default(x) {
             return;
@@ -340,7 +340,7 @@ fn set_sparse<T: Pod>(table: &mut Table<T>, len: usize, i: usize, x: T) {
 
 /// Empties a table whose entries are all the default (values set and later
 /// overwritten with the default, or decayed to it).
-pub(super) fn drop_if_default<T: Pod>(table: &mut Table<T>) {
+pub(super) fn drop_if_default<T: Pod + Send>(table: &mut Table<T>) {
     if table.iter().all(|&x| is_default(x)) {
         *table = Table::new();
     }

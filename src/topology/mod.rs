@@ -43,6 +43,7 @@ mod manifold;
 pub mod refine;
 mod relation;
 mod table;
+mod table_pool;
 mod tags;
 #[cfg(test)]
 mod tests;

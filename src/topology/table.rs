@@ -10,9 +10,12 @@
 //! a pool (256 MiB at most) that serves the next table of its size, so a
 //! program that refines again — the next frame, the next mesh — writes into
 //! memory already faulted in ([`release_table_pool`] hands it back).
-//! Smaller tables are ordinary `Vec`s. (OpenSubdiv keeps its tables in
-//! `std::vector`s: this has no counterpart there.)
+//! Smaller tables are ordinary `Vec`s, and from 64 KiB up a dropped one is
+//! kept too (128 MiB at most), for the next table of its type and about its
+//! size (`table_pool.rs`). (OpenSubdiv keeps its tables in `std::vector`s:
+//! this has no counterpart there.)
 
+use super::table_pool;
 use bytemuck::Pod;
 use std::fmt;
 use std::ops::{Deref, DerefMut};
@@ -55,10 +58,11 @@ fn map_threshold() -> usize {
 /// fault. A table of 2 MiB or more is an anonymous memory map advised with
 /// `MADV_HUGEPAGE` (transparent huge pages: one fault where there were 512),
 /// and when dropped its map is kept for the next table of its size
-/// ([`release_buffer_pool`](crate::release_buffer_pool)); smaller tables are ordinary `Vec`s. The
-/// environment variable `SUBDIV_HUGE_PAGES=0` makes every table a `Vec`
-/// (docs/PERFORMANCE.md has the measurements).
-pub struct Table<T: Pod> {
+/// ([`release_buffer_pool`](crate::release_buffer_pool)); smaller tables are
+/// ordinary `Vec`s, kept likewise from 64 KiB up. The environment variable
+/// `SUBDIV_HUGE_PAGES=0` makes every table a `Vec` (docs/PERFORMANCE.md has
+/// the measurements).
+pub struct Table<T: Pod + Send> {
     repr: Repr<T>,
 }
 
@@ -67,7 +71,7 @@ enum Repr<T> {
     Map { map: memmap2::MmapMut, len: usize },
 }
 
-impl<T: Pod> Table<T> {
+impl<T: Pod + Send> Table<T> {
     /// An empty table.
     pub const fn new() -> Self {
         Table {
@@ -90,9 +94,32 @@ impl<T: Pod> Table<T> {
                 }
                 t
             }
-            None => Table {
-                repr: Repr::Vec(crate::alloc::vec_or_unwind(T::zeroed(), len)),
-            },
+            None => Self::heap(len, Some(T::zeroed())),
+        }
+    }
+
+    /// A vector table of `len` values: a kept vector of a dropped table
+    /// when the pool has one (already faulted in), else a new one. With
+    /// `fill` every value is set to it; without, a kept vector's values are
+    /// what its last table left.
+    fn heap(len: usize, fill: Option<T>) -> Self {
+        let vec = match table_pool::take_vec::<T>(len) {
+            Some(mut v) => {
+                match fill {
+                    Some(x) => {
+                        v.clear();
+                        v.resize(len, x);
+                    }
+                    // Values past the kept length written, no others.
+                    None if v.len() < len => v.resize(len, T::zeroed()),
+                    None => v.truncate(len),
+                }
+                v
+            }
+            None => crate::alloc::vec_or_unwind(fill.unwrap_or_else(T::zeroed), len),
+        };
+        Table {
+            repr: Repr::Vec(vec),
         }
     }
 
@@ -104,9 +131,7 @@ impl<T: Pod> Table<T> {
         #[allow(unused_mut)]
         let mut t = match Self::mapped(len, map_threshold()) {
             Some((t, _)) => t,
-            None => Table {
-                repr: Repr::Vec(crate::alloc::vec_or_unwind(T::zeroed(), len)),
-            },
+            None => Self::heap(len, None),
         };
         // Debug builds (the test suite) poison the values, all bits set (NaN
         // for floats, out of range for indices), so that a value the caller
@@ -128,7 +153,7 @@ impl<T: Pod> Table<T> {
         // A whole number of huge pages: the kernel then aligns the map
         // on a huge-page boundary, so every part of it can use them.
         let mapped = bytes.div_ceil(HUGE_PAGE) * HUGE_PAGE;
-        if let Some(map) = pool::take(mapped) {
+        if let Some(map) = table_pool::take_map(mapped) {
             return Some((
                 Table {
                     repr: Repr::Map { map, len },
@@ -160,9 +185,7 @@ impl<T: Pod> Table<T> {
                 }
                 t
             }
-            None => Table {
-                repr: Repr::Vec(crate::alloc::vec_or_unwind(value, len)),
-            },
+            None => Self::heap(len, Some(value)),
         }
     }
 
@@ -215,129 +238,39 @@ impl<T: Pod> Table<T> {
     }
 }
 
-impl<T: Pod> Drop for Table<T> {
-    /// A map goes back to the pool for the next table of its size.
+impl<T: Pod + Send> Drop for Table<T> {
+    /// A map or a vector (from 64 KiB up) goes back to the pool for the
+    /// next table of its size.
     fn drop(&mut self) {
-        if let Repr::Map { map, .. } = std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())) {
-            pool::give(map);
+        match std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())) {
+            Repr::Map { map, .. } => table_pool::give_map(map),
+            Repr::Vec(vec) => table_pool::give_vec(vec),
         }
     }
 }
 
 /// Releases the memory of dropped tables that is kept for reuse
-/// (transparent huge-page maps of 2 MiB and more), and returns how many bytes
-/// that was.
+/// (transparent huge-page maps of 2 MiB and more, vectors from 64 KiB up),
+/// and returns how many bytes that was.
 ///
-/// Dropping a large [`Table`] keeps its map, up to 256 MiB in all, so that
-/// the next refinement of a similar mesh (the next frame, the next mesh of a
-/// batch) reuses memory already faulted in instead of taking a kernel page
-/// fault for every page anew. A program that refines once and goes on to
+/// Dropping a large [`Table`] keeps its map, up to 256 MiB in all, and a
+/// smaller one its vector, up to 128 MiB, so that the next refinement of a
+/// similar mesh (the next frame, the next mesh of a batch, the next level)
+/// reuses memory already faulted in instead of taking a kernel page fault
+/// for every page anew. A program that refines once and goes on to
 /// other work can hand that memory back to the system with this call
 /// (public as [`crate::release_buffer_pool`]).
 pub fn release_table_pool() -> usize {
-    pool::release()
+    table_pool::release()
 }
 
-/// The maps of dropped tables, kept for the next tables of their size.
-mod pool {
-    use memmap2::MmapMut;
-    use std::sync::{Mutex, MutexGuard};
-
-    /// At most this many bytes of maps are kept.
-    const POOL_BYTES: usize = 256 << 20;
-
-    /// Kept maps, oldest first.
-    pub(super) struct Pool {
-        maps: Vec<MmapMut>,
-        bytes: usize,
-        cap: usize,
-    }
-
-    impl Pool {
-        pub(super) const fn new(cap: usize) -> Self {
-            Pool {
-                maps: Vec::new(),
-                bytes: 0,
-                cap,
-            }
-        }
-
-        /// The smallest kept map of at least `bytes` and at most twice
-        /// that (a larger one would leave most of itself idle).
-        pub(super) fn take(&mut self, bytes: usize) -> Option<MmapMut> {
-            let (i, _) = self
-                .maps
-                .iter()
-                .enumerate()
-                .filter(|(_, m)| m.len() >= bytes && m.len() / 2 <= bytes)
-                .min_by_key(|(_, m)| m.len())?;
-            let map = self.maps.remove(i);
-            self.bytes -= map.len();
-            Some(map)
-        }
-
-        /// Keeps `map` and returns the oldest maps that no longer fit under
-        /// the cap (all of `map` itself when it is larger than the cap).
-        #[must_use]
-        pub(super) fn give(&mut self, map: MmapMut) -> Vec<MmapMut> {
-            if map.len() > self.cap {
-                return vec![map];
-            }
-            self.bytes += map.len();
-            self.maps.push(map);
-            let mut evicted = Vec::new();
-            while self.bytes > self.cap {
-                let old = self.maps.remove(0);
-                self.bytes -= old.len();
-                evicted.push(old);
-            }
-            evicted
-        }
-
-        /// Every kept map, and their total length; the pool is left empty.
-        pub(super) fn drain(&mut self) -> (Vec<MmapMut>, usize) {
-            let bytes = std::mem::take(&mut self.bytes);
-            (std::mem::take(&mut self.maps), bytes)
-        }
-
-        #[cfg(test)]
-        pub(super) fn bytes(&self) -> usize {
-            self.bytes
-        }
-    }
-
-    static POOL: Mutex<Pool> = Mutex::new(Pool::new(POOL_BYTES));
-
-    fn lock() -> MutexGuard<'static, Pool> {
-        // The pool is consistent between statements: a panic elsewhere while
-        // it was held leaves nothing half done.
-        POOL.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    pub(super) fn take(bytes: usize) -> Option<MmapMut> {
-        lock().take(bytes)
-    }
-
-    pub(super) fn give(map: MmapMut) {
-        let evicted = lock().give(map);
-        // Unmapped outside the lock.
-        drop(evicted);
-    }
-
-    pub(super) fn release() -> usize {
-        let (maps, bytes) = lock().drain();
-        drop(maps);
-        bytes
-    }
-}
-
-impl<T: Pod> Default for Table<T> {
+impl<T: Pod + Send> Default for Table<T> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<T: Pod> Deref for Table<T> {
+impl<T: Pod + Send> Deref for Table<T> {
     type Target = [T];
     #[inline]
     fn deref(&self) -> &[T] {
@@ -345,14 +278,14 @@ impl<T: Pod> Deref for Table<T> {
     }
 }
 
-impl<T: Pod> DerefMut for Table<T> {
+impl<T: Pod + Send> DerefMut for Table<T> {
     #[inline]
     fn deref_mut(&mut self) -> &mut [T] {
         self.as_mut_slice()
     }
 }
 
-impl<T: Pod> Clone for Table<T> {
+impl<T: Pod + Send> Clone for Table<T> {
     fn clone(&self) -> Self {
         match &self.repr {
             Repr::Vec(v) => Table {
@@ -363,52 +296,52 @@ impl<T: Pod> Clone for Table<T> {
     }
 }
 
-impl<T: Pod + PartialEq> PartialEq for Table<T> {
+impl<T: Pod + Send + PartialEq> PartialEq for Table<T> {
     fn eq(&self, other: &Self) -> bool {
         self.as_slice() == other.as_slice()
     }
 }
 
-impl<T: Pod + Eq> Eq for Table<T> {}
+impl<T: Pod + Send + Eq> Eq for Table<T> {}
 
-impl<T: Pod + PartialEq> PartialEq<[T]> for Table<T> {
+impl<T: Pod + Send + PartialEq> PartialEq<[T]> for Table<T> {
     fn eq(&self, other: &[T]) -> bool {
         self.as_slice() == other
     }
 }
 
-impl<T: Pod + PartialEq> PartialEq<Vec<T>> for Table<T> {
+impl<T: Pod + Send + PartialEq> PartialEq<Vec<T>> for Table<T> {
     fn eq(&self, other: &Vec<T>) -> bool {
         self.as_slice() == other.as_slice()
     }
 }
 
-impl<T: Pod + PartialEq> PartialEq<Table<T>> for Vec<T> {
+impl<T: Pod + Send + PartialEq> PartialEq<Table<T>> for Vec<T> {
     fn eq(&self, other: &Table<T>) -> bool {
         self.as_slice() == other.as_slice()
     }
 }
 
-impl<T: Pod + fmt::Debug> fmt::Debug for Table<T> {
+impl<T: Pod + Send + fmt::Debug> fmt::Debug for Table<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()
     }
 }
 
-impl<T: Pod> From<Vec<T>> for Table<T> {
+impl<T: Pod + Send> From<Vec<T>> for Table<T> {
     /// Keeps the vector as it is (no copy, ordinary pages).
     fn from(v: Vec<T>) -> Self {
         Table { repr: Repr::Vec(v) }
     }
 }
 
-impl<T: Pod> FromIterator<T> for Table<T> {
+impl<T: Pod + Send> FromIterator<T> for Table<T> {
     fn from_iter<I: IntoIterator<Item = T>>(iter: I) -> Self {
         Vec::from_iter(iter).into()
     }
 }
 
-impl<'a, T: Pod> IntoIterator for &'a Table<T> {
+impl<'a, T: Pod + Send> IntoIterator for &'a Table<T> {
     type Item = &'a T;
     type IntoIter = std::slice::Iter<'a, T>;
     fn into_iter(self) -> Self::IntoIter {
@@ -482,6 +415,34 @@ mod tests {
         }
     }
 
+    /// A dropped vector table's memory serves the next table of its type
+    /// and about its size, zeroed or left as it was as asked.
+    #[test]
+    fn dropped_vector_tables_are_reused() {
+        // A type of this test's own: no other test takes its vectors.
+        #[derive(Clone, Copy, PartialEq, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+        #[repr(C)]
+        struct Only([u32; 2]);
+        // 160 KB: a vector (under 2 MiB), kept when dropped (64 KiB up).
+        let len = 20_000;
+        let t = Table::filled(Only([7, 7]), len);
+        assert!(!t.is_mapped());
+        let memory = t.as_ptr();
+        drop(t);
+        // At least half the kept room: the kept vector, zeroed.
+        let z = Table::<Only>::zeroed(len / 2 + 1);
+        assert_eq!(z.as_ptr(), memory);
+        assert!(z.len() == len / 2 + 1 && z.iter().all(|x| *x == Only([0, 0])));
+        drop(z);
+        let w = Table::<Only>::for_overwrite(len);
+        assert_eq!((w.as_ptr(), w.len()), (memory, len));
+        drop(w);
+        // Less than half: a vector of its own.
+        let small = Table::<Only>::for_overwrite(len / 2 - 1);
+        assert_ne!(small.as_ptr(), memory);
+        assert!(release_table_pool() >= len * 8);
+    }
+
     fn map(bytes: usize) -> memmap2::MmapMut {
         memmap2::MmapOptions::new().len(bytes).map_anon().unwrap()
     }
@@ -489,17 +450,17 @@ mod tests {
     #[test]
     fn pool_takes_the_best_fit_and_evicts_the_oldest() {
         const M: usize = HUGE_PAGE;
-        let mut p = pool::Pool::new(10 * M);
+        let mut p = table_pool::Pool::new(10 * M);
         assert!(p.give(map(4 * M)).is_empty());
         assert!(p.give(map(2 * M)).is_empty());
         assert!(p.give(map(3 * M)).is_empty());
         assert_eq!(p.bytes(), 9 * M);
         // Nothing large enough.
-        assert!(p.take(5 * M).is_none());
+        assert!(p.take(5 * M, |_| true).is_none());
         // The smallest that fits, not the first.
-        assert_eq!(p.take(2 * M).map(|m| m.len()), Some(2 * M));
+        assert_eq!(p.take(2 * M, |_| true).map(|m| m.len()), Some(2 * M));
         // No map more than twice the request: 4 MiB is too big for 1 MiB.
-        assert!(p.take(M).is_none());
+        assert!(p.take(M, |_| true).is_none());
         assert_eq!(p.bytes(), 7 * M);
         // Over the cap: the oldest (4 MiB) goes, then a map larger than the
         // cap is never kept.

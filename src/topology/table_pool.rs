@@ -1,0 +1,167 @@
+//! The memory of dropped [`Table`](super::Table)s, kept for the next
+//! tables of about its size: the maps of large tables (2 MiB and more) and
+//! the vectors of tables from 64 KiB up.
+//!
+//! Freed to the C allocator, a block of that size goes back to the system
+//! too often (glibc unmaps blocks above its map threshold and trims the top
+//! of its heap), so the next table of the next refinement takes a page fault
+//! for every 4 KiB page of it, and the kernel zeroes each page first. On an
+//! adaptive refinement of the production-like benchmark mesh those faults
+//! were a third of the time (docs/PERFORMANCE.md). Kept here, the memory
+//! stays the process's, already faulted in. Blocks under 64 KiB come from
+//! the allocator's own free lists, which reuse them without faults.
+
+use memmap2::MmapMut;
+use std::any::{Any, TypeId};
+use std::sync::{Mutex, MutexGuard};
+
+/// At most this many bytes of maps are kept.
+const MAP_POOL_BYTES: usize = 256 << 20;
+
+/// At most this many bytes of vectors are kept.
+const VEC_POOL_BYTES: usize = 128 << 20;
+
+/// Vectors of fewer bytes are not kept.
+const SMALLEST_VEC: usize = 64 << 10;
+
+/// Something kept: a map, or a table's vector.
+pub(super) trait Kept {
+    /// The bytes it holds.
+    fn bytes(&self) -> usize;
+}
+
+impl Kept for MmapMut {
+    fn bytes(&self) -> usize {
+        self.len()
+    }
+}
+
+/// A dropped table's vector, of any element type.
+pub(super) struct KeptVec {
+    ty: TypeId,
+    bytes: usize,
+    vec: Box<dyn Any + Send>,
+}
+
+impl Kept for KeptVec {
+    fn bytes(&self) -> usize {
+        self.bytes
+    }
+}
+
+/// Kept memory, oldest first, at most `cap` bytes of it.
+pub(super) struct Pool<K> {
+    kept: Vec<K>,
+    bytes: usize,
+    cap: usize,
+}
+
+impl<K: Kept> Pool<K> {
+    pub(super) const fn new(cap: usize) -> Self {
+        Pool {
+            kept: Vec::new(),
+            bytes: 0,
+            cap,
+        }
+    }
+
+    /// The smallest kept item `fits` accepts of at least `bytes` and at
+    /// most twice that (a larger one would leave most of itself idle).
+    pub(super) fn take(&mut self, bytes: usize, fits: impl Fn(&K) -> bool) -> Option<K> {
+        let (i, _) = self
+            .kept
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| k.bytes() >= bytes && k.bytes() / 2 <= bytes && fits(k))
+            .min_by_key(|(_, k)| k.bytes())?;
+        let k = self.kept.remove(i);
+        self.bytes -= k.bytes();
+        Some(k)
+    }
+
+    /// Keeps `k` and returns the oldest items that no longer fit under
+    /// the cap (`k` itself when it is larger than the cap).
+    #[must_use]
+    pub(super) fn give(&mut self, k: K) -> Vec<K> {
+        if k.bytes() > self.cap {
+            return vec![k];
+        }
+        self.bytes += k.bytes();
+        self.kept.push(k);
+        let mut evicted = Vec::new();
+        while self.bytes > self.cap {
+            let old = self.kept.remove(0);
+            self.bytes -= old.bytes();
+            evicted.push(old);
+        }
+        evicted
+    }
+
+    /// Every kept item, and their total bytes; the pool is left empty.
+    pub(super) fn drain(&mut self) -> (Vec<K>, usize) {
+        let bytes = std::mem::take(&mut self.bytes);
+        (std::mem::take(&mut self.kept), bytes)
+    }
+
+    #[cfg(test)]
+    pub(super) fn bytes(&self) -> usize {
+        self.bytes
+    }
+}
+
+static MAPS: Mutex<Pool<MmapMut>> = Mutex::new(Pool::new(MAP_POOL_BYTES));
+static VECS: Mutex<Pool<KeptVec>> = Mutex::new(Pool::new(VEC_POOL_BYTES));
+
+fn lock<K>(pool: &'static Mutex<Pool<K>>) -> MutexGuard<'static, Pool<K>> {
+    // A pool is consistent between statements: a panic elsewhere while it
+    // was held leaves nothing half done.
+    pool.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// A kept map of at least `bytes` (at most twice that).
+pub(super) fn take_map(bytes: usize) -> Option<MmapMut> {
+    lock(&MAPS).take(bytes, |_| true)
+}
+
+/// Keeps a dropped table's map.
+pub(super) fn give_map(map: MmapMut) {
+    let evicted = lock(&MAPS).give(map);
+    // Unmapped outside the lock.
+    drop(evicted);
+}
+
+/// A kept vector of `T` with room for `len` values (at most twice that), of
+/// whatever length and contents its last table left.
+pub(super) fn take_vec<T: Send + 'static>(len: usize) -> Option<Vec<T>> {
+    let bytes = len.checked_mul(size_of::<T>())?;
+    if bytes < SMALLEST_VEC {
+        return None;
+    }
+    let ty = TypeId::of::<T>();
+    let kept = lock(&VECS).take(bytes, |k| k.ty == ty)?;
+    kept.vec.downcast::<Vec<T>>().ok().map(|v| *v)
+}
+
+/// Keeps a dropped table's vector (from 64 KiB of room up).
+pub(super) fn give_vec<T: Send + 'static>(vec: Vec<T>) {
+    let bytes = vec.capacity().saturating_mul(size_of::<T>());
+    if bytes < SMALLEST_VEC {
+        return;
+    }
+    let kept = KeptVec {
+        ty: TypeId::of::<T>(),
+        bytes,
+        vec: Box::new(vec),
+    };
+    let evicted = lock(&VECS).give(kept);
+    // Freed outside the lock.
+    drop(evicted);
+}
+
+/// Hands every kept map and vector back; returns their bytes.
+pub(super) fn release() -> usize {
+    let (maps, map_bytes) = lock(&MAPS).drain();
+    let (vecs, vec_bytes) = lock(&VECS).drain();
+    drop((maps, vecs));
+    map_bytes + vec_bytes
+}
