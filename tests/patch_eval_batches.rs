@@ -84,9 +84,19 @@ fn in_face_order(table: &PatchTable, points: &[f64]) -> bool {
     points.len() * 8 + patches > 2 << 20
 }
 
+/// The meshes batches are tried on: one whose data stay in the caches
+/// (locations evaluated as given, in stretches side by side on several
+/// threads) and one past them (in face order).
+const MESHES: [(u32, u32, bool); 2] = [(12, 10, false), (24, 20, true)];
+
 #[test]
 fn a_batch_gives_each_location_its_own_value_in_order() {
-    let mesh = shapes::torus_mixed(24, 20);
+    for (u, v, face_order) in MESHES {
+        a_batch_gives_each_location_its_own_value(shapes::torus_mixed(u, v), face_order);
+    }
+}
+
+fn a_batch_gives_each_location_its_own_value(mesh: Mesh, face_order: bool) {
     let (adaptive, table) = setup(&mesh);
     let map = PatchMap::new(&table);
     let locations = scattered(&table, &map, 20_000);
@@ -99,7 +109,7 @@ fn a_batch_gives_each_location_its_own_value_in_order() {
         .collect();
     for (width, base) in [(3, &base3), (4, &base4)] {
         let points = adaptive.patch_points(&table, width, base).unwrap();
-        assert!(in_face_order(&table, &points));
+        assert_eq!(in_face_order(&table, &points), face_order);
         for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
             let alone = one_by_one(&map, &table, &points, width, &locations, derivatives);
             for threads in [1, 2, 3] {
@@ -144,7 +154,12 @@ fn a_batch_gives_each_location_its_own_value_in_order() {
 
 #[test]
 fn a_batch_reports_its_first_bad_location() {
-    let mut mesh = shapes::torus_mixed(24, 20);
+    for (u, v, face_order) in MESHES {
+        a_batch_reports_its_first_bad(shapes::torus_mixed(u, v), face_order);
+    }
+}
+
+fn a_batch_reports_its_first_bad(mut mesh: Mesh, face_order: bool) {
     // Two holes: the later hole's face comes first in face order.
     mesh.holes.extend([7, 40]);
     let (adaptive, table) = setup(&mesh);
@@ -152,7 +167,7 @@ fn a_batch_reports_its_first_bad_location() {
     let points = adaptive
         .patch_points(&table, 3, &mesh.flat_positions::<f64>())
         .unwrap();
-    assert!(in_face_order(&table, &points));
+    assert_eq!(in_face_order(&table, &points), face_order);
     // The (first) ptex faces of the holes.
     let ptex = PtexIndices::new(&Refiner::new(&mesh, &Options::default()).unwrap()).unwrap();
     let (early, late) = (ptex.face_id(7).unwrap(), ptex.face_id(40).unwrap());
@@ -166,6 +181,8 @@ fn a_batch_reports_its_first_bad_location() {
         let mut locations = scattered(&table, &map, 10_000);
         locations[100] = (late, 0.5, 0.5);
         locations[6000] = (early, 0.25, 0.5);
+        // In the second stretch of 8,192 (evaluated beside the first).
+        locations[9000] = (early, 0.75, 0.5);
         let e = pool
             .install(|| {
                 patches::evaluate_with(&map, &table, &points, 3, &locations, Derivatives::First)

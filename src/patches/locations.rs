@@ -55,18 +55,49 @@ pub(super) fn evaluate_all(
     }
 }
 
-/// Each location in turn.
+/// Each location in turn; on several threads, stretches of
+/// [`CHUNK`] locations side by side, each into its own stretch of the
+/// columns (an error is then looked for again in order, so that it is the
+/// first location's).
 fn in_given_order(
     evaluator: &Evaluator<'_>,
     locations: &[(u32, f64, f64)],
     columns: &mut [Vec<f64>],
 ) -> Result<()> {
-    let mut columns: Vec<&mut [f64]> = columns.iter_mut().map(|c| &mut c[..]).collect();
-    let mut buf: BasisBuffer = [[0.0; 20]; 6];
-    for (i, &location) in locations.iter().enumerate() {
-        evaluator.at(location, i, &mut buf, &mut columns)?;
+    let width = evaluator.width;
+    let each =
+        |locations: &[(u32, f64, f64)], buf: &mut BasisBuffer, mut stretch: Vec<&mut [f64]>| {
+            for (i, &location) in locations.iter().enumerate() {
+                evaluator.at(location, i, buf, &mut stretch)?;
+            }
+            Ok(())
+        };
+    if rayon::current_num_threads() > 1 && locations.len() >= ORDERED_FROM {
+        // Each task's stretch of every column.
+        let tasks = locations.len().div_ceil(CHUNK);
+        let mut stretches: Vec<Vec<&mut [f64]>> = (0..tasks).map(|_| Vec::new()).collect();
+        for column in columns.iter_mut() {
+            for (task, piece) in stretches.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
+                task.push(piece);
+            }
+        }
+        let done = locations
+            .par_chunks(CHUNK)
+            .zip(stretches)
+            .try_for_each_init(
+                || -> BasisBuffer { [[0.0; 20]; 6] },
+                |buf, (locations, stretch)| each(locations, buf, stretch),
+            );
+        if done.is_ok() {
+            return Ok(());
+        }
     }
-    Ok(())
+    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    each(
+        locations,
+        &mut buf,
+        columns.iter_mut().map(|c| &mut c[..]).collect(),
+    )
 }
 
 /// The indices of `locations` sorted by ptex face (a counting sort; in the
