@@ -151,6 +151,20 @@ impl Derivative {
     }
 }
 
+/// `[body with I = 0, …, body with I = 11]`: an expression per point of the
+/// box spline, each compiled with the point's index `I` a constant.
+macro_rules! per_point {
+    ($i:ident => $body:expr) => {
+        per_point!(@ $i => $body; 0 1 2 3 4 5 6 7 8 9 10 11)
+    };
+    (@ $i:ident => $body:expr; $($k:literal)*) => {
+        [$({
+            const $i: usize = $k;
+            $body
+        }),*]
+    };
+}
+
 /// The `(DS, DT)` derivative as a constant, so that each weight's sum is
 /// compiled with its coefficients and its monomials known.
 struct Of<const DS: usize, const DT: usize>;
@@ -179,20 +193,7 @@ impl<const DS: usize, const DT: usize> Of<DS, DT> {
         for (x, &(factor, a, b)) in m.iter_mut().zip(&monomials) {
             *x = factor * ps[a] * pt[b];
         }
-        let all = [
-            Self::native::<0>(&m),
-            Self::native::<1>(&m),
-            Self::native::<2>(&m),
-            Self::native::<3>(&m),
-            Self::native::<4>(&m),
-            Self::native::<5>(&m),
-            Self::native::<6>(&m),
-            Self::native::<7>(&m),
-            Self::native::<8>(&m),
-            Self::native::<9>(&m),
-            Self::native::<10>(&m),
-            Self::native::<11>(&m),
-        ];
+        let all = per_point!(I => Self::native::<I>(&m));
         // Divided side by side (vector divisions).
         for (out, x) in w.iter_mut().zip(all) {
             *out = x / 12.0;
@@ -217,21 +218,7 @@ impl<const DS: usize, const DT: usize> Of<DS, DT> {
     /// OpenSubdiv's weights of all twelve points from the monomials.
     #[inline(always)]
     fn osd_all<R: Real>(m: &[R; 15], w: &mut [R; 12]) {
-        let all = [
-            Self::osd::<R, 0>(m),
-            Self::osd::<R, 1>(m),
-            Self::osd::<R, 2>(m),
-            Self::osd::<R, 3>(m),
-            Self::osd::<R, 4>(m),
-            Self::osd::<R, 5>(m),
-            Self::osd::<R, 6>(m),
-            Self::osd::<R, 7>(m),
-            Self::osd::<R, 8>(m),
-            Self::osd::<R, 9>(m),
-            Self::osd::<R, 10>(m),
-            Self::osd::<R, 11>(m),
-        ];
-        *w = all;
+        *w = per_point!(I => Self::osd::<R, I>(m));
     }
 }
 
