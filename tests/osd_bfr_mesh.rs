@@ -11,8 +11,8 @@
 use glam::DVec3;
 use std::collections::HashMap;
 use subdiv::bfr::{
-    FacetSize, LimitSurfaces, MAX_RATE, SurfaceOptions, TessellateOptions, TessellatedMesh,
-    Tessellation, TessellationOptions, tessellate,
+    FaceSurfaces, FacetSize, LimitSurfaces, MAX_RATE, MeshSurfaces, SurfaceOptions,
+    TessellateOptions, TessellatedMesh, Tessellation, TessellationOptions, tessellate,
 };
 use subdiv::osd::bfr::tessellate_mesh;
 use subdiv::patches::Derivatives;
@@ -218,14 +218,27 @@ fn sweep(diag: f64) -> Vec<TessellateOptions> {
 /// Every sweep option on `mesh` under `options`, both ways; returns the
 /// number of comparisons.
 fn compare(label: &str, mesh: &Mesh, options: &Options) -> usize {
+    compare_surfaces(label, mesh, options, false)
+}
+
+/// [`compare`], the native mesher over the per-face `MeshSurfaces` when
+/// `per_face`, else over the whole-mesh `LimitSurfaces`.
+fn compare_surfaces(label: &str, mesh: &Mesh, options: &Options, per_face: bool) -> usize {
     let surface = SurfaceOptions::default();
     let native_surfaces = LimitSurfaces::new(mesh, options, &surface)
         .unwrap_or_else(|e| panic!("{label}: native surfaces: {e}"));
+    let per_face_surfaces = MeshSurfaces::new(mesh, options, &surface)
+        .unwrap_or_else(|e| panic!("{label}: per-face surfaces: {e}"));
+    let surfaces: &dyn FaceSurfaces = if per_face {
+        &per_face_surfaces
+    } else {
+        &native_surfaces
+    };
     let mut n = 0;
     for tess in sweep(diagonal(&mesh.positions)) {
         let what = format!("{label} {tess:?}");
-        let native = tessellate(mesh, &native_surfaces, &tess)
-            .unwrap_or_else(|e| panic!("{what}: native: {e}"));
+        let native =
+            tessellate(mesh, surfaces, &tess).unwrap_or_else(|e| panic!("{what}: native: {e}"));
         let osd = tessellate_mesh(mesh, options, &surface, &tess)
             .unwrap_or_else(|e| panic!("{what}: OpenSubdiv: {e}"));
         let ill = assert_same_with(&what, &native, &osd, &mut |i| {
@@ -321,6 +334,47 @@ fn the_corpus_matches_the_native_mesher() {
         }
     }
     assert!(done > 1800, "{done} comparisons");
+}
+
+/// The per-face surfaces (`MeshSurfaces`, whose regular faces skip
+/// building a surface: the refiner's shortcut and a kept plan, positions
+/// and texture coordinates sharing the shortcut's points) in the mesher
+/// against Bfr's: linear and smooth UVs, channels of 1, 2 and 3
+/// components, boundaries and the production-like shape under USD's
+/// defaults.
+#[test]
+fn per_face_surfaces_match_bfr_in_the_mesher() {
+    use FVarLinearInterpolation as F;
+    let torus = shapes::with_torus_uvs(shapes::torus(8, 6), 8, 6);
+    // The channel widened to 3 components and narrowed to 1.
+    let with_width = |mesh: &Mesh, width: usize| {
+        let mut mesh = mesh.clone();
+        let c = &mut mesh.fvar_channels[0];
+        c.values = c
+            .values
+            .chunks_exact(2)
+            .flat_map(|uv| [uv[0], uv[1], uv[0] - 2.0 * uv[1]][..width].to_vec())
+            .collect();
+        c.width = width;
+        mesh
+    };
+    let mut done = 0;
+    for fvar in [F::All, F::CornersPlus1, F::None] {
+        let options = Options::default().with_fvar(fvar);
+        for width in [1, 2, 3] {
+            let label = format!("torus 8x6, {width}-component channel, {fvar:?}");
+            done += compare_surfaces(&label, &with_width(&torus, width), &options, true);
+        }
+    }
+    let mut grid = shapes::grid(6, 5);
+    assert!(!grid.fvar_channels.is_empty());
+    grid.holes.push(7);
+    done += compare_surfaces("grid with a hole", &grid, &edge_only(), true);
+    let usd = Options::default()
+        .with_boundary(BoundaryInterpolation::EdgeAndCorner)
+        .with_fvar(F::CornersPlus1);
+    done += compare_surfaces("production", &shapes::production(8, 6), &usd, true);
+    assert_eq!(done, 11 * 14);
 }
 
 /// The production-like shape again with USD's defaults, its UVs smooth

@@ -24,7 +24,7 @@ use super::corner::{Corner, CornerTag, Subset};
 use super::hull::hull;
 use super::parameterization::Parameterization;
 use super::plans::{PLAN_BUDGET, Plans};
-use super::regular::{shortcut_points, subset_mask, subset_points};
+use super::regular::{points_at, shortcut_corners, shortcut_points, subset_mask, subset_points};
 use super::surfaces::SurfaceOptions;
 use crate::error::{Element, Error, Result};
 use crate::mesh::Mesh;
@@ -40,7 +40,7 @@ use crate::stencil::StencilTable;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use rustc_hash::FxHashMap;
-use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
+use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
@@ -62,10 +62,21 @@ pub struct SurfaceFactory {
     /// Regular faces' evaluation plans: B-spline patches by boundary mask,
     /// then box-spline patches by boundary mask.
     regular_plans: Vec<Arc<Plans>>,
-    /// Per base face, whether the refiner's shortcut makes it regular, once
-    /// asked (0 not yet, 1 yes, 2 no): a mesher asks for each face's
-    /// validity, vertex and face-varying surfaces.
-    shortcut: Vec<AtomicU8>,
+    /// Per base face, whether it has a limit surface that the refiner's
+    /// shortcut makes regular (not a hole, not bilinear, of the regular
+    /// size): a mesher asks for each face's validity, vertex and
+    /// face-varying surfaces, so it is found once for all faces.
+    shortcut: Vec<bool>,
+}
+
+/// A face that the refiner's shortcut makes a regular patch: where its
+/// points sit in the base level's face-vertex list
+/// ([`shortcut_corners`]), their number and the boundary mask.
+pub(super) struct Shortcut {
+    face: usize,
+    corners: [u32; 16],
+    len: usize,
+    mask: u16,
 }
 
 /// What makes two control hulls refine alike: their faces, sharpness and
@@ -244,11 +255,7 @@ impl SurfaceFactory {
         let refiner = Refiner::new(mesh, options)?;
         let features = base_features(&refiner.levels[0], options.scheme);
         let budget = Arc::new(AtomicUsize::new(PLAN_BUDGET));
-        let faces = refiner.levels[0].face_count();
-        let mut shortcut = Vec::new();
-        crate::alloc::reserve(&mut shortcut, faces)?;
-        shortcut.extend((0..faces).map(|_| AtomicU8::new(0)));
-        Ok(SurfaceFactory {
+        let mut factory = SurfaceFactory {
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
@@ -256,9 +263,46 @@ impl SurfaceFactory {
                 .map(|_| Arc::new(Plans::new(budget.clone())))
                 .collect(),
             plan_budget: budget,
-            shortcut,
+            shortcut: Vec::new(),
             refiner,
-        })
+        };
+        factory.shortcut = factory.shortcut_faces()?;
+        Ok(factory)
+    }
+
+    /// Per base face, whether the refiner's shortcut makes it a regular
+    /// patch ([`SurfaceFactory::shortcut_regular`]) — false for holes,
+    /// faces of another size and the bilinear scheme. A face whose corners
+    /// carry no tag at all (interior, smooth, regular valence, no sharpness)
+    /// is regular without combining its corners' tags.
+    fn shortcut_faces(&self) -> Result<Vec<bool>> {
+        let base = &self.refiner.levels[0];
+        let mut plain = Vec::new();
+        crate::alloc::reserve(&mut plain, base.vertex_count)?;
+        plain.extend((0..base.vertex_count).map(|v| {
+            let t = Tag::of(base, &self.features, v);
+            let f = t.features;
+            !(f.xordinary
+                || f.incid_irreg_face
+                || f.inf_irregular
+                || t.non_manifold
+                || t.boundary
+                || t.semi_sharp
+                || t.semi_sharp_edges
+                || t.inf_sharp
+                || t.inf_sharp_edges)
+        }));
+        let mut shortcut = Vec::new();
+        crate::alloc::reserve(&mut shortcut, base.face_count())?;
+        let (bilinear, size) = (self.scheme() == Scheme::Bilinear, self.reg_size());
+        shortcut.extend((0..base.face_count()).map(|f| {
+            let verts = base.face_verts(f);
+            !bilinear
+                && verts.len() == size
+                && !base.is_hole(f)
+                && (verts.iter().all(|&v| plain[v as usize]) || self.shortcut_regular(base, f))
+        }));
+        Ok(shortcut)
     }
 
     /// The number of base faces.
@@ -286,12 +330,14 @@ impl SurfaceFactory {
     /// boundary under boundary interpolation "none", no non-triangle next
     /// to a Loop face); false for faces that do not exist.
     pub fn has_limit_surface(&self, face: usize) -> bool {
-        matches!(
-            self.neighbourhood(face),
-            Ok(Neighbourhood::Linear(_)
-                | Neighbourhood::Shortcut(_)
-                | Neighbourhood::Corners { .. })
-        )
+        // (A face the shortcut makes regular has one.)
+        self.shortcut.get(face).is_some_and(|&s| s)
+            || matches!(
+                self.neighbourhood(face),
+                Ok(Neighbourhood::Linear(_)
+                    | Neighbourhood::Shortcut(_)
+                    | Neighbourhood::Corners { .. })
+            )
     }
 
     fn scheme(&self) -> Scheme {
@@ -327,22 +373,7 @@ impl SurfaceFactory {
         if self.scheme() == Scheme::Bilinear {
             return Ok(Neighbourhood::Linear(param));
         }
-        let known = self
-            .shortcut
-            .get(face)
-            .map_or(0, |s| s.load(Ordering::Relaxed));
-        let shortcut = match known {
-            1 => true,
-            2 => false,
-            _ => {
-                let regular = self.shortcut_regular(base, face);
-                if let Some(s) = self.shortcut.get(face) {
-                    s.store(if regular { 1 } else { 2 }, Ordering::Relaxed);
-                }
-                regular
-            }
-        };
-        if shortcut {
+        if self.shortcut[face] {
             return Ok(Neighbourhood::Shortcut(param));
         }
         match self.corners(face) {
@@ -392,6 +423,23 @@ impl SurfaceFactory {
         Some((corners, subsets))
     }
 
+    /// Where the points of base face `face`'s B-spline patch sit when the
+    /// refiner's shortcut makes it one (a quad under Catmull-Clark), for
+    /// [`SurfaceFactory::evaluate_shortcut_into`] and
+    /// [`SurfaceFactory::evaluate_fvar_shortcut_into`] to share.
+    pub(super) fn shortcut(&self, face: usize) -> Option<Shortcut> {
+        if self.reg_size() != 4 || !self.shortcut.get(face).is_some_and(|&s| s) {
+            return None;
+        }
+        let (corners, len, mask) = shortcut_corners(&self.refiner.levels[0], face);
+        Some(Shortcut {
+            face,
+            corners,
+            len,
+            mask,
+        })
+    }
+
     /// The vertex surface of base face `face` (`InitVertexSurface`): holes
     /// and faces without a limit surface give an invalid surface.
     pub fn vertex_surface(&self, face: usize) -> Result<Surface> {
@@ -400,7 +448,7 @@ impl SurfaceFactory {
             Neighbourhood::Invalid(param) => Ok(Surface::invalid(face, param)),
             Neighbourhood::Linear(param) => Ok(self.linear(face, param, base.face_verts(face))),
             Neighbourhood::Shortcut(param) => {
-                let (points, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+                let (points, len, mask) = shortcut_points(base, face, &base.face_vertices.members);
                 Ok(self.regular(face, param, &points[..len], mask))
             }
             Neighbourhood::Corners {
@@ -417,23 +465,24 @@ impl SurfaceFactory {
     /// plan for `coords` (`plans.rs`): the plan applied straight to the
     /// shortcut's 16 points, as [`Surface::evaluate_into`] would. `None`
     /// otherwise: the caller builds the surface.
+    /// `shortcut` is [`SurfaceFactory::shortcut`]'s for `face`.
     pub(super) fn evaluate_shortcut_into(
         &self,
-        face: usize,
+        shortcut: &Shortcut,
         points: &[f64],
         coords: &[[f64; 2]],
         derivatives: Derivatives,
         out: &mut [&mut [f64]],
     ) -> Option<()> {
-        if self.reg_size() != 4
-            || out.len() != derivatives.columns()
-            || out.iter().any(|c| c.len() != 3 * coords.len())
-            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
-        {
+        if out.len() != derivatives.columns() || out.iter().any(|c| c.len() != 3 * coords.len()) {
             return None;
         }
         let base = &self.refiner.levels[0];
-        let (control, len, mask) = shortcut_points(base, face, |f| base.face_verts(f));
+        let (control, len, mask) = (
+            points_at(&shortcut.corners, &base.face_vertices.members),
+            shortcut.len,
+            shortcut.mask,
+        );
         let control = &control[..len];
         if len != 16 || control.iter().any(|&v| 3 * (v as usize + 1) > points.len()) {
             return None;
@@ -455,9 +504,10 @@ impl SurfaceFactory {
     /// channel matches the vertex topology around the face, as
     /// [`SurfaceFactory::fvar_surface`] asks) and a plan for `coords` is
     /// kept.
+    /// `shortcut` is [`SurfaceFactory::shortcut`]'s for the face.
     pub(super) fn evaluate_fvar_shortcut_into(
         &self,
-        face: usize,
+        shortcut: &Shortcut,
         channel: usize,
         values: &[f64],
         width: usize,
@@ -466,20 +516,19 @@ impl SurfaceFactory {
     ) -> Option<()> {
         let linear = self.scheme() == Scheme::Bilinear
             || self.refiner.options.fvar == FVarLinearInterpolation::All;
-        if linear
-            || self.reg_size() != 4
-            || !(1..=3).contains(&width)
-            || out.len() != width * coords.len()
-            || !matches!(self.neighbourhood(face), Ok(Neighbourhood::Shortcut(_)))
-        {
+        if linear || !(1..=3).contains(&width) || out.len() != width * coords.len() {
             return None;
         }
         let base = &self.refiner.levels[0];
         let chan = self.refiner.fvar.get(channel)?.first()?;
-        if !fvar_topology_matches(base, chan, face) {
+        if !fvar_topology_matches(base, chan, shortcut.face) {
             return None;
         }
-        let (control, len, mask) = shortcut_points(base, face, |f| chan.face_values_of(base, f));
+        let (control, len, mask) = (
+            points_at(&shortcut.corners, chan.face_values()),
+            shortcut.len,
+            shortcut.mask,
+        );
         let control = &control[..len];
         if len != 16
             || control
@@ -532,7 +581,7 @@ impl SurfaceFactory {
             }
             Neighbourhood::Shortcut(param) => {
                 if fvar_topology_matches(base, chan, face) {
-                    let (points, len, mask) = shortcut_points(base, face, values);
+                    let (points, len, mask) = shortcut_points(base, face, chan.face_values());
                     return Ok(self.regular(face, param, &points[..len], mask));
                 }
                 match self.corners(face) {

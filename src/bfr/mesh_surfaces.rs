@@ -7,7 +7,7 @@
 //!
 //! [`LimitSurfaces`]: crate::bfr::LimitSurfaces
 
-use super::face_surface::{Surface, SurfaceFactory};
+use super::face_surface::{Shortcut, Surface, SurfaceFactory};
 use super::mesher::FaceSurfaces;
 use super::parameterization::Parameterization;
 use super::surfaces::SurfaceOptions;
@@ -127,16 +127,21 @@ impl FaceSurfaces for MeshSurfaces {
         derivatives: Derivatives,
         out: &mut [&mut [f64]],
     ) -> Result<()> {
-        // A regular face whose plan is kept: no surface built.
-        if self
-            .factory
-            .evaluate_shortcut_into(face, &self.points, coords, derivatives, out)
-            .is_some()
-        {
-            return Ok(());
-        }
-        let surface = self.factory.vertex_surface(face)?;
-        surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
+        let shortcut = self.factory.shortcut(face);
+        self.positions_into(face, shortcut.as_ref(), coords, derivatives, out)
+    }
+    fn evaluate_with_fvar_into(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+        (channel, fvar_coords, fvar_out): (usize, &[[f64; 2]], &mut [f64]),
+    ) -> Result<()> {
+        // The regular patch's points found once for both.
+        let shortcut = self.factory.shortcut(face);
+        self.positions_into(face, shortcut.as_ref(), coords, derivatives, out)?;
+        self.fvar_into(face, shortcut.as_ref(), channel, fvar_coords, fvar_out)
     }
     fn base_edges(&self) -> Option<(&[u32], &[[u32; 2]])> {
         self.factory.base_edges()
@@ -148,16 +153,53 @@ impl FaceSurfaces for MeshSurfaces {
         coords: &[[f64; 2]],
         out: &mut [f64],
     ) -> Result<()> {
+        let shortcut = self.factory.shortcut(face);
+        self.fvar_into(face, shortcut.as_ref(), channel, coords, out)
+    }
+}
+
+impl MeshSurfaces {
+    /// [`FaceSurfaces::evaluate_into`], `shortcut` the face's
+    /// ([`SurfaceFactory::shortcut`]).
+    fn positions_into(
+        &self,
+        face: usize,
+        shortcut: Option<&Shortcut>,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+    ) -> Result<()> {
+        // A regular face whose plan is kept: no surface built.
+        if shortcut.is_some_and(|s| {
+            self.factory
+                .evaluate_shortcut_into(s, &self.points, coords, derivatives, out)
+                .is_some()
+        }) {
+            return Ok(());
+        }
+        let surface = self.factory.vertex_surface(face)?;
+        surface.evaluate_into(&self.points, 3.into(), coords, derivatives, out)
+    }
+
+    /// [`FaceSurfaces::evaluate_fvar_into`], `shortcut` the face's.
+    fn fvar_into(
+        &self,
+        face: usize,
+        shortcut: Option<&Shortcut>,
+        channel: usize,
+        coords: &[[f64; 2]],
+        out: &mut [f64],
+    ) -> Result<()> {
         let (values, width) = self.fvar.get(channel).ok_or(Error::NoSuchChannel {
             channel,
             count: self.fvar.len(),
         })?;
         // A regular face whose plan is kept: no surface built.
-        if self
-            .factory
-            .evaluate_fvar_shortcut_into(face, channel, values, *width, coords, out)
-            .is_some()
-        {
+        if shortcut.is_some_and(|s| {
+            self.factory
+                .evaluate_fvar_shortcut_into(s, channel, values, *width, coords, out)
+                .is_some()
+        }) {
             return Ok(());
         }
         let surface: Surface = self.factory.fvar_surface(face, channel)?;

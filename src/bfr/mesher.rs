@@ -60,6 +60,21 @@ pub trait FaceSurfaces: Sync {
             .values
             .copy_into(out)
     }
+    /// [`FaceSurfaces::evaluate_into`] and, for face-varying channel
+    /// `channel`, [`FaceSurfaces::evaluate_fvar_into`] at `fvar_coords`
+    /// into `fvar_out`, in one call: an engine may share what the two have
+    /// in common (the face's neighbourhood). By default the two calls.
+    fn evaluate_with_fvar_into(
+        &self,
+        face: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+        out: &mut [&mut [f64]],
+        (channel, fvar_coords, fvar_out): (usize, &[[f64; 2]], &mut [f64]),
+    ) -> Result<()> {
+        self.evaluate_into(face, coords, derivatives, out)?;
+        self.evaluate_fvar_into(face, channel, fvar_coords, fvar_out)
+    }
     /// The base mesh's edges as the engine numbers them, when it has them
     /// and each pair of vertices has one edge: the edge of every face corner
     /// (from the corner to the next, in the order of the right-handed
@@ -484,18 +499,36 @@ pub fn tessellate(
                     &scratch.own
                 };
                 // Positions straight into the output; the derivatives (for
-                // normals) into scratch columns.
+                // normals) into scratch columns; texture coordinates (2D:
+                // the first two components) straight into the output when
+                // the channel is 2D.
                 let position: &mut [f64] = bytemuck::cast_slice_mut(&mut *out.position);
                 if options.normals {
                     let len = 3 * own.len();
                     scratch.du.resize(len, 0.0);
                     scratch.dv.resize(len, 0.0);
-                    surfaces.evaluate_into(
+                }
+                let mut columns = [position, &mut scratch.du[..], &mut scratch.dv[..]];
+                let columns = &mut columns[..if options.normals { 3 } else { 1 }];
+                let uv: Option<&mut [f64]> = match (uvs, uv_width) {
+                    (false, _) => None,
+                    (true, 2) => Some(&mut *out.uv),
+                    (true, _) => {
+                        scratch.uv.resize(uv_width * coords.len(), 0.0);
+                        Some(&mut scratch.uv)
+                    }
+                };
+                match uv {
+                    Some(uv) => surfaces.evaluate_with_fvar_into(
                         plan.face,
                         own,
                         derivs,
-                        &mut [position, &mut scratch.du, &mut scratch.dv],
-                    )?;
+                        columns,
+                        (0, coords, uv),
+                    )?,
+                    None => surfaces.evaluate_into(plan.face, own, derivs, columns)?,
+                }
+                if options.normals {
                     for ((n, du), dv) in out
                         .normal
                         .iter_mut()
@@ -506,20 +539,11 @@ pub fn tessellate(
                             .cross(DVec3::from_slice(dv))
                             .normalize_or_zero();
                     }
-                } else {
-                    surfaces.evaluate_into(plan.face, own, derivs, &mut [position])?;
                 }
-                if uvs {
-                    // Texture coordinates are 2D: the first two components.
-                    if uv_width == 2 {
-                        surfaces.evaluate_fvar_into(plan.face, 0, coords, out.uv)?;
-                    } else {
-                        scratch.uv.resize(uv_width * coords.len(), 0.0);
-                        surfaces.evaluate_fvar_into(plan.face, 0, coords, &mut scratch.uv)?;
-                        for (value, dst) in scratch.uv.chunks(uv_width).zip(out.uv.chunks_mut(2)) {
-                            dst[0] = value[0];
-                            dst[1] = value.get(1).copied().unwrap_or(0.0);
-                        }
+                if uvs && uv_width != 2 {
+                    for (value, dst) in scratch.uv.chunks(uv_width).zip(out.uv.chunks_mut(2)) {
+                        dst[0] = value[0];
+                        dst[1] = value.get(1).copied().unwrap_or(0.0);
                     }
                 }
                 write_facets(pattern, plan.face, face_points(plan), start, out);

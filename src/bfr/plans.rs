@@ -21,8 +21,9 @@
 use crate::error::Result;
 use crate::patches::{Derivatives, LocationStencils};
 use rustc_hash::{FxHashMap, FxHasher};
+use std::cell::RefCell;
 use std::hash::Hasher;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// The bytes of plans (and of the coordinate lists waiting for one) a
@@ -36,6 +37,9 @@ const MIN_COORDS: usize = 16;
 /// and derivatives.
 #[derive(Debug)]
 pub(super) struct Plans {
+    /// Tells these plans apart from every other `Plans` in the process
+    /// (in the threads' [`RECENT`] plans).
+    id: u64,
     entries: Mutex<FxHashMap<u64, Vec<Entry>>>,
     /// The bytes the factory's plans may still take (shared by them all).
     budget: Arc<AtomicUsize>,
@@ -48,6 +52,31 @@ struct Entry {
     /// Faces that asked before the plan was built.
     uses: u32,
     plan: Option<Arc<LocationStencils>>,
+}
+
+/// The source of [`Plans::id`].
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+
+/// The plans a thread found kept most recently.
+const RECENT_PLANS: usize = 4;
+
+thread_local! {
+    /// The plans this thread found kept last, newest first: a mesher asks
+    /// for the same few coordinate lists face after face (a face's own
+    /// points, all its points for texture coordinates), and finding them
+    /// here costs a comparison of the lists instead of a lock and a hash
+    /// lookup. Each entry holds its plan (a few kilobytes) until it is
+    /// pushed out, also after its `Plans` is dropped (ids are never reused,
+    /// so it is never found again).
+    static RECENT: RefCell<Vec<Recent>> = const { RefCell::new(Vec::new()) };
+}
+
+/// A plan in [`RECENT`].
+struct Recent {
+    plans: u64,
+    derivatives: Derivatives,
+    coords: Vec<[f64; 2]>,
+    plan: Arc<LocationStencils>,
 }
 
 /// A key of `coords` and `derivatives` (equal lists hash alike: the
@@ -68,11 +97,10 @@ fn key(coords: &[[f64; 2]], derivatives: Derivatives) -> u64 {
     h.finish()
 }
 
+/// Whether two coordinate lists are the same bit for bit (compared as
+/// bytes: one `memcmp`).
 fn same(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|(p, q)| p[0].to_bits() == q[0].to_bits() && p[1].to_bits() == q[1].to_bits())
+    bytemuck::cast_slice::<[f64; 2], u8>(a) == bytemuck::cast_slice::<[f64; 2], u8>(b)
 }
 
 /// The bytes a plan holds.
@@ -91,6 +119,7 @@ impl Plans {
     /// No plans yet, within `budget`.
     pub(super) fn new(budget: Arc<AtomicUsize>) -> Plans {
         Plans {
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             entries: Mutex::new(FxHashMap::default()),
             budget,
         }
@@ -106,17 +135,56 @@ impl Plans {
         if coords.len() < MIN_COORDS {
             return None;
         }
-        let k = key(coords, derivatives);
-        let entries = self
-            .entries
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        entries
-            .get(&k)?
-            .iter()
-            .find(|e| e.derivatives == derivatives && same(&e.coords, coords))?
-            .plan
-            .clone()
+        let is = |r: &Recent| {
+            r.plans == self.id && r.derivatives == derivatives && same(&r.coords, coords)
+        };
+        let recent =
+            RECENT.with_borrow(|recent| recent.iter().find(|r| is(r)).map(|r| r.plan.clone()));
+        if recent.is_some() {
+            return recent;
+        }
+        let plan = {
+            let k = key(coords, derivatives);
+            let entries = self
+                .entries
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner());
+            entries
+                .get(&k)?
+                .iter()
+                .find(|e| e.derivatives == derivatives && same(&e.coords, coords))?
+                .plan
+                .clone()?
+        };
+        RECENT.with_borrow_mut(|recent| {
+            // The oldest entry's room reused, the new one first (nothing
+            // kept when there is no memory for it).
+            let mut entry = match recent.pop() {
+                Some(oldest) if recent.len() + 1 == RECENT_PLANS => oldest,
+                other => {
+                    recent.extend(other);
+                    if recent.try_reserve(1).is_err() {
+                        return;
+                    }
+                    Recent {
+                        plans: self.id,
+                        derivatives,
+                        coords: Vec::new(),
+                        plan: plan.clone(),
+                    }
+                }
+            };
+            entry.coords.clear();
+            if entry.coords.try_reserve(coords.len()).is_err() {
+                return;
+            }
+            entry.coords.extend_from_slice(coords);
+            entry.plans = self.id;
+            entry.derivatives = derivatives;
+            entry.plan = plan.clone();
+            recent.insert(0, entry);
+        });
+        Some(plan)
     }
 
     /// The plan of `coords` with `derivatives`, when one is kept or worth

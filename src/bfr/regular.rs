@@ -43,57 +43,47 @@ fn mask_of(points: &[i64]) -> u16 {
     }
 }
 
-/// The points of base face `face` if the refiner's tags make its patch
-/// regular: the shortcut's points (missing ones replaced by point 5: the
-/// face's first vertex in a quad's patch, its second in a triangle's; the
-/// first 16 or 12 of the array), their number and the boundary mask.
-/// `values(f)` gives face `f`'s indices: its vertices, or a face-varying
-/// channel's values.
-pub(crate) fn shortcut_points<'a>(
-    level: &Level,
-    face: usize,
-    values: impl Fn(usize) -> &'a [u32],
-) -> ([u32; 16], usize, u16) {
+/// Where the points of base face `face` sit if the refiner's tags make its
+/// patch regular: for each of the shortcut's points, the position in the
+/// level's face-vertex list of a face corner at that point (missing ones
+/// replaced by point 5's: the face's first vertex in a quad's patch, its
+/// second in a triangle's; the first 16 or 12 of the array), their number
+/// and the boundary mask. The corners, not the vertices, so that a
+/// face-varying channel whose topology matches the vertices' around the
+/// face reads its values at the same corners ([`shortcut_points`]).
+pub(crate) fn shortcut_corners(level: &Level, face: usize) -> ([u32; 16], usize, u16) {
+    if let Some(corners) = interior_quad_corners(level, face) {
+        return (corners, 16, 0);
+    }
     let fverts = level.face_verts(face);
     let quad = fverts.len() == 4;
     let len = if quad { 16 } else { 12 };
     let mut all = [MISSING; 16];
     let p = &mut all[..len];
-    const QUAD: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
     const TRI: [[usize; 4]; 3] = [[4, 3, 0, 1], [5, 2, 6, 9], [8, 11, 10, 7]];
     let n = fverts.len();
+    let start = |f: u32| level.face_vertices.range(f as usize).start;
     for (i, &v) in fverts.iter().enumerate() {
         let v = v as usize;
         let corner = if quad { QUAD[i] } else { TRI[i] };
         let vfaces = level.vertex_faces_of(v);
         let locals = level.vertex_face_locals(v);
-        let fv = |k: usize| values(vfaces[k] as usize);
         // (Local indices are below `n` and `d` below 4: one subtraction
-        // at most instead of a division.)
+        // at most instead of a division. The faces around a regular
+        // patch's corners all have `n` vertices.)
         let wrap = |i: usize, n: usize| if i >= n { i - n } else { i };
         let at = |k: usize, d: usize| -> i64 {
-            let f = fv(k);
             let i = usize::from(locals[k]) + d;
-            i64::from(f[if i >= n { wrap(i - n, n) } else { i }])
+            (start(vfaces[k]) + if i >= n { wrap(i - n, n) } else { i }) as i64
         };
         let mine = vfaces.iter().position(|&f| f as usize == face).unwrap_or(0);
         let reg = if quad { 4 } else { 6 };
-        if quad && vfaces.len() == 4 {
-            // The opposite quad's points, its indices looked up once.
-            let opp = wrap(mine + 2, 4);
-            let (f, l) = (fv(opp), usize::from(locals[opp]));
-            if f.len() == 4 {
-                for (d, &slot) in corner.iter().enumerate() {
-                    p[slot] = i64::from(f[(l + d) & 3]);
-                }
-                continue;
-            }
-        }
         if vfaces.len() == reg {
             let opp = wrap(mine + reg / 2, reg);
             if quad {
+                let (first, l) = (start(vfaces[opp]) as i64, usize::from(locals[opp]));
                 for (d, &slot) in corner.iter().enumerate() {
-                    p[slot] = at(opp, d);
+                    p[slot] = first + ((l + d) & 3) as i64;
                 }
             } else {
                 let next = wrap(opp + 1, reg);
@@ -127,11 +117,64 @@ pub(crate) fn shortcut_points<'a>(
     let mask = mask_of(p);
     // Point 5 for triangles too (their second vertex), as Bfr does.
     let phantom = p[5];
-    let mut points = [0u32; 16];
-    for (dst, &x) in points.iter_mut().zip(p.iter()) {
+    let mut corners = [0u32; 16];
+    for (dst, &x) in corners.iter_mut().zip(p.iter()) {
         *dst = if x < 0 { phantom } else { x } as u32;
     }
-    (points, len, mask)
+    (corners, len, mask)
+}
+
+/// A B-spline patch's points at each corner of its quad: the opposite
+/// face's corners, from the one at the quad's vertex on.
+const QUAD: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
+
+/// [`shortcut_corners`] of a quad whose vertices all have four faces (of a
+/// shortcut face: interior and regular), the case of nearly every face of
+/// a quad mesh: no point is missing, the mask is 0. `None` for any other
+/// face.
+fn interior_quad_corners(level: &Level, face: usize) -> Option<[u32; 16]> {
+    let fverts = level.face_verts(face);
+    if fverts.len() != 4 {
+        return None;
+    }
+    let mut p = [0u32; 16];
+    for (&v, slots) in fverts.iter().zip(&QUAD) {
+        let vfaces = level.vertex_faces_of(v as usize);
+        if vfaces.len() != 4 {
+            return None;
+        }
+        let mine = vfaces.iter().position(|&f| f as usize == face)?;
+        let opp = (mine + 2) & 3;
+        let first = level.face_vertices.range(vfaces[opp] as usize).start;
+        let l = usize::from(level.vertex_face_locals(v as usize)[opp]);
+        for (d, &slot) in slots.iter().enumerate() {
+            p[slot] = (first + ((l + d) & 3)) as u32;
+        }
+    }
+    Some(p)
+}
+
+/// The points of base face `face` if the refiner's tags make its patch
+/// regular ([`shortcut_corners`]), their number and the boundary mask.
+/// `values` holds an index per face corner, in the layout of the level's
+/// face-vertex list: its vertices, or a face-varying channel's values.
+pub(crate) fn shortcut_points(
+    level: &Level,
+    face: usize,
+    values: &[u32],
+) -> ([u32; 16], usize, u16) {
+    let (corners, len, mask) = shortcut_corners(level, face);
+    (points_at(&corners, values), len, mask)
+}
+
+/// `values` at `corners` (positions in the face-vertex list).
+#[inline]
+pub(crate) fn points_at(corners: &[u32; 16], values: &[u32]) -> [u32; 16] {
+    let mut points = [0u32; 16];
+    for (dst, &c) in points.iter_mut().zip(corners) {
+        *dst = values[c as usize];
+    }
+    points
 }
 
 /// The boundary mask of a regular patch from its corners' subsets
