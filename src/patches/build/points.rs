@@ -13,6 +13,7 @@ use crate::topology::fvar::ChannelLevel;
 
 /// The points of face `f`: its vertices, or its values in channel `fv`
 /// (`getFacePoints`).
+#[inline]
 pub(super) fn face_points<'a>(fv: Option<&'a ChannelLevel>, l: &'a Level, f: usize) -> &'a [u32] {
     match fv {
         Some(c) => c.face_values_of(l, f),
@@ -27,6 +28,7 @@ struct Ring<'a> {
 }
 
 impl<'a> Ring<'a> {
+    #[inline]
     fn of(level: &'a Level, v: u32) -> Ring<'a> {
         Ring {
             faces: level.vertex_faces_of(v as usize),
@@ -34,10 +36,12 @@ impl<'a> Ring<'a> {
         }
     }
 
+    #[inline]
     fn at(&self, i: usize) -> (usize, usize) {
         (self.faces[i] as usize, self.locals[i] as usize)
     }
 
+    #[inline]
     fn position(&self, f: usize) -> usize {
         self.faces
             .iter()
@@ -142,8 +146,12 @@ impl std::ops::Deref for PatchPoints {
 /// three points of the face diagonally opposite, or of the faces beside it
 /// along a boundary.
 fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 16] {
-    const PER_CORNER: [[usize; 4]; 4] =
-        [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
+    if mask == 0
+        && fv.is_none()
+        && let Some(points) = interior_quad_points(l, f)
+    {
+        return points;
+    }
     let verts = l.face_verts(f);
     let own = face_points(fv, l, f);
     let interior = mask == 0;
@@ -182,6 +190,35 @@ fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u3
         points[slots[3]] = outer[2];
     }
     points
+}
+
+/// The points of a quad's B-spline patch at each of its corners: the
+/// corner, then the opposite face's other three.
+const PER_CORNER: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
+
+/// [`quad_points`] of an interior patch whose corners all have four faces
+/// (nearly every patch of a quad mesh): the opposite face's vertices at
+/// each corner, read straight from the level's face-vertex list. `None`
+/// for any other face.
+fn interior_quad_points(l: &Level, f: usize) -> Option<[u32; 16]> {
+    let verts = l.face_verts(f);
+    let members: &[u32] = &l.face_vertices.members;
+    let mut points = [0u32; 16];
+    for (&v, slots) in verts.iter().zip(&PER_CORNER) {
+        let faces = l.vertex_faces_of(v as usize);
+        if faces.len() != 4 {
+            return None;
+        }
+        let at = faces.iter().position(|&x| x as usize == f)?;
+        let opposite = (at + 2) & 3;
+        let start = l.face_vertices.range(faces[opposite] as usize).start;
+        let k = usize::from(l.vertex_face_locals(v as usize)[opposite]);
+        points[slots[0]] = v;
+        points[slots[1]] = members[start + ((k + 1) & 3)];
+        points[slots[2]] = members[start + ((k + 2) & 3)];
+        points[slots[3]] = members[start + ((k + 3) & 3)];
+    }
+    Some(points)
 }
 
 /// The 12 points of a Loop box-spline patch.
