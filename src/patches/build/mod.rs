@@ -47,6 +47,7 @@ mod placement;
 mod points;
 mod source;
 mod uniform;
+mod view;
 
 use super::{EndCapType, PatchArray, PatchOptions, PatchParam, PatchTable, PatchType};
 use crate::error::{Error, LevelRefusal, Result};
@@ -197,21 +198,6 @@ impl Builder<'_> {
         self.levels.len() - 1
     }
 
-    /// Whether no corner of face `f` of `level` is extraordinary or has an
-    /// infinitely sharp vertex or edge: then its patch is regular with
-    /// boundary mask 0 (what [`Builder::is_regular_with`] and
-    /// [`Builder::boundary_mask_with`] conclude from the combined tags),
-    /// read from two tags per corner. The case of nearly every patch.
-    #[inline]
-    fn plain_face(&self, level: usize, f: usize) -> bool {
-        let (l, features) = (&self.levels[level], &self.features[level]);
-        !self.linear
-            && l.face_verts(f).iter().all(|&v| {
-                let t = l.vertex_tag(v as usize);
-                !t.inf_sharp() && !t.inf_sharp_edges() && !features[v as usize].xordinary
-            })
-    }
-
     /// `PatchBuilder::IsFaceAPatch`: not a hole; in the base level, not
     /// next to an irregular face (bilinear: of the regular size); in later
     /// levels, complete.
@@ -319,12 +305,21 @@ impl Builder<'_> {
         scheme: Scheme,
     ) -> Result<PatchTable> {
         let patches = self.identify(selected);
+        // Each level's relations as slices (not for bilinear patches, the
+        // faces themselves).
+        let views: Vec<view::LevelView> = if self.linear {
+            Vec::new()
+        } else {
+            (0..self.levels.len())
+                .map(|level| view::LevelView::new(self, level))
+                .collect()
+        };
         // Whether each patch is regular, and the boundary mask of a regular
         // one, from one reading of its corners' tags.
         let (regular, masks): (Vec<bool>, Vec<u16>) = patches
             .iter()
             .map(|p| {
-                if self.plain_face(p.level, p.face) {
+                if views.get(p.level).is_some_and(|v| v.plain_face(p.face)) {
                     return (true, 0);
                 }
                 let tags = self.corner_tags(p.level, p.face, None);
@@ -419,10 +414,13 @@ impl Builder<'_> {
                     sharpness = s.min((options.max_isolation_level - p.level as u32) as f32);
                     param_boundary = 1 << edge;
                 }
-                let cvs = self.regular_points(p.level, p.face, mask, None);
-                reg_array
-                    .control_vertices
-                    .extend(cvs.iter().map(|&v| v + offset));
+                self.regular_points_onto(
+                    (p.level, p.face),
+                    mask,
+                    views.get(p.level).filter(|_| self.reg == 4),
+                    offset,
+                    &mut reg_array.control_vertices,
+                );
                 slot = 0;
                 &mut reg_array
             } else if legacy {

@@ -8,6 +8,7 @@
 
 use super::Builder;
 use super::corners::decode_tri_boundary;
+use super::view::LevelView;
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 
@@ -95,6 +96,31 @@ fn prev_face(level: &Level, ring: &Ring, i: usize, manifold: bool) -> (usize, us
 }
 
 impl Builder<'_> {
+    /// [`Builder::regular_points`] of a vertex patch, each plus `offset`,
+    /// appended to `out` — written in place (not read back as a whole
+    /// right after their scattered stores) when the patch is an interior
+    /// quad's whose corners all have four faces (`quads`: the level's).
+    pub(super) fn regular_points_onto(
+        &self,
+        (level, f): (usize, usize),
+        mask: u16,
+        quads: Option<&LevelView>,
+        offset: u32,
+        out: &mut Vec<u32>,
+    ) {
+        if let Some(quads) = quads.filter(|_| mask == 0) {
+            let at = out.len();
+            out.resize(at + 16, 0);
+            let dst: &mut [u32; 16] = (&mut out[at..]).try_into().expect("16 points");
+            if quads.quad_points_into(f, offset, dst).is_some() {
+                return;
+            }
+            out.truncate(at);
+        }
+        let cvs = self.regular_points(level, f, mask, None);
+        out.extend(cvs.iter().map(|&v| v + offset));
+    }
+
     /// The control vertices of the regular patch of face `f` of `level`
     /// (indices within the level, or of channel `fv`'s values there), with
     /// its boundary mask `mask`.
@@ -146,12 +172,6 @@ impl std::ops::Deref for PatchPoints {
 /// three points of the face diagonally opposite, or of the faces beside it
 /// along a boundary.
 fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 16] {
-    if mask == 0
-        && fv.is_none()
-        && let Some(points) = interior_quad_points(l, f)
-    {
-        return points;
-    }
     let verts = l.face_verts(f);
     let own = face_points(fv, l, f);
     let interior = mask == 0;
@@ -194,32 +214,8 @@ fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u3
 
 /// The points of a quad's B-spline patch at each of its corners: the
 /// corner, then the opposite face's other three.
-const PER_CORNER: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
-
-/// [`quad_points`] of an interior patch whose corners all have four faces
-/// (nearly every patch of a quad mesh): the opposite face's vertices at
-/// each corner, read straight from the level's face-vertex list. `None`
-/// for any other face.
-fn interior_quad_points(l: &Level, f: usize) -> Option<[u32; 16]> {
-    let verts = l.face_verts(f);
-    let members: &[u32] = &l.face_vertices.members;
-    let mut points = [0u32; 16];
-    for (&v, slots) in verts.iter().zip(&PER_CORNER) {
-        let faces = l.vertex_faces_of(v as usize);
-        if faces.len() != 4 {
-            return None;
-        }
-        let at = faces.iter().position(|&x| x as usize == f)?;
-        let opposite = (at + 2) & 3;
-        let start = l.face_vertices.range(faces[opposite] as usize).start;
-        let k = usize::from(l.vertex_face_locals(v as usize)[opposite]);
-        points[slots[0]] = v;
-        points[slots[1]] = members[start + ((k + 1) & 3)];
-        points[slots[2]] = members[start + ((k + 2) & 3)];
-        points[slots[3]] = members[start + ((k + 3) & 3)];
-    }
-    Some(points)
-}
+pub(super) const PER_CORNER: [[usize; 4]; 4] =
+    [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
 
 /// The 12 points of a Loop box-spline patch.
 fn tri_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 12] {
