@@ -19,10 +19,31 @@
 //       {"levels": [{"vertices": V, "edges": E, "faces": F,
 //       "face_vertices": [[...], ...], "positions": [[x, y, z], ...]}, ...]},
 //       holes included, positions interpolated level by level in double.
+//   osd_driver INPUT.obj OUTPUT.txt --bfr-eval LOCATIONS.txt (and the options
+//       above but the refinement's): each base face's limit surface the Bfr
+//       way (Bfr::RefinerSurfaceFactory, default options: approximation
+//       levels 2 and 6), evaluated at every location `FACE U V` of the file
+//       (blank lines and `#` comments skipped): one line per location,
+//       `x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv` with %.17g. With
+//       --bfr-random N the driver first writes LOCATIONS.txt itself: N
+//       pseudo-random locations on every face with a limit surface, in its
+//       Bfr parameterization (sub-faces of n-gons through
+//       ConvertNormalizedSubFaceToCoord).
+//   osd_driver INPUT.obj OUTPUT.obj --bfr-tessellate RATE [--bfr-quads yes|no]:
+//       every base face with a limit surface tessellated at the uniform rate
+//       (Bfr::Tessellation; triangles, or quads kept). As OpenSubdiv's bfr
+//       tutorial 2_2 does, the point at a base vertex and the points inside a
+//       base edge are evaluated by the first face that uses them and written
+//       once (the boundary coordinates of a uniform pattern: each corner,
+//       then the RATE - 1 points of the edge after it); a face's interior
+//       points are its own. Then the facet count: `# facets N`.
 //
 // This file is deliberately self-contained: it shares no code with the crate's
 // own C++ bridge, so agreement between the two is evidence, not tautology.
 
+#include <opensubdiv/bfr/refinerSurfaceFactory.h>
+#include <opensubdiv/bfr/surface.h>
+#include <opensubdiv/bfr/tessellation.h>
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -259,6 +280,10 @@ struct Settings {
     int adaptive = -1;  // the isolation level; -1: uniform refinement
     int secondary = 15;
     bool singleCrease = false, infSharp = false, facesFirst = false;
+    std::string bfrEval;      // --bfr-eval LOCATIONS.txt
+    int bfrRandom = 0;        // --bfr-random N
+    int bfrRate = 0;          // --bfr-tessellate RATE
+    bool bfrQuads = false;    // --bfr-quads yes|no
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
     Sdc::Options opts;
 };
@@ -389,7 +414,9 @@ void usage() {
                  "       [--fvar none|corners-only|corners-plus1|corners-plus2|boundaries|all]\n"
                  "       [--creasing uniform|chaikin] [--triangles catmark|smooth]\n"
                  "       [--adaptive N [--secondary M] [--single-crease yes|no] [--inf-sharp yes|no]\n"
-                 "        [--faces-first yes|no]]\n");
+                 "        [--faces-first yes|no]]\n"
+                 "       [--bfr-eval LOCATIONS.txt [--bfr-random N] |\n"
+                 "        --bfr-tessellate RATE [--bfr-quads yes|no]]\n");
 }
 
 // The process's peak resident memory (VmHWM), as `subdiv refine --peak-memory`
@@ -470,6 +497,130 @@ int writeAdaptive(Far::TopologyRefiner &refiner, const Settings &s, const ObjMes
     return 0;
 }
 
+// Bfr: `count` pseudo-random locations on every face with a limit surface,
+// written to `path` as `FACE U V` lines.
+void writeBfrLocations(Far::TopologyRefiner &refiner, int count, const std::string &path) {
+    Bfr::RefinerSurfaceFactory<> factory(refiner);
+    Bfr::Surface<double> surface;
+    unsigned long long state = 0x9E3779B97F4A7C15ull;
+    auto unit = [&state]() {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (double)(state >> 11) / 9007199254740992.0;
+    };
+    std::string out;
+    char buf[128];
+    for (int f = 0; f < refiner.GetLevel(0).GetNumFaces(); ++f) {
+        if (!factory.InitVertexSurface(f, &surface)) continue;
+        Bfr::Parameterization p = surface.GetParameterization();
+        for (int k = 0; k < count; ++k) {
+            double uv[2] = {unit(), unit()};
+            if (p.GetType() == Bfr::Parameterization::TRI && uv[0] + uv[1] > 1.0) {
+                uv[0] = 1.0 - uv[0];
+                uv[1] = 1.0 - uv[1];
+            } else if (p.GetType() == Bfr::Parameterization::QUAD_SUBFACES) {
+                int sub = (int)(unit() * p.GetFaceSize()) % p.GetFaceSize();
+                double st[2] = {uv[0], uv[1]};
+                p.ConvertNormalizedSubFaceToCoord(sub, st, uv);
+            }
+            std::snprintf(buf, sizeof buf, "%d %.17g %.17g\n", f, uv[0], uv[1]);
+            out += buf;
+        }
+    }
+    writeFile(path, out);
+}
+
+// Bfr: the limit surface of each base face at the locations of a file.
+int writeBfrEval(Far::TopologyRefiner &refiner, const ObjMesh &mesh, const std::string &atPath,
+                 const std::string &outPath) {
+    std::ifstream in(atPath);
+    if (!in) fail("cannot open '" + atPath + "'");
+    Bfr::RefinerSurfaceFactory<> factory(refiner);
+    Bfr::Surface<double> surface;
+    Bfr::Surface<double>::PointDescriptor desc(3);
+    std::vector<double> patch;
+    double const *points = &mesh.positions[0].x;
+    int current = -1;
+    std::string line, out;
+    char buf[512];
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        std::istringstream fields(line.substr(0, line.find('#')));
+        std::string tf, tu, tv, extra;
+        if (!(fields >> tf)) continue;
+        if (!(fields >> tu >> tv) || (fields >> extra)) fail(where(lineNo) + "expected FACE U V");
+        long face = parseLong(tf, lineNo);
+        double uv[2] = {parseDouble(tu, lineNo), parseDouble(tv, lineNo)};
+        if (face < 0 || face >= refiner.GetLevel(0).GetNumFaces()) {
+            fail(where(lineNo) + "no face " + tf);
+        }
+        if (face != current) {
+            if (!factory.InitVertexSurface((int)face, &surface)) {
+                fail(where(lineNo) + "face " + tf + " has no limit surface");
+            }
+            patch.resize((size_t)surface.GetNumPatchPoints() * 3);
+            surface.PreparePatchPoints(points, desc, patch.data(), desc);
+            current = (int)face;
+        }
+        double P[3], Du[3], Dv[3];
+        surface.Evaluate(uv, patch.data(), desc, P, Du, Dv);
+        std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n",
+                      P[0], P[1], P[2], Du[0], Du[1], Du[2], Dv[0], Dv[1], Dv[2]);
+        out += buf;
+    }
+    if (g_osdError) fail("OpenSubdiv reported an error: " + g_osdErrorText);
+    writeFile(outPath, out);
+    return 0;
+}
+
+// Bfr: every base face with a limit surface tessellated at a uniform rate,
+// the points at base vertices and inside base edges evaluated by the first
+// face using them; the points and the facet count.
+int writeBfrTessellation(Far::TopologyRefiner &refiner, const ObjMesh &mesh, const Settings &s,
+                         const std::string &outPath) {
+    Bfr::RefinerSurfaceFactory<> factory(refiner);
+    Bfr::Surface<double> surface;
+    Bfr::Surface<double>::PointDescriptor desc(3);
+    Bfr::Tessellation::Options topts;
+    topts.PreserveQuads(s.bfrQuads).SetFacetSize(s.bfrQuads ? 4 : 3);
+    Far::TopologyLevel const &base = refiner.GetLevel(0);
+    // The face (plus one) that evaluates each base vertex's and edge's points.
+    std::vector<int> vertexOwner((size_t)base.GetNumVertices(), 0);
+    std::vector<int> edgeOwner((size_t)base.GetNumEdges(), 0);
+    std::vector<double> patch, coords;
+    double const *points = &mesh.positions[0].x;
+    std::string verts;
+    char buf[256];
+    long long facets = 0;
+    const int rate = s.bfrRate;
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        if (!factory.InitVertexSurface(f, &surface)) continue;
+        patch.resize((size_t)surface.GetNumPatchPoints() * 3);
+        surface.PreparePatchPoints(points, desc, patch.data(), desc);
+        Bfr::Tessellation tess(surface.GetParameterization(), rate, topts);
+        coords.resize((size_t)tess.GetNumCoords() * 2);
+        tess.GetCoords(coords.data());
+        Far::ConstIndexArray fv = base.GetFaceVertices(f);
+        Far::ConstIndexArray fe = base.GetFaceEdges(f);
+        if (tess.GetNumBoundaryCoords() != fv.size() * rate) fail("unexpected boundary coordinates");
+        for (int c = 0; c < tess.GetNumCoords(); ++c) {
+            if (c < tess.GetNumBoundaryCoords()) {
+                int k = c / rate, j = c % rate;
+                int &owner = j == 0 ? vertexOwner[(size_t)fv[k]] : edgeOwner[(size_t)fe[k]];
+                if (owner == 0) owner = f + 1;
+                if (owner != f + 1) continue;
+            }
+            double P[3];
+            surface.Evaluate(&coords[2 * c], patch.data(), desc, P);
+            std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", P[0], P[1], P[2]);
+            verts += buf;
+        }
+        facets += tess.GetNumFacets();
+    }
+    if (g_osdError) fail("OpenSubdiv reported an error: " + g_osdErrorText);
+    std::snprintf(buf, sizeof buf, "# facets %lld\n", facets);
+    writeFile(outPath, verts + buf);
+    return 0;
+}
+
 int run(int argc, char **argv) {
     std::vector<std::string> positional;
     Settings s;
@@ -488,10 +639,22 @@ int run(int argc, char **argv) {
                 long l = parseLong(v, 0);
                 if (l < 0 || l > 15) fail(a + " must be in 0..=15");
                 (a == "--adaptive" ? s.adaptive : s.secondary) = (int)l;
-            } else if (a == "--single-crease" || a == "--inf-sharp" || a == "--faces-first") {
+            } else if (a == "--bfr-eval") {
+                s.bfrEval = v;
+            } else if (a == "--bfr-random") {
+                long n = parseLong(v, 0);
+                if (n < 1 || n > 1000) fail("--bfr-random takes a count in 1..=1000");
+                s.bfrRandom = (int)n;
+            } else if (a == "--bfr-tessellate") {
+                long r = parseLong(v, 0);
+                if (r < 1 || r > 64) fail("--bfr-tessellate takes a rate in 1..=64");
+                s.bfrRate = (int)r;
+            } else if (a == "--single-crease" || a == "--inf-sharp" || a == "--faces-first" ||
+                       a == "--bfr-quads") {
                 if (v != "yes" && v != "no") fail(a + " takes yes or no");
                 bool on = v == "yes";
-                if (a == "--single-crease") s.singleCrease = on;
+                if (a == "--bfr-quads") s.bfrQuads = on;
+                else if (a == "--single-crease") s.singleCrease = on;
                 else if (a == "--inf-sharp") s.infSharp = on;
                 else s.facesFirst = on;
             } else if (a == "--scheme") {
@@ -588,6 +751,11 @@ int run(int argc, char **argv) {
     }
 
     if (s.adaptive >= 0) return writeAdaptive(*refiner, s, mesh, positional[1]);
+    if (!s.bfrEval.empty()) {
+        if (s.bfrRandom > 0) writeBfrLocations(*refiner, s.bfrRandom, s.bfrEval);
+        return writeBfrEval(*refiner, mesh, s.bfrEval, positional[1]);
+    }
+    if (s.bfrRate > 0) return writeBfrTessellation(*refiner, mesh, s, positional[1]);
     if (s.level > 0) {
         Far::TopologyRefiner::UniformOptions uopts(s.level);
         refiner->RefineUniform(uopts);

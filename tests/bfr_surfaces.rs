@@ -6,14 +6,14 @@
 //! bounding-box diagonal, first and second derivatives within 1e-7 — under
 //! every boundary rule, with Chaikin creasing and smooth triangles, with
 //! approximation levels other than the defaults, for Catmull-Clark and
-//! bilinear; face-varying data of linearly interpolated channels too.
-//! Loop meshes with irregular patches are not native yet and are counted.
+//! bilinear, Loop (Gregory-triangle end caps included); face-varying data
+//! of linearly interpolated channels too.
 #![cfg(feature = "osd")]
 
 use subdiv::bfr::{FaceSurfaces, LimitSurfaces, SurfaceOptions, Tessellation, TessellationOptions};
 use subdiv::patches::{Derivatives, SurfaceSamples};
 use subdiv::{
-    BoundaryInterpolation, CreasingMethod, Error, FVarLinearInterpolation, Mesh, Options, Scheme,
+    BoundaryInterpolation, CreasingMethod, FVarLinearInterpolation, Mesh, Options, Scheme,
     TriangleSubdivision, osd, shapes,
 };
 
@@ -66,11 +66,7 @@ fn compare_with(
     so: &SurfaceOptions,
     fvar_departures: &mut Vec<Departure>,
 ) -> usize {
-    let native = match LimitSurfaces::new(mesh, options, so) {
-        Ok(n) => n,
-        Err(Error::NotYetSupported(_)) => return 0,
-        Err(e) => panic!("{name}: {e}"),
-    };
+    let native = LimitSurfaces::new(mesh, options, so).unwrap_or_else(|e| panic!("{name}: {e}"));
     let theirs = osd::bfr::Surfaces::new(mesh, options, so).unwrap();
     let scale = diagonal(mesh);
     let label = format!("{name} {options:?} {so:?}");

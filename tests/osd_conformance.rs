@@ -1031,3 +1031,328 @@ fn adaptive_matches_the_driver() {
         bilinear,
     );
 }
+
+// ---------------------------------------------------------------------------
+// Bfr: `subdiv eval --surface bfr` and `subdiv tessellate` (both engines)
+// against the driver's own use of Bfr (`--bfr-eval`, `--bfr-tessellate`):
+// `Bfr::RefinerSurfaceFactory`, `Surface::Evaluate` and `Bfr::Tessellation`
+// from scratch, each face's points evaluated on their own.
+
+/// The mesh and options of a case as `subdiv` reads them (the OBJ's tags
+/// under the case's flags).
+fn bfr_mesh(obj: &str, flags: &[&str]) -> (Mesh, subdiv::Options) {
+    let shape = subdiv::io::parse_obj(obj, Path::new("<case>")).expect("the case parses");
+    let mut options = shape.options();
+    for pair in flags.chunks(2) {
+        let value = pair[1];
+        match pair[0] {
+            "--scheme" => options.scheme = value.parse().expect("scheme"),
+            "--boundary" => options.boundary = value.parse().expect("boundary"),
+            "--fvar" => options.fvar = value.parse().expect("fvar"),
+            "--creasing" => options.creasing = value.parse().expect("creasing"),
+            "--triangles" => options.triangles = value.parse().expect("triangles"),
+            other => panic!("unknown flag {other}"),
+        }
+    }
+    (shape.mesh, options)
+}
+
+/// The rows of `x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv` of a file.
+fn bfr_rows(path: &Path) -> Vec<[f64; 9]> {
+    fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
+            v.try_into().expect("9 numbers")
+        })
+        .collect()
+}
+
+/// The `v` positions and the number of facets of an OBJ file: its `f`
+/// lines, or the driver's `# facets N`.
+fn bfr_obj(path: &Path) -> (Vec<DVec3>, usize) {
+    let text = fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut points = Vec::new();
+    let mut faces = 0;
+    for line in text.lines() {
+        let mut f = line.split_whitespace();
+        match f.next() {
+            Some("v") => {
+                let c: Vec<f64> = f.map(|x| x.parse().expect("a coordinate")).collect();
+                points.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("f") => faces += 1,
+            Some("#") if line.starts_with("# facets ") => {
+                faces = line["# facets ".len()..].parse().expect("a facet count");
+            }
+            _ => {}
+        }
+    }
+    (points, faces)
+}
+
+/// Whether every point of `a` has one of `b` within `tol`.
+fn bfr_covered(a: &[DVec3], b: &[DVec3], tol: f64) -> Option<DVec3> {
+    let mut sorted = b.to_vec();
+    sorted.sort_by(|p, q| p.x.total_cmp(&q.x));
+    a.iter().copied().find(|p| {
+        let from = sorted.partition_point(|q| q.x < p.x - tol);
+        !sorted[from..]
+            .iter()
+            .take_while(|q| q.x <= p.x + tol)
+            .any(|q| (*q - *p).abs().max_element() <= tol)
+    })
+}
+
+/// One case: four random locations on every face with a limit surface,
+/// evaluated by the driver and by `subdiv eval --surface bfr` (positions
+/// within 1e-9 of the bounding box's diagonal, derivatives within 1e-7);
+/// tessellations at rates 1, 3 and 8 and with quads kept, by the driver
+/// (points at base vertices and inside base edges evaluated by the first
+/// face using them, as OpenSubdiv's bfr tutorial 2_2 does) and by `subdiv
+/// tessellate`: the same facet count and the same set of points (within
+/// 1e-9 of the diagonal). `false` (nothing run) where the
+/// OpenSubdiv bridge refuses a face: Debian's 3.5.0 Bfr reads memory it
+/// does not own there (docs/CONFORMANCE.md), which the driver would too.
+fn check_bfr(case: &str, obj: &str, flags: &[&str], seed: u64) -> bool {
+    use subdiv::bfr::{MeshSurfaces, Parameterization, ParameterizationType, SurfaceOptions};
+    let (mesh, options) = bfr_mesh(obj, flags);
+    let so = SurfaceOptions::default();
+    let theirs = subdiv::osd::bfr::Surfaces::new(&mesh, &options, &so).expect("the bridge");
+    if (0..mesh.face_count()).any(|f| matches!(theirs.face_info(f), Err(subdiv::Error::Osd(_)))) {
+        return false;
+    }
+    let ours = MeshSurfaces::new(&mesh, &options, &so).expect("native surfaces");
+    let dir = scratch(&format!("bfr_{case}"));
+    let input = dir.join("input.obj");
+    fs::write(&input, obj).expect("write the input");
+    let (lo, hi) = mesh.positions.iter().fold(
+        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let diag = (hi - lo).length().max(1.0);
+
+    // Evaluation at random locations.
+    let mut rng = Lcg(seed);
+    let mut at = String::new();
+    for f in (0..mesh.face_count()).filter(|&f| ours.has_surface(f)) {
+        let param = Parameterization::new(options.scheme, mesh.face(f).len()).expect("a face");
+        for _ in 0..4 {
+            let (u, v) = (rng.unit(), rng.unit());
+            let [u, v] = match param.kind() {
+                ParameterizationType::Quad => [u, v],
+                ParameterizationType::Triangle if u + v > 1.0 => [1.0 - u, 1.0 - v],
+                ParameterizationType::Triangle => [u, v],
+                ParameterizationType::QuadSubfaces => {
+                    let sub = rng.below(param.face_size() as u64) as usize;
+                    param
+                        .subface_to_coord(sub, [u, v], true)
+                        .expect("a sub-face")
+                }
+            };
+            writeln!(at, "{f} {u:.17e} {v:.17e}").unwrap();
+        }
+    }
+    let at_path = dir.join("at.txt");
+    fs::write(&at_path, &at).expect("write the locations");
+    let reference = dir.join("eval.driver.txt");
+    expect_success(
+        &format!("{case}: driver --bfr-eval"),
+        Command::new(driver())
+            .arg(&input)
+            .arg(&reference)
+            .arg("--bfr-eval")
+            .arg(&at_path)
+            .args(flags),
+    );
+    let reference = bfr_rows(&reference);
+    assert_eq!(reference.len(), at.lines().count(), "{case}");
+    for engine in ["native", "osd"] {
+        let out = dir.join(format!("eval.{engine}.txt"));
+        expect_success(
+            &format!("{case}: subdiv eval --surface bfr --engine {engine}"),
+            Command::new(subdiv_bin())
+                .args([
+                    "eval",
+                    "--surface",
+                    "bfr",
+                    "--derivatives",
+                    "--engine",
+                    engine,
+                ])
+                .arg(&input)
+                .arg("--at")
+                .arg(&at_path)
+                .arg("-o")
+                .arg(&out)
+                .args(flags),
+        );
+        let rows = bfr_rows(&out);
+        assert_eq!(rows.len(), reference.len(), "{case} {engine}");
+        for (i, (a, b)) in rows.iter().zip(&reference).enumerate() {
+            for k in 0..9 {
+                let tol = if k < 3 { 1e-9 } else { 1e-7 } * diag;
+                assert!(
+                    (a[k] - b[k]).abs() <= tol,
+                    "{case} {engine}: location {} (line {}), value {k}: {} against the driver's {}",
+                    at.lines().nth(i).unwrap_or(""),
+                    i + 1,
+                    a[k],
+                    b[k]
+                );
+            }
+        }
+    }
+
+    // Tessellation.
+    for (rate, quads) in [(1, false), (3, false), (8, false), (3, true)] {
+        let r = rate.to_string();
+        let reference = dir.join(format!("tess{rate}{quads}.driver.obj"));
+        expect_success(
+            &format!("{case}: driver --bfr-tessellate {rate}"),
+            Command::new(driver())
+                .arg(&input)
+                .arg(&reference)
+                .args([
+                    "--bfr-tessellate",
+                    &r,
+                    "--bfr-quads",
+                    if quads { "yes" } else { "no" },
+                ])
+                .args(flags),
+        );
+        let (points, facets) = bfr_obj(&reference);
+        for engine in ["native", "osd"] {
+            let out = dir.join(format!("tess{rate}{quads}.{engine}.obj"));
+            let mut cmd = Command::new(subdiv_bin());
+            cmd.args(["tessellate", "--rate", &r, "--engine", engine])
+                .arg(&input)
+                .arg("-o")
+                .arg(&out)
+                .args(flags);
+            if quads {
+                cmd.arg("--quads");
+            }
+            expect_success(
+                &format!("{case}: subdiv tessellate --engine {engine}"),
+                &mut cmd,
+            );
+            let (ours, our_facets) = bfr_obj(&out);
+            let what = format!("{case} {engine} rate {rate} quads {quads}");
+            assert_eq!(our_facets, facets, "{what}: facets");
+            let tol = 1e-9 * diag;
+            if let Some(p) = bfr_covered(&points, &ours, tol) {
+                panic!("{what}: the driver's point {p} is not in subdiv's mesh");
+            }
+            if let Some(p) = bfr_covered(&ours, &points, tol) {
+                panic!("{what}: subdiv's point {p} is not in the driver's mesh");
+            }
+        }
+    }
+    true
+}
+
+/// The refinement cases' shapes (those Bfr reads: vertex data, tags,
+/// scheme, boundary, creasing and triangle options) and random meshes.
+#[test]
+fn bfr_evaluation_and_tessellation_match_the_driver() {
+    let mut cases: Vec<(String, String, Vec<&str>)> = vec![
+        ("cube".into(), cube(&[]), vec![]),
+        (
+            "cube_semisharp".into(),
+            cube(&[SEMI_SHARP_CHAIN, SEMI_SHARP_CORNER]),
+            vec![],
+        ),
+        ("cube_sharp_loop".into(), cube(&[SHARP_LOOP]), vec![]),
+        ("cube_hole".into(), cube(&["t hole 1/0/0 2"]), vec![]),
+        (
+            "cube_chaikin".into(),
+            cube(&[SEMI_SHARP_CHAIN]),
+            vec!["--creasing", "chaikin"],
+        ),
+        (
+            "pyramid_pentagon".into(),
+            pyramid_pentagon(&["t crease 6/1/0 0 1 2 3 4 0 1.7"]),
+            vec![],
+        ),
+        (
+            "grid_edge_only".into(),
+            grid(4, &["t hole 2/0/0 5 10"]),
+            vec!["--boundary", "edge-only"],
+        ),
+        (
+            "grid_edge_and_corner".into(),
+            grid(4, &[]),
+            vec!["--boundary", "edge-and-corner"],
+        ),
+        ("grid_none".into(), grid(4, &[]), vec!["--boundary", "none"]),
+        (
+            "uv_seam".into(),
+            cube_uv_seam(&[]),
+            vec!["--fvar", "corners-plus1"],
+        ),
+        ("fin".into(), fin(), vec![]),
+        (
+            "bowtie".into(),
+            bowtie(),
+            vec!["--boundary", "edge-and-corner"],
+        ),
+        (
+            "octahedron_smooth".into(),
+            octahedron(&[]),
+            vec!["--triangles", "smooth"],
+        ),
+        (
+            "loop_icosahedron".into(),
+            icosahedron(&["t crease 4/3/0 0 11 5 1 1.5 10 0.4"]),
+            vec!["--scheme", "loop"],
+        ),
+        (
+            "loop_fan".into(),
+            triangle_fan(&[]),
+            vec!["--scheme", "loop", "--boundary", "edge-and-corner"],
+        ),
+        (
+            "loop_grid".into(),
+            triangle_grid(4, &["t hole 1/0/0 9"]),
+            vec!["--scheme", "loop"],
+        ),
+        (
+            "bilinear_mixed".into(),
+            mixed_uv(),
+            vec!["--scheme", "bilinear"],
+        ),
+    ];
+    for seed in 1..=16u64 {
+        let (text, triangles) = random_mesh(seed);
+        let scheme = if triangles {
+            "loop"
+        } else {
+            ["catmark", "bilinear"][(seed % 2) as usize]
+        };
+        let boundary = ["edge-only", "edge-and-corner"][(seed % 2) as usize];
+        let creasing = ["uniform", "chaikin"][((seed / 2) % 2) as usize];
+        cases.push((
+            format!("random_{seed}"),
+            text,
+            vec![
+                "--scheme",
+                scheme,
+                "--boundary",
+                boundary,
+                "--creasing",
+                creasing,
+            ],
+        ));
+    }
+    let mut checked = 0;
+    for (k, (name, obj, flags)) in cases.iter().enumerate() {
+        checked += usize::from(check_bfr(name, obj, flags, 1000 + k as u64));
+    }
+    assert!(
+        checked + 2 >= cases.len(),
+        "{checked} of {} cases checked",
+        cases.len()
+    );
+}

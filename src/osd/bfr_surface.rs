@@ -625,8 +625,15 @@ impl FaceSurfaces for Surfaces {
     fn scheme(&self) -> Scheme {
         self.scheme
     }
+    /// A face the bridge refuses (a Bfr fault of OpenSubdiv 3.5.0) counts
+    /// as one with a surface here, so that the mesher evaluates it and
+    /// fails with the refusal instead of leaving the face out.
     fn has_surface(&self, face: usize) -> bool {
-        Surfaces::has_surface(self, face)
+        match self.face_info(face) {
+            Ok(info) => info.valid,
+            Err(Error::Osd(_)) => face < self.face_count(),
+            Err(_) => false,
+        }
     }
     fn evaluate(
         &self,

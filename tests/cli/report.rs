@@ -170,20 +170,16 @@ fn report_on_the_embedded_set() {
     }
     assert_self_contained(&html);
     assert!(!md.contains("http"));
-    // Three figures per input, and the limit surface's where it was
-    // compared (not where the native engine builds no table yet).
+    // Three figures per input, the limit surface's and the Bfr
+    // tessellation's: every embedded input has both.
     let limit = html
         .matches("<title>limit surface, coloured by deviation</title>")
         .count();
-    assert!(limit + 2 >= names.len(), "{limit} limit-surface pictures");
-    // And the Bfr tessellation's, but on Loop inputs (not native yet).
+    assert_eq!(limit, names.len(), "limit-surface pictures");
     let tessellated = html
         .matches("<title>tessellated limit surface (Bfr), coloured by deviation</title>")
         .count();
-    assert!(
-        tessellated + 2 >= names.len(),
-        "{tessellated} tessellation pictures"
-    );
+    assert_eq!(tessellated, names.len(), "tessellation pictures");
     assert!(
         md.contains("Tessellated limit surface (Bfr, rate 4"),
         "{md}"

@@ -334,3 +334,116 @@ fn bench_tessellates_the_inputs_given() {
     let o = subdiv(&["bench", "--tessellation-only", "--adaptive-only"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// OpenSubdiv's regression shape `catmark_val2_interior` with creases: two
+/// hexagons folded onto each other, where Debian's 3.5.0 Bfr reads
+/// uninitialised memory (fixed in 3.5.1, docs/CONFORMANCE.md).
+const VAL2_CREASED: &str = "v -0.5 0 -1.75\nv 0 0 -1.75\nv 0 -0.5 -1.75\nv 0.5 0 -1.75\n\
+    v -0.5 0 -0.75\nv 0 0 -0.75\nv 0 -0.5 -0.75\nv 0.5 0 -0.75\n\
+    f 1 2 3 7 6 5\nf 8 6 7 3 2 4\n\
+    t crease 2/1/0 1 2 5\nt crease 2/1/0 2 6 5\nt crease 2/1/0 6 5 5\n";
+
+/// A face the OpenSubdiv bridge refuses is an error of the whole command on
+/// that engine — never a face silently left out of the mesh or reported as
+/// a hole — while the native engine tessellates and evaluates it.
+#[test]
+fn faces_opensubdiv_gets_wrong_are_refused_not_dropped() {
+    let dir = scratch("cli-tessellate-val2");
+    let input = write(&dir, "val2.obj", VAL2_CREASED);
+    let input = input.to_str().unwrap();
+    let at = write(&dir, "at.txt", "0 0.5 0.5\n1 0.1 0.1\n");
+    let at = at.to_str().unwrap();
+    for &engine in engines() {
+        let out = dir.join(format!("{engine}.obj"));
+        let t = subdiv(&[
+            "tessellate",
+            input,
+            "--boundary",
+            "edge-only",
+            "--rate",
+            "3",
+            "--engine",
+            engine,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let e = subdiv(&[
+            "eval",
+            input,
+            "--surface",
+            "bfr",
+            "--boundary",
+            "edge-only",
+            "--engine",
+            engine,
+            "--at",
+            at,
+        ]);
+        if engine == "native" {
+            assert!(t.status.success(), "{}", stderr(&t));
+            // Both hexagons, 30 triangles each at rate 3 (Bfr's n-gon pattern).
+            assert_eq!(
+                read_obj(&std::fs::read_to_string(&out).unwrap())
+                    .faces
+                    .len(),
+                60
+            );
+            assert!(e.status.success(), "{}", stderr(&e));
+        } else {
+            for o in [&t, &e] {
+                assert!(!o.status.success());
+                let message = stderr(o);
+                for needle in ["face 0", "interior vertex of valence 2", "3.5.1"] {
+                    assert!(message.contains(needle), "{message}");
+                }
+                assert!(!message.contains("hole"), "{message}");
+            }
+            assert!(!out.exists(), "no output written");
+        }
+    }
+}
+
+/// `eval --surface bfr`: a location off its face names its line on every
+/// engine, and a face without a surface says why.
+#[test]
+fn eval_bfr_refusals_name_their_line_on_every_engine() {
+    let dir = scratch("cli-eval-bfr-refusals");
+    let mut grid = shapes::grid(3, 3);
+    grid.holes.push(4);
+    let input = write(&dir, "grid.obj", &obj_text(&grid));
+    let input = input.to_str().unwrap();
+    for &engine in engines() {
+        let run = |text: &str, extra: &[&str]| {
+            let at = write(&dir, "at.txt", text);
+            let mut args = vec!["eval", input, "--surface", "bfr", "--engine", engine];
+            args.extend_from_slice(extra);
+            args.extend(["--at", at.to_str().unwrap()]);
+            let o = subdiv(&args);
+            assert_eq!(
+                o.status.code(),
+                Some(1),
+                "{engine} {text:?}: {}",
+                stderr(&o)
+            );
+            stderr(&o)
+        };
+        let edge = ["--boundary", "edge-only"];
+        let message = run("0 0.5 0.5\n3 0.25 0.75\n3 1.25 0.5\n", &edge);
+        assert!(
+            message.contains("at.txt:3: (u, v) = (1.25, 0.5) is outside base face 3's parameterization (the unit square)"),
+            "{engine}: {message}"
+        );
+        let message = run("1 0.5 0.5\n", &["--boundary", "none"]);
+        assert!(
+            message.contains(
+                "at.txt:1: face 1 has no limit surface (Bfr finds no limit neighbourhood"
+            ),
+            "{engine}: {message}"
+        );
+        let message = run("\n4 0.5 0.5\n", &edge);
+        assert!(
+            message.contains("at.txt:2: face 4 has no limit surface (a hole)"),
+            "{engine}: {message}"
+        );
+    }
+}

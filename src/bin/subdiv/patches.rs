@@ -65,8 +65,9 @@ pub(crate) struct PatchesArgs {
 pub(crate) struct EvalArgs {
     #[command(flatten)]
     pub(crate) patch: PatchArgs,
-    /// Locations, one per line: PTEX_FACE U V (ptex faces as Far::PtexIndices numbers
-    /// them; U and V in [0, 1]); `#` starts a comment.
+    /// Locations, one per line; `#` starts a comment. `--surface patches`: PTEX_FACE U V
+    /// (ptex faces as Far::PtexIndices numbers them; U and V in [0, 1]); `--surface bfr`:
+    /// FACE U V (a base face and (u, v) in Bfr's parameterization of it).
     #[arg(long, value_name = "LOCATIONS.txt")]
     pub(crate) at: PathBuf,
     /// Also print the first derivatives: x y z dx/du dy/du dz/du dx/dv dy/dv dz/dv.
@@ -475,10 +476,34 @@ fn eval_bfr(args: &EvalArgs) -> Result<(), Failure> {
             ));
         }
         if !surfaces.has_surface(face) {
+            let why = if mesh.holes.contains(&(face as u32)) {
+                "a hole".to_string()
+            } else {
+                "Bfr finds no limit neighbourhood for it: a degenerate face, a face on a \
+                 boundary under --boundary none, or under the Loop scheme a face beside a \
+                 non-triangle"
+                    .to_string()
+            };
             return Err(at(
                 line,
-                format!("face {face} has no limit surface (a hole)"),
+                format!("face {face} has no limit surface ({why})"),
             ));
+        }
+        // Every engine's locations checked against the face's domain here,
+        // each refusal naming its line.
+        let param = subdiv::bfr::Parameterization::new(surfaces.scheme(), mesh.face(face).len())
+            .map_err(|e| at(line, e.to_string()))?;
+        if let Some(&(line, (_, u, v))) = locations[i..i + run]
+            .iter()
+            .find(|(_, l)| !param.contains([l.1, l.2], 1e-9))
+        {
+            let e = subdiv::Error::OffFace {
+                face,
+                u,
+                v,
+                domain: param.domain(),
+            };
+            return Err(at(line, e.to_string()));
         }
         let coords: Vec<[f64; 2]> = locations[i..i + run]
             .iter()
