@@ -58,10 +58,7 @@ use subdiv::{
 
 /// The regression's approximation levels as its CTest entry sets them
 /// (`-l 3`): sharp and smooth.
-const LEVELS: SurfaceOptions = SurfaceOptions {
-    approx_level_smooth: 3,
-    approx_level_sharp: 3,
-};
+const LEVELS: SurfaceOptions = SurfaceOptions::with_levels(3, 3);
 /// Its uniform tessellation rate (`-res`, 3 by default).
 const RATE: u32 = 3;
 

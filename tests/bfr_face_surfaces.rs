@@ -371,6 +371,7 @@ fn options_and_approximation_levels_match_opensubdiv() {
             let approx = SurfaceOptions {
                 approx_level_smooth: smooth,
                 approx_level_sharp: sharp,
+                ..SurfaceOptions::default()
             };
             let mut opts = option_sets[i % option_sets.len()];
             if loop_too && i % 2 == 1 {
@@ -414,6 +415,7 @@ fn compare_random(mesh: Mesh, opts: Options, smooth: u32, sharp: u32) {
     let approx = SurfaceOptions {
         approx_level_smooth: smooth,
         approx_level_sharp: sharp,
+        ..SurfaceOptions::default()
     };
     let name = format!("random {}", describe(&mesh));
     compare(&name, &mesh, &opts, approx);
@@ -576,6 +578,7 @@ proptest! {
         let approx = SurfaceOptions {
             approx_level_smooth: smooth,
             approx_level_sharp: sharp,
+            ..SurfaceOptions::default()
         };
         compare_fvar(&name, &mesh, &opts.with_fvar(fvar), approx);
     }
@@ -731,6 +734,7 @@ fn valence2_dart_follows_far_where_bfr_overruns() {
     let approx = SurfaceOptions {
         approx_level_smooth: 0,
         approx_level_sharp: 0,
+        ..SurfaceOptions::default()
     };
     let (osd, native) = factories("dart", &mesh, &opts, approx).unwrap();
     match osd.face_info(5) {
@@ -832,4 +836,90 @@ fn valence2_dart_follows_far_where_bfr_overruns() {
             i % 3
         );
     }
+}
+
+/// `SurfaceOptions::caching` off refines every irregular face's
+/// neighbourhood anew and changes nothing: the same control points and
+/// patch points, the same values (within rounding: without the cache no
+/// face shares another's evaluation plans); `default_fvar_surface` is the surface of
+/// the options' default channel, and an absent default channel is refused.
+#[test]
+fn caching_and_the_default_channel_change_nothing_else() {
+    let mut faces = 0;
+    for (name, mesh) in shapes::corpus() {
+        let opts = Options::default()
+            .with_boundary(BoundaryInterpolation::EdgeOnly)
+            .with_fvar(subdiv::FVarLinearInterpolation::CornersPlus1);
+        let cached = SurfaceFactory::new(&mesh, &opts, &SurfaceOptions::default()).unwrap();
+        let fresh = SurfaceFactory::new(
+            &mesh,
+            &opts,
+            &SurfaceOptions {
+                caching: false,
+                ..SurfaceOptions::default()
+            },
+        )
+        .unwrap();
+        let points = mesh.flat_positions::<f64>();
+        for face in 0..mesh.face_count() {
+            let (a, b) = (
+                cached.vertex_surface(face).unwrap(),
+                fresh.vertex_surface(face).unwrap(),
+            );
+            assert_eq!(a.control_points(), b.control_points(), "{name} face {face}");
+            assert_eq!(
+                a.patch_point_count(),
+                b.patch_point_count(),
+                "{name} face {face}"
+            );
+            if !a.is_valid() {
+                continue;
+            }
+            let coords = support::bfr_sample_coords(&a.parameterization());
+            let (x, y) = (
+                a.evaluate(&points, 3, &coords, Derivatives::Second)
+                    .unwrap(),
+                b.evaluate(&points, 3, &coords, Derivatives::Second)
+                    .unwrap(),
+            );
+            // (A cached neighbourhood's faces go through its evaluation
+            // plans: the same values but for rounding.)
+            let scale = points.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (c, (p, q)) in columns(&x.values)
+                .iter()
+                .zip(columns(&y.values))
+                .enumerate()
+            {
+                let tol = 1e-11 * scale * 4f64.powi([0, 1, 1, 2, 2, 2][c]);
+                assert!(
+                    p.iter().zip(q).all(|(s, t)| (s - t).abs() <= tol),
+                    "{name} face {face} column {c}"
+                );
+            }
+            if !mesh.fvar_channels.is_empty() {
+                let (d, e) = (
+                    cached.default_fvar_surface(face).unwrap(),
+                    cached.fvar_surface(face, 0).unwrap(),
+                );
+                assert_eq!(d.control_points(), e.control_points(), "{name} face {face}");
+            }
+            faces += 1;
+        }
+    }
+    assert!(faces > 1000, "{faces}");
+    // The default channel is the options' (here one the mesh lacks).
+    let cube = shapes::cube_with_uvs();
+    let second = SurfaceFactory::new(
+        &cube,
+        &Options::default(),
+        &SurfaceOptions {
+            default_fvar_channel: 1,
+            ..SurfaceOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(matches!(
+        second.default_fvar_surface(0),
+        Err(subdiv::Error::NoSuchChannel { channel: 1, .. })
+    ));
 }

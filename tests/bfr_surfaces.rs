@@ -141,10 +141,12 @@ fn native_surfaces_equal_opensubdivs_bfr_over_the_corpus() {
             SurfaceOptions {
                 approx_level_smooth: 1,
                 approx_level_sharp: 3,
+                ..SurfaceOptions::default()
             },
             SurfaceOptions {
                 approx_level_smooth: 4,
                 approx_level_sharp: 4,
+                ..SurfaceOptions::default()
             },
         ] {
             compared += compare(&name, &mesh, &options, &so);
@@ -211,6 +213,7 @@ fn with_chaikin_creasing_native_surfaces_are_far_s_and_bfr_departs() {
         let so = SurfaceOptions {
             approx_level_smooth: 1,
             approx_level_sharp: 3,
+            ..SurfaceOptions::default()
         };
         let native = LimitSurfaces::new(&mesh, &options, &so).unwrap();
         let bfr = osd::bfr::Surfaces::new(&mesh, &options, &so).unwrap();

@@ -516,6 +516,7 @@ fn refusals_come_before_opensubdiv() {
             &SurfaceOptions {
                 approx_level_smooth: 11,
                 approx_level_sharp: 11,
+                ..SurfaceOptions::default()
             },
             &t,
         ),

@@ -362,6 +362,7 @@ fn second_derivative_stencils_of_a_single_regular_irregular_patch() {
     let flat = SurfaceOptions {
         approx_level_smooth: 0,
         approx_level_sharp: 0,
+        ..SurfaceOptions::default()
     };
     let s = Surfaces::new(&mesh, &Options::default(), &flat).unwrap();
     let info = s.face_info(12).unwrap();
@@ -581,6 +582,7 @@ fn refusals() {
                 &SurfaceOptions {
                     approx_level_smooth: smooth,
                     approx_level_sharp: sharp,
+                    ..SurfaceOptions::default()
                 },
             ),
             OsdErrorKind::Refused,
@@ -594,6 +596,7 @@ fn refusals() {
         &SurfaceOptions {
             approx_level_smooth: 0,
             approx_level_sharp: 0,
+            ..SurfaceOptions::default()
         },
     )
     .unwrap();

@@ -1,13 +1,15 @@
 //! What the ports of OpenSubdiv's bfr tutorials share: the input (an OBJ
-//! file with OpenSubdiv's tags, or a built-in shape), the native surfaces
-//! and — with the `osd` feature — OpenSubdiv's own `Bfr::Surface`s to check
-//! every evaluated point against, and an OBJ of separately tessellated
-//! faces.
+//! file with OpenSubdiv's tags, or a built-in shape), the native surfaces —
+//! evaluated as the tutorials do, face by face: the factory's `Surface`
+//! of a face, its patch points prepared from the mesh's points, then
+//! evaluated — and, with the `osd` feature, OpenSubdiv's own
+//! `Bfr::Surface`s to check every evaluated point against, and an OBJ of
+//! separately tessellated faces.
 
 #![allow(dead_code)]
 
 use glam::DVec3;
-use subdiv::bfr::{FaceSurfaces, LimitSurfaces, SurfaceOptions};
+use subdiv::bfr::{MeshSurfaces, Surface, SurfaceOptions};
 use subdiv::io::{ObjOutput, UvOutput};
 use subdiv::patches::{Derivatives, SurfaceSamples};
 use subdiv::{Mesh, Options, Precision};
@@ -76,7 +78,13 @@ impl Args {
 
 /// The native surfaces of `mesh`, and OpenSubdiv's to check them against.
 pub struct Surfaces {
-    pub native: LimitSurfaces,
+    /// The native surfaces (`Bfr::RefinerSurfaceFactory` with the mesh's
+    /// points): `native.factory()` builds each face's `Surface`.
+    pub native: MeshSurfaces,
+    /// The mesh's positions, and its first face-varying channel (values
+    /// and width), flat.
+    points: Vec<f64>,
+    uvs: Option<(Vec<f64>, usize)>,
     #[cfg(feature = "osd")]
     pub osd: subdiv::osd::bfr::Surfaces,
     scale: f64,
@@ -92,7 +100,12 @@ impl Surfaces {
             hi = hi.max(*p);
         }
         Surfaces {
-            native: LimitSurfaces::new(mesh, options, &so).expect("native surfaces"),
+            native: MeshSurfaces::new(mesh, options, &so).expect("native surfaces"),
+            points: mesh.flat_positions(),
+            uvs: mesh
+                .fvar_channels
+                .first()
+                .map(|c| (c.values.clone(), c.width)),
             #[cfg(feature = "osd")]
             osd: subdiv::osd::bfr::Surfaces::new(mesh, options, &so)
                 .expect("OpenSubdiv's surfaces"),
@@ -101,13 +114,30 @@ impl Surfaces {
         }
     }
 
+    /// `surface` at `coords` as the tutorials evaluate it: its patch points
+    /// prepared from `points` (`width` values each), then evaluated.
+    fn at(
+        surface: &Surface,
+        points: &[f64],
+        width: usize,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> SurfaceSamples {
+        let patch = surface.patch_points(points, width).expect("patch points");
+        surface
+            .evaluate_patch_points(&patch, width, coords, derivatives)
+            .expect("evaluate")
+    }
+
     /// Positions and first derivatives of `face` at `coords` — natively,
     /// checked against OpenSubdiv's `Surface::Evaluate` with `osd`.
     pub fn evaluate(&mut self, face: usize, coords: &[[f64; 2]]) -> SurfaceSamples {
-        let s = self
+        let surface = self
             .native
-            .evaluate(face, coords, Derivatives::First)
-            .expect("evaluate");
+            .factory()
+            .vertex_surface(face)
+            .expect("vertex surface");
+        let s = Self::at(&surface, &self.points, 3, coords, Derivatives::First);
         #[cfg(feature = "osd")]
         {
             let o = self
@@ -121,9 +151,16 @@ impl Surfaces {
 
     /// Face-varying channel 0 of `face` at `coords` (checked likewise).
     pub fn evaluate_uv(&mut self, face: usize, coords: &[[f64; 2]]) -> SurfaceSamples {
-        let s = FaceSurfaces::evaluate_fvar(&self.native, face, 0, coords).expect("fvar");
+        let (values, width) = self.uvs.as_ref().expect("a face-varying channel");
+        let surface = self
+            .native
+            .factory()
+            .fvar_surface(face, 0)
+            .expect("face-varying surface");
+        let s = Self::at(&surface, values, *width, coords, Derivatives::None);
         #[cfg(feature = "osd")]
         {
+            use subdiv::bfr::FaceSurfaces;
             let o = FaceSurfaces::evaluate_fvar(&self.osd, face, 0, coords).expect("osd fvar");
             self.compare(face, &s, &o);
         }

@@ -73,6 +73,7 @@ pub fn check_bfr_surfaces(case: &MeshCase, u: &mut Unstructured<'_>) {
     let so = SurfaceOptions {
         approx_level_smooth: u.int_in_range(1u32..=3).unwrap_or(2),
         approx_level_sharp: u.int_in_range(1u32..=4).unwrap_or(4),
+        ..SurfaceOptions::default()
     };
     let native = match LimitSurfaces::new(&case.mesh, &case.options, &so) {
         Ok(n) => n,

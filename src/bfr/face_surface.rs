@@ -554,6 +554,13 @@ impl SurfaceFactory {
         Some(())
     }
 
+    /// [`SurfaceFactory::fvar_surface`] of the options' default channel
+    /// ([`SurfaceOptions::default_fvar_channel`]:
+    /// `InitFaceVaryingSurface` without a channel).
+    pub fn default_fvar_surface(&self, face: usize) -> Result<Surface> {
+        self.fvar_surface(face, self.surface.default_fvar_channel)
+    }
+
     /// The surface of face-varying channel `channel` over base face `face`
     /// (`InitFaceVaryingSurface`): linear where the channel is (the
     /// bilinear scheme, `FVarLinearInterpolation::All`), else built as the
@@ -671,16 +678,22 @@ impl SurfaceFactory {
             },
             ..options
         };
-        let key = HullKey::new(&hull.mesh, &local);
-        let cached = self
-            .cache
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
-            .get(&key)
-            .cloned();
-        let irregular = match cached {
-            Some(irregular) => irregular,
-            None => {
+        // Without caching, every face's neighbourhood is refined anew.
+        let key = self
+            .surface
+            .caching
+            .then(|| HullKey::new(&hull.mesh, &local));
+        let cached = key.as_ref().and_then(|key| {
+            self.cache
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+                .get(key)
+                .cloned()
+        });
+        let irregular = match (cached, key) {
+            (Some(irregular), _) => irregular,
+            (None, None) => Arc::new(self.irregular(&hull.mesh, &local)?),
+            (None, Some(key)) => {
                 let built = Arc::new(self.irregular(&hull.mesh, &local)?);
                 self.cache
                     .lock()

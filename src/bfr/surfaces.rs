@@ -41,14 +41,33 @@ pub struct SurfaceOptions {
     pub approx_level_smooth: u32,
     /// How deep sharp irregular features are refined (6).
     pub approx_level_sharp: u32,
+    /// The face-varying channel of
+    /// [`SurfaceFactory::default_fvar_surface`](crate::bfr::SurfaceFactory::default_fvar_surface)
+    /// (`SetDefaultFVarID`; 0).
+    pub default_fvar_channel: usize,
+    /// Whether a factory keeps the refined neighbourhood of each topology
+    /// of irregular face it has built, for the faces that share it
+    /// (`EnableCaching`; on). The native cache is keyed by the whole
+    /// topology, not by a hash; OpenSubdiv's own cache stays off in the
+    /// bridge (`osd::bfr_surface`). Either way the surfaces are the same.
+    pub caching: bool,
+}
+
+impl SurfaceOptions {
+    /// The default options with approximation levels `smooth` and `sharp`.
+    pub const fn with_levels(smooth: u32, sharp: u32) -> Self {
+        SurfaceOptions {
+            approx_level_smooth: smooth,
+            approx_level_sharp: sharp,
+            default_fvar_channel: 0,
+            caching: true,
+        }
+    }
 }
 
 impl Default for SurfaceOptions {
     fn default() -> Self {
-        SurfaceOptions {
-            approx_level_smooth: 2,
-            approx_level_sharp: 6,
-        }
+        SurfaceOptions::with_levels(2, 6)
     }
 }
 

@@ -79,6 +79,7 @@ impl SurfaceArgs {
         let surface = SurfaceOptions {
             approx_level_smooth: self.level_smooth,
             approx_level_sharp: self.level_sharp,
+            ..SurfaceOptions::default()
         };
         let in_input = |e: subdiv::Error| Failure::from(e).in_input(name);
         Ok(match engine {
