@@ -30,8 +30,9 @@ printed by the product:
 - issue #24, the limit surface: the rows of the same section "patch table +
   PatchMap (isolation 3)" and "limit evaluation (N locations, ...)" at least
   3x OpenSubdiv likewise;
-- issue #25, tessellation: every row of the tessellation section (the tori
-  at rates 4 and 16, against OpenSubdiv's Bfr in one C++ loop) at least 3x
+- issue #25, tessellation: every row of the tessellation section (the tori,
+  Catmull-Clark and Loop, at rates 4 and 16, against OpenSubdiv's Bfr in one
+  C++ loop) at least 3x
   OpenSubdiv on one thread.
 
 Prints one line per target and exits 1 when any is not met (2 on bad input).
@@ -112,7 +113,7 @@ def judge(report):
                "%.2fx" % speedup, "3x", speedup >= 3.0)
     for t in report.get("tessellation", []):
         speedup = t["osd"] / t["native"]
-        yield ("%s, %s, %d thread(s)" % (t["task"], t["input"], threads),
+        yield ("%s, %s %s, %d thread(s)" % (t["task"], t["input"], t["scheme"], threads),
                "%.2fx" % speedup, "3x", speedup >= 3.0)
     o = report.get("obj_writer")
     if o:

@@ -923,3 +923,63 @@ fn caching_and_the_default_channel_change_nothing_else() {
         Err(subdiv::Error::NoSuchChannel { channel: 1, .. })
     ));
 }
+
+/// Box-spline patches of every boundary kind evaluated through the plans
+/// their kind keeps: a triangulated grid (boundary triangles with one
+/// boundary edge, their third vertex inside) and a strip of triangles
+/// (every vertex on the boundary, one boundary edge each: the mask kind of
+/// `encodeTriBoundaryMask` with edge and vertex bits). Every face's values
+/// are its own patch's, however many faces of other kinds came first.
+#[test]
+fn box_spline_boundary_kinds_keep_their_own_plans() {
+    use subdiv::bfr::{Tessellation, TessellationOptions};
+    let mut mesh = shapes::triangulate(&shapes::grid(4, 3));
+    mesh.fvar_channels.clear();
+    let n = 8u32;
+    let bottom = mesh.positions.len() as u32;
+    let top = bottom + n + 1;
+    for row in 0..2 {
+        for i in 0..=n {
+            let z = 0.1 * f64::from((i * 7 + row * 3) % 5);
+            mesh.positions
+                .push(glam::DVec3::new(f64::from(i), 5.0 + f64::from(row), z));
+        }
+    }
+    for i in 0..n {
+        mesh.add_face(&[bottom + i, bottom + i + 1, top + i + 1]);
+        mesh.add_face(&[bottom + i, top + i + 1, top + i]);
+    }
+    let opts = Options::default()
+        .with_scheme(Scheme::Loop)
+        .with_boundary(BoundaryInterpolation::EdgeOnly);
+    let factory = SurfaceFactory::new(&mesh, &opts, &SurfaceOptions::default()).unwrap();
+    let points = mesh.flat_positions::<f64>();
+    let mut regular = 0;
+    for face in 0..mesh.face_count() {
+        let s = factory.vertex_surface(face).unwrap();
+        if !s.is_valid() || !s.is_regular() {
+            continue;
+        }
+        regular += 1;
+        let pattern =
+            Tessellation::uniform(s.parameterization(), 5, TessellationOptions::default()).unwrap();
+        let coords = pattern.coords::<f64>().unwrap();
+        let patch = s.patch_points(&points, 3).unwrap();
+        let expected = s
+            .evaluate_patch_points(&patch, 3, &coords, Derivatives::First)
+            .unwrap();
+        for _ in 0..2 {
+            let got = s.evaluate(&points, 3, &coords, Derivatives::First).unwrap();
+            for (c, (x, y)) in columns(&got.values)
+                .iter()
+                .zip(columns(&expected.values))
+                .enumerate()
+            {
+                for (p, q) in x.iter().zip(y) {
+                    assert!((p - q).abs() <= 1e-11, "face {face} column {c}: {p} vs {q}");
+                }
+            }
+        }
+    }
+    assert!(regular >= 20, "{regular}");
+}

@@ -23,7 +23,7 @@
 use super::corner::{Corner, CornerTag, Subset};
 use super::hull::hull;
 use super::parameterization::Parameterization;
-use super::plans::{PLAN_BUDGET, Plans};
+use super::plans::{MIN_HULL_COORDS, MIN_REGULAR_COORDS, PLAN_BUDGET, Plans};
 use super::regular::{points_at, shortcut_corners, shortcut_points, subset_mask, subset_points};
 use super::surfaces::SurfaceOptions;
 use crate::error::{Element, Error, Result};
@@ -43,6 +43,13 @@ use rustc_hash::FxHashMap;
 use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 
+/// The boundary masks of a B-spline patch (one bit per edge).
+const BSPLINE_MASKS: usize = 16;
+
+/// The boundary masks of a box-spline patch (`encodeTriBoundaryMask`: two
+/// bits of kind above three of edges or vertices, the kind at most 2).
+const BOX_SPLINE_MASKS: usize = 24;
+
 /// The deepest approximation level (OpenSubdiv's adaptive limit).
 const MAX_APPROX_LEVEL: u32 = 10;
 
@@ -59,8 +66,9 @@ pub struct SurfaceFactory {
     cache: Mutex<FxHashMap<HullKey, Arc<Irregular>>>,
     /// The bytes of evaluation plans the hulls may still keep.
     plan_budget: Arc<AtomicUsize>,
-    /// Regular faces' evaluation plans: B-spline patches by boundary mask,
-    /// then box-spline patches by boundary mask.
+    /// Regular faces' evaluation plans: B-spline patches by boundary mask
+    /// (4 bits: [`BSPLINE_MASKS`]), then box-spline patches by boundary
+    /// mask (5 bits, up to 23: [`BOX_SPLINE_MASKS`]).
     regular_plans: Vec<Arc<Plans>>,
     /// Per base face, whether it has a limit surface that the refiner's
     /// shortcut makes regular (not a hole, not bilinear, of the regular
@@ -259,8 +267,8 @@ impl SurfaceFactory {
             features,
             surface: *surface,
             cache: Mutex::new(FxHashMap::default()),
-            regular_plans: (0..32)
-                .map(|_| Arc::new(Plans::new(budget.clone())))
+            regular_plans: (0..BSPLINE_MASKS + BOX_SPLINE_MASKS)
+                .map(|_| Arc::new(Plans::new(budget.clone(), MIN_REGULAR_COORDS)))
                 .collect(),
             plan_budget: budget,
             shortcut: Vec::new(),
@@ -428,7 +436,7 @@ impl SurfaceFactory {
     /// [`SurfaceFactory::evaluate_shortcut_into`] and
     /// [`SurfaceFactory::evaluate_fvar_shortcut_into`] to share.
     pub(super) fn shortcut(&self, face: usize) -> Option<Shortcut> {
-        if self.reg_size() != 4 || !self.shortcut.get(face).is_some_and(|&s| s) {
+        if !self.shortcut.get(face).is_some_and(|&s| s) {
             return None;
         }
         let (corners, len, mask) = shortcut_corners(&self.refiner.levels[0], face);
@@ -461,9 +469,10 @@ impl SurfaceFactory {
 
     /// The vertex surface of base face `face` (points of 3 values in
     /// `points`) evaluated at `coords` into `out` without building it, when
-    /// the refiner's shortcut makes it a B-spline patch and its kind keeps a
-    /// plan for `coords` (`plans.rs`): the plan applied straight to the
-    /// shortcut's 16 points, as [`Surface::evaluate_into`] would. `None`
+    /// the refiner's shortcut makes it a regular patch (B-spline or box
+    /// spline) and its kind keeps a plan for `coords` (`plans.rs`): the plan
+    /// applied straight to the shortcut's 16 or 12 points, as
+    /// [`Surface::evaluate_into`] would. `None`
     /// otherwise: the caller builds the surface.
     /// `shortcut` is [`SurfaceFactory::shortcut`]'s for `face`.
     pub(super) fn evaluate_shortcut_into(
@@ -478,24 +487,40 @@ impl SurfaceFactory {
             return None;
         }
         let base = &self.refiner.levels[0];
-        let (control, len, mask) = (
+        let (control, len) = (
             points_at(&shortcut.corners, &base.face_vertices.members),
             shortcut.len,
-            shortcut.mask,
         );
         let control = &control[..len];
-        if len != 16 || control.iter().any(|&v| 3 * (v as usize + 1) > points.len()) {
+        if control.iter().any(|&v| 3 * (v as usize + 1) > points.len()) {
             return None;
         }
-        let plan = self
-            .regular_plans
-            .get((mask & 15) as usize)?
-            .kept(coords, derivatives)?;
-        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
-            return None;
+        let plan = self.shortcut_plan(shortcut, coords, derivatives)?;
+        if len == 16 {
+            super::surface_eval::apply_dense::<3, 16>(&plan, control, points, 3.into(), out);
+        } else {
+            super::surface_eval::apply_dense::<3, 12>(&plan, control, points, 3.into(), out);
         }
-        super::surface_eval::apply_dense::<3>(&plan, control, points, 3.into(), out);
         Some(())
+    }
+
+    /// The kept plan of `shortcut`'s kind of patch (B-spline or box spline,
+    /// and its boundary mask) at `coords`, when it is dense over the
+    /// patch's points.
+    fn shortcut_plan(
+        &self,
+        shortcut: &Shortcut,
+        coords: &[[f64; 2]],
+        derivatives: Derivatives,
+    ) -> Option<Arc<crate::patches::LocationStencils>> {
+        let kind = match shortcut.len {
+            16 => shortcut.mask as usize,
+            12 => BSPLINE_MASKS + shortcut.mask as usize,
+            _ => return None,
+        };
+        let plan = self.regular_plans.get(kind)?.kept(coords, derivatives)?;
+        (plan.locations.len() == coords.len() && plan.indices.len() == shortcut.len * coords.len())
+            .then_some(plan)
     }
 
     /// [`SurfaceFactory::evaluate_shortcut_into`] for face-varying channel
@@ -524,32 +549,28 @@ impl SurfaceFactory {
         if !fvar_topology_matches(base, chan, shortcut.face) {
             return None;
         }
-        let (control, len, mask) = (
+        let (control, len) = (
             points_at(&shortcut.corners, chan.face_values()),
             shortcut.len,
-            shortcut.mask,
         );
         let control = &control[..len];
-        if len != 16
-            || control
-                .iter()
-                .any(|&v| width * (v as usize + 1) > values.len())
+        if control
+            .iter()
+            .any(|&v| width * (v as usize + 1) > values.len())
         {
             return None;
         }
-        let plan = self
-            .regular_plans
-            .get((mask & 15) as usize)?
-            .kept(coords, Derivatives::None)?;
-        if plan.locations.len() != coords.len() || plan.indices.len() != 16 * coords.len() {
-            return None;
-        }
+        let plan = self.shortcut_plan(shortcut, coords, Derivatives::None)?;
         let layout = width.into();
         let out = &mut [out];
-        match width {
-            1 => super::surface_eval::apply_dense::<1>(&plan, control, values, layout, out),
-            2 => super::surface_eval::apply_dense::<2>(&plan, control, values, layout, out),
-            _ => super::surface_eval::apply_dense::<3>(&plan, control, values, layout, out),
+        use super::surface_eval::apply_dense;
+        match (width, len) {
+            (1, 16) => apply_dense::<1, 16>(&plan, control, values, layout, out),
+            (2, 16) => apply_dense::<2, 16>(&plan, control, values, layout, out),
+            (_, 16) => apply_dense::<3, 16>(&plan, control, values, layout, out),
+            (1, _) => apply_dense::<1, 12>(&plan, control, values, layout, out),
+            (2, _) => apply_dense::<2, 12>(&plan, control, values, layout, out),
+            _ => apply_dense::<3, 12>(&plan, control, values, layout, out),
         }
         Some(())
     }
@@ -629,7 +650,7 @@ impl SurfaceFactory {
         let (patch, plans) = if self.reg_size() == 4 {
             (PatchType::Regular, 0)
         } else {
-            (PatchType::Loop, 16)
+            (PatchType::Loop, BSPLINE_MASKS)
         };
         Surface {
             face,
@@ -639,7 +660,7 @@ impl SurfaceFactory {
             form: Form::Regular {
                 patch,
                 mask,
-                plans: self.regular_plans[plans + (mask & 15) as usize].clone(),
+                plans: self.regular_plans[plans + mask as usize].clone(),
             },
         }
     }
@@ -823,7 +844,7 @@ impl SurfaceFactory {
             base,
             locals,
             local_order,
-            plans: Plans::new(self.plan_budget.clone()),
+            plans: Plans::new(self.plan_budget.clone(), MIN_HULL_COORDS),
         })
     }
 }

@@ -30,8 +30,13 @@ use std::sync::{Arc, Mutex};
 /// factory keeps at most.
 pub(super) const PLAN_BUDGET: usize = 256 << 20;
 
-/// The fewest coordinates worth a plan.
-const MIN_COORDS: usize = 16;
+/// The fewest coordinates worth a plan over a control hull (building one
+/// costs a few evaluations of the hull's patches).
+pub(super) const MIN_HULL_COORDS: usize = 16;
+
+/// The fewest coordinates worth a plan of a regular patch (its basis
+/// weights: cheap to build, and saving their evaluation on every face).
+pub(super) const MIN_REGULAR_COORDS: usize = 3;
 
 /// One hull's plans (or one kind of regular patch's), by coordinate list
 /// and derivatives.
@@ -40,6 +45,8 @@ pub(super) struct Plans {
     /// Tells these plans apart from every other `Plans` in the process
     /// (in the threads' [`RECENT`] plans).
     id: u64,
+    /// The fewest coordinates worth a plan here.
+    min_coords: usize,
     entries: Mutex<FxHashMap<u64, Vec<Entry>>>,
     /// The bytes the factory's plans may still take (shared by them all).
     budget: Arc<AtomicUsize>,
@@ -116,10 +123,12 @@ fn plan_bytes(plan: &LocationStencils) -> usize {
 }
 
 impl Plans {
-    /// No plans yet, within `budget`.
-    pub(super) fn new(budget: Arc<AtomicUsize>) -> Plans {
+    /// No plans yet, within `budget`, for lists of at least `min_coords`
+    /// coordinates.
+    pub(super) fn new(budget: Arc<AtomicUsize>, min_coords: usize) -> Plans {
         Plans {
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
+            min_coords,
             entries: Mutex::new(FxHashMap::default()),
             budget,
         }
@@ -132,7 +141,7 @@ impl Plans {
         coords: &[[f64; 2]],
         derivatives: Derivatives,
     ) -> Option<Arc<LocationStencils>> {
-        if coords.len() < MIN_COORDS {
+        if coords.len() < self.min_coords {
             return None;
         }
         let is = |r: &Recent| {
@@ -198,7 +207,7 @@ impl Plans {
         build: impl FnOnce() -> Result<LocationStencils>,
     ) -> Result<Option<Arc<LocationStencils>>> {
         let budget = &*self.budget;
-        if coords.len() < MIN_COORDS {
+        if coords.len() < self.min_coords {
             return Ok(None);
         }
         let k = key(coords, derivatives);

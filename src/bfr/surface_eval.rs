@@ -512,18 +512,24 @@ impl Surface {
                     self.regular_plan(patch, mask, coords, derivatives)
                 })?;
                 match plan {
-                    // A B-spline patch's plan: 16 weights per coordinate, the
-                    // control points in order (`regular_plan`).
+                    // A regular patch's plan: 16 (B-spline) or 12 (box
+                    // spline) weights per coordinate, the control points in
+                    // order (`regular_plan`).
                     Some(plan)
-                        if patch == PatchType::Regular
-                            && self.control_points.len() == 16
-                            && plan.locations.len() == coords.len()
-                            && plan.indices.len() == 16 * coords.len() =>
+                        if matches!(
+                            (patch, self.control_points.len()),
+                            (PatchType::Regular, 16) | (PatchType::Loop, 12)
+                        ) && plan.locations.len() == coords.len()
+                            && plan.indices.len() == self.control_points.len() * coords.len() =>
                     {
-                        match layout.size {
-                            1 => apply_dense::<1>(&plan, &self.control_points, points, layout, out),
-                            2 => apply_dense::<2>(&plan, &self.control_points, points, layout, out),
-                            3 => apply_dense::<3>(&plan, &self.control_points, points, layout, out),
+                        let cvs = &self.control_points;
+                        match (layout.size, cvs.len()) {
+                            (1, 16) => apply_dense::<1, 16>(&plan, cvs, points, layout, out),
+                            (2, 16) => apply_dense::<2, 16>(&plan, cvs, points, layout, out),
+                            (3, 16) => apply_dense::<3, 16>(&plan, cvs, points, layout, out),
+                            (1, _) => apply_dense::<1, 12>(&plan, cvs, points, layout, out),
+                            (2, _) => apply_dense::<2, 12>(&plan, cvs, points, layout, out),
+                            (3, _) => apply_dense::<3, 12>(&plan, cvs, points, layout, out),
                             _ => return self.apply_plan(&plan, points, layout, out),
                         }
                         Ok(())
@@ -782,24 +788,24 @@ impl Surface {
     }
 }
 
-/// A B-spline patch's plan (16 weights per coordinate over the 16
-/// control points in order, coordinates in order) applied to points of
-/// `N` values (`control_points` the patch's 16 indices into `points`):
-/// [`apply_terms`] without the indices, the same sums in
-/// the same order.
-pub(super) fn apply_dense<const N: usize>(
+/// A regular patch's plan (`P` weights per coordinate over the `P`
+/// control points in order, coordinates in order: 16 for a B-spline
+/// patch, 12 for a box spline) applied to points of `N` values
+/// (`control_points` the patch's `P` indices into `points`):
+/// [`apply_terms`] without the indices, the same sums in the same order.
+pub(super) fn apply_dense<const N: usize, const P: usize>(
     plan: &LocationStencils,
     control_points: &[u32],
     points: &[f64],
     layout: PointDescriptor,
     columns: &mut [&mut [f64]],
 ) {
-    let mut control = [[0.0; N]; 16];
+    let mut control = [[0.0; N]; P];
     for (d, &cv) in control.iter_mut().zip(control_points) {
         d.copy_from_slice(layout.point(points, cv as usize));
     }
     for (column, weights) in columns.iter_mut().zip(plan.weights.kinds()) {
-        for (w, out) in weights.chunks_exact(16).zip(column.chunks_exact_mut(N)) {
+        for (w, out) in weights.chunks_exact(P).zip(column.chunks_exact_mut(N)) {
             let mut acc = [0.0; N];
             for (&wt, p) in w.iter().zip(&control) {
                 for k in 0..N {

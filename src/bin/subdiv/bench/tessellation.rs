@@ -16,17 +16,23 @@ use subdiv::{Scheme, osd};
 /// The rates of the rows.
 pub const RATES: [u32; 2] = [4, 16];
 
-/// The inputs of the section: of the standard set (`standard`), the
-/// Catmull-Clark tori, with their UVs (face-varying channel 0, linear or
-/// smooth), and the production-like mesh (creases, holes, n-gons, a UV
-/// channel with seams); else every input given.
+/// The inputs of the section: of the standard set (`standard`), the tori
+/// (Catmull-Clark, and the triangle torus under Loop), with their UVs
+/// (face-varying channel 0, linear or smooth), and the production-like
+/// mesh (creases, holes, n-gons, a UV channel with seams); else every
+/// input given.
 pub fn tessellation_inputs(inputs: &[BenchShape], standard: bool) -> Vec<&BenchShape> {
     inputs
         .iter()
         .filter(|i| {
             !standard
-                || i.options.scheme == Scheme::Catmark
-                    && (i.name.starts_with("torus") || i.name.starts_with("production"))
+                || match i.options.scheme {
+                    Scheme::Catmark => {
+                        i.name.starts_with("torus") || i.name.starts_with("production")
+                    }
+                    Scheme::Loop => i.name.starts_with("torus"),
+                    Scheme::Bilinear => false,
+                }
         })
         .collect()
 }
