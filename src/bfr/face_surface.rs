@@ -25,6 +25,7 @@ use super::hull::hull;
 use super::parameterization::Parameterization;
 use super::plans::{MIN_HULL_COORDS, MIN_REGULAR_COORDS, PLAN_BUDGET, Plans};
 use super::regular::{points_at, shortcut_corners, shortcut_points, subset_mask, subset_points};
+use super::surface_eval::apply_regular;
 use super::surfaces::SurfaceOptions;
 use crate::error::{Element, Error, Result};
 use crate::mesh::Mesh;
@@ -496,12 +497,7 @@ impl SurfaceFactory {
             return None;
         }
         let plan = self.shortcut_plan(shortcut, coords, derivatives)?;
-        if len == 16 {
-            super::surface_eval::apply_dense::<3, 16>(&plan, control, points, 3.into(), out);
-        } else {
-            super::surface_eval::apply_dense::<3, 12>(&plan, control, points, 3.into(), out);
-        }
-        Some(())
+        apply_regular(&plan, control, points, 3.into(), out).then_some(())
     }
 
     /// The kept plan of `shortcut`'s kind of patch (B-spline or box spline,
@@ -561,18 +557,7 @@ impl SurfaceFactory {
             return None;
         }
         let plan = self.shortcut_plan(shortcut, coords, Derivatives::None)?;
-        let layout = width.into();
-        let out = &mut [out];
-        use super::surface_eval::apply_dense;
-        match (width, len) {
-            (1, 16) => apply_dense::<1, 16>(&plan, control, values, layout, out),
-            (2, 16) => apply_dense::<2, 16>(&plan, control, values, layout, out),
-            (_, 16) => apply_dense::<3, 16>(&plan, control, values, layout, out),
-            (1, _) => apply_dense::<1, 12>(&plan, control, values, layout, out),
-            (2, _) => apply_dense::<2, 12>(&plan, control, values, layout, out),
-            _ => apply_dense::<3, 12>(&plan, control, values, layout, out),
-        }
-        Some(())
+        apply_regular(&plan, control, values, width.into(), &mut [out]).then_some(())
     }
 
     /// [`SurfaceFactory::fvar_surface`] of the options' default channel

@@ -522,17 +522,11 @@ impl Surface {
                         ) && plan.locations.len() == coords.len()
                             && plan.indices.len() == self.control_points.len() * coords.len() =>
                     {
-                        let cvs = &self.control_points;
-                        match (layout.size, cvs.len()) {
-                            (1, 16) => apply_dense::<1, 16>(&plan, cvs, points, layout, out),
-                            (2, 16) => apply_dense::<2, 16>(&plan, cvs, points, layout, out),
-                            (3, 16) => apply_dense::<3, 16>(&plan, cvs, points, layout, out),
-                            (1, _) => apply_dense::<1, 12>(&plan, cvs, points, layout, out),
-                            (2, _) => apply_dense::<2, 12>(&plan, cvs, points, layout, out),
-                            (3, _) => apply_dense::<3, 12>(&plan, cvs, points, layout, out),
-                            _ => return self.apply_plan(&plan, points, layout, out),
+                        if apply_regular(&plan, &self.control_points, points, layout, out) {
+                            Ok(())
+                        } else {
+                            self.apply_plan(&plan, points, layout, out)
                         }
-                        Ok(())
                     }
                     Some(plan) => self.apply_plan(&plan, points, layout, out),
                     None => self.evaluate_regular(
@@ -788,12 +782,35 @@ impl Surface {
     }
 }
 
+/// [`apply_dense`] for the widths (1 to 3) and patches (16 or 12 points)
+/// it is compiled for; `false` (nothing written) for any other.
+#[inline]
+pub(super) fn apply_regular(
+    plan: &LocationStencils,
+    control_points: &[u32],
+    points: &[f64],
+    layout: PointDescriptor,
+    columns: &mut [&mut [f64]],
+) -> bool {
+    let (cvs, out) = (control_points, columns);
+    match (layout.size, cvs.len()) {
+        (1, 16) => apply_dense::<1, 16>(plan, cvs, points, layout, out),
+        (2, 16) => apply_dense::<2, 16>(plan, cvs, points, layout, out),
+        (3, 16) => apply_dense::<3, 16>(plan, cvs, points, layout, out),
+        (1, 12) => apply_dense::<1, 12>(plan, cvs, points, layout, out),
+        (2, 12) => apply_dense::<2, 12>(plan, cvs, points, layout, out),
+        (3, 12) => apply_dense::<3, 12>(plan, cvs, points, layout, out),
+        _ => return false,
+    }
+    true
+}
+
 /// A regular patch's plan (`P` weights per coordinate over the `P`
 /// control points in order, coordinates in order: 16 for a B-spline
 /// patch, 12 for a box spline) applied to points of `N` values
 /// (`control_points` the patch's `P` indices into `points`):
 /// [`apply_terms`] without the indices, the same sums in the same order.
-pub(super) fn apply_dense<const N: usize, const P: usize>(
+fn apply_dense<const N: usize, const P: usize>(
     plan: &LocationStencils,
     control_points: &[u32],
     points: &[f64],
