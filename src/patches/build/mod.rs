@@ -417,7 +417,7 @@ impl Builder<'_> {
                 self.regular_points_onto(
                     (p.level, p.face),
                     mask,
-                    views.get(p.level).filter(|_| self.reg == 4),
+                    views.get(p.level),
                     offset,
                     &mut reg_array.control_vertices,
                 );

@@ -99,20 +99,28 @@ impl Builder<'_> {
     /// [`Builder::regular_points`] of a vertex patch, each plus `offset`,
     /// appended to `out` — written in place (not read back as a whole
     /// right after their scattered stores) when the patch is an interior
-    /// quad's whose corners all have four faces (`quads`: the level's).
+    /// quad's whose corners all have four faces, or an interior triangle's
+    /// whose corners all have six (`view`: the level's).
     pub(super) fn regular_points_onto(
         &self,
         (level, f): (usize, usize),
         mask: u16,
-        quads: Option<&LevelView>,
+        view: Option<&LevelView>,
         offset: u32,
         out: &mut Vec<u32>,
     ) {
-        if let Some(quads) = quads.filter(|_| mask == 0) {
+        if let Some(view) = view.filter(|_| mask == 0) {
             let at = out.len();
-            out.resize(at + 16, 0);
-            let dst: &mut [u32; 16] = (&mut out[at..]).try_into().expect("16 points");
-            if quads.quad_points_into(f, offset, dst).is_some() {
+            let found = if self.reg == 4 {
+                out.resize(at + 16, 0);
+                let dst: &mut [u32; 16] = (&mut out[at..]).try_into().expect("16 points");
+                view.quad_points_into(f, offset, dst)
+            } else {
+                out.resize(at + 12, 0);
+                let dst: &mut [u32; 12] = (&mut out[at..]).try_into().expect("12 points");
+                view.triangle_points_into(f, offset, dst)
+            };
+            if found.is_some() {
                 return;
             }
             out.truncate(at);
@@ -217,9 +225,14 @@ fn quad_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u3
 pub(super) const PER_CORNER: [[usize; 4]; 4] =
     [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
 
+/// The points of a triangle's box-spline patch at each of its corners:
+/// the corner, then the far vertex of the second face after the triangle
+/// around it and the two far vertices of the third.
+pub(super) const TRIANGLE_PER_CORNER: [[usize; 4]; 3] =
+    [[4, 7, 3, 0], [5, 1, 2, 6], [8, 9, 11, 10]];
+
 /// The 12 points of a Loop box-spline patch.
 fn tri_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32; 12] {
-    const PER_CORNER: [[usize; 4]; 3] = [[4, 7, 3, 0], [5, 1, 2, 6], [8, 9, 11, 10]];
     let verts = l.face_verts(f);
     let own = face_points(fv, l, f);
     let interior = mask == 0;
@@ -230,7 +243,7 @@ fn tri_points(l: &Level, f: usize, mask: u16, fv: Option<&ChannelLevel>) -> [u32
     };
     let fill = if interior { u32::MAX } else { own[0] };
     let mut points = [0u32; 12];
-    for (i, slots) in PER_CORNER.iter().enumerate() {
+    for (i, slots) in TRIANGLE_PER_CORNER.iter().enumerate() {
         let v = verts[i];
         let ring = Ring::of(l, v);
         let n = ring.faces.len();

@@ -3,7 +3,7 @@
 //! the patch builder's commonest case: a regular interior patch.
 
 use super::Builder;
-use super::points::PER_CORNER;
+use super::points::{PER_CORNER, TRIANGLE_PER_CORNER};
 use crate::topology::{Level, Offsets};
 
 /// A level's face-vertex and vertex-face relations as slices, and whether
@@ -11,15 +11,16 @@ use crate::topology::{Level, Offsets};
 /// tag or edge ([`LevelView::plain_face`]).
 pub(super) struct LevelView<'a> {
     face_vertices: &'a [u32],
-    /// Where each face starts in `face_vertices` (one more entry than
-    /// faces); `None` when every face has four vertices.
-    face_offsets: Option<&'a [u32]>,
+    /// Where each face starts in `face_vertices`.
+    faces: Faces<'a>,
     /// Where each vertex's faces start; `None` where the level keeps no
     /// local indices (then no quad's points are read here).
     vertex_offsets: Option<&'a [u32]>,
     vertex_faces: &'a [u32],
     vertex_face_locals: &'a [u16],
     plain: Vec<bool>,
+    /// The scheme's regular face size.
+    size: usize,
 }
 
 impl<'a> LevelView<'a> {
@@ -27,11 +28,9 @@ impl<'a> LevelView<'a> {
     pub(super) fn new(builder: &Builder<'a>, level: usize) -> Self {
         let l: &'a Level = &builder.levels[level];
         let features = &builder.features[level];
-        let face_offsets = match &l.face_vertices.offsets {
-            Offsets::Uniform { size: 4, .. } => None,
-            // (Faces of another uniform size: no face is a quad.)
-            Offsets::Uniform { .. } => Some(&[][..]),
-            Offsets::Table(t) => Some(&t[..]),
+        let faces = match &l.face_vertices.offsets {
+            Offsets::Uniform { size, .. } => Faces::Uniform(*size),
+            Offsets::Table(t) => Faces::Table(&t[..]),
         };
         let vertex_offsets = match &l.vertex_faces.offsets {
             Offsets::Table(t) if l.has_local_indices() => Some(&t[..]),
@@ -45,46 +44,70 @@ impl<'a> LevelView<'a> {
             .collect();
         LevelView {
             face_vertices: &l.face_vertices.members,
-            face_offsets,
+            faces,
             vertex_offsets,
             vertex_faces: &l.vertex_faces.members,
             vertex_face_locals: &l.vertex_face_local,
             plain,
+            size: builder.reg,
         }
     }
 
     /// The vertices of face `f`.
     #[inline(always)]
     fn face(&self, f: usize) -> Option<&[u32]> {
-        match self.face_offsets {
-            None => self.face_vertices.get(4 * f..4 * f + 4),
-            Some(o) => self
+        match self.faces {
+            Faces::Uniform(n) => self.face_vertices.get(n * f..n * f + n),
+            Faces::Table(o) => self
                 .face_vertices
                 .get(*o.get(f)? as usize..*o.get(f + 1)? as usize),
         }
     }
 
-    /// Where quad `f` starts in the face-vertex list; `None` if it is not
-    /// a quad.
+    /// Where face `f` starts in the face-vertex list if it has `N`
+    /// vertices; `None` otherwise.
     #[inline(always)]
-    fn quad_start(&self, f: usize) -> Option<usize> {
-        match self.face_offsets {
-            None => Some(4 * f),
-            Some(o) => {
+    fn start_of<const N: usize>(&self, f: usize) -> Option<usize> {
+        match self.faces {
+            Faces::Uniform(n) => (n == N).then_some(N * f),
+            Faces::Table(o) => {
                 let (s, e) = (*o.get(f)? as usize, *o.get(f + 1)? as usize);
-                (e.checked_sub(s) == Some(4)).then_some(s)
+                (e.checked_sub(s) == Some(N)).then_some(s)
             }
         }
     }
 
-    /// Whether no corner of face `f` is extraordinary or has an infinitely
-    /// sharp vertex or edge: then its patch is regular with boundary mask 0
-    /// (what [`Builder::is_regular_with`] and [`Builder::boundary_mask_with`]
+    /// The vertices of face `f` if it has `N` of them.
+    #[inline(always)]
+    fn sized<const N: usize>(&self, f: usize) -> Option<&[u32; N]> {
+        let start = self.start_of::<N>(f)?;
+        self.face_vertices.get(start..start + N)?.try_into().ok()
+    }
+
+    /// The faces around vertex `v` and its position in each, if it has
+    /// `N` faces (and the level keeps local indices).
+    #[inline(always)]
+    fn ring<const N: usize>(&self, v: usize) -> Option<(&[u32; N], &[u16; N])> {
+        let offsets = self.vertex_offsets?;
+        let first = *offsets.get(v)? as usize;
+        if *offsets.get(v + 1)? as usize != first + N {
+            return None;
+        }
+        let faces = self.vertex_faces.get(first..first + N)?.try_into().ok()?;
+        let locals = self.vertex_face_locals.get(first..first + N)?;
+        Some((faces, locals.try_into().ok()?))
+    }
+
+    /// Whether face `f` has the scheme's regular size and no corner of it
+    /// is extraordinary or has an infinitely sharp vertex or edge: then
+    /// its patch is regular with boundary mask 0 (what
+    /// [`Builder::is_regular_with`] and [`Builder::boundary_mask_with`]
     /// conclude from the combined tags). The case of nearly every patch.
     #[inline]
     pub(super) fn plain_face(&self, f: usize) -> bool {
-        self.face(f)
-            .is_some_and(|verts| verts.iter().all(|&v| self.plain[v as usize]))
+        self.face(f).is_some_and(|verts| {
+            verts.len() == self.size && verts.iter().all(|&v| self.plain[v as usize])
+        })
     }
 
     /// The points of the B-spline patch of interior quad `f` whose corners
@@ -99,26 +122,56 @@ impl<'a> LevelView<'a> {
         offset: u32,
         out: &mut [u32; 16],
     ) -> Option<()> {
-        let vertex_offsets = self.vertex_offsets?;
-        let start = self.quad_start(f)?;
-        let verts = self.face_vertices.get(start..start + 4)?;
+        let verts = self.sized::<4>(f)?;
         for (&v, slots) in verts.iter().zip(&PER_CORNER) {
-            let v = v as usize;
-            let first = *vertex_offsets.get(v)? as usize;
-            if *vertex_offsets.get(v + 1)? as usize != first + 4 {
-                return None;
-            }
-            let faces = self.vertex_faces.get(first..first + 4)?;
+            let (faces, locals) = self.ring::<4>(v as usize)?;
             let at = faces.iter().position(|&x| x as usize == f)?;
             let opposite = (at + 2) & 3;
-            let there = self.quad_start(faces[opposite] as usize)?;
-            let k = usize::from(*self.vertex_face_locals.get(first + opposite)?);
-            let p = self.face_vertices.get(there..there + 4)?;
-            out[slots[0]] = v as u32 + offset;
+            let p = self.sized::<4>(faces[opposite] as usize)?;
+            let k = usize::from(locals[opposite]);
+            out[slots[0]] = v + offset;
             out[slots[1]] = p[(k + 1) & 3] + offset;
             out[slots[2]] = p[(k + 2) & 3] + offset;
             out[slots[3]] = p[(k + 3) & 3] + offset;
         }
         Some(())
     }
+
+    /// The points of the box-spline patch of interior triangle `f` whose
+    /// corners all have six faces (nearly every patch of a Loop mesh),
+    /// each plus `offset`, written into `out`: at each corner its vertex,
+    /// the far vertex of the second face after `f` around it and the two
+    /// far vertices of the third. `None` for any other face (`out` then
+    /// partly written).
+    #[inline]
+    pub(super) fn triangle_points_into(
+        &self,
+        f: usize,
+        offset: u32,
+        out: &mut [u32; 12],
+    ) -> Option<()> {
+        let verts = self.sized::<3>(f)?;
+        for (&v, slots) in verts.iter().zip(&TRIANGLE_PER_CORNER) {
+            let (faces, locals) = self.ring::<6>(v as usize)?;
+            let at = faces.iter().position(|&x| x as usize == f)?;
+            let (i2, i3) = ((at + 2) % 6, (at + 3) % 6);
+            let (p2, k2) = (self.sized::<3>(faces[i2] as usize)?, locals[i2]);
+            let (p3, k3) = (self.sized::<3>(faces[i3] as usize)?, locals[i3]);
+            let at = |p: &[u32; 3], k: u16| p[usize::from(k) % 3] + offset;
+            out[slots[0]] = v + offset;
+            out[slots[1]] = at(p2, k2 + 1);
+            out[slots[2]] = at(p3, k3 + 1);
+            out[slots[3]] = at(p3, k3 + 2);
+        }
+        Some(())
+    }
+}
+
+/// How a level's faces are laid out in its face-vertex list.
+#[derive(Clone, Copy)]
+enum Faces<'a> {
+    /// Every face has this many vertices.
+    Uniform(usize),
+    /// Where each face starts (one more entry than faces).
+    Table(&'a [u32]),
 }
