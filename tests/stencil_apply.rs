@@ -3,6 +3,7 @@
 //! kernels, against a plain reference loop and, bit for bit, against
 //! OpenSubdiv's `Osd::CpuEvaluator::EvalStencils`.
 
+use subdiv::options::{CreasingMethod, TriangleSubdivision};
 use subdiv::refiner::Refiner;
 use subdiv::stencil::{StencilTable, StencilTableF32};
 use subdiv::{BoundaryInterpolation, Mesh, Options, Scheme, UniformOptions, shapes};
@@ -224,6 +225,12 @@ mod opensubdiv {
         let options = Options::default()
             .with_scheme(scheme)
             .with_boundary(BoundaryInterpolation::EdgeOnly);
+        check_with(name, mesh, &options, level);
+    }
+
+    /// [`check`] under any options.
+    fn check_with(name: &str, mesh: &Mesh, options: &Options, level: u32) {
+        let (options, scheme) = (*options, options.scheme);
         let uniform = UniformOptions::new(level);
         let mut n = Refiner::new(mesh, &options).unwrap();
         n.refine_uniform(uniform).unwrap();
@@ -306,6 +313,23 @@ mod opensubdiv {
         );
         assert!(one == two, "f64 tables built on one and two threads differ");
         pool(2).install(|| check("production 100x80", &mesh, Scheme::Catmark, 2));
+    }
+
+    /// Catmull-Clark's smooth-triangle rule (the masks of smooth edges
+    /// beside triangles differ) and Chaikin's creasing, on every corpus
+    /// shape with triangles or tags and on the mixed torus.
+    #[test]
+    fn equal_to_opensubdiv_with_smooth_triangles_and_chaikin_creasing() {
+        let options = Options::default()
+            .with_triangles(TriangleSubdivision::Smooth)
+            .with_creasing(CreasingMethod::Chaikin);
+        check_with("torus mixed", &shapes::torus_mixed(12, 12), &options, 3);
+        for (name, mut mesh) in shapes::corpus() {
+            mesh.fvar_channels.clear();
+            if mesh.applicable_schemes().contains(&Scheme::Catmark) {
+                check_with(&name, &mesh, &options, 2);
+            }
+        }
     }
 
     #[test]

@@ -1,10 +1,11 @@
 //! Stencil tables: every refined (or limit) vertex as a weighted sum of base
 //! vertices, built by running the refinement masks on sparse rows.
 
-use super::kernel::Scratch;
+use super::kernel::{Cache, Scratch, takes_smooth_mask};
 use super::limit::LimitMasks;
-use super::{Block, Kind, Refiner, Source};
+use super::{Block, Kind, Refiner, Source, opposite_vertex};
 use crate::error::{Buffer, Error, Result};
+use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 
@@ -59,6 +60,25 @@ impl<T: Real> Rows<T> {
         {
             crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
         }
+    }
+
+    /// Average terms per row (1 without rows).
+    fn average(&self) -> f64 {
+        match self.len() {
+            0 => 1.0,
+            n => self.indices.len() as f64 / n as f64,
+        }
+    }
+
+    /// Room for about `terms` terms, asked for once rather than found by
+    /// doubling the arrays (each doubling copies them): an estimate, as
+    /// pages reserved and never written cost nothing. Only a hint: what
+    /// cannot be had is left to grow as rows are appended.
+    fn expect(&mut self, terms: f64) {
+        let terms = terms.min(u32::MAX as f64) as usize;
+        let more = terms.saturating_sub(self.indices.len());
+        let _ = self.indices.try_reserve_exact(more);
+        let _ = self.weights.try_reserve_exact(more);
     }
 
     /// Appends the rows of `other`.
@@ -141,46 +161,79 @@ impl Rows<f64> {
 /// base vertex in order of first contribution, as OpenSubdiv's stencil
 /// builder does: each weight is `0 + x * w` for its first term and `+= x * w`
 /// for the next ones, in the row's precision.
-struct RowBuilder {
+///
+/// A row is merged in a buffer of the builder's (which stays in cache) and
+/// then appended whole. Every term takes the same steps whether its vertex
+/// is new to the row or not: no branch to mispredict (which it is depends
+/// on the data).
+struct RowBuilder<T> {
     /// Position in the current row of each base vertex, or [`ABSENT`].
     slot: Vec<u32>,
+    /// The current row: its first `len` entries.
+    indices: Vec<u32>,
+    weights: Vec<T>,
+    len: usize,
 }
 
-impl RowBuilder {
+impl<T: Real> RowBuilder<T> {
     fn new(base: usize) -> Self {
         RowBuilder {
             slot: vec![ABSENT; base],
+            indices: Vec::new(),
+            weights: Vec::new(),
+            len: 0,
         }
     }
 
-    /// Adds `x` to the weight of base vertex `i` in the row that starts at
-    /// `start` (room reserved).
-    #[inline(always)]
-    fn add<T: Real>(&mut self, out: &mut Rows<T>, start: usize, i: u32, x: T) {
-        let slot = &mut self.slot[i as usize];
-        if *slot == ABSENT {
-            *slot = (out.indices.len() - start) as u32;
-            out.indices.push(i);
-            out.weights.push(T::ZERO + x);
-        } else {
-            out.weights[start + *slot as usize] += x;
+    /// Starts a row of at most `bound` terms. Unwinds to
+    /// [`crate::alloc::guard`] when the buffer cannot hold it.
+    #[inline]
+    fn open(&mut self, bound: usize) {
+        if self.indices.len() < bound {
+            self.grow(bound);
         }
+        self.len = 0;
     }
 
-    /// Adds `w` times a row.
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, bound: usize) {
+        let more = bound - self.indices.len();
+        if self.indices.try_reserve(more).is_err() || self.weights.try_reserve(more).is_err() {
+            crate::alloc::fail(bound.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+        self.indices.resize(bound, 0);
+        self.weights.resize(bound, T::ZERO);
+    }
+
+    /// Adds `w` times a row to the open row.
     #[inline(always)]
-    fn add_row<T: Real>(&mut self, out: &mut Rows<T>, start: usize, row: (&[u32], &[T]), w: T) {
+    fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
+        let (indices, weights) = (&mut self.indices[..], &mut self.weights[..]);
+        let mut len = self.len;
         for (&i, &x) in row.0.iter().zip(row.1) {
-            self.add(out, start, i, x * w);
+            let slot = &mut self.slot[i as usize];
+            let fresh = *slot == ABSENT;
+            let at = if fresh { len } else { *slot as usize };
+            let before = if fresh { T::ZERO } else { weights[at] };
+            weights[at] = before + x * w;
+            indices[at] = i;
+            *slot = at as u32;
+            len += usize::from(fresh);
         }
+        self.len = len;
     }
 
-    /// Closes the row that starts at `start`.
-    fn end_row<T: Real>(&mut self, out: &mut Rows<T>, start: usize) {
-        for &i in &out.indices[start..] {
+    /// Closes the open row and appends it to `out`.
+    fn end_row(&mut self, out: &mut Rows<T>) {
+        let (indices, weights) = (&self.indices[..self.len], &self.weights[..self.len]);
+        for &i in indices {
             self.slot[i as usize] = ABSENT;
             out.base_count = out.base_count.max(i as usize + 1);
         }
+        out.reserve(self.len);
+        out.indices.extend_from_slice(indices);
+        out.weights.extend_from_slice(weights);
         out.offsets.push(out.indices.len() as u32);
     }
 
@@ -188,7 +241,7 @@ impl RowBuilder {
     /// each term a row of `prev` (the parent level; `None` for the base
     /// level, whose rows are the identity) or of `faces` (the face points of
     /// the child level, the first of them child vertex `f0`).
-    fn child_row<T: Real>(
+    fn child_row(
         &mut self,
         out: &mut Rows<T>,
         terms: &[(Source, T)],
@@ -202,8 +255,7 @@ impl RowBuilder {
             (Source::Child(c), _) => faces.get(c - f0),
         };
         let bound = terms.iter().map(|&(s, _)| row_of(s).0.len().max(1)).sum();
-        out.reserve(bound);
-        let start = out.indices.len();
+        self.open(bound);
         for &(source, w) in terms {
             // As OpenSubdiv's stencil builder, skip terms of zero weight
             // (crease and boundary masks have them): they add nothing, but
@@ -214,11 +266,96 @@ impl RowBuilder {
             }
             match (source, prev) {
                 // The base level's row of `p` is `p` with weight one.
-                (Source::Parent(p), None) => self.add(out, start, p, T::ONE * w),
-                _ => self.add_row(out, start, row_of(source), w),
+                (Source::Parent(p), None) => self.add_row((&[p], &[T::ONE]), w),
+                _ => self.add_row(row_of(source), w),
             }
         }
-        self.end_row(out, start);
+        self.end_row(out);
+    }
+}
+
+/// What building rows needs besides the rows: the merging of terms, the
+/// masks' scratch and the cache of smooth masks.
+type Workspace<T> = (RowBuilder<T>, Scratch<T>, Cache<T>);
+
+/// A fresh [`Workspace`] for rows over `base` base vertices.
+fn workspace<T: Real>(base: usize) -> Workspace<T> {
+    (RowBuilder::new(base), Scratch::new(), Cache::new())
+}
+
+impl Refiner {
+    /// The terms of the edge point of parent edge `e` (vertex data), as
+    /// [`Refiner::edge_terms`] gives them: the mask of a smooth edge
+    /// between two faces taken from `cache`, as the interpolation kernel
+    /// takes it (the same weights in the same order), any other edge's
+    /// computed.
+    fn cached_edge_terms<T: Real>(
+        &self,
+        level: usize,
+        e: usize,
+        cache: &mut Cache<T>,
+        s: &mut Scratch<T>,
+    ) {
+        let parent = &self.levels[level - 1];
+        let faces = self.edge_faces_of(level - 1, e);
+        let faces = faces.as_slice();
+        let tri_smooth = self.options.scheme == Scheme::Catmark
+            && self.options.triangles == TriangleSubdivision::Smooth;
+        let is_tri = |f: u32| tri_smooth && parent.face_vertices.count(f as usize) == 3;
+        let weights = match faces {
+            &[a, b] if parent.edge_sharpness_at(e) <= 0.0 => {
+                cache.smooth_edge(&self.rules, [is_tri(a), is_tri(b)])
+            }
+            _ => None,
+        };
+        let Some(w) = weights else {
+            return self.step(level).edge_terms(Kind::Vertex, e, faces, s);
+        };
+        let r = &self.refinements[level - 1];
+        let ev = parent.edge_vertices[e];
+        s.terms.clear();
+        s.terms.push((Source::Parent(ev[0]), w.ends[0]));
+        s.terms.push((Source::Parent(ev[1]), w.ends[1]));
+        for (&f, &fw) in faces.iter().zip(w.faces.iter().flatten()) {
+            s.terms.push(if w.centers {
+                (Source::Child(r.face_child(f as usize)), fw)
+            } else {
+                (Source::Parent(opposite_vertex(parent, f as usize, e)), fw)
+            });
+        }
+    }
+
+    /// The terms of the child of parent vertex `v` (vertex data), as
+    /// [`Refiner::vertex_terms`] gives them: a smooth vertex's mask taken
+    /// from `cache` by its valence, as the interpolation kernel takes it,
+    /// any other vertex's computed.
+    fn cached_vertex_terms<T: Real>(
+        &self,
+        level: usize,
+        v: usize,
+        cache: &mut Cache<T>,
+        s: &mut Scratch<T>,
+    ) {
+        let parent = &self.levels[level - 1];
+        let mut buf = std::mem::take(&mut s.hood);
+        let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
+        if takes_smooth_mask(parent.vertex_tag(v).rule(), faces.len(), edges.len()) {
+            let r = &self.refinements[level - 1];
+            let m = cache.smooth_vertex(&self.rules, faces.len());
+            s.terms.clear();
+            for (&f, &w) in faces.iter().zip(&m.face) {
+                s.terms.push((Source::Child(r.face_child(f as usize)), w));
+            }
+            for (&e, &w) in edges.iter().zip(&m.edge) {
+                let far = parent.other_vertex(e as usize, v as u32);
+                s.terms.push((Source::Parent(far), w));
+            }
+            s.terms.push((Source::Parent(v as u32), m.vertex[0]));
+        } else {
+            self.step(level)
+                .vertex_terms(Kind::Vertex, v, faces, edges, s);
+        }
+        s.hood = buf;
     }
 }
 
@@ -244,18 +381,32 @@ impl<T: Real> Children<'_, T> {
         block: Block,
         range: std::ops::Range<usize>,
         faces: &Rows<T>,
-        builder: &mut RowBuilder,
-        scratch: &mut Scratch<T>,
+        (builder, scratch, cache): &mut Workspace<T>,
         out: &mut Rows<T>,
     ) {
-        self.refiner.walk_block(
-            Kind::Vertex,
-            self.level,
-            block,
-            range,
-            scratch,
-            |_, terms| builder.child_row(out, terms, self.prev, faces, self.f0),
-        );
+        let r = self.refiner;
+        match block {
+            Block::Faces => r.walk_block(
+                Kind::Vertex,
+                self.level,
+                block,
+                range,
+                scratch,
+                |_, terms| builder.child_row(out, terms, self.prev, faces, self.f0),
+            ),
+            Block::Edges => {
+                for e in range {
+                    r.cached_edge_terms(self.level, e, cache, scratch);
+                    builder.child_row(out, &scratch.terms, self.prev, faces, self.f0);
+                }
+            }
+            Block::Vertices => {
+                for v in range {
+                    r.cached_vertex_terms(self.level, v, cache, scratch);
+                    builder.child_row(out, &scratch.terms, self.prev, faces, self.f0);
+                }
+            }
+        }
     }
 
     /// The rows of a whole block in parallel chunks, each with its own
@@ -267,15 +418,28 @@ impl<T: Real> Children<'_, T> {
         (0..count.div_ceil(chunk))
             .into_par_iter()
             .map_init(
-                || (RowBuilder::new(base), Scratch::<T>::new()),
-                |(builder, scratch), k| {
+                || workspace(base),
+                |work, k| {
                     let range = k * chunk..((k + 1) * chunk).min(count);
                     let mut out = Rows::with_rows(range.len());
-                    self.block(block, range, faces, builder, scratch, &mut out);
+                    out.expect(range.len() as f64 * self.terms_per_row(block, faces));
+                    self.block(block, range, faces, work, &mut out);
                     out
                 },
             )
             .collect()
+    }
+
+    /// About how many terms the rows of `block` have, from the rows they
+    /// merge (an estimate: in a regular mesh a face point merges four
+    /// rows of the level above, edge and vertex points about twice a face
+    /// point's terms).
+    fn terms_per_row(&self, block: Block, faces: &Rows<T>) -> f64 {
+        let above = self.prev.map_or(1.0, Rows::average);
+        match block {
+            Block::Faces => 4.0 * above + 1.0,
+            Block::Edges | Block::Vertices => 2.0 * faces.average().max(above) + 4.0,
+        }
     }
 
     /// All the rows, each block in parallel chunks, then gathered in vertex
@@ -337,34 +501,24 @@ impl Refiner {
         if rayon::current_num_threads() > 1 && self.levels[level].vertex_count > 2 * PAR_ROWS {
             return rows.in_parallel(nf, blocks);
         }
-        let mut builder = RowBuilder::new(self.levels[0].vertex_count);
-        let mut scratch = Scratch::<T>::new();
+        let mut work = workspace(self.levels[0].vertex_count);
         // The face points first: the edge and vertex points read them.
         let none = Rows::with_rows(0);
         let mut faces = Rows::with_rows(nf);
-        rows.block(
-            Block::Faces,
-            0..nf,
-            &none,
-            &mut builder,
-            &mut scratch,
-            &mut faces,
-        );
+        faces.expect(nf as f64 * rows.terms_per_row(Block::Faces, &none));
+        rows.block(Block::Faces, 0..nf, &none, &mut work, &mut faces);
         // Then the three blocks in the order of their child vertices.
         let mut out = Rows::with_rows(self.levels[level].vertex_count);
+        let others = self.levels[level].vertex_count - nf;
+        out.expect(
+            faces.indices.len() as f64 + others as f64 * rows.terms_per_row(Block::Edges, &faces),
+        );
         for (first, block, count) in blocks {
             debug_assert_eq!(out.len(), first as usize);
             if block == Block::Faces {
                 out.append(&faces);
             } else {
-                rows.block(
-                    block,
-                    0..count,
-                    &faces,
-                    &mut builder,
-                    &mut scratch,
-                    &mut out,
-                );
+                rows.block(block, 0..count, &faces, &mut work, &mut out);
             }
         }
         out
@@ -444,7 +598,6 @@ impl Refiner {
             for v in 0..level.vertex_count {
                 let has_masks = masks.compute(self, level, v, true);
                 for (k, out) in tables.iter_mut().enumerate() {
-                    let start = out.indices.len();
                     if has_masks {
                         let mask = masks.masks()[k];
                         let me = v as u32;
@@ -455,15 +608,18 @@ impl Refiner {
                             .chain(masks.edge_points.iter().zip(&mask.edge))
                             .chain([(&me, &mask.vertex[0])]);
                         let bound = terms.clone().map(|(&p, _)| rows.get(p).0.len()).sum();
-                        out.reserve(bound);
+                        builder.open(bound);
                         for (&p, &w) in terms {
-                            builder.add_row(out, start, rows.get(p), w);
+                            builder.add_row(rows.get(p), w);
                         }
-                    } else if k == 0 {
-                        out.reserve(rows.get(v as u32).0.len());
-                        builder.add_row(out, start, rows.get(v as u32), 1.0);
+                    } else {
+                        let row = rows.get(v as u32);
+                        builder.open(row.0.len());
+                        if k == 0 {
+                            builder.add_row(row, 1.0);
+                        }
                     }
-                    builder.end_row(out, start);
+                    builder.end_row(out);
                 }
             }
             let [positions, du, dv] = tables.map(Rows::into_table);
