@@ -433,14 +433,7 @@ impl Evaluator<'_> {
             let mut acc = [[0.0f64; 3]; 3];
             let [wp, wu, wv] = [0, 1, 2].map(|k| &buf[k][..n]);
             for (k, &cv) in cvs.iter().enumerate().take(n) {
-                let start = cv as usize * 3;
-                let Some(row) = points.get(start..start + 3) else {
-                    return Err(Error::BufferLength {
-                        buffer: Buffer::Source,
-                        expected: start + 3,
-                        got: points.len(),
-                    });
-                };
+                let row = point_of(points, cv)?;
                 for (a, w) in acc.iter_mut().zip([wp[k], wu[k], wv[k]]) {
                     a[0] += w * row[0];
                     a[1] += w * row[1];
@@ -456,14 +449,7 @@ impl Evaluator<'_> {
             for (out, weights) in columns.iter_mut().zip(buf.iter()) {
                 let mut acc = [0.0f64; 3];
                 for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
-                    let start = cv as usize * 3;
-                    let Some(row) = points.get(start..start + 3) else {
-                        return Err(Error::BufferLength {
-                            buffer: Buffer::Source,
-                            expected: start + 3,
-                            got: points.len(),
-                        });
-                    };
+                    let row = point_of(points, cv)?;
                     acc[0] += w * row[0];
                     acc[1] += w * row[1];
                     acc[2] += w * row[2];
@@ -491,6 +477,22 @@ impl Evaluator<'_> {
         }
         Ok(())
     }
+}
+
+/// The three values of control point `cv` in `points` (width 3), or the
+/// error naming the buffer too short for it.
+#[inline(always)]
+fn point_of(points: &[f64], cv: u32) -> Result<&[f64]> {
+    let start = cv as usize * 3;
+    // (let-else: no error built unless it is returned.)
+    let Some(row) = points.get(start..start + 3) else {
+        return Err(Error::BufferLength {
+            buffer: Buffer::Source,
+            expected: start + 3,
+            got: points.len(),
+        });
+    };
+    Ok(row)
 }
 
 /// Location (`face`, `u`, `v`) on a ptex face of `table`, its coordinates in

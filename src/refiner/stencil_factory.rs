@@ -535,12 +535,17 @@ impl Refiner {
         }
     }
 
-    /// The rows of the last level.
+    /// The rows of the last level, their arrays no longer than their
+    /// terms (the estimate [`Rows::expect`] reserved may be larger; giving
+    /// back the rest moves nothing).
     fn last_rows<T: Real>(&self) -> Rows<T> {
-        match self.levels.len() - 1 {
+        let mut rows = match self.levels.len() - 1 {
             0 => self.base_rows(),
             last => self.rows_of_level(last),
-        }
+        };
+        rows.indices.shrink_to_fit();
+        rows.weights.shrink_to_fit();
+        rows
     }
 
     /// The stencil table mapping base vertices to the vertices of the last

@@ -14,7 +14,7 @@ pub(super) struct LevelView<'a> {
     /// Where each face starts in `face_vertices`.
     faces: Faces<'a>,
     /// Where each vertex's faces start; `None` where the level keeps no
-    /// local indices (then no quad's points are read here).
+    /// local indices (then no patch's points are read here).
     vertex_offsets: Option<&'a [u32]>,
     vertex_faces: &'a [u32],
     vertex_face_locals: &'a [u16],
