@@ -3,7 +3,6 @@
 //! kernels, against a plain reference loop and, bit for bit, against
 //! OpenSubdiv's `Osd::CpuEvaluator::EvalStencils`.
 
-use subdiv::options::{CreasingMethod, TriangleSubdivision};
 use subdiv::refiner::Refiner;
 use subdiv::stencil::{StencilTable, StencilTableF32};
 use subdiv::{BoundaryInterpolation, Mesh, Options, Scheme, UniformOptions, shapes};
@@ -216,6 +215,7 @@ fn f32_table_matches_the_f64_table() {
 #[cfg(feature = "osd")]
 mod opensubdiv {
     use super::*;
+    use subdiv::options::{CreasingMethod, TriangleSubdivision};
     use subdiv::osd;
 
     /// Native `f32` stencils applied by the fast kernels against OpenSubdiv's
