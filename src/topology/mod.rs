@@ -52,6 +52,7 @@ pub(crate) use around::{Around, AroundBuf, EdgeFaces, Hood};
 pub use base::build_base_level;
 pub use level::{Level, unpaired_smooth_vertex};
 pub use refine::{Build, Split, refine_level};
+pub(crate) use relation::RelationView;
 pub use relation::{Offsets, Relation};
 pub use table::{Table, release_table_pool};
 pub use tags::{EdgeTag, VertexTag};

@@ -46,11 +46,57 @@ impl PartialEq for Relation {
 
 impl Eq for Relation {}
 
+/// A [`Relation`] read through its tables once: its offsets and members as
+/// plain slices, for loops that look up many elements (each access to a
+/// [`Table`] otherwise matches on its representation).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RelationView<'a> {
+    /// Every element's size, or where each starts (plus one final entry).
+    starts: Starts<'a>,
+    /// The members, concatenated.
+    pub(crate) members: &'a [u32],
+}
+
+/// Where the elements of a [`RelationView`] start.
+#[derive(Debug, Clone, Copy)]
+enum Starts<'a> {
+    Uniform(usize),
+    Table(&'a [u32]),
+}
+
+impl<'a> RelationView<'a> {
+    /// Where the members of element `i` are in `members`.
+    #[inline(always)]
+    pub(crate) fn range(&self, i: usize) -> std::ops::Range<usize> {
+        match self.starts {
+            Starts::Uniform(size) => i * size..(i + 1) * size,
+            Starts::Table(t) => t[i] as usize..t[i + 1] as usize,
+        }
+    }
+
+    /// The members of element `i`.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize) -> &'a [u32] {
+        &self.members[self.range(i)]
+    }
+}
+
 impl Relation {
     /// An empty relation over no elements.
     #[cfg(test)]
     pub fn new() -> Self {
         Relation::default()
+    }
+
+    /// The relation as slices ([`RelationView`]).
+    pub(crate) fn view(&self) -> RelationView<'_> {
+        RelationView {
+            starts: match &self.offsets {
+                Offsets::Uniform { size, .. } => Starts::Uniform(*size),
+                Offsets::Table(t) => Starts::Table(t),
+            },
+            members: &self.members,
+        }
     }
 
     /// A relation from its offsets (`count + 1`) and members.

@@ -196,15 +196,6 @@ impl<T: Pod + Send> Table<T> {
         t
     }
 
-    /// Shortens the table to its first `len` values (nothing when it holds
-    /// no more); a map keeps its memory.
-    pub(crate) fn truncate(&mut self, len: usize) {
-        match &mut self.repr {
-            Repr::Vec(v) => v.truncate(len),
-            Repr::Map { len: l, .. } => *l = (*l).min(len),
-        }
-    }
-
     /// The values as a slice.
     #[inline]
     pub fn as_slice(&self) -> &[T] {

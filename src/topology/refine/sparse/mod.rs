@@ -31,15 +31,22 @@
 //! * `quad.rs`, `tri.rs`: which children of a face are created and the child
 //!   level's relations, for the quad split (Catmull-Clark, bilinear) and
 //!   Loop's triangle split;
+//! * `child.rs`: what both splits share in writing the child's relations —
+//!   the relations filled element by element, the halves of the parent's
+//!   edges, the vertex points' faces and edges;
+//! * `views.rs`: the parent level and the numbering as plain slices, read
+//!   through their tables once per level;
 //! * `tags.rs`: the child's tags and sharpness.
 
+mod child;
 mod quad;
 mod tags;
 mod tri;
+mod views;
 
 use crate::options::{Options, Scheme};
 use crate::output::INVALID_INDEX as INVALID;
-use crate::topology::{Level, Relation, Table};
+use crate::topology::{Level, Table};
 
 /// The faces selected for sparse refinement, with the edges and vertices
 /// they mark (`Vtr::SparseSelector::selectFace`).
@@ -241,45 +248,6 @@ fn valid(i: u32) -> bool {
     i != INVALID
 }
 
-/// The parent's faces as a split walks them: with `QUADS`, every face is a
-/// quad with implicit offsets (each level the quad split made), so a face's
-/// corners are found without reading offsets and its size is a constant.
-#[derive(Clone, Copy)]
-struct Faces<'a, const QUADS: bool> {
-    relation: &'a Relation,
-    /// The face-vertices, concatenated.
-    verts: &'a [u32],
-    /// The face-edges, concatenated.
-    edges: &'a [u32],
-}
-
-impl<'a, const QUADS: bool> Faces<'a, QUADS> {
-    fn of(parent: &'a Level) -> Self {
-        debug_assert!(!QUADS || parent.face_vertices.uniform_size() == Some(4));
-        Faces {
-            relation: &parent.face_vertices,
-            verts: &parent.face_vertices.members,
-            edges: &parent.face_edges,
-        }
-    }
-
-    /// Where face `f`'s corners are in the concatenated tables.
-    #[inline(always)]
-    fn range(&self, f: usize) -> std::ops::Range<usize> {
-        if QUADS {
-            4 * f..4 * f + 4
-        } else {
-            self.relation.range(f)
-        }
-    }
-
-    /// Corner `k`'s vertex of face `f`.
-    #[inline(always)]
-    fn corner(&self, f: usize, k: usize) -> u32 {
-        self.verts[self.range(f).start + k]
-    }
-}
-
 /// Which children of the parent's faces are marked: the child faces, the
 /// child edges inside faces, the face points, and the transitional mask of
 /// each face (see [`SparseSplit`]'s fields).
@@ -315,18 +283,22 @@ fn number_children(
     let mut edge_child_edges = Table::<[u32; 2]>::for_overwrite(ne);
     let mut edge_child_vertex = Table::<u32>::for_overwrite(ne);
     let mut edge_transitional = vec![false; ne];
+    let edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
+    let edge_faces = parent.edge_faces.view();
+    let (child_edges, child_vertex): (&mut [[u32; 2]], &mut [u32]) =
+        (&mut edge_child_edges, &mut edge_child_vertex);
     for e in 0..ne {
         if sel.edge(e) {
-            edge_child_edges[e] = [MARKED; 2];
-            edge_child_vertex[e] = MARKED;
+            child_edges[e] = [MARKED; 2];
+            child_vertex[e] = MARKED;
         } else {
-            let ends = parent.edge_vertices[e].map(|end| sel.vertex(end as usize));
-            edge_child_edges[e] = ends.map(|m| m as u32 * MARKED);
-            edge_child_vertex[e] = (ends[0] || ends[1]) as u32 * MARKED;
+            let ends = edge_vertices[e].map(|end| sel.vertex(end as usize));
+            child_edges[e] = ends.map(|m| m as u32 * MARKED);
+            child_vertex[e] = (ends[0] || ends[1]) as u32 * MARKED;
         }
         // Only a selected edge has a selected face on either side.
         edge_transitional[e] = sel.edge(e)
-            && match parent.edge_faces_of(e) {
+            && match edge_faces.get(e) {
                 [] | [_] => false,
                 [f0, rest @ ..] => rest
                     .iter()
@@ -373,18 +345,23 @@ fn number_children(
     let mut child_face_parent = Table::<u32>::for_overwrite(child_faces);
     let mut child_edge_parent = Table::<u32>::for_overwrite(edges_from_faces + edges_from_edges);
     let mut child_edge_in_parent = Table::<u8>::for_overwrite(edges_from_faces + edges_from_edges);
+    let (face_parents_of, edge_parents, edge_in_parent): (&mut [u32], &mut [u32], &mut [u8]) = (
+        &mut child_face_parent,
+        &mut child_edge_parent,
+        &mut child_edge_in_parent,
+    );
     if !triangles && parent.face_vertices.uniform_size() == Some(4) {
         // Every parent face a quad: corner `i` is corner `i % 4` of face
         // `i / 4`, a flat pass over the corners.
         for (i, &c) in face_child_faces.iter().enumerate() {
             if valid(c) {
-                child_face_parent[c as usize] = (i >> 2) as u32;
+                face_parents_of[c as usize] = (i >> 2) as u32;
             }
         }
         for (i, &c) in face_child_edges.iter().enumerate() {
             if valid(c) {
-                child_edge_parent[c as usize] = (i >> 2) as u32;
-                child_edge_in_parent[c as usize] = (i & 3) as u8;
+                edge_parents[c as usize] = (i >> 2) as u32;
+                edge_in_parent[c as usize] = (i & 3) as u8;
             }
         }
     } else {
@@ -392,38 +369,35 @@ fn number_children(
             parent,
             triangles,
             (&face_child_faces, &face_child_edges),
-            (
-                &mut child_face_parent,
-                &mut child_edge_parent,
-                &mut child_edge_in_parent,
-            ),
+            (face_parents_of, edge_parents, edge_in_parent),
         );
     }
     for (e, halves) in edge_child_edges.iter().enumerate() {
         for (j, &c) in halves.iter().enumerate() {
             if valid(c) {
-                child_edge_parent[c as usize] = e as u32;
-                child_edge_in_parent[c as usize] = j as u8;
+                edge_parents[c as usize] = e as u32;
+                edge_in_parent[c as usize] = j as u8;
             }
         }
     }
     // Every child vertex has one parent: each entry is written once.
     let mut child_vertex_parent = Table::<PackedParent>::for_overwrite(child_vertices);
+    let vertex_parents: &mut [PackedParent] = &mut child_vertex_parent;
     for (f, &c) in face_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] =
+            vertex_parents[c as usize] =
                 PackedParent::new(VertexParent::Face(f as u32), !sel.face(f));
         }
     }
     for (e, &c) in edge_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] =
+            vertex_parents[c as usize] =
                 PackedParent::new(VertexParent::Edge(e as u32), !sel.edge(e));
         }
     }
     for (v, &c) in vertex_child_vertex.iter().enumerate() {
         if valid(c) {
-            child_vertex_parent[c as usize] =
+            vertex_parents[c as usize] =
                 PackedParent::new(VertexParent::Vertex(v as u32), !sel.vertex(v));
         }
     }
@@ -480,142 +454,6 @@ fn face_parents(
     }
 }
 
-/// A relation filled element by element in index order, with a local index
-/// per member, in [`Table`]s: memory recycled from the tables of a previous
-/// refinement where there is some (large tables are pooled maps), so a
-/// level's relations do not fault fresh pages in.
-struct Filler {
-    offsets: Table<u32>,
-    members: Table<u32>,
-    locals: Table<u16>,
-    /// Elements ended so far.
-    elements: usize,
-    /// Members pushed so far, also those past the room (not written: see
-    /// [`Filler::overflow`]).
-    len: usize,
-}
-
-impl Filler {
-    /// Room for `elements` elements of `members` members in all (each
-    /// relation here is the transpose of one whose size is known: the
-    /// faces of the edges are the edges of the faces, and so on).
-    fn new(elements: usize, members: usize) -> Self {
-        let mut offsets = Table::for_overwrite(elements + 1);
-        offsets[0] = 0;
-        Filler {
-            offsets,
-            members: Table::for_overwrite(members),
-            locals: Table::for_overwrite(members),
-            elements: 0,
-            len: 0,
-        }
-    }
-
-    #[inline]
-    fn push(&mut self, member: u32, local: usize) {
-        if self.len < self.members.len() {
-            self.members[self.len] = member;
-            self.locals[self.len] = local as u16;
-        }
-        self.len += 1;
-    }
-
-    /// Members pushed so far.
-    #[inline]
-    fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Swaps members `i` and `j` (and their local indices).
-    #[inline]
-    fn swap(&mut self, i: usize, j: usize) {
-        if i.max(j) < self.members.len() {
-            self.members.swap(i, j);
-            self.locals.swap(i, j);
-        }
-    }
-
-    /// Ends the current element.
-    #[inline]
-    fn end(&mut self) {
-        self.elements += 1;
-        if let Some(o) = self.offsets.get_mut(self.elements) {
-            *o = self.len as u32;
-        }
-    }
-
-    /// The room a second attempt needs when more members were pushed than
-    /// there was room for (a topology that is not its own transpose).
-    fn overflow(&self) -> Option<usize> {
-        (self.len > self.members.len()).then_some(self.len)
-    }
-
-    /// The relation, its local indices and its largest element.
-    fn finish(mut self) -> (Relation, Table<u16>, usize) {
-        debug_assert!(self.overflow().is_none());
-        debug_assert_eq!(self.elements + 1, self.offsets.len());
-        let max = self
-            .offsets
-            .windows(2)
-            .map(|w| (w[1] - w[0]) as usize)
-            .max()
-            .unwrap_or(0);
-        self.members.truncate(self.len);
-        self.locals.truncate(self.len);
-        (
-            Relation::from_parts(self.offsets, self.members),
-            self.locals,
-            max,
-        )
-    }
-}
-
-/// The relations of a child level, in its index order.
-struct Topology {
-    face_vertices: Relation,
-    face_edges: Table<u32>,
-    edge_vertices: Table<[u32; 2]>,
-    edge_faces: Filler,
-    vertex_faces: Filler,
-    vertex_edges: Filler,
-}
-
-impl Topology {
-    /// The room each relation of [`Room`] needs when one overflowed.
-    fn overflow(&self) -> Option<Room> {
-        let [a, b, c] =
-            [&self.edge_faces, &self.vertex_faces, &self.vertex_edges].map(Filler::overflow);
-        (a.is_some() || b.is_some() || c.is_some()).then(|| Room {
-            edge_faces: a.unwrap_or(self.edge_faces.len),
-            vertex_faces: b.unwrap_or(self.vertex_faces.len),
-            vertex_edges: c.unwrap_or(self.vertex_edges.len),
-        })
-    }
-}
-
-/// Room for the members of a child level's edge-faces, vertex-faces and
-/// vertex-edges: by default what a topology that is its own transpose needs
-/// (every face's corners, every edge's two ends), or what an attempt that
-/// overflowed it counted.
-#[derive(Debug, Clone, Copy)]
-struct Room {
-    edge_faces: usize,
-    vertex_faces: usize,
-    vertex_edges: usize,
-}
-
-impl Room {
-    /// The default room of a child level of `faces` faces of `size` corners
-    /// and `edges` edges.
-    fn transposes(faces: usize, size: usize, edges: usize) -> Self {
-        Room {
-            edge_faces: faces * size,
-            vertex_faces: faces * size,
-            vertex_edges: 2 * edges,
-        }
-    }
-}
-
 /// Splits the selected part of `parent` — into quads (Catmull-Clark,
 /// bilinear) or, under Loop, triangles into four — and returns the
 /// numbering and the child level with full topology, sharpness, tags and
@@ -635,17 +473,11 @@ pub fn refine_sparse(
         let (_, child) = super::refine_level(parent, options, faces_first, super::Build::Full);
         return (s, child);
     }
-    let topology = |room: Option<Room>| {
-        if triangles {
-            tri::topology(parent, &s, room)
-        } else {
-            quad::topology(parent, &s, room)
-        }
+    let t = if triangles {
+        tri::topology(parent, &s)
+    } else {
+        quad::topology(parent, &s)
     };
-    let mut t = topology(None);
-    if let Some(room) = t.overflow() {
-        t = topology(Some(room));
-    }
     let (edge_faces, edge_face_local, max_edge_faces) = t.edge_faces.finish();
     let (vertex_faces, vertex_face_local, max_vf) = t.vertex_faces.finish();
     let (vertex_edges, vertex_edge_local, max_ve) = t.vertex_edges.finish();
@@ -680,109 +512,4 @@ pub fn refine_sparse(
     tags::subdivide_sharpness(parent, &mut child, &s, options);
     child.drop_default_tags();
     (s, child)
-}
-
-/// The halves of the parent's edges, in child index order: their vertices
-/// and their faces. `corner(pf, k)` is corner `k` of parent face `pf`;
-/// `child_face(pf, k, end)` is the child face of parent face `pf` beside its
-/// edge `k` at the edge's end `end` (as the face runs), and that child's
-/// local index of the half.
-fn edge_halves(
-    parent: &Level,
-    s: &SparseSplit,
-    edge_vertices: &mut Table<[u32; 2]>,
-    edge_faces: &mut Filler,
-    corner: impl Fn(usize, usize) -> u32,
-    child_face: impl Fn(usize, usize, usize) -> (u32, usize),
-) {
-    let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
-    let half_face = |pf: usize, k: usize, j: usize, ends: [u32; 2]| {
-        child_face(pf, k, half_end(ends, j, corner(pf, k)))
-    };
-    for e in 0..s.edge_child_edges.len() {
-        halves_of_edge(parent, s, e, child_edge_vertices, edge_faces, &half_face);
-    }
-}
-
-/// Which end of a parent edge (its ends `ends`, the face's corner at the
-/// edge's start being `corner`) half `j` lies at as the face runs: 0 at the
-/// face's corner, 1 at the next (a degenerate edge: by the half's own end).
-#[inline]
-fn half_end(ends: [u32; 2], j: usize, corner: u32) -> usize {
-    if ends[0] == ends[1] {
-        j
-    } else {
-        (corner != ends[j]) as usize
-    }
-}
-
-/// The halves of parent edge `e` that exist ([`edge_halves`]): their
-/// vertices and their faces (`half_face(pf, k, j, ends)`: the child of
-/// parent face `pf`, whose edge `k` this is, holding half `j`, and its local
-/// index of the half), each half's faces ended. Returns whether one exists
-/// (then the edge has a point).
-#[inline]
-fn halves_of_edge(
-    parent: &Level,
-    s: &SparseSplit,
-    e: usize,
-    child_edge_vertices: &mut [[u32; 2]],
-    edge_faces: &mut Filler,
-    half_face: &impl Fn(usize, usize, usize, [u32; 2]) -> (u32, usize),
-) -> bool {
-    let halves = s.edge_child_edges[e];
-    if !valid(halves[0]) && !valid(halves[1]) {
-        return false;
-    }
-    let ends = parent.edge_vertices[e];
-    let point = s.edge_child_vertex[e];
-    let faces = parent.edge_faces_of(e);
-    let locals = parent.edge_face_locals(e);
-    for (j, &c) in halves.iter().enumerate() {
-        if !valid(c) {
-            continue;
-        }
-        child_edge_vertices[c as usize] = [point, s.vertex_child_vertex[ends[j] as usize]];
-        for (&pf, &k) in faces.iter().zip(locals) {
-            let (cf, local) = half_face(pf as usize, k as usize, j, ends);
-            if valid(cf) {
-                edge_faces.push(cf, local);
-            }
-        }
-        edge_faces.end();
-    }
-    true
-}
-
-/// The faces and edges of the child of parent vertex `v`: the child at the
-/// vertex's corner of each of its faces that exists (`child_face(pf, k)`:
-/// the child of face `pf` at its corner `k`, with its local index of the
-/// vertex) and the half of each of its edges at it.
-fn vertex_point(
-    parent: &Level,
-    s: &SparseSplit,
-    v: usize,
-    (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
-    child_face: impl Fn(usize, usize) -> (u32, usize),
-) {
-    for (&pf, &k) in parent
-        .vertex_faces_of(v)
-        .iter()
-        .zip(parent.vertex_face_locals(v))
-    {
-        let (cf, local) = child_face(pf as usize, k as usize);
-        if valid(cf) {
-            vertex_faces.push(cf, local);
-        }
-    }
-    for (&pe, &end) in parent
-        .vertex_edges_of(v)
-        .iter()
-        .zip(parent.vertex_edge_locals(v))
-    {
-        let ce = s.edge_child_edges[pe as usize][end as usize];
-        if valid(ce) {
-            vertex_edges.push(ce, 1);
-        }
-    }
 }

@@ -3,9 +3,9 @@
 //! level's relations (`QuadRefinement::populate*Relation`), children that
 //! were not created left out.
 
-use super::{
-    FaceMarks, Faces, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
-};
+use super::child::{self, Filler, Room, Topology};
+use super::views::{Faces, Numbering, ParentView};
+use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::refine::{next, prev};
 use crate::topology::{Level, Relation, Table};
 
@@ -36,14 +36,25 @@ fn mark_faces_of<const QUADS: bool>(
     let mut face_child_edges = Table::<u32>::for_overwrite(corners);
     let mut face_child_vertex = Table::<u32>::for_overwrite(nf);
     let mut face_transitional = Table::<u8>::zeroed(nf);
+    let (child_faces, child_edges, child_vertex, transitional): (
+        &mut [u32],
+        &mut [u32],
+        &mut [u32],
+        &mut [u8],
+    ) = (
+        &mut face_child_faces,
+        &mut face_child_edges,
+        &mut face_child_vertex,
+        &mut face_transitional,
+    );
     for f in 0..nf {
         let range = faces.range(f);
         let n = range.len();
         let verts = &faces.verts[range.clone()];
         if sel.face(f) {
-            face_child_faces[range.clone()].fill(MARKED);
-            face_child_edges[range].fill(MARKED);
-            face_child_vertex[f] = MARKED;
+            child_faces[range.clone()].fill(MARKED);
+            child_edges[range].fill(MARKED);
+            child_vertex[f] = MARKED;
             continue;
         }
         let mut marked = false;
@@ -52,14 +63,14 @@ fn mark_faces_of<const QUADS: bool>(
             // The inner edge towards edge `j` lies beside corners `j` and
             // `j + 1`.
             let beside = here || sel.vertex(verts[next(j, n)] as usize);
-            face_child_faces[range.start + j] = here as u32 * MARKED;
-            face_child_edges[range.start + j] = beside as u32 * MARKED;
+            child_faces[range.start + j] = here as u32 * MARKED;
+            child_edges[range.start + j] = beside as u32 * MARKED;
             marked |= here;
         }
-        face_child_vertex[f] = marked as u32 * MARKED;
+        child_vertex[f] = marked as u32 * MARKED;
         if marked {
             let edges = &faces.edges[range];
-            face_transitional[f] = if n <= 4 {
+            transitional[f] = if n <= 4 {
                 edges
                     .iter()
                     .enumerate()
@@ -80,23 +91,24 @@ fn mark_faces_of<const QUADS: bool>(
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     if parent.face_vertices.uniform_size() == Some(4) {
-        topology_of::<true>(parent, s, room)
+        topology_of::<true>(parent, s)
     } else {
-        topology_of::<false>(parent, s, room)
+        topology_of::<false>(parent, s)
     }
 }
 
 /// [`topology`], `QUADS` when every parent face is a quad with implicit
 /// offsets: a face's corners without its offsets, its size a constant.
-fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
+fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topology {
     let faces = Faces::<QUADS>::of(parent);
     let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
-    let nf = s.child_face_parent.len();
-    let ne = s.child_edge_parent.len();
-    let nv = s.child_vertex_parent.len();
-    let room = room.unwrap_or(Room::transposes(nf, 4, ne));
+    let nf = split.child_face_parent.len();
+    let ne = split.child_edge_parent.len();
+    let nv = split.child_vertex_parent.len();
+    let (pv, s) = (ParentView::of(parent), Numbering::of(split));
+    let room = Room::transposes(nf, 4, ne);
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
     let mut face_edges = Table::for_overwrite(4 * nf);
@@ -150,6 +162,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
     // inside faces, then the halves of edges.
     let mut edge_vertices = Table::<[u32; 2]>::for_overwrite(ne);
     let mut edge_faces = Filler::new(ne, room.edge_faces);
+    let inner_edge_vertices: &mut [[u32; 2]] = &mut edge_vertices;
     for f in 0..parent.face_count() {
         let range = faces.range(f);
         let n = range.len();
@@ -161,7 +174,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
             if !valid(c) {
                 continue;
             }
-            edge_vertices[c as usize] =
+            inner_edge_vertices[c as usize] =
                 [s.face_child_vertex[f], s.edge_child_vertex[edge as usize]];
             let jn = next(j, n);
             let here = children[j];
@@ -185,7 +198,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
     // edges' faces instead of two.
     let mut c = 0;
     while c < nv {
-        debug_assert_eq!(vertex_faces.elements, c);
+        debug_assert_eq!(vertex_faces.elements(), c);
         match s.child_vertex_parent[c].get() {
             VertexParent::Face(f) => {
                 let range = faces.range(f as usize);
@@ -205,7 +218,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
             }
             VertexParent::Edge(_) => {
                 let points = edges_and_edge_points(
-                    parent,
+                    pv,
                     s,
                     faces,
                     &mut edge_vertices,
@@ -221,8 +234,8 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
                 continue;
             }
             VertexParent::Vertex(v) => {
-                super::vertex_point(
-                    parent,
+                child::vertex_point(
+                    pv,
                     s,
                     v as usize,
                     (&mut vertex_faces, &mut vertex_edges),
@@ -254,8 +267,8 @@ fn topology_of<const QUADS: bool>(parent: &Level, s: &SparseSplit, room: Option<
 /// edge point (every edge point: one exists exactly where a half does).
 /// Returns the number of edge points ended.
 fn edges_and_edge_points<const QUADS: bool>(
-    parent: &Level,
-    s: &SparseSplit,
+    parent: ParentView<'_>,
+    s: Numbering<'_>,
     faces: Faces<'_, QUADS>,
     edge_vertices: &mut Table<[u32; 2]>,
     edge_faces: &mut Filler,
@@ -265,7 +278,7 @@ fn edges_and_edge_points<const QUADS: bool>(
     let half_face = |pf: usize, k: usize, j: usize, ends: [u32; 2]| {
         let range = faces.range(pf);
         let n = range.len();
-        let end = super::half_end(ends, j, faces.verts[range.start + k]);
+        let end = child::half_end(ends, j, faces.verts[range.start + k]);
         let (corner, local) = if end == 0 {
             (k, if n == 4 { k } else { 0 })
         } else {
@@ -276,13 +289,12 @@ fn edges_and_edge_points<const QUADS: bool>(
     let mut points = 0;
     for e in 0..s.edge_child_edges.len() {
         // The halves (`edge_halves`).
-        if !super::halves_of_edge(parent, s, e, child_edge_vertices, edge_faces, &half_face) {
+        if !child::halves_of_edge(parent, s, e, child_edge_vertices, edge_faces, &half_face) {
             continue;
         }
         let (halves, ends) = (s.edge_child_edges[e], parent.edge_vertices[e]);
         let point = s.edge_child_vertex[e];
-        let pfaces = parent.edge_faces_of(e);
-        let locals = parent.edge_face_locals(e);
+        let (pfaces, locals) = parent.edge_faces(e);
         // The edge point.
         debug_assert!(valid(point));
         let first = vertex_edges.len();

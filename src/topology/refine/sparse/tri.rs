@@ -5,9 +5,9 @@
 //! `j`) and a middle one (child 3); its three inner edges are the middle
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
-use super::{
-    FaceMarks, Filler, MARKED, Room, Selection, SparseSplit, Topology, VertexParent, valid,
-};
+use super::child::{self, Filler, Room, Topology};
+use super::views::{Numbering, ParentView};
+use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::{Level, Relation, Table};
 
 /// Everything of a selected triangle; of any other with a selected corner,
@@ -56,11 +56,12 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
 }
 
 /// The relations of the child level.
-pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> Topology {
+pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
-    let room = room.unwrap_or(Room::transposes(nf, 3, ne));
+    let room = Room::transposes(nf, 3, ne);
+    let (pv, numbering) = (ParentView::of(parent), Numbering::of(s));
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
@@ -117,9 +118,9 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> T
     }
 
     // The halves of edges.
-    super::edge_halves(
-        parent,
-        s,
+    child::edge_halves(
+        pv,
+        numbering,
         &mut edge_vertices,
         &mut edge_faces,
         |pf, in_face| parent.face_verts(pf)[in_face],
@@ -171,9 +172,9 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit, room: Option<Room>) -> T
                 }
             }
             VertexParent::Vertex(v) => {
-                super::vertex_point(
-                    parent,
-                    s,
+                child::vertex_point(
+                    pv,
+                    numbering,
                     v as usize,
                     (&mut vertex_faces, &mut vertex_edges),
                     |pf, k| (s.face_child_faces[4 * pf + k], k),
