@@ -10,7 +10,7 @@ use crate::refiner::kernel::{
 };
 use crate::refiner::{Kind, Scratch, Source, Step, accumulate, face_terms, opposite_vertex};
 use crate::rules::{Mask, Rule};
-use crate::topology::Level;
+use crate::topology::LevelSlices;
 use crate::topology::refine::sparse::SparseSplit;
 
 /// One sparse level of vertex data (feature-adaptive refinement): the child
@@ -83,35 +83,38 @@ fn run_sparse<T: Real, W: Width>(
     dst: &mut [T],
 ) {
     let (parent, split, rules) = (step.parent, step.children, step.rules);
+    let sl = parent.slices();
+    let face_child: &[u32] = &split.face_child_vertex;
     let n = width.get();
     let zero = [T::ZERO; MAX_WIDTH];
     let mut cache = Cache::<T>::new();
     let mut scratch = Scratch::<T>::new();
     let slot = |c: u32| c as usize * n..c as usize * n + n;
     // Face points: the parent face's vertices.
-    for (f, &c) in split.face_child_vertex.iter().enumerate() {
+    for (f, &c) in face_child.iter().enumerate() {
         if c == crate::INVALID_INDEX {
             continue;
         }
-        let acc = face_point(parent.face_verts(f), &mut cache, rules, src, width);
+        let acc = face_point(sl.face_verts(f), &mut cache, rules, src, width);
         store(&mut dst[slot(c)], &acc, width);
     }
     // Edge points: smooth edges between two faces through the cached mask,
     // the others term by term. Face points are read from `dst` by their
     // child index (no offset: `first_face_point` 0).
-    let has_sharpness = !parent.edge_sharpness.is_empty();
+    let edge_sharpness: &[f32] = &parent.edge_sharpness;
+    let has_sharpness = !edge_sharpness.is_empty();
     for (e, &c) in split.edge_child_vertex.iter().enumerate() {
         if c == crate::INVALID_INDEX {
             continue;
         }
-        let faces = parent.edge_faces_of(e);
-        let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
+        let faces = sl.edge_faces_of(e);
+        let smooth = faces.len() == 2 && (!has_sharpness || edge_sharpness[e] <= 0.0);
         let weights = if smooth {
             cache.smooth_edge(
                 rules,
                 [
-                    tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
-                    tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
+                    tri_smooth && sl.face_vertices.range(faces[0] as usize).len() == 3,
+                    tri_smooth && sl.face_vertices.range(faces[1] as usize).len() == 3,
                 ],
             )
         } else {
@@ -119,14 +122,14 @@ fn run_sparse<T: Real, W: Width>(
         };
         let acc = if let Some(w) = weights {
             let mut acc = zero;
-            let ev = parent.edge_vertices[e];
+            let ev = sl.edge_vertices[e];
             add(&mut acc, src, ev[0], w.ends[0], width);
             add(&mut acc, src, ev[1], w.ends[1], width);
             if let Some(fw) = w.faces {
                 for k in 0..2 {
                     let f = faces[k] as usize;
                     if w.centers {
-                        add(&mut acc, dst, split.face_child_vertex[f], fw[k], width);
+                        add(&mut acc, dst, face_child[f], fw[k], width);
                     } else {
                         let far = opposite_vertex(parent, f, e);
                         add(&mut acc, src, far, fw[k], width);
@@ -142,14 +145,15 @@ fn run_sparse<T: Real, W: Width>(
     }
     // Vertex points: smooth and dart vertices through the cached mask of
     // their valence, the others term by term.
-    let has_tags = !parent.vertex_tags.is_empty();
+    let vertex_tags = &parent.vertex_tags[..];
+    let has_tags = !vertex_tags.is_empty();
     for (v, &c) in split.vertex_child_vertex.iter().enumerate() {
         if c == crate::INVALID_INDEX {
             continue;
         }
-        let (faces, edges) = (parent.vertex_faces_of(v), parent.vertex_edges_of(v));
+        let (faces, edges) = (sl.vertex_faces_of(v), sl.vertex_edges_of(v));
         let rule = if has_tags {
-            parent.vertex_tags[v].rule()
+            vertex_tags[v].rule()
         } else {
             Rule::Smooth
         };
@@ -160,8 +164,8 @@ fn run_sparse<T: Real, W: Width>(
                 v,
                 faces,
                 edges,
-                parent,
-                face_child: &split.face_child_vertex,
+                parent: sl,
+                face_child,
                 mask: cache.smooth_vertex(rules, faces.len()),
             }
             .sum(&mut acc, src, dst, width);
@@ -180,7 +184,7 @@ struct SmoothSparseVertex<'a, T> {
     v: usize,
     faces: &'a [u32],
     edges: &'a [u32],
-    parent: &'a Level,
+    parent: LevelSlices<'a>,
     face_child: &'a [u32],
     mask: &'a Mask<T>,
 }

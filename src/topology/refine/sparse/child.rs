@@ -4,7 +4,8 @@
 //! and the triangle split build alike.
 
 use super::valid;
-use super::views::{Numbering, ParentView};
+use super::views::Numbering;
+use crate::topology::LevelSlices;
 use crate::topology::{Relation, Table};
 
 /// A relation filled element by element in index order, with a local index
@@ -144,7 +145,7 @@ impl Room {
 /// edge `k` at the edge's end `end` (as the face runs), and that child's
 /// local index of the half.
 pub(super) fn edge_halves(
-    parent: ParentView<'_>,
+    parent: LevelSlices<'_>,
     s: Numbering<'_>,
     edge_vertices: &mut Table<[u32; 2]>,
     edge_faces: &mut Filler,
@@ -179,7 +180,7 @@ pub(super) fn half_end(ends: [u32; 2], j: usize, corner: u32) -> usize {
 /// (then the edge has a point).
 #[inline]
 pub(super) fn halves_of_edge(
-    parent: ParentView<'_>,
+    parent: LevelSlices<'_>,
     s: Numbering<'_>,
     e: usize,
     child_edge_vertices: &mut [[u32; 2]],
@@ -214,7 +215,7 @@ pub(super) fn halves_of_edge(
 /// the child of face `pf` at its corner `k`, with its local index of the
 /// vertex) and the half of each of its edges at it.
 pub(super) fn vertex_point(
-    parent: ParentView<'_>,
+    parent: LevelSlices<'_>,
     s: Numbering<'_>,
     v: usize,
     (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),

@@ -4,8 +4,9 @@
 //! were not created left out.
 
 use super::child::{self, Filler, Room, Topology};
-use super::views::{Faces, Numbering, ParentView};
+use super::views::{Faces, Numbering};
 use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
+use crate::topology::LevelSlices;
 use crate::topology::refine::{next, prev};
 use crate::topology::{Level, Relation, Table};
 
@@ -107,7 +108,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
     let nf = split.child_face_parent.len();
     let ne = split.child_edge_parent.len();
     let nv = split.child_vertex_parent.len();
-    let (pv, s) = (ParentView::of(parent), Numbering::of(split));
+    let (pv, s) = (parent.slices(), Numbering::of(split));
     let room = Room::transposes(nf, 4, ne);
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
@@ -267,7 +268,7 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
 /// edge point (every edge point: one exists exactly where a half does).
 /// Returns the number of edge points ended.
 fn edges_and_edge_points<const QUADS: bool>(
-    parent: ParentView<'_>,
+    parent: LevelSlices<'_>,
     s: Numbering<'_>,
     faces: Faces<'_, QUADS>,
     edge_vertices: &mut Table<[u32; 2]>,

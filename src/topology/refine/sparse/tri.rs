@@ -6,7 +6,7 @@
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
 use super::child::{self, Filler, Room, Topology};
-use super::views::{Numbering, ParentView};
+use super::views::Numbering;
 use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::{Level, Relation, Table};
 
@@ -61,7 +61,7 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
     let room = Room::transposes(nf, 3, ne);
-    let (pv, numbering) = (ParentView::of(parent), Numbering::of(s));
+    let (pv, numbering) = (parent.slices(), Numbering::of(s));
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);

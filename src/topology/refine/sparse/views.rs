@@ -1,12 +1,13 @@
-//! The parent level and a split's numbering as plain slices, read through
-//! their tables once per level (each access to a [`Table`] or a
-//! [`Relation`](crate::topology::Relation) otherwise matches on its
-//! representation): what the sparse splits read.
+//! The parent level's faces and a split's numbering as plain slices, read
+//! through their tables once per level (each access to a [`Table`] or a
+//! [`Relation`] otherwise matches on its representation): what the sparse
+//! splits read, with the parent's other relations
+//! ([`LevelSlices`](crate::topology::LevelSlices)).
 
 use super::{PackedParent, SparseSplit};
 #[cfg(doc)]
 use crate::topology::Table;
-use crate::topology::{Level, Relation, RelationView};
+use crate::topology::{Level, Relation};
 
 /// The parent's faces as a split walks them: with `QUADS`, every face is a
 /// quad with implicit offsets (each level the quad split made), so a face's
@@ -44,63 +45,6 @@ impl<'a, const QUADS: bool> Faces<'a, QUADS> {
     #[inline(always)]
     pub(super) fn corner(&self, f: usize, k: usize) -> u32 {
         self.verts[self.range(f).start + k]
-    }
-}
-
-/// The parent's edge and vertex relations a split reads, as slices (read
-/// through their tables once per level, not on every access).
-#[derive(Clone, Copy)]
-pub(super) struct ParentView<'a> {
-    pub(super) edge_vertices: &'a [[u32; 2]],
-    pub(super) edge_faces: RelationView<'a>,
-    pub(super) edge_face_local: &'a [u16],
-    pub(super) vertex_faces: RelationView<'a>,
-    pub(super) vertex_face_local: &'a [u16],
-    pub(super) vertex_edges: RelationView<'a>,
-    pub(super) vertex_edge_local: &'a [u16],
-}
-
-impl<'a> ParentView<'a> {
-    pub(super) fn of(parent: &'a Level) -> Self {
-        ParentView {
-            edge_vertices: &parent.edge_vertices,
-            edge_faces: parent.edge_faces.view(),
-            edge_face_local: &parent.edge_face_local,
-            vertex_faces: parent.vertex_faces.view(),
-            vertex_face_local: &parent.vertex_face_local,
-            vertex_edges: parent.vertex_edges.view(),
-            vertex_edge_local: &parent.vertex_edge_local,
-        }
-    }
-
-    /// The faces of edge `e`, with the edge's position in each.
-    #[inline(always)]
-    pub(super) fn edge_faces(&self, e: usize) -> (&'a [u32], &'a [u16]) {
-        let r = self.edge_faces.range(e);
-        (
-            &self.edge_faces.members[r.clone()],
-            &self.edge_face_local[r],
-        )
-    }
-
-    /// The faces of vertex `v`, with the vertex's position in each.
-    #[inline(always)]
-    pub(super) fn vertex_faces(&self, v: usize) -> (&'a [u32], &'a [u16]) {
-        let r = self.vertex_faces.range(v);
-        (
-            &self.vertex_faces.members[r.clone()],
-            &self.vertex_face_local[r],
-        )
-    }
-
-    /// The edges of vertex `v`, with the vertex's end of each.
-    #[inline(always)]
-    pub(super) fn vertex_edges(&self, v: usize) -> (&'a [u32], &'a [u16]) {
-        let r = self.vertex_edges.range(v);
-        (
-            &self.vertex_edges.members[r.clone()],
-            &self.vertex_edge_local[r],
-        )
     }
 }
 

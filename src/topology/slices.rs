@@ -1,0 +1,106 @@
+//! A level's relations as plain slices ([`LevelSlices`]).
+
+use super::{Level, RelationView};
+
+/// A level's relations as plain slices, read through their tables once
+/// ([`Level::slices`]) for loops that look up many elements: each access to a
+/// [`Table`](super::Table) or a [`Relation`](super::Relation) otherwise matches
+/// on its representation.
+#[derive(Clone, Copy)]
+pub(crate) struct LevelSlices<'a> {
+    pub(crate) face_vertices: RelationView<'a>,
+    pub(crate) edge_vertices: &'a [[u32; 2]],
+    pub(crate) edge_faces: RelationView<'a>,
+    pub(crate) edge_face_local: &'a [u16],
+    pub(crate) vertex_faces: RelationView<'a>,
+    pub(crate) vertex_face_local: &'a [u16],
+    pub(crate) vertex_edges: RelationView<'a>,
+    pub(crate) vertex_edge_local: &'a [u16],
+}
+
+impl<'a> LevelSlices<'a> {
+    fn of(parent: &'a Level) -> Self {
+        LevelSlices {
+            face_vertices: parent.face_vertices.view(),
+            edge_vertices: &parent.edge_vertices,
+            edge_faces: parent.edge_faces.view(),
+            edge_face_local: &parent.edge_face_local,
+            vertex_faces: parent.vertex_faces.view(),
+            vertex_face_local: &parent.vertex_face_local,
+            vertex_edges: parent.vertex_edges.view(),
+            vertex_edge_local: &parent.vertex_edge_local,
+        }
+    }
+
+    /// The vertices of face `f`.
+    #[inline(always)]
+    pub(crate) fn face_verts(&self, f: usize) -> &'a [u32] {
+        self.face_vertices.get(f)
+    }
+
+    /// The vertex of edge `e` other than `v` (`v` itself on a degenerate
+    /// edge), as [`Level::other_vertex`].
+    #[inline(always)]
+    pub(crate) fn other_vertex(&self, e: usize, v: u32) -> u32 {
+        let ev = self.edge_vertices[e];
+        if ev[0] == v { ev[1] } else { ev[0] }
+    }
+
+    /// The faces of edge `e`.
+    #[inline(always)]
+    pub(crate) fn edge_faces_of(&self, e: usize) -> &'a [u32] {
+        self.edge_faces.get(e)
+    }
+
+    /// The faces of vertex `v`.
+    #[inline(always)]
+    pub(crate) fn vertex_faces_of(&self, v: usize) -> &'a [u32] {
+        self.vertex_faces.get(v)
+    }
+
+    /// The edges of vertex `v`.
+    #[inline(always)]
+    pub(crate) fn vertex_edges_of(&self, v: usize) -> &'a [u32] {
+        self.vertex_edges.get(v)
+    }
+
+    /// The faces of edge `e`, with the edge's position in each (the level
+    /// keeping local indices).
+    #[inline(always)]
+    pub(crate) fn edge_faces(&self, e: usize) -> (&'a [u32], &'a [u16]) {
+        let r = self.edge_faces.range(e);
+        (
+            &self.edge_faces.members[r.clone()],
+            &self.edge_face_local[r],
+        )
+    }
+
+    /// The faces of vertex `v`, with the vertex's position in each (the
+    /// level keeping local indices).
+    #[inline(always)]
+    pub(crate) fn vertex_faces(&self, v: usize) -> (&'a [u32], &'a [u16]) {
+        let r = self.vertex_faces.range(v);
+        (
+            &self.vertex_faces.members[r.clone()],
+            &self.vertex_face_local[r],
+        )
+    }
+
+    /// The edges of vertex `v`, with the vertex's end of each (the level
+    /// keeping local indices).
+    #[inline(always)]
+    pub(crate) fn vertex_edges(&self, v: usize) -> (&'a [u32], &'a [u16]) {
+        let r = self.vertex_edges.range(v);
+        (
+            &self.vertex_edges.members[r.clone()],
+            &self.vertex_edge_local[r],
+        )
+    }
+}
+
+impl Level {
+    /// The level's relations as slices ([`LevelSlices`]).
+    pub(crate) fn slices(&self) -> LevelSlices<'_> {
+        LevelSlices::of(self)
+    }
+}
