@@ -9,9 +9,10 @@ use crate::topology::LevelSlices;
 use crate::topology::{Relation, Table};
 
 /// A relation filled element by element in index order, with a local index
-/// per member. Its vectors are reserved at the size a topology that is its
-/// own transpose needs ([`Room`]) and grow, fallibly, past it (a non-manifold
-/// topology can need more).
+/// per member. Its vectors — kept ones of dropped tables where the pool has
+/// some ([`Table::vec_for_push`]) — are reserved at the size a topology that
+/// is its own transpose needs ([`Room`]) and grow, fallibly, past it (a
+/// non-manifold topology can need more).
 pub(super) struct Filler {
     pub(super) offsets: Vec<u32>,
     pub(super) members: Vec<u32>,
@@ -23,12 +24,12 @@ impl Filler {
     /// relation here is the transpose of one whose size is known: the
     /// faces of the edges are the edges of the faces, and so on).
     pub(super) fn new(elements: usize, members: usize) -> Self {
-        let mut offsets = crate::alloc::with_capacity(elements + 1);
+        let mut offsets = Table::vec_for_push(elements + 1);
         offsets.push(0);
         Filler {
             offsets,
-            members: crate::alloc::with_capacity(members),
-            locals: crate::alloc::with_capacity(members),
+            members: Table::vec_for_push(members),
+            locals: Table::vec_for_push(members),
         }
     }
 
