@@ -79,6 +79,30 @@ impl<'a> RelationView<'a> {
     pub(crate) fn get(&self, i: usize) -> &'a [u32] {
         &self.members[self.range(i)]
     }
+
+    /// The members of element `i`, or `None` past the last element.
+    #[inline(always)]
+    pub(crate) fn try_get(&self, i: usize) -> Option<&'a [u32]> {
+        match self.starts {
+            Starts::Uniform(n) => self.members.get(n * i..n * i + n),
+            Starts::Table(t) => self
+                .members
+                .get(*t.get(i)? as usize..*t.get(i + 1)? as usize),
+        }
+    }
+
+    /// Where element `i`'s members start if it has `n` of them; `None`
+    /// for another size (or, with stored offsets, past the last element).
+    #[inline(always)]
+    pub(crate) fn start_if_sized(&self, i: usize, n: usize) -> Option<usize> {
+        match self.starts {
+            Starts::Uniform(size) => (size == n).then_some(n * i),
+            Starts::Table(t) => {
+                let (s, e) = (*t.get(i)? as usize, *t.get(i + 1)? as usize);
+                (e.checked_sub(s) == Some(n)).then_some(s)
+            }
+        }
+    }
 }
 
 impl Relation {

@@ -4,15 +4,14 @@
 
 use super::Builder;
 use super::points::{PER_CORNER, TRIANGLE_PER_CORNER};
-use crate::topology::{Level, Offsets};
+use crate::topology::{Level, Offsets, RelationView};
 
 /// A level's face-vertex and vertex-face relations as slices, and whether
 /// each vertex is "plain": not extraordinary, without an infinitely sharp
 /// tag or edge ([`LevelView::plain_face`]).
 pub(super) struct LevelView<'a> {
-    face_vertices: &'a [u32],
-    /// Where each face starts in `face_vertices`.
-    faces: Faces<'a>,
+    /// The face-vertex relation.
+    faces: RelationView<'a>,
     /// Where each vertex's faces start; `None` where the level keeps no
     /// local indices (then no patch's points are read here).
     vertex_offsets: Option<&'a [u32]>,
@@ -28,10 +27,6 @@ impl<'a> LevelView<'a> {
     pub(super) fn new(builder: &Builder<'a>, level: usize) -> Self {
         let l: &'a Level = &builder.levels[level];
         let features = &builder.features[level];
-        let faces = match &l.face_vertices.offsets {
-            Offsets::Uniform { size, .. } => Faces::Uniform(*size),
-            Offsets::Table(t) => Faces::Table(&t[..]),
-        };
         let vertex_offsets = match &l.vertex_faces.offsets {
             Offsets::Table(t) if l.has_local_indices() => Some(&t[..]),
             _ => None,
@@ -43,8 +38,7 @@ impl<'a> LevelView<'a> {
             })
             .collect();
         LevelView {
-            face_vertices: &l.face_vertices.members,
-            faces,
+            faces: l.face_vertices.view(),
             vertex_offsets,
             vertex_faces: &l.vertex_faces.members,
             vertex_face_locals: &l.vertex_face_local,
@@ -56,32 +50,14 @@ impl<'a> LevelView<'a> {
     /// The vertices of face `f`.
     #[inline(always)]
     fn face(&self, f: usize) -> Option<&[u32]> {
-        match self.faces {
-            Faces::Uniform(n) => self.face_vertices.get(n * f..n * f + n),
-            Faces::Table(o) => self
-                .face_vertices
-                .get(*o.get(f)? as usize..*o.get(f + 1)? as usize),
-        }
-    }
-
-    /// Where face `f` starts in the face-vertex list if it has `N`
-    /// vertices; `None` otherwise.
-    #[inline(always)]
-    fn start_of<const N: usize>(&self, f: usize) -> Option<usize> {
-        match self.faces {
-            Faces::Uniform(n) => (n == N).then_some(N * f),
-            Faces::Table(o) => {
-                let (s, e) = (*o.get(f)? as usize, *o.get(f + 1)? as usize);
-                (e.checked_sub(s) == Some(N)).then_some(s)
-            }
-        }
+        self.faces.try_get(f)
     }
 
     /// The vertices of face `f` if it has `N` of them.
     #[inline(always)]
     fn sized<const N: usize>(&self, f: usize) -> Option<&[u32; N]> {
-        let start = self.start_of::<N>(f)?;
-        self.face_vertices.get(start..start + N)?.try_into().ok()
+        let start = self.faces.start_if_sized(f, N)?;
+        self.faces.members.get(start..start + N)?.try_into().ok()
     }
 
     /// The faces around vertex `v` and its position in each, if it has
@@ -165,13 +141,4 @@ impl<'a> LevelView<'a> {
         }
         Some(())
     }
-}
-
-/// How a level's faces are laid out in its face-vertex list.
-#[derive(Clone, Copy)]
-enum Faces<'a> {
-    /// Every face has this many vertices.
-    Uniform(usize),
-    /// Where each face starts (one more entry than faces).
-    Table(&'a [u32]),
 }

@@ -14,9 +14,9 @@ use crate::topology::{Relation, Table};
 /// is its own transpose needs ([`Room`]) and grow, fallibly, past it (a
 /// non-manifold topology can need more).
 pub(super) struct Filler {
-    pub(super) offsets: Vec<u32>,
-    pub(super) members: Vec<u32>,
-    pub(super) locals: Vec<u16>,
+    offsets: Vec<u32>,
+    members: Vec<u32>,
+    locals: Vec<u16>,
 }
 
 impl Filler {

@@ -104,7 +104,6 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
 /// offsets: a face's corners without its offsets, its size a constant.
 fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topology {
     let faces = Faces::<QUADS>::of(parent);
-    let parent_edge_vertices: &[[u32; 2]] = &parent.edge_vertices;
     let nf = split.child_face_parent.len();
     let ne = split.child_edge_parent.len();
     let nv = split.child_vertex_parent.len();
@@ -136,9 +135,9 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
                     s.face_child_vertex[f],
                     s.edge_child_vertex[e_prev],
                 ];
-                let [p0, p1] = parent_edge_vertices[e_prev];
+                let [p0, p1] = pv.edge_vertices[e_prev];
                 let in_prev = if p0 != p1 { (p0 != corner) as usize } else { 1 };
-                let [n0, n1] = parent_edge_vertices[e_next];
+                let [n0, n1] = pv.edge_vertices[e_next];
                 let in_next = if n0 != n1 { (n0 != corner) as usize } else { 0 };
                 let es = [
                     s.edge_child_edges[e_next][in_next],
