@@ -13,7 +13,7 @@ use crate::topology::refine::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
     derive_quad_edge_faces_in_order, derive_smooth_hood,
 };
-use crate::topology::{AroundBuf, Level};
+use crate::topology::{AroundBuf, Level, VertexTag};
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -571,10 +571,14 @@ fn run<T: Real, W: Width + Send + Sync>(
     let n = width.get();
     let [vertex_points, face_points, edge_points] = split_children(dst, refinement, n);
     let first_face_point = refinement.first_vertex_from_faces;
+    // The parent's relations as slices, read through their tables once.
+    let ps = parent.slices();
+    let edge_sharpness: &[f32] = &parent.edge_sharpness;
+    let vertex_tags: &[VertexTag] = &parent.vertex_tags;
 
     // Face points: the parent face's vertices.
     par_children(face_points, n, |f, slot, cache, _| {
-        let acc = face_point(parent.face_verts(f), cache, &r.rules, src, width);
+        let acc = face_point(ps.face_verts(f), cache, &r.rules, src, width);
         store(slot, &acc, width);
     });
     // Edge and vertex points read face points (children of faces) only.
@@ -586,13 +590,16 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Edge points.
     // Empty edge sharpness: every parent edge is smooth (what
     // `Level::edge_sharpness_at` reads, tested once here).
-    let has_sharpness = !parent.edge_sharpness.is_empty();
+    let has_sharpness = !edge_sharpness.is_empty();
     // A level whose relations are derived (every vertex smooth, every edge
     // between two faces): its edges' faces, and its vertices' faces and far
     // ends, derived from the level before.
-    let derived = parent
+    let grand_slices = parent
         .derived_relations
-        .then(|| (&r.levels[level - 2], &r.refinements[level - 2]));
+        .then(|| r.levels[level - 2].slices());
+    let derived = grand_slices
+        .as_ref()
+        .map(|g| (g, &r.refinements[level - 2]));
     let triangles = scheme == Scheme::Loop;
     // Loop's smooth edge: its ends and the vertices opposite it, which a
     // derived level gives without reading its faces.
@@ -631,14 +638,14 @@ fn run<T: Real, W: Width + Send + Sync>(
                 ),
                 None => derive_quad_edge_faces_in_order(grand, gr, e, &mut scratch.face),
             };
-            let ev = parent.edge_vertices[e];
+            let ev = ps.edge_vertices[e];
             let acc = smooth_edge_point(src, ev, ends, face_points, faces, face_weights, width);
             store(slot, &acc, width);
         });
     } else {
         par_children(edge_points, n, |e, slot, cache, scratch| {
             if let (Some((ends, opposite)), Some((grand, gr))) = (loop_edge, derived)
-                && (!has_sharpness || parent.edge_sharpness[e] <= 0.0)
+                && (!has_sharpness || edge_sharpness[e] <= 0.0)
             {
                 let wings = match e.checked_sub(gr.parent_corners) {
                     Some(i) => halves_of(&mut scratch.wings, i, |e| {
@@ -648,7 +655,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                     None => derive_inner_edge_wings(grand, gr, e),
                 };
                 if let Some(wings) = wings {
-                    let ev = parent.edge_vertices[e];
+                    let ev = ps.edge_vertices[e];
                     let acc = smooth_edge_point(src, ev, ends, src, wings, opposite, width);
                     store(slot, &acc, width);
                     return;
@@ -670,23 +677,23 @@ fn run<T: Real, W: Width + Send + Sync>(
                     };
                     &derived_faces
                 }
-                None => parent.edge_faces_of(e),
+                None => ps.edge_faces_of(e),
             };
-            let smooth = faces.len() == 2 && (!has_sharpness || parent.edge_sharpness[e] <= 0.0);
+            let smooth = faces.len() == 2 && (!has_sharpness || edge_sharpness[e] <= 0.0);
             let mut acc = zero;
             let weights = if smooth {
                 cache.smooth_edge(
                     &r.rules,
                     [
-                        tri_smooth && parent.face_vertices.count(faces[0] as usize) == 3,
-                        tri_smooth && parent.face_vertices.count(faces[1] as usize) == 3,
+                        tri_smooth && ps.face_verts(faces[0] as usize).len() == 3,
+                        tri_smooth && ps.face_verts(faces[1] as usize).len() == 3,
                     ],
                 )
             } else {
                 None
             };
             if let Some(w) = weights {
-                let ev = parent.edge_vertices[e];
+                let ev = ps.edge_vertices[e];
                 add(&mut acc, src, ev[0], w.ends[0], width);
                 add(&mut acc, src, ev[1], w.ends[1], width);
                 if let Some(fw) = w.faces {
@@ -711,7 +718,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     // Vertex points.
     // Empty vertex tags: every parent vertex is smooth (what
     // `Level::vertex_tag` reads, tested once here).
-    let has_tags = !parent.vertex_tags.is_empty();
+    let has_tags = !vertex_tags.is_empty();
     let around = r.around(level - 1);
     let (quad4, loop6) = match derived {
         Some(_) if triangles => (None, Regular::<T, 6>::new(r)),
@@ -749,9 +756,12 @@ fn run<T: Real, W: Width + Send + Sync>(
             }
         }
         let mut hood = std::mem::take(&mut scratch.hood);
-        let (faces, edges) = around.vertex_faces_and_edges(v, &mut hood);
+        let (faces, edges) = match derived {
+            Some(_) => around.vertex_faces_and_edges(v, &mut hood),
+            None => (ps.vertex_faces_of(v), ps.vertex_edges_of(v)),
+        };
         let rule = if has_tags {
-            parent.vertex_tags[v].rule()
+            vertex_tags[v].rule()
         } else {
             Rule::Smooth
         };
@@ -761,7 +771,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                 v,
                 faces,
                 edges: edges.len(),
-                far: |k: usize| parent.other_vertex(edges[k] as usize, v as u32),
+                far: |k: usize| ps.other_vertex(edges[k] as usize, v as u32),
                 mask: cache.smooth_vertex(&r.rules, faces.len()),
             }
             .sum(&mut acc, src, face_points, width);

@@ -103,7 +103,7 @@ impl<'a> Around<'a> {
     pub(crate) fn edge_faces(&self, e: usize) -> EdgeFaces<'a> {
         match self.from {
             Some((parent, split, triangles)) => {
-                EdgeFaces::Derived(derive_edge_faces(parent, split, triangles, e))
+                EdgeFaces::Derived(derive_edge_faces(&parent.slices(), split, triangles, e))
             }
             None => EdgeFaces::Stored(self.level.edge_faces_of(e)),
         }
@@ -114,7 +114,7 @@ impl<'a> Around<'a> {
     pub(crate) fn edge_face(&self, e: usize, i: usize) -> (usize, usize) {
         match self.from {
             Some((parent, split, triangles)) => {
-                let f = derive_edge_faces(parent, split, triangles, e)[i] as usize;
+                let f = derive_edge_faces(&parent.slices(), split, triangles, e)[i] as usize;
                 let k = self
                     .level
                     .face_edges_of(f)

@@ -55,6 +55,8 @@ pub(crate) struct RelationView<'a> {
     starts: Starts<'a>,
     /// The members, concatenated.
     pub(crate) members: &'a [u32],
+    /// Number of elements.
+    len: usize,
 }
 
 /// Where the elements of a [`RelationView`] start.
@@ -78,6 +80,39 @@ impl<'a> RelationView<'a> {
     #[inline(always)]
     pub(crate) fn get(&self, i: usize) -> &'a [u32] {
         &self.members[self.range(i)]
+    }
+
+    /// Where element `i`'s members start in `members`.
+    #[inline(always)]
+    pub(crate) fn start(&self, i: usize) -> usize {
+        match self.starts {
+            Starts::Uniform(size) => i * size,
+            Starts::Table(t) => t[i] as usize,
+        }
+    }
+
+    /// Number of members of element `i`.
+    #[inline(always)]
+    pub(crate) fn count(&self, i: usize) -> usize {
+        match self.starts {
+            Starts::Uniform(size) => size,
+            Starts::Table(t) => (t[i + 1] - t[i]) as usize,
+        }
+    }
+
+    /// Number of elements.
+    #[inline(always)]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// The element whose members hold position `member` of `members`.
+    #[inline(always)]
+    pub(crate) fn element_of(&self, member: usize) -> usize {
+        match self.starts {
+            Starts::Uniform(size) => member / size,
+            Starts::Table(t) => t.partition_point(|&o| o as usize <= member) - 1,
+        }
     }
 
     /// The members of element `i`, or `None` past the last element.
@@ -113,6 +148,7 @@ impl Relation {
     }
 
     /// The relation as slices ([`RelationView`]).
+    #[inline]
     pub(crate) fn view(&self) -> RelationView<'_> {
         RelationView {
             starts: match &self.offsets {
@@ -120,6 +156,7 @@ impl Relation {
                 Offsets::Table(t) => Starts::Table(t),
             },
             members: &self.members,
+            len: self.len(),
         }
     }
 

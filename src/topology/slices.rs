@@ -9,6 +9,8 @@ use super::{Level, RelationView};
 #[derive(Clone, Copy)]
 pub(crate) struct LevelSlices<'a> {
     pub(crate) face_vertices: RelationView<'a>,
+    /// Face → edges, with `face_vertices`' offsets.
+    pub(crate) face_edges: &'a [u32],
     pub(crate) edge_vertices: &'a [[u32; 2]],
     pub(crate) edge_faces: RelationView<'a>,
     pub(crate) edge_face_local: &'a [u16],
@@ -19,9 +21,11 @@ pub(crate) struct LevelSlices<'a> {
 }
 
 impl<'a> LevelSlices<'a> {
+    #[inline]
     fn of(parent: &'a Level) -> Self {
         LevelSlices {
             face_vertices: parent.face_vertices.view(),
+            face_edges: &parent.face_edges,
             edge_vertices: &parent.edge_vertices,
             edge_faces: parent.edge_faces.view(),
             edge_face_local: &parent.edge_face_local,
@@ -38,6 +42,12 @@ impl<'a> LevelSlices<'a> {
         self.face_vertices.get(f)
     }
 
+    /// The edges of face `f`.
+    #[inline(always)]
+    pub(crate) fn face_edges_of(&self, f: usize) -> &'a [u32] {
+        &self.face_edges[self.face_vertices.range(f)]
+    }
+
     /// The vertex of edge `e` other than `v` (`v` itself on a degenerate
     /// edge), as [`Level::other_vertex`].
     #[inline(always)]
@@ -52,10 +62,28 @@ impl<'a> LevelSlices<'a> {
         self.edge_faces.get(e)
     }
 
+    /// The faces of edge `e` with the edge's position in each, as
+    /// [`Level::edge_faces_at`] (the level keeping local indices).
+    #[inline(always)]
+    pub(crate) fn edge_faces_at(&self, e: usize) -> impl Iterator<Item = (usize, usize)> + 'a {
+        let (faces, locals) = self.edge_faces(e);
+        faces
+            .iter()
+            .zip(locals)
+            .map(|(&f, &k)| (f as usize, k as usize))
+    }
+
     /// The faces of vertex `v`.
     #[inline(always)]
     pub(crate) fn vertex_faces_of(&self, v: usize) -> &'a [u32] {
         self.vertex_faces.get(v)
+    }
+
+    /// The vertex's position in each of its faces (the level keeping local
+    /// indices).
+    #[inline(always)]
+    pub(crate) fn vertex_face_locals(&self, v: usize) -> &'a [u16] {
+        &self.vertex_face_local[self.vertex_faces.range(v)]
     }
 
     /// The edges of vertex `v`.
@@ -100,6 +128,7 @@ impl<'a> LevelSlices<'a> {
 
 impl Level {
     /// The level's relations as slices ([`LevelSlices`]).
+    #[inline]
     pub(crate) fn slices(&self) -> LevelSlices<'_> {
         LevelSlices::of(self)
     }

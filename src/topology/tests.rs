@@ -298,7 +298,7 @@ fn derived_relations_equal_the_stored_ones() {
                     assert!(!stored.derived_relations);
                     derived_levels += 1;
                     let triangles = scheme == crate::options::Scheme::Loop;
-                    let (grand, r) = (&minimal.levels[l - 1], &minimal.refinements[l - 1]);
+                    let (grand, r) = (&minimal.levels[l - 1].slices(), &minimal.refinements[l - 1]);
                     for v in 0..stored.vertex_count {
                         let (faces, edges) = minimal.vertex_hood(l, v, &mut buf);
                         assert_eq!(faces, stored.vertex_faces_of(v), "{scheme:?} L{depth} v{v}");

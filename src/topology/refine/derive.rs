@@ -4,12 +4,14 @@
 //! ([`Level::derived_relations`]), and the refiner (its interpolation kernel
 //! above all) reads them from here, computed from the parent element by
 //! element in the order the level would have stored them. OpenSubdiv always
-//! stores them: this has no counterpart there.
+//! stores them: this has no counterpart there. The derivations the kernel
+//! calls per child read the parent through its [`LevelSlices`], taken once
+//! per pass, rather than through its tables.
 
 use super::quad::{quad_edge_child, quad_face_child, quad_vertex_child};
 use super::tri::{triangle_edge_child, triangle_vertex_child};
 use super::{Split, next, prev};
-use crate::topology::Level;
+use crate::topology::{Level, LevelSlices};
 
 /// Whether a child of `parent` built as
 /// [`Build::Relations`](super::Build::Relations) can leave out its
@@ -68,7 +70,7 @@ pub(crate) fn derive_vertex_relations(
 /// vertex relations are derived: every edge of `parent` has two faces.
 #[inline(always)]
 pub(crate) fn derive_smooth_hood<const N: usize>(
-    parent: &Level,
+    parent: &LevelSlices<'_>,
     r: &Split,
     triangles: bool,
     c: usize,
@@ -302,7 +304,12 @@ pub(crate) fn derive_limit_ring<const N: usize>(
 /// ([`Level::derived_relations`]: every edge of `parent` has two faces, so
 /// every child edge has two).
 #[inline(always)]
-pub(crate) fn derive_edge_faces(parent: &Level, r: &Split, triangles: bool, c: usize) -> [u32; 2] {
+pub(crate) fn derive_edge_faces(
+    parent: &LevelSlices<'_>,
+    r: &Split,
+    triangles: bool,
+    c: usize,
+) -> [u32; 2] {
     if let Some(i) = c.checked_sub(r.parent_corners) {
         derive_half_edge_faces(parent, triangles, i / 2)[i % 2]
     } else if triangles {
@@ -320,7 +327,7 @@ pub(crate) fn derive_edge_faces(parent: &Level, r: &Split, triangles: bool, c: u
 /// The two faces of child edge `c` inside parent face `f` of a quad split:
 /// its children `j` and `j + 1`, for the face's edge `j`.
 #[inline(always)]
-fn inner_quad_edge_faces(parent: &Level, f: usize, c: usize) -> [u32; 2] {
+fn inner_quad_edge_faces(parent: &LevelSlices<'_>, f: usize, c: usize) -> [u32; 2] {
     let (base, n) = (parent.face_vertices.start(f), parent.face_vertices.count(f));
     let j = c - base;
     [(base + j) as u32, (base + next(j, n)) as u32]
@@ -332,7 +339,7 @@ fn inner_quad_edge_faces(parent: &Level, f: usize, c: usize) -> [u32; 2] {
 /// searched for only when neither holds it (faces of mixed sizes).
 #[inline(always)]
 pub(crate) fn derive_quad_edge_faces_in_order(
-    parent: &Level,
+    parent: &LevelSlices<'_>,
     r: &Split,
     c: usize,
     hint: &mut usize,
@@ -357,7 +364,11 @@ pub(crate) fn derive_quad_edge_faces_in_order(
 /// child edges `2e` and `2e + 1` after the edges inside faces): in each of
 /// the edge's two faces, the child at the corner of the half's end.
 #[inline(always)]
-pub(crate) fn derive_half_edge_faces(parent: &Level, triangles: bool, e: usize) -> [[u32; 2]; 2] {
+pub(crate) fn derive_half_edge_faces(
+    parent: &LevelSlices<'_>,
+    triangles: bool,
+    e: usize,
+) -> [[u32; 2]; 2] {
     let ev = parent.edge_vertices[e];
     let mut out = [[0; 2]; 2];
     for (i, (f, k)) in parent.edge_faces_at(e).take(2).enumerate() {
@@ -396,7 +407,11 @@ fn put_by_end(out: &mut [[u32; 2]; 2], i: usize, flip: bool, [at_k, at_next]: [u
 /// parent face involved has an edge twice: then a child triangle repeats a
 /// corner, and the opposite vertex is found by searching its edges.
 #[inline(always)]
-pub(crate) fn derive_inner_edge_wings(parent: &Level, r: &Split, c: usize) -> Option<[u32; 2]> {
+pub(crate) fn derive_inner_edge_wings(
+    parent: &LevelSlices<'_>,
+    r: &Split,
+    c: usize,
+) -> Option<[u32; 2]> {
     // Inner edge `j` of triangle `f` joins the points of its edges `j` and
     // `j - 1`: corner `j` is opposite it in the corner triangle, the point
     // of edge `j + 1` in the middle one.
@@ -416,7 +431,11 @@ pub(crate) fn derive_inner_edge_wings(parent: &Level, r: &Split, c: usize) -> Op
 /// [`derive_half_edge_faces`]: in the corner triangle of a half's end, the
 /// point of the face's other edge at that corner.
 #[inline(always)]
-pub(crate) fn derive_half_edge_wings(parent: &Level, r: &Split, e: usize) -> Option<[[u32; 2]; 2]> {
+pub(crate) fn derive_half_edge_wings(
+    parent: &LevelSlices<'_>,
+    r: &Split,
+    e: usize,
+) -> Option<[[u32; 2]; 2]> {
     let ev = parent.edge_vertices[e];
     let mut out = [[0; 2]; 2];
     for (i, (f, k)) in parent.edge_faces_at(e).take(2).enumerate() {
