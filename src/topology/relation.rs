@@ -148,7 +148,7 @@ impl Relation {
     }
 
     /// The relation as slices ([`RelationView`]).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn view(&self) -> RelationView<'_> {
         RelationView {
             starts: match &self.offsets {

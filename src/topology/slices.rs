@@ -21,7 +21,7 @@ pub(crate) struct LevelSlices<'a> {
 }
 
 impl<'a> LevelSlices<'a> {
-    #[inline]
+    #[inline(always)]
     fn of(parent: &'a Level) -> Self {
         LevelSlices {
             face_vertices: parent.face_vertices.view(),
@@ -128,7 +128,7 @@ impl<'a> LevelSlices<'a> {
 
 impl Level {
     /// The level's relations as slices ([`LevelSlices`]).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn slices(&self) -> LevelSlices<'_> {
         LevelSlices::of(self)
     }
