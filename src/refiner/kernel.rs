@@ -13,7 +13,7 @@ use crate::topology::refine::{
     derive_edge_faces, derive_half_edge_faces, derive_half_edge_wings, derive_inner_edge_wings,
     derive_quad_edge_faces_in_order, derive_smooth_hood,
 };
-use crate::topology::{AroundBuf, Level, VertexTag};
+use crate::topology::{AroundBuf, Level};
 
 /// Scratch buffers for computing the terms of one child vertex.
 pub(crate) struct Scratch<T> {
@@ -573,8 +573,7 @@ fn run<T: Real, W: Width + Send + Sync>(
     let first_face_point = refinement.first_vertex_from_faces;
     // The parent's relations as slices, read through their tables once.
     let ps = parent.slices();
-    let edge_sharpness: &[f32] = &parent.edge_sharpness;
-    let vertex_tags: &[VertexTag] = &parent.vertex_tags;
+    let (edge_sharpness, vertex_tags) = (ps.edge_sharpness, ps.vertex_tags);
 
     // Face points: the parent face's vertices.
     par_children(face_points, n, |f, slot, cache, _| {
@@ -702,7 +701,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                         if w.centers {
                             add(&mut acc, face_points, f, fw[k], width);
                         } else {
-                            let far = opposite_vertex(parent, f as usize, e);
+                            let far = opposite_vertex(&ps, f as usize, e);
                             add(&mut acc, src, far, fw[k], width);
                         }
                     }

@@ -21,7 +21,9 @@ use crate::real::Real;
 use crate::rules::{EdgeNeighborhood, Rule, SchemeRules, VertexNeighborhood, crease};
 use crate::topology::fvar::ChannelLevel;
 pub(crate) use crate::topology::fvar::Children;
-use crate::topology::{Build, Level, Split, Table, build_base_level, fvar, refine_level};
+use crate::topology::{
+    Build, Level, LevelSlices, Split, Table, build_base_level, fvar, refine_level,
+};
 
 pub mod adaptive;
 mod fvar_fast;
@@ -43,7 +45,7 @@ pub use whole::{refine, refine_last};
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
 #[inline(always)]
-pub(crate) fn opposite_vertex(level: &Level, f: usize, e: usize) -> u32 {
+pub(crate) fn opposite_vertex(level: &LevelSlices<'_>, f: usize, e: usize) -> u32 {
     if let &[a, b, c] = level.face_verts(f)
         && a != b
         && b != c
@@ -611,8 +613,10 @@ impl<C: Children> Step<'_, C> {
         } else {
             // Loop: the face's vertex opposite the edge.
             for (&f, &w) in faces.iter().zip(&s.mask.face) {
-                s.terms
-                    .push((Source::Parent(opposite_vertex(parent, f as usize, e)), w));
+                s.terms.push((
+                    Source::Parent(opposite_vertex(&parent.slices(), f as usize, e)),
+                    w,
+                ));
             }
         }
     }

@@ -8,6 +8,7 @@ use crate::error::{Buffer, Error, Result};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
+use crate::topology::{Around, LevelSlices};
 
 /// Marks a base vertex without a term in the row being built.
 const ABSENT: u32 = u32::MAX;
@@ -293,12 +294,17 @@ impl Refiner {
         &self,
         level: usize,
         e: usize,
+        (parent, around): (&LevelSlices<'_>, &Around<'_>),
         cache: &mut Cache<T>,
         s: &mut Scratch<T>,
     ) {
-        let parent = &self.levels[level - 1];
-        let faces = self.edge_faces_of(level - 1, e);
-        let faces = faces.as_slice();
+        let derived;
+        let faces = if around.derives() {
+            derived = around.edge_faces(e);
+            derived.as_slice()
+        } else {
+            parent.edge_faces_of(e)
+        };
         let tri_smooth = self.options.scheme == Scheme::Catmark
             && self.options.triangles == TriangleSubdivision::Smooth;
         let is_tri = |f: u32| tri_smooth && parent.face_vertices.count(f as usize) == 3;
@@ -333,12 +339,16 @@ impl Refiner {
         &self,
         level: usize,
         v: usize,
+        (parent, around): (&LevelSlices<'_>, &Around<'_>),
         cache: &mut Cache<T>,
         s: &mut Scratch<T>,
     ) {
-        let parent = &self.levels[level - 1];
         let mut buf = std::mem::take(&mut s.hood);
-        let (faces, edges) = self.vertex_hood(level - 1, v, &mut buf);
+        let (faces, edges) = if around.derives() {
+            around.vertex_faces_and_edges(v, &mut buf)
+        } else {
+            (parent.vertex_faces_of(v), parent.vertex_edges_of(v))
+        };
         if takes_smooth_mask(parent.vertex_tag(v).rule(), faces.len(), edges.len()) {
             let r = &self.refinements[level - 1];
             let m = cache.smooth_vertex(&self.rules, faces.len());
@@ -395,14 +405,18 @@ impl<T: Real> Children<'_, T> {
                 |_, terms| builder.child_row(out, terms, self.prev, faces, self.f0),
             ),
             Block::Edges => {
+                let parent = r.levels[self.level - 1].slices();
+                let around = r.around(self.level - 1);
                 for e in range {
-                    r.cached_edge_terms(self.level, e, cache, scratch);
+                    r.cached_edge_terms(self.level, e, (&parent, &around), cache, scratch);
                     builder.child_row(out, &scratch.terms, self.prev, faces, self.f0);
                 }
             }
             Block::Vertices => {
+                let parent = r.levels[self.level - 1].slices();
+                let around = r.around(self.level - 1);
                 for v in range {
-                    r.cached_vertex_terms(self.level, v, cache, scratch);
+                    r.cached_vertex_terms(self.level, v, (&parent, &around), cache, scratch);
                     builder.child_row(out, &scratch.terms, self.prev, faces, self.f0);
                 }
             }

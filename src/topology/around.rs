@@ -89,6 +89,13 @@ impl<'a> Around<'a> {
         Around { level, from: None }
     }
 
+    /// Whether the level derives its relations from the level before (its
+    /// own vertex-faces, vertex-edges and edge-faces are empty).
+    #[inline(always)]
+    pub(crate) fn derives(&self) -> bool {
+        self.from.is_some()
+    }
+
     /// Number of faces of edge `e`.
     #[inline]
     pub(crate) fn edge_face_count(&self, e: usize) -> usize {

@@ -1,6 +1,6 @@
 //! A level's relations as plain slices ([`LevelSlices`]).
 
-use super::{Level, RelationView};
+use super::{Level, RelationView, VertexTag};
 
 /// A level's relations as plain slices, read through their tables once
 /// ([`Level::slices`]) for loops that look up many elements: each access to a
@@ -18,6 +18,10 @@ pub(crate) struct LevelSlices<'a> {
     pub(crate) vertex_face_local: &'a [u16],
     pub(crate) vertex_edges: RelationView<'a>,
     pub(crate) vertex_edge_local: &'a [u16],
+    /// Edge sharpness, empty when every edge is smooth.
+    pub(crate) edge_sharpness: &'a [f32],
+    /// Vertex tags, empty when every tag is the default.
+    pub(crate) vertex_tags: &'a [VertexTag],
 }
 
 impl<'a> LevelSlices<'a> {
@@ -33,6 +37,8 @@ impl<'a> LevelSlices<'a> {
             vertex_face_local: &parent.vertex_face_local,
             vertex_edges: parent.vertex_edges.view(),
             vertex_edge_local: &parent.vertex_edge_local,
+            edge_sharpness: &parent.edge_sharpness,
+            vertex_tags: &parent.vertex_tags,
         }
     }
 
@@ -40,6 +46,26 @@ impl<'a> LevelSlices<'a> {
     #[inline(always)]
     pub(crate) fn face_verts(&self, f: usize) -> &'a [u32] {
         self.face_vertices.get(f)
+    }
+
+    /// The sharpness of edge `e`, as [`Level::edge_sharpness_at`].
+    #[inline(always)]
+    pub(crate) fn edge_sharpness_at(&self, e: usize) -> f32 {
+        if self.edge_sharpness.is_empty() {
+            0.0
+        } else {
+            self.edge_sharpness[e]
+        }
+    }
+
+    /// The tags of vertex `v`, as [`Level::vertex_tag`].
+    #[inline(always)]
+    pub(crate) fn vertex_tag(&self, v: usize) -> VertexTag {
+        if self.vertex_tags.is_empty() {
+            VertexTag::default()
+        } else {
+            self.vertex_tags[v]
+        }
     }
 
     /// The edges of face `f`.

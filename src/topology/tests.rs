@@ -342,8 +342,9 @@ fn derived_relations_equal_the_stored_ones() {
                                     .map(|h| h[i % 2]),
                                 None => super::refine::derive_inner_edge_wings(grand, r, e),
                             };
-                            let opposite = faces
-                                .map(|f| crate::refiner::opposite_vertex(stored, f as usize, e));
+                            let opposite = faces.map(|f| {
+                                crate::refiner::opposite_vertex(&stored.slices(), f as usize, e)
+                            });
                             assert_eq!(wings, Some(opposite), "{scheme:?} L{depth} e{e}");
                         }
                     }

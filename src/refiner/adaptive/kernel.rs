@@ -131,7 +131,7 @@ fn run_sparse<T: Real, W: Width>(
                     if w.centers {
                         add(&mut acc, dst, face_child[f], fw[k], width);
                     } else {
-                        let far = opposite_vertex(parent, f, e);
+                        let far = opposite_vertex(&sl, f, e);
                         add(&mut acc, src, far, fw[k], width);
                     }
                 }
