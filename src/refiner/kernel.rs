@@ -754,9 +754,14 @@ fn run<T: Real, W: Width + Send + Sync>(
                 return;
             }
         }
-        let mut hood = std::mem::take(&mut scratch.hood);
+        // A derived level's relations go into the scratch's buffer, taken
+        // out while the terms below may use the scratch (and put back at
+        // the end); a stored level's are read in place, nothing moved.
+        let mut hood = None;
         let (faces, edges) = match derived {
-            Some(_) => around.vertex_faces_and_edges(v, &mut hood),
+            Some(_) => {
+                around.vertex_faces_and_edges(v, hood.insert(std::mem::take(&mut scratch.hood)))
+            }
             None => (ps.vertex_faces_of(v), ps.vertex_edges_of(v)),
         };
         let rule = if has_tags {
@@ -779,7 +784,9 @@ fn run<T: Real, W: Width + Send + Sync>(
             acc = irregular(scratch);
         }
         store(slot, &acc, width);
-        scratch.hood = hood;
+        if let Some(hood) = hood {
+            scratch.hood = hood;
+        }
     });
 }
 

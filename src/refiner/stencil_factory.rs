@@ -343,9 +343,12 @@ impl Refiner {
         cache: &mut Cache<T>,
         s: &mut Scratch<T>,
     ) {
-        let mut buf = std::mem::take(&mut s.hood);
+        // Derived relations go into the scratch's buffer, taken out while
+        // the terms are written into the scratch; stored ones are read in
+        // place.
+        let mut buf = None;
         let (faces, edges) = if around.derives() {
-            around.vertex_faces_and_edges(v, &mut buf)
+            around.vertex_faces_and_edges(v, buf.insert(std::mem::take(&mut s.hood)))
         } else {
             (parent.vertex_faces_of(v), parent.vertex_edges_of(v))
         };
@@ -365,7 +368,9 @@ impl Refiner {
             self.step(level)
                 .vertex_terms(Kind::Vertex, v, faces, edges, s);
         }
-        s.hood = buf;
+        if let Some(buf) = buf {
+            s.hood = buf;
+        }
     }
 }
 
