@@ -77,21 +77,22 @@ pub fn build_base(
     let mut unique: Vec<u32> = Vec::with_capacity(level.max_valence);
     let mut siblings: Vec<u16> = Vec::with_capacity(level.max_valence);
     let mut total = 0u32;
+    // The relations as slices, read through their tables once; the corner
+    // values straight from `indices` (what `face_values` copies).
+    let ls = level.slices();
     for v in 0..nv {
-        let faces = level.vertex_faces_of(v);
+        let faces = ls.vertex_faces_of(v);
         around.clear();
         around.extend(
             faces
                 .iter()
-                .zip(level.vertex_face_locals(v))
-                .map(|(&f, &k)| {
-                    fvar.face_values[level.face_vertices.start(f as usize) + k as usize]
-                }),
+                .zip(ls.vertex_face_locals(v))
+                .map(|(&f, &k)| indices[ls.face_vertices.start(f as usize) + k as usize]),
         );
-        let edges = level.vertex_edges_of(v);
-        let tag = level.vertex_tag(v);
+        let edges = ls.vertex_edges_of(v);
+        let tag = ls.vertex_tag(v);
         let split = |e: u32, edge_tags: &mut [FVarEdgeTag], mismatch: &mut [bool]| {
-            let [a, b] = level.edge_vertices[e as usize];
+            let [a, b] = ls.edge_vertices[e as usize];
             mismatch[a as usize] = true;
             mismatch[b as usize] = true;
             let t = &mut edge_tags[e as usize];
@@ -190,8 +191,7 @@ pub fn build_base(
         fvar.value_offsets.push(total);
         total += unique.len() as u32;
         if unique.len() > 1 {
-            fvar.face_siblings[level.vertex_faces.range(v)]
-                .copy_from_slice(&siblings[..faces.len()]);
+            fvar.face_siblings[ls.vertex_faces.range(v)].copy_from_slice(&siblings[..faces.len()]);
         }
     }
     fvar.value_offsets.push(total);
@@ -205,11 +205,10 @@ pub fn build_base(
     }
     let mut spans: Vec<Span> = Vec::with_capacity(level.max_valence);
     for (v, &mismatched) in mismatch.iter().enumerate() {
-        let faces = level.vertex_faces_of(v);
-        let corners = level.vertex_face_locals(v);
-        let corner_value = |i: usize| {
-            fvar.face_values[level.face_vertices.start(faces[i] as usize) + corners[i] as usize]
-        };
+        let faces = ls.vertex_faces_of(v);
+        let corners = ls.vertex_face_locals(v);
+        let corner_value =
+            |i: usize| indices[ls.face_vertices.start(faces[i] as usize) + corners[i] as usize];
         let o = fvar.value_offsets[v] as usize;
         let count = fvar.vertex_value_count(v);
         fvar.value_indices[o] = if faces.is_empty() { 0 } else { corner_value(0) };

@@ -304,8 +304,9 @@ impl ChannelLevel {
                 }
             }
             _ => {
-                for f in 0..level.face_count() {
-                    let range = level.face_vertices.range(f);
+                let faces = level.face_vertices.view();
+                for f in 0..faces.len() {
+                    let range = faces.range(f);
                     if off(&verts[range.clone()], &values[range]) {
                         out.push(f as u32);
                     }
