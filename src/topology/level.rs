@@ -317,7 +317,7 @@ fn is_default<T: Pod>(x: T) -> bool {
 /// Entry `i` of a sparse table (sharpness, tags), the default when the table
 /// is stored empty.
 #[inline(always)]
-fn sparse_at<T: Pod>(table: &[T], i: usize) -> T {
+pub(super) fn sparse_at<T: Pod>(table: &[T], i: usize) -> T {
     if table.is_empty() {
         T::zeroed()
     } else {

@@ -1,5 +1,6 @@
 //! A level's relations as plain slices ([`LevelSlices`]).
 
+use super::level::sparse_at;
 use super::{Level, RelationView, VertexTag};
 
 /// A level's relations as plain slices, read through their tables once
@@ -51,21 +52,13 @@ impl<'a> LevelSlices<'a> {
     /// The sharpness of edge `e`, as [`Level::edge_sharpness_at`].
     #[inline(always)]
     pub(crate) fn edge_sharpness_at(&self, e: usize) -> f32 {
-        if self.edge_sharpness.is_empty() {
-            0.0
-        } else {
-            self.edge_sharpness[e]
-        }
+        sparse_at(self.edge_sharpness, e)
     }
 
     /// The tags of vertex `v`, as [`Level::vertex_tag`].
     #[inline(always)]
     pub(crate) fn vertex_tag(&self, v: usize) -> VertexTag {
-        if self.vertex_tags.is_empty() {
-            VertexTag::default()
-        } else {
-            self.vertex_tags[v]
-        }
+        sparse_at(self.vertex_tags, v)
     }
 
     /// The edges of face `f`.
