@@ -493,8 +493,9 @@ fn selected_face_tables_match_opensubdiv() {
 
 /// The limit surface from native tables (native refinement, local points,
 /// `PatchMap` and basis) against OpenSubdiv's `EvaluateBasis` on its own
-/// tables: positions and first and second derivatives within 1e-12 of the
-/// mesh's size, at u, v ∈ {0, 0.3, 0.5, 1} on every ptex face.
+/// tables: positions alone, with first derivatives and with second
+/// derivatives, within 1e-12 of the mesh's size, at u, v ∈ {0, 0.3, 0.5, 1}
+/// on every ptex face.
 #[test]
 fn native_evaluation_matches_opensubdiv() {
     use subdiv::patches::{self, Derivatives};
@@ -536,38 +537,44 @@ fn native_evaluation_matches_opensubdiv() {
                         }
                     }
                 }
-                let a = patches::evaluate(&mine, &points, 3, &locations, Derivatives::Second);
-                let b = osds.evaluate(&theirs, 3, &base, &locations, Derivatives::Second);
-                let case = format!("{name} {scheme:?} {end_caps:?}");
-                let (a, b) = match (a, b) {
-                    (Ok(a), Ok(b)) => (a, b),
-                    // Holes: both refuse the same location.
-                    (Err(Error::NoPatchAt { .. }), Err(Error::NoPatchAt { .. })) => continue,
-                    (a, b) => panic!("{case}: native {a:?}, osd {b:?}"),
-                };
-                let size = mesh
-                    .positions
-                    .iter()
-                    .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
-                    .max(1.0);
-                for (what, x, y) in [
-                    ("point", &a.values.point, &b.values.point),
-                    ("du", &a.values.du, &b.values.du),
-                    ("dv", &a.values.dv, &b.values.dv),
-                    ("duu", &a.values.duu, &b.values.duu),
-                    ("duv", &a.values.duv, &b.values.duv),
-                    ("dvv", &a.values.dvv, &b.values.dvv),
-                ] {
-                    assert_eq!(x.len(), y.len(), "{case}: {what}");
-                    for (k, (p, q)) in x.iter().zip(y).enumerate() {
-                        assert!(
-                            (p - q).abs() <= 1e-12 * size,
-                            "{case}: {what} {k} of location {:?}: {p} against {q}",
-                            locations[k / 3]
-                        );
+                // Each set of derivatives: positions alone and with first
+                // derivatives take the native B-spline patches' curve sums,
+                // second derivatives their sixteen weights.
+                for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
+                    let a = patches::evaluate(&mine, &points, 3, &locations, derivatives);
+                    let b = osds.evaluate(&theirs, 3, &base, &locations, derivatives);
+                    let case = format!("{name} {scheme:?} {end_caps:?} {derivatives:?}");
+                    let (a, b) = match (a, b) {
+                        (Ok(a), Ok(b)) => (a, b),
+                        // Holes: both refuse the same location.
+                        (Err(Error::NoPatchAt { .. }), Err(Error::NoPatchAt { .. })) => continue,
+                        (a, b) => panic!("{case}: native {a:?}, osd {b:?}"),
+                    };
+                    let size = mesh
+                        .positions
+                        .iter()
+                        .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+                        .max(1.0);
+                    for (what, x, y) in [
+                        ("point", &a.values.point, &b.values.point),
+                        ("du", &a.values.du, &b.values.du),
+                        ("dv", &a.values.dv, &b.values.dv),
+                        ("duu", &a.values.duu, &b.values.duu),
+                        ("duv", &a.values.duv, &b.values.duv),
+                        ("dvv", &a.values.dvv, &b.values.dvv),
+                    ] {
+                        assert_eq!(x.len(), y.len(), "{case}: {what}");
+                        for (k, (p, q)) in x.iter().zip(y).enumerate() {
+                            assert!(
+                                (p - q).abs() <= 1e-12 * size,
+                                "{case}: {what} {k} of location {:?}: {p} against {q}",
+                                locations[k / 3]
+                            );
+                        }
                     }
+                    assert_eq!(a.values.point.len(), 3 * locations.len(), "{case}");
+                    compared += locations.len();
                 }
-                compared += locations.len();
             }
         }
     }

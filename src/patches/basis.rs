@@ -239,6 +239,71 @@ fn regular<R: Real>(s: R, t: R, boundary: u32, order: Order, out: &mut Tables<R>
     }
 }
 
+/// The crease edge and sharpness of a regular patch evaluated as the exact
+/// limit with sharpness `exact`: a single-crease patch (a positive
+/// sharpness) names its crease edge in its boundary mask. `None` for a
+/// patch evaluated as a plain B-spline patch.
+pub(crate) fn crease_of(param: PatchParam, exact: Option<f32>) -> Option<(u32, f64)> {
+    exact
+        .filter(|&sharpness| sharpness > 0.0 && param.boundary().count_ones() == 1)
+        .map(|sharpness| (param.boundary().trailing_zeros(), f64::from(sharpness)))
+}
+
+/// A bicubic B-spline patch's basis as its two curves, in `f64`: at
+/// (`u`, `v`) of its ptex face, the four functions in s and in t and their
+/// first derivatives, the phantom points of the boundary edges folded into
+/// each curve (a fold along a row acts on t alone, along a column on s
+/// alone, so the folded curves' products are [`regular`]'s folded
+/// weights), and the factor of the first derivatives (2^depth as
+/// OpenSubdiv scales them; with `exact`, the patch's share of the ptex
+/// face, as [`evaluate_basis_into`] scales them for the exact limit). For
+/// evaluating a patch as two passes of curve sums (each row of control
+/// points summed in s, the rows then in t): fewer products than the
+/// sixteen weights per table, the same surface to rounding. `u` and `v`
+/// must lie in [0, 1].
+pub(crate) fn regular_curves(
+    param: PatchParam,
+    u: f64,
+    v: f64,
+    exact: bool,
+) -> ([[f64; 4]; 2], [[f64; 4]; 2], f64) {
+    let depth = param.depth();
+    let scale = f64::from(1u32 << depth.saturating_sub(u32::from(param.non_quad_root())));
+    let (s, t) = (
+        u * scale - f64::from(param.u()),
+        v * scale - f64::from(param.v()),
+    );
+    let [bs0, bs1, _] = bspline(s);
+    let [bt0, bt1, _] = bspline(t);
+    let (mut bs, mut bt) = ([bs0, bs1], [bt0, bt1]);
+    // For each edge: the curve it folds (0 for s, 1 for t) and its
+    // phantom, near and far functions.
+    let folds: [(usize, [usize; 3]); 4] = [
+        (1, [0, 1, 2]),
+        (0, [3, 2, 1]),
+        (1, [3, 2, 1]),
+        (0, [0, 1, 2]),
+    ];
+    for (k, (curve, [phantom, near, far])) in folds.into_iter().enumerate() {
+        if param.boundary() & (1 << k) == 0 {
+            continue;
+        }
+        let curves = if curve == 0 { &mut bs } else { &mut bt };
+        for c in curves.iter_mut() {
+            let x = c[phantom];
+            c[far] -= x;
+            c[near] += x + x;
+            c[phantom] = 0.0;
+        }
+    }
+    let d1 = if exact {
+        scale
+    } else {
+        f64::from(1u32 << depth)
+    };
+    (bs, bt, d1)
+}
+
 /// A bilinear quad (corners counter-clockwise from `(0, 0)`).
 fn bilinear<R: Real>(s: R, t: R, out: &mut Tables<R>) {
     let (one, zero) = (R::ONE, R::ZERO);
@@ -540,11 +605,7 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
             cut(b4, len(4)),
             cut(b5, len(5)),
         ];
-        // A single-crease patch (a positive sharpness) names its crease
-        // edge in its boundary mask.
-        let crease = exact
-            .filter(|&sharpness| sharpness > 0.0 && param.boundary().count_ones() == 1)
-            .map(|sharpness| (param.boundary().trailing_zeros(), f64::from(sharpness)));
+        let crease = crease_of(param, exact);
         match patch_type {
             PatchType::Regular => match crease {
                 Some((edge, sharpness)) => in_f64(&mut tables, |tables| {

@@ -67,10 +67,7 @@ fn in_given_order(
     let width = evaluator.width;
     let each =
         |locations: &[(u32, f64, f64)], buf: &mut BasisBuffer, mut stretch: Vec<&mut [f64]>| {
-            for (i, &location) in locations.iter().enumerate() {
-                evaluator.at(location, i, buf, &mut stretch)?;
-            }
-            Ok(())
+            evaluate_run(evaluator, locations, buf, &mut stretch)
         };
     if rayon::current_num_threads() > 1 && locations.len() >= ORDERED_FROM {
         // Each task's stretch of every column.
@@ -98,6 +95,32 @@ fn in_given_order(
         &mut buf,
         columns.iter_mut().map(|c| &mut c[..]).collect(),
     )
+}
+
+/// Locations whose patches are found together before any is evaluated.
+const BATCH: usize = 8;
+
+/// Evaluates `locations` in order into values 0, 1, … of `columns`, the
+/// patches of a batch of [`BATCH`] found first, in a loop of their own:
+/// the map's nodes of neighbouring locations are then read side by side,
+/// not each after the previous location's evaluation. The first error is
+/// the first failing location's.
+fn evaluate_run(
+    evaluator: &Evaluator<'_>,
+    locations: &[(u32, f64, f64)],
+    buf: &mut BasisBuffer,
+    columns: &mut [&mut [f64]],
+) -> Result<()> {
+    for (b, batch) in locations.chunks(BATCH).enumerate() {
+        let mut handles = [None; BATCH];
+        for (handle, &location) in handles.iter_mut().zip(batch) {
+            *handle = evaluator.locate(location);
+        }
+        for (j, (&location, &handle)) in batch.iter().zip(&handles).enumerate() {
+            evaluator.at(location, handle, b * BATCH + j, buf, columns)?;
+        }
+    }
+    Ok(())
 }
 
 /// The indices of `locations` sorted by ptex face (a counting sort; in the
@@ -140,10 +163,7 @@ fn in_face_order(
             scratch
                 .locations
                 .extend(indices.iter().map(|&i| locations[i as usize]));
-            for (j, &location) in scratch.locations.iter().enumerate() {
-                evaluator.at(location, j, &mut scratch.buf, stretch)?;
-            }
-            Ok(())
+            evaluate_run(evaluator, &scratch.locations, &mut scratch.buf, stretch)
         };
     if rayon::current_num_threads() <= 1 {
         let mut scratch = Scratch::default();
