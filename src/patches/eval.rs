@@ -8,8 +8,8 @@
 //! curves instead (each row of control points along s, then the rows
 //! along t): with first derivatives 132 multiply-adds against the 192 of
 //! sixteen weights per table and their sums, and no weights written and
-//! read back; the same surface to rounding (within 1e-12 of OpenSubdiv's, as every
-//! evaluation; `tests/native_patches.rs`).
+//! read back; the same surface to rounding (within 1e-12 of OpenSubdiv's,
+//! as every evaluation is: `tests/native_patches.rs`).
 
 use super::basis::{BasisBuffer, crease_of, evaluate_basis_into, regular_curves};
 use super::exact::exact_sharpness;
