@@ -208,11 +208,73 @@ fn fold_phantoms<R: Real>(boundary: u32, w: &mut [R]) {
             continue;
         }
         for i in 0..4 {
-            let (p, n, f) = (phantom + i * step, near + i * step, far + i * step);
-            let x = w[p];
-            w[f] -= x;
-            w[n] += x + x;
-            w[p] = R::ZERO;
+            fold_phantom(w, [phantom, near, far].map(|j| j + i * step));
+        }
+    }
+}
+
+/// Folds the weight of one phantom point (`2 p - q`, `p` its near point and
+/// `q` the far one) into the points it is extrapolated from.
+#[inline(always)]
+fn fold_phantom<R: Real>(w: &mut [R], [phantom, near, far]: [usize; 3]) {
+    let x = w[phantom];
+    w[far] -= x;
+    w[near] += x + x;
+    w[phantom] = R::ZERO;
+}
+
+/// Where a location of a ptex face lies in a patch: its coordinates (`s`,
+/// `t`) in the patch's unit square, the patch's share of the ptex face as
+/// a power of two (`scale`) and whether the patch is a triangle rotated by
+/// 180° (its coordinates then reflected).
+struct PatchCoords<R> {
+    s: R,
+    t: R,
+    scale: R,
+    rotated: bool,
+}
+
+impl<R: Real> PatchCoords<R> {
+    /// (`u`, `v`) of the ptex face in the patch of `param`, a triangular
+    /// patch when `triangular`.
+    #[inline(always)]
+    fn of(param: PatchParam, u: R, v: R, triangular: bool) -> Self {
+        let depth = param.depth();
+        // (A non-quad root at depth 0 cannot come from OpenSubdiv; as the
+        // words are public, it is taken as depth 0 rather than
+        // underflowing.)
+        let scale = R::from_f64(f64::from(
+            1u32 << depth.saturating_sub(u32::from(param.non_quad_root())),
+        ));
+        let (pu, pv) = (
+            R::from_f64(f64::from(param.u())),
+            R::from_f64(f64::from(param.v())),
+        );
+        let rotated = triangular && param.u() + param.v() >= 1 << depth;
+        let (s, t) = if rotated {
+            let corner = R::from_f64(f64::from(1u32 << depth));
+            (corner - pu - u * scale, corner - pv - v * scale)
+        } else {
+            (u * scale - pu, v * scale - pv)
+        };
+        PatchCoords {
+            s,
+            t,
+            scale,
+            rotated,
+        }
+    }
+
+    /// The factor of first derivatives with respect to the ptex face:
+    /// 2^depth as OpenSubdiv scales them, the patch's share of the ptex face
+    /// for the exact limit (`exact`); negated on a rotated triangle.
+    #[inline(always)]
+    fn first_factor(&self, param: PatchParam, exact: bool) -> R {
+        let sign = if self.rotated { -R::ONE } else { R::ONE };
+        sign * if exact {
+            self.scale
+        } else {
+            R::from_f64(f64::from(1u32 << param.depth()))
         }
     }
 }
@@ -267,14 +329,9 @@ pub(crate) fn regular_curves(
     v: f64,
     exact: bool,
 ) -> ([[f64; 4]; 2], [[f64; 4]; 2], f64) {
-    let depth = param.depth();
-    let scale = f64::from(1u32 << depth.saturating_sub(u32::from(param.non_quad_root())));
-    let (s, t) = (
-        u * scale - f64::from(param.u()),
-        v * scale - f64::from(param.v()),
-    );
-    let [bs0, bs1, _] = bspline(s);
-    let [bt0, bt1, _] = bspline(t);
+    let at = PatchCoords::of(param, u, v, false);
+    let [bs0, bs1, _] = bspline(at.s);
+    let [bt0, bt1, _] = bspline(at.t);
     let (mut bs, mut bt) = ([bs0, bs1], [bt0, bt1]);
     // For each edge: the curve it folds (0 for s, 1 for t) and its
     // phantom, near and far functions.
@@ -284,24 +341,13 @@ pub(crate) fn regular_curves(
         (1, [3, 2, 1]),
         (0, [0, 1, 2]),
     ];
-    for (k, (curve, [phantom, near, far])) in folds.into_iter().enumerate() {
-        if param.boundary() & (1 << k) == 0 {
-            continue;
-        }
-        let curves = if curve == 0 { &mut bs } else { &mut bt };
-        for c in curves.iter_mut() {
-            let x = c[phantom];
-            c[far] -= x;
-            c[near] += x + x;
-            c[phantom] = 0.0;
+    for (k, (curve, phantom)) in folds.into_iter().enumerate() {
+        if param.boundary() & (1 << k) != 0 {
+            let curves = if curve == 0 { &mut bs } else { &mut bt };
+            curves.iter_mut().for_each(|c| fold_phantom(c, phantom));
         }
     }
-    let d1 = if exact {
-        scale
-    } else {
-        f64::from(1u32 << depth)
-    };
-    (bs, bt, d1)
+    (bs, bt, at.first_factor(param, exact))
 }
 
 /// A bilinear quad (corners counter-clockwise from `(0, 0)`).
@@ -564,24 +610,8 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
         patch_type,
         PatchType::Triangles | PatchType::Loop | PatchType::GregoryTriangle
     );
-    let depth = param.depth();
-    // The patch's share of the ptex face, as a power of two.
-    // (A non-quad root at depth 0 cannot come from OpenSubdiv; as the
-    // words are public, it is taken as depth 0 rather than underflowing.)
-    let scale = R::from_f64(f64::from(
-        1u32 << depth.saturating_sub(u32::from(param.non_quad_root())),
-    ));
-    let (pu, pv) = (
-        R::from_f64(f64::from(param.u())),
-        R::from_f64(f64::from(param.v())),
-    );
-    let rotated = triangular && param.u() + param.v() >= 1 << depth;
-    let (s, t) = if rotated {
-        let corner = R::from_f64(f64::from(1u32 << depth));
-        (corner - pu - u * scale, corner - pv - v * scale)
-    } else {
-        (u * scale - pu, v * scale - pv)
-    };
+    let at = PatchCoords::of(param, u, v, triangular);
+    let (s, t) = (at.s, at.t);
     let n = patch_type.control_vertices().min(20);
     let kinds = match derivatives {
         Derivatives::None => 1,
@@ -662,13 +692,8 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
     // sign as well (`derivSign * d1Scale * d1Scale`, d1Scale signed
     // already), negating them on rotated triangles: reproduced by default,
     // not in the exact limit.
-    let sign = if rotated { -R::ONE } else { R::ONE };
-    let d1 = sign
-        * if exact.is_some() {
-            scale
-        } else {
-            R::from_f64(f64::from(1u32 << depth))
-        };
+    let sign = if at.rotated { -R::ONE } else { R::ONE };
+    let d1 = at.first_factor(param, exact.is_some());
     let d2 = if exact.is_some() {
         d1 * d1
     } else {

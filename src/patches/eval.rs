@@ -448,7 +448,7 @@ impl Evaluator<'_> {
             && cvs.len() >= 16
         {
             let (bs, bt, d1) = regular_curves(param, u, v, exact.is_some());
-            let rows = regular_rows(points, &cvs[..16], &bs, rest.len())?;
+            let rows = regular_rows(points, &cvs[..16], &bs, !rest.is_empty())?;
             let sum = |c: &[f64; 4], rows: &[[f64; 3]; 4], factor: f64| {
                 let mut acc = [0.0f64; 3];
                 for (w, row) in c.iter().zip(rows) {
@@ -522,13 +522,14 @@ impl Evaluator<'_> {
 
 /// A bicubic B-spline patch's rows of control points (`cvs`, row by row
 /// from t = 0) summed along s: for each row, the sum weighted by the
-/// functions of `bs[0]`, and with `derivatives` (1) by those of `bs[1]`.
+/// functions of `bs[0]`, and when `first` (first derivatives asked for) by
+/// those of `bs[1]`.
 #[inline(always)]
 fn regular_rows(
     points: &[f64],
     cvs: &[u32],
     bs: &[[f64; 4]; 2],
-    derivatives: usize,
+    first: bool,
 ) -> Result<[[[f64; 3]; 4]; 2]> {
     let mut rows = [[[0.0f64; 3]; 4]; 2];
     for (r, row) in cvs.chunks_exact(4).enumerate() {
@@ -542,7 +543,7 @@ fn regular_rows(
             }
         }
         rows[0][r] = p;
-        if derivatives > 0 {
+        if first {
             rows[1][r] = d;
         }
     }
