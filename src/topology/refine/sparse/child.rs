@@ -17,6 +17,9 @@ pub(super) struct Filler {
     offsets: Vec<u32>,
     members: Vec<u32>,
     locals: Vec<u16>,
+    /// The largest element ended so far (kept as elements end, not found
+    /// by another pass over the offsets).
+    max: u32,
 }
 
 impl Filler {
@@ -30,6 +33,7 @@ impl Filler {
             offsets,
             members: Table::vec_for_push(members),
             locals: Table::vec_for_push(members),
+            max: 0,
         }
     }
 
@@ -77,10 +81,15 @@ impl Filler {
     /// Ends the current element.
     #[inline]
     pub(super) fn end(&mut self) {
+        let (start, end) = (
+            self.offsets.last().copied().unwrap_or(0),
+            self.members.len() as u32,
+        );
+        self.max = self.max.max(end - start);
         if self.offsets.len() == self.offsets.capacity() {
             Self::grow_offsets(&mut self.offsets);
         }
-        self.offsets.push(self.members.len() as u32);
+        self.offsets.push(end);
     }
 
     #[cold]
@@ -94,12 +103,7 @@ impl Filler {
 
     /// The relation, its local indices and its largest element.
     pub(super) fn finish(self) -> (Relation, Table<u16>, usize) {
-        let max = self
-            .offsets
-            .windows(2)
-            .map(|w| (w[1] - w[0]) as usize)
-            .max()
-            .unwrap_or(0);
+        let max = self.max as usize;
         (
             Relation::from_parts(self.offsets.into(), self.members.into()),
             self.locals.into(),

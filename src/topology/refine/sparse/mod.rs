@@ -231,16 +231,15 @@ const MARKED: u32 = 1;
 /// Numbers the marked entries of `marks` from `first` in order, the others
 /// [`INVALID`]; returns how many were marked.
 fn sequence(marks: &mut [u32], first: u32) -> usize {
-    let mut n = 0;
+    // Without a branch on the mark: marks follow the selection, which
+    // changes often enough along a level for a branch to mispredict.
+    let mut next = first;
     for m in marks.iter_mut() {
-        if *m != 0 {
-            *m = first + n as u32;
-            n += 1;
-        } else {
-            *m = INVALID;
-        }
+        let marked = *m != 0;
+        *m = if marked { next } else { INVALID };
+        next += marked as u32;
     }
-    n
+    (next - first) as usize
 }
 
 #[inline]
