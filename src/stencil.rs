@@ -9,23 +9,26 @@
 //! fused multiply-add).
 
 use crate::error::{Buffer, Error, Result, StencilFault};
+use crate::topology::Table;
 use glam::Vec4;
 
 mod options;
+mod rows;
 pub use options::{MAX_STENCIL_LEVEL, StencilInterpolation, StencilOptions};
+pub(crate) use rows::StencilRows;
 
 /// A stencil table in compressed-sparse-row form: row `i` is
 /// `sum(weights[k] * base[indices[k]])` for `k` in `offsets[i]..offsets[i] + sizes[i]`.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct StencilTable {
     /// Number of weights of each stencil.
-    pub sizes: Vec<u32>,
+    pub sizes: Table<u32>,
     /// Start of each stencil in `indices` and `weights`.
-    pub offsets: Vec<u32>,
+    pub offsets: Table<u32>,
     /// Base-vertex index of each weight.
-    pub indices: Vec<u32>,
+    pub indices: Table<u32>,
     /// The weights.
-    pub weights: Vec<f64>,
+    pub weights: Table<f64>,
 }
 
 impl StencilTable {
@@ -782,10 +785,10 @@ mod tests {
     #[test]
     fn apply_weights() {
         let t = StencilTable {
-            sizes: vec![2, 1],
-            offsets: vec![0, 2],
-            indices: vec![0, 1, 1],
-            weights: vec![0.25, 0.75, 1.0],
+            sizes: vec![2, 1].into(),
+            offsets: vec![0, 2].into(),
+            indices: vec![0, 1, 1].into(),
+            weights: vec![0.25, 0.75, 1.0].into(),
         };
         let out = t.apply(2, &[0.0, 4.0, 8.0, 0.0]).unwrap();
         assert_eq!(out, vec![6.0, 1.0, 8.0, 0.0]);

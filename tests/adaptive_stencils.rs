@@ -335,13 +335,13 @@ fn applied_tables_equal_levels() {
                 steps.offsets[row + n - 1] as usize + steps.sizes[row + n - 1] as usize,
             );
             let part = StencilTable {
-                sizes: steps.sizes[row..row + n].to_vec(),
+                sizes: steps.sizes[row..row + n].to_vec().into(),
                 offsets: steps.offsets[row..row + n]
                     .iter()
                     .map(|&o| o - a as u32)
                     .collect(),
-                indices: steps.indices[a..b].to_vec(),
-                weights: steps.weights[a..b].to_vec(),
+                indices: steps.indices[a..b].to_vec().into(),
+                weights: steps.weights[a..b].to_vec().into(),
             };
             close(
                 &format!("{name} level {l}"),

@@ -89,7 +89,7 @@ fn csr(py: Python<'_>, t: StencilTable, columns: usize) -> Csr<'_> {
     }
     let (indices, weights) =
         if contiguous && t.indices.len() == *indptr.last().unwrap_or(&0) as usize {
-            (t.indices, t.weights)
+            (t.indices.into_vec(), t.weights.into_vec())
         } else {
             let mut indices = Vec::with_capacity(t.indices.len());
             let mut weights = Vec::with_capacity(t.weights.len());

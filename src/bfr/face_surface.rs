@@ -37,7 +37,7 @@ use crate::patches::{Derivatives, EndCapType, PatchMap, PatchOptions, PatchTable
 use crate::refiner::adaptive::{Features, Tag, base_features};
 use crate::refiner::{AdaptiveRefiner, Refiner};
 use crate::rules::Rule;
-use crate::stencil::StencilTable;
+use crate::stencil::{StencilRows, StencilTable};
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 use rustc_hash::FxHashMap;
@@ -837,7 +837,7 @@ impl SurfaceFactory {
 /// The stencils of `stencils` (over points whose own stencils over `base`
 /// control points are `points`) over the control points themselves.
 fn over_base(stencils: &StencilTable, points: &StencilTable, base: usize) -> Result<StencilTable> {
-    let mut out = StencilTable::default();
+    let mut out = StencilRows::with_capacity(stencils.len(), stencils.indices.len());
     let mut dense = vec![0.0; base];
     for s in 0..stencils.len() {
         let (indices, weights) = stencils.row(s);
@@ -857,17 +857,16 @@ fn over_base(stencils: &StencilTable, points: &StencilTable, base: usize) -> Res
                 *d += w * x;
             }
         }
-        out.offsets.push(out.indices.len() as u32);
+        out.begin_row();
         for (j, x) in dense.iter_mut().enumerate() {
             if *x != 0.0 {
-                out.indices.push(j as u32);
-                out.weights.push(*x);
+                out.term(j as u32, *x);
                 *x = 0.0;
             }
         }
-        out.sizes.push(out.indices.len() as u32 - out.offsets[s]);
+        out.end_row();
     }
-    Ok(out)
+    Ok(out.finish())
 }
 
 /// Where each local point of `table` (an end-capped table of the patches

@@ -9,6 +9,7 @@ use crate::alloc::try_vec;
 use crate::error::{Buffer, Error, Result};
 use crate::patches::{LimitStencilOptions, LocationStencils, Partials};
 use crate::stencil::{LimitStencilTable, StencilOptions, StencilTable};
+use crate::topology::Table;
 use std::ptr::NonNull;
 
 impl TopologyRefiner {
@@ -95,10 +96,10 @@ impl TopologyRefiner {
                 all.indices.len()
             };
             StencilTable {
-                sizes: all.sizes[rows.clone()].to_vec(),
+                sizes: Table::from_slice(&all.sizes[rows.clone()]),
                 offsets: all.offsets[rows].iter().map(|o| o - start as u32).collect(),
-                indices: all.indices[start..end].to_vec(),
-                weights: all.weights[start..end].to_vec(),
+                indices: Table::from_slice(&all.indices[start..end]),
+                weights: Table::from_slice(&all.weights[start..end]),
             }
         };
         Ok(LimitStencilTable {
@@ -241,7 +242,7 @@ impl Owned {
             sizes: sizes.into_iter().map(|v| v as u32).collect(),
             offsets: offsets.into_iter().map(|v| v as u32).collect(),
             indices: indices.into_iter().map(|v| v as u32).collect(),
-            weights,
+            weights: weights.into(),
         })
     }
 
@@ -363,11 +364,11 @@ impl TopologyRefiner {
         Ok(LocationStencils {
             control_vertices: controls.max(0) as usize,
             locations: (0..n).filter(|&i| found[i] != 0).collect(),
-            sizes: table.sizes,
-            offsets: table.offsets,
-            indices: table.indices,
+            sizes: table.sizes.into_vec(),
+            offsets: table.offsets.into_vec(),
+            indices: table.indices.into_vec(),
             weights: Partials {
-                point: table.weights,
+                point: table.weights.into_vec(),
                 du: du?,
                 dv: dv?,
                 duu: duu?,

@@ -151,9 +151,9 @@ impl Rows<f64> {
         self.offsets.pop();
         StencilTable {
             sizes,
-            offsets: self.offsets,
-            indices: self.indices,
-            weights: self.weights,
+            offsets: self.offsets.into(),
+            indices: self.indices.into(),
+            weights: self.weights.into(),
         }
     }
 }

@@ -26,6 +26,7 @@
 //! | `relation.rs` | [`Relation`]: a relation's members and offsets | (part of `Vtr::Level`) |
 //! | `tags.rs` | [`EdgeTag`], [`VertexTag`] | `Level::ETag`, `Level::VTag` |
 //! | `table.rs` | [`Table`]: the flat tables, on recycled huge pages when large | — |
+//! | `growing.rs` | a table filled by appending, for outputs whose length is found as they are built | — |
 //! | `base.rs` | [`build_base_level`]: the base level from face-vertex lists | `far/topologyRefinerFactory.cpp`, `vtr/level.cpp` |
 //! | `manifold.rs` | the base level of a mesh whose edges are all manifold, from each vertex's corners (no edge search) | `vtr/level.cpp` (`completeTopologyFromFaceVertices`, `orientIncidentComponents`) |
 //! | `lookup.rs` | the base level's lookups (an edge by its ends, a vertex's corner in a face), mapped past 32 edges or corners | `vtr/level.cpp` (`findEdge`) |
@@ -37,6 +38,7 @@
 mod around;
 mod base;
 pub mod fvar;
+mod growing;
 mod level;
 mod lookup;
 mod manifold;
@@ -51,6 +53,7 @@ mod tests;
 
 pub(crate) use around::{Around, AroundBuf, EdgeFaces, Hood};
 pub use base::build_base_level;
+pub(crate) use growing::Growing;
 pub use level::{Level, unpaired_smooth_vertex};
 pub use refine::{Build, Split, refine_level};
 pub(crate) use relation::RelationView;

@@ -235,6 +235,28 @@ impl<T: Pod + Send> Table<T> {
         matches!(self.repr, Repr::Map { .. })
     }
 
+    /// Shortens the table to its first `len` values (nothing when it is
+    /// no longer). A map keeps its memory (the pool takes it back whole).
+    pub(crate) fn truncate(&mut self, len: usize) {
+        match &mut self.repr {
+            Repr::Vec(v) => v.truncate(len),
+            Repr::Map { len: l, .. } => *l = (*l).min(len),
+        }
+    }
+
+    /// The values as a vector: the table's own vector, or a copy of a map
+    /// (which goes back to the pool).
+    pub fn into_vec(mut self) -> Vec<T> {
+        match std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())) {
+            Repr::Vec(v) => v,
+            Repr::Map { map, len } => {
+                let v = bytemuck::cast_slice(&map[..len * size_of::<T>()]).to_vec();
+                table_pool::give_map(map);
+                v
+            }
+        }
+    }
+
     /// Drops the table and hands its memory back to the system at once (a
     /// map is unmapped, not kept by the pool): for a buffer no table of the
     /// same run is likely to reuse, such as the text of an input file.

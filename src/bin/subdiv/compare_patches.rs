@@ -371,10 +371,10 @@ mod tests {
                 varying_vertices: Vec::new(),
             }],
             local_point_stencils: subdiv::StencilTable {
-                sizes: vec![1],
-                offsets: vec![0],
-                indices: vec![3],
-                weights: vec![1.0],
+                sizes: vec![1].into(),
+                offsets: vec![0].into(),
+                indices: vec![3].into(),
+                weights: vec![1.0].into(),
             },
             ..PatchTable::default()
         };

@@ -12,7 +12,7 @@ use super::Builder;
 use super::matrix::Matrix;
 use crate::patches::PatchType;
 use crate::real::Real;
-use crate::stencil::StencilTable;
+use crate::stencil::{StencilRows, StencilTable};
 use crate::topology::Level;
 use crate::topology::fvar::ChannelLevel;
 
@@ -54,45 +54,28 @@ fn varying_corners(patch_type: PatchType) -> &'static [usize] {
 }
 
 /// Stencils computed in the precision of the patch table's options, kept
-/// as the table holds them (weights widened to `f64` as they are pushed,
-/// offsets with them).
-#[derive(Debug, Default)]
-struct Stencils {
-    sizes: Vec<u32>,
-    offsets: Vec<u32>,
-    indices: Vec<u32>,
-    weights: Vec<f64>,
-}
+/// as the table holds them (weights widened to `f64` as they are pushed),
+/// built into tables ([`StencilRows`]): tens of megabytes on a large mesh,
+/// on huge pages rather than faulted in 4 KiB at a time.
+struct Stencils(StencilRows);
 
 impl Stencils {
-    /// One stencil: `columns` mapped to points by `point`, with `weights`
-    /// (as many), each written in a loop of its own (the lengths known:
-    /// no check per entry).
-    fn push<R: Real>(&mut self, columns: &[usize], weights: &[R], point: impl Fn(usize) -> u32) {
-        let before = self.indices.len();
-        self.indices.extend(columns.iter().map(|&c| point(c)));
-        self.weights.extend(weights.iter().map(|w| w.to_f64()));
-        self.offsets.push(before as u32);
-        self.sizes.push((self.indices.len() - before) as u32);
+    /// Room for `stencils` stencils of `entries` entries in all (an
+    /// estimate: pages reserved and never written cost nothing; more can
+    /// be pushed).
+    fn with_capacity(stencils: usize, entries: usize) -> Self {
+        Stencils(StencilRows::with_capacity(stencils, entries))
     }
 
-    /// Room for `stencils` stencils of `entries` entries in all (an
-    /// estimate: pages reserved and never written cost nothing). Only a
-    /// hint: what cannot be reserved is left to grow as it is pushed.
-    fn reserve(&mut self, stencils: usize, entries: usize) {
-        let _ = self.sizes.try_reserve(stencils);
-        let _ = self.offsets.try_reserve(stencils);
-        let _ = self.indices.try_reserve(entries);
-        let _ = self.weights.try_reserve(entries);
+    /// One stencil: `columns` mapped to points by `point`, with `weights`
+    /// (as many).
+    #[inline]
+    fn push<R: Real>(&mut self, columns: &[usize], weights: &[R], point: impl Fn(usize) -> u32) {
+        self.0.push_mapped(columns, point, weights, |w| w.to_f64());
     }
 
     fn finish(self) -> StencilTable {
-        StencilTable {
-            sizes: self.sizes,
-            offsets: self.offsets,
-            indices: self.indices,
-            weights: self.weights,
-        }
+        self.0.finish()
     }
 }
 
@@ -118,8 +101,8 @@ impl<R: Real> LocalPoints<R> {
             count: 0,
             share,
             reuse_sources,
-            stencils: Stencils::default(),
-            varying: varying.then(Stencils::default),
+            stencils: Stencils::with_capacity(0, 0),
+            varying: varying.then(|| Stencils::with_capacity(0, 0)),
             shared_corners: vec![Vec::new(); levels],
             shared_edges: vec![Vec::new(); levels],
             real: std::marker::PhantomData,
@@ -128,10 +111,14 @@ impl<R: Real> LocalPoints<R> {
 
     /// Room for about `patches` end caps of `rows` points with `entries`
     /// stencil entries each.
+    /// Asked before any point is appended (later, it does nothing).
     pub fn reserve(&mut self, patches: usize, rows: usize, entries: usize) {
-        self.stencils.reserve(patches * rows, patches * entries);
+        if self.count > 0 {
+            return;
+        }
+        self.stencils = Stencils::with_capacity(patches * rows, patches * entries);
         if let Some(v) = &mut self.varying {
-            v.reserve(patches * rows, patches * rows);
+            *v = Stencils::with_capacity(patches * rows, patches * rows);
         }
     }
 

@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 use crate::real::Real;
 use crate::refiner::fvar_interp::fvar_terms;
 use crate::refiner::{Emit, Kind, Refiner, Source};
-use crate::stencil::{StencilInterpolation, StencilOptions, StencilTable};
+use crate::stencil::{StencilInterpolation, StencilOptions, StencilRows, StencilTable};
 
 /// Marks a coarse vertex without an entry in the row being built.
 const ABSENT: u32 = u32::MAX;
@@ -255,9 +255,8 @@ fn build<T: Real>(
     };
     let control = options.generate_control_vertices;
     let factorize = options.factorize_intermediate_levels;
-    let mut table = StencilTable::default();
     if last == 0 && !control {
-        return Ok(table);
+        return Ok(StencilTable::default());
     }
     let widest = (0..last)
         .map(|l| refinement.vertex_count(l))
@@ -272,13 +271,13 @@ fn build<T: Real>(
         let rows = level_rows(refinement, kind, level, prev, &mut merger)?;
         levels.push(rows);
     }
-    // Weights widened to the table's f64 (exactly).
-    let mut push = |idx: &[u32], w: &[T]| {
-        table.offsets.push(table.indices.len() as u32);
-        table.sizes.push(idx.len() as u32);
-        table.indices.extend_from_slice(idx);
-        table.weights.extend(w.iter().map(|x| x.to_f64()));
-    };
+    // Room for the rows asked for; weights widened to the table's f64
+    // (exactly).
+    let (rows, terms) = levels
+        .iter()
+        .fold((base, base), |(r, t), l| (r + l.len(), t + l.indices.len()));
+    let mut table = StencilRows::with_capacity(rows, terms);
+    let mut push = |idx: &[u32], w: &[T]| table.push_mapped(idx, |i| i, w, |x| x.to_f64());
     // OpenSubdiv's numbering: base rows, then each level's. Control rows
     // come first when asked for; then the rows from `first` on.
     let identity = !factorize && !options.generate_intermediate_levels;
@@ -298,14 +297,14 @@ fn build<T: Real>(
             push(i, w);
         }
     }
-    if u32::try_from(table.indices.len()).is_err() {
+    if u32::try_from(table.terms()).is_err() {
         return Err(Error::TooLarge {
             what: "stencil terms",
-            count: table.indices.len(),
+            count: table.terms(),
             bits: 32,
         });
     }
-    Ok(table)
+    Ok(table.finish())
 }
 
 impl AdaptiveRefiner {
