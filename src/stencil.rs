@@ -9,7 +9,7 @@
 //! fused multiply-add).
 
 use crate::error::{Buffer, Error, Result, StencilFault};
-use crate::topology::Table;
+use crate::topology::{Growing, Table};
 use glam::Vec4;
 
 mod options;
@@ -47,9 +47,19 @@ impl StencilTable {
     /// # Panics
     /// If `i >= len()`.
     pub fn row(&self, i: usize) -> (&[u32], &[f64]) {
-        let a = self.offsets[i] as usize;
-        let b = a + self.sizes[i] as usize;
-        (&self.indices[a..b], &self.weights[a..b])
+        self.slices().row(i)
+    }
+
+    /// The arrays as slices, read through their tables once (for loops
+    /// over the rows).
+    #[inline]
+    fn slices(&self) -> Slices<'_> {
+        Slices {
+            sizes: &self.sizes,
+            offsets: &self.offsets,
+            indices: &self.indices,
+            weights: &self.weights,
+        }
     }
 
     /// Applies the table to base data of `width` components per vertex, in
@@ -104,7 +114,8 @@ impl StencilTable {
             });
         }
         self.check_rows()?;
-        apply_rows(width, base, out, self.indices.len(), |r| self.row(r));
+        let t = self.slices();
+        apply_rows(width, base, out, t.indices.len(), |r| t.row(r));
         Ok(())
     }
 
@@ -138,12 +149,27 @@ impl StencilTable {
                 bits: 32,
             });
         }
-        let mut t = StencilTableF32::with_capacity(self.len(), self.indices.len());
+        let rows = self.slices();
+        let mut offsets = Growing::<u32>::with_capacity(self.len() + 1);
+        let mut indices = Growing::<u32>::with_capacity(rows.indices.len());
+        let mut weights = Growing::<f32>::with_capacity(rows.indices.len());
+        let mut base_count = 0;
+        offsets.push(0);
         for i in 0..self.len() {
-            let (idx, w) = self.row(i);
-            t.push_row(idx, w.iter().map(|&w| w as f32));
+            let (idx, w) = rows.row(i);
+            indices.extend_from_slice(idx);
+            weights.extend_mapped(w, |w| w as f32);
+            offsets.push(indices.len() as u32);
+            if let Some(&m) = idx.iter().max() {
+                base_count = base_count.max(m as usize + 1);
+            }
         }
-        Ok(t)
+        Ok(StencilTableF32::from_checked_parts(
+            offsets.finish(),
+            indices.finish(),
+            weights.finish(),
+            base_count,
+        ))
     }
 
     /// Checks that every row lies inside `indices` and `weights`.
@@ -155,8 +181,9 @@ impl StencilTable {
             }));
         }
         let terms = self.indices.len().min(self.weights.len());
+        let (offsets, sizes): (&[u32], &[u32]) = (&self.offsets, &self.sizes);
         if let Some(row) =
-            (0..self.len()).find(|&i| self.offsets[i] as usize + self.sizes[i] as usize > terms)
+            (0..self.len()).find(|&i| offsets[i] as usize + sizes[i] as usize > terms)
         {
             return Err(Error::MalformedStencils(StencilFault::RowOutOfRange {
                 row,
@@ -193,7 +220,7 @@ impl StencilTable {
         base: &[f64],
         out: &mut [f64],
     ) {
-        fn rows<const W: usize>(t: &StencilTable, first: usize, base: &[f64], out: &mut [f64]) {
+        fn rows<const W: usize>(t: Slices<'_>, first: usize, base: &[f64], out: &mut [f64]) {
             for (i, dst) in out.chunks_exact_mut(W).enumerate() {
                 let (idx, w) = t.row(first + i);
                 let mut acc = [0.0f64; W];
@@ -206,14 +233,15 @@ impl StencilTable {
                 dst.copy_from_slice(&acc);
             }
         }
+        let t = self.slices();
         match width {
-            1 => rows::<1>(self, first, base, out),
-            2 => rows::<2>(self, first, base, out),
-            3 => rows::<3>(self, first, base, out),
-            4 => rows::<4>(self, first, base, out),
+            1 => rows::<1>(t, first, base, out),
+            2 => rows::<2>(t, first, base, out),
+            3 => rows::<3>(t, first, base, out),
+            4 => rows::<4>(t, first, base, out),
             _ => {
                 for (i, dst) in out.chunks_exact_mut(width).enumerate() {
-                    let (idx, w) = self.row(first + i);
+                    let (idx, w) = t.row(first + i);
                     dst.fill(0.0);
                     for (&v, &w) in idx.iter().zip(w) {
                         let v = v as usize * width;
@@ -232,6 +260,25 @@ impl StencilTable {
         let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
         self.apply_rows_into(0, width, base, &mut out);
         Ok(out)
+    }
+}
+
+/// A [`StencilTable`]'s arrays as slices.
+#[derive(Clone, Copy)]
+struct Slices<'a> {
+    sizes: &'a [u32],
+    offsets: &'a [u32],
+    indices: &'a [u32],
+    weights: &'a [f64],
+}
+
+impl<'a> Slices<'a> {
+    /// The indices and weights of stencil `i`.
+    #[inline]
+    fn row(&self, i: usize) -> (&'a [u32], &'a [f64]) {
+        let a = self.offsets[i] as usize;
+        let b = a + self.sizes[i] as usize;
+        (&self.indices[a..b], &self.weights[a..b])
     }
 }
 
@@ -267,9 +314,9 @@ impl StencilTable {
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct StencilTableF32 {
-    offsets: Vec<u32>,
-    indices: Vec<u32>,
-    weights: Vec<f32>,
+    offsets: Table<u32>,
+    indices: Table<u32>,
+    weights: Table<f32>,
     /// One more than the largest index (0 without terms).
     base_count: usize,
 }
@@ -277,9 +324,9 @@ pub struct StencilTableF32 {
 impl Default for StencilTableF32 {
     fn default() -> Self {
         StencilTableF32 {
-            offsets: vec![0],
-            indices: Vec::new(),
-            weights: Vec::new(),
+            offsets: vec![0].into(),
+            indices: Table::new(),
+            weights: Table::new(),
             base_count: 0,
         }
     }
@@ -290,9 +337,9 @@ impl StencilTableF32 {
     /// to `indices.len()`, non-decreasing; `base_count` one more than the
     /// largest index): as [`StencilTableF32::from_parts`] without the checks.
     pub(crate) fn from_checked_parts(
-        offsets: Vec<u32>,
-        indices: Vec<u32>,
-        weights: Vec<f32>,
+        offsets: Table<u32>,
+        indices: Table<u32>,
+        weights: Table<f32>,
         base_count: usize,
     ) -> Self {
         debug_assert_eq!(indices.len(), weights.len());
@@ -308,36 +355,6 @@ impl StencilTableF32 {
             indices,
             weights,
             base_count,
-        }
-    }
-
-    pub(crate) fn with_capacity(rows: usize, terms: usize) -> Self {
-        let mut offsets = Vec::with_capacity(rows + 1);
-        offsets.push(0);
-        StencilTableF32 {
-            offsets,
-            indices: Vec::with_capacity(terms),
-            weights: Vec::with_capacity(terms),
-            base_count: 0,
-        }
-    }
-
-    /// Appends a row.
-    ///
-    /// # Panics
-    /// If the table would have more than `u32::MAX` terms.
-    pub(crate) fn push_row(&mut self, indices: &[u32], weights: impl IntoIterator<Item = f32>) {
-        self.indices.extend_from_slice(indices);
-        self.weights.extend(weights);
-        assert_eq!(
-            self.indices.len(),
-            self.weights.len(),
-            "one weight per index"
-        );
-        let end = u32::try_from(self.indices.len()).expect("at most u32::MAX stencil terms");
-        self.offsets.push(end);
-        if let Some(&m) = indices.iter().max() {
-            self.base_count = self.base_count.max(m as usize + 1);
         }
     }
 
@@ -373,9 +390,9 @@ impl StencilTableF32 {
         }
         let base_count = indices.iter().max().map_or(0, |&m| m as usize + 1);
         Ok(StencilTableF32 {
-            offsets,
-            indices,
-            weights,
+            offsets: offsets.into(),
+            indices: indices.into(),
+            weights: weights.into(),
             base_count,
         })
     }
@@ -422,8 +439,7 @@ impl StencilTableF32 {
     /// # Panics
     /// If `i >= len()`.
     pub fn row(&self, i: usize) -> (&[u32], &[f32]) {
-        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-        (&self.indices[a..b], &self.weights[a..b])
+        row_of(&self.offsets, &self.indices, &self.weights, i)
     }
 
     /// Applies the table to `base`, `width` values per vertex (at least
@@ -626,6 +642,7 @@ const SERIAL_TERMS: usize = 1 << 16;
 /// Applies a [`StencilTableF32`] (buffers checked by the caller).
 fn apply_f32(t: &StencilTableF32, width: usize, base: &[f32], out: &mut [f32]) {
     let terms = t.term_count();
+    let (offsets, indices, weights) = (t.offsets(), t.indices(), t.weights());
     match width {
         1 => in_blocks(out, 1, terms, |first, chunk| {
             block::<1, f32>(t, first, base, chunk)
@@ -643,12 +660,29 @@ fn apply_f32(t: &StencilTableF32, width: usize, base: &[f32], out: &mut [f32]) {
             })
         }
         // Few terms over a large base: read it as it is.
-        3 => apply_rows(3, base, out, terms, |r| t.row(r)),
+        3 => apply_rows(3, base, out, terms, |r| {
+            row_of(offsets, indices, weights, r)
+        }),
         4 => in_blocks(out, 4, terms, |first, chunk| {
             block::<4, Vec4>(t, first, base, chunk)
         }),
-        _ => apply_rows(width, base, out, terms, |r| t.row(r)),
+        _ => apply_rows(width, base, out, terms, |r| {
+            row_of(offsets, indices, weights, r)
+        }),
     }
+}
+
+/// Row `i` of a table of rows one after the other (`offsets` with one more
+/// entry than rows).
+#[inline]
+fn row_of<'a>(
+    offsets: &[u32],
+    indices: &'a [u32],
+    weights: &'a [f32],
+    i: usize,
+) -> (&'a [u32], &'a [f32]) {
+    let (a, b) = (offsets[i] as usize, offsets[i + 1] as usize);
+    (&indices[a..b], &weights[a..b])
 }
 
 /// Applies the rows `row(r)` gives (any layout, weights of any [`Weight`]

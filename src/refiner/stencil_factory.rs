@@ -8,37 +8,35 @@ use crate::error::{Buffer, Error, Result};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
-use crate::topology::{Around, LevelSlices};
+use crate::topology::{Around, Growing, LevelSlices, Table};
 
 /// Marks a base vertex without a term in the row being built.
 const ABSENT: u32 = u32::MAX;
 
 /// Stencil rows in vertex order: row `v` is `offsets[v]..offsets[v + 1]` of
-/// `indices` (base vertices) and `weights`.
-struct Rows<T> {
-    offsets: Vec<u32>,
-    indices: Vec<u32>,
-    weights: Vec<T>,
+/// `indices` (base vertices) and `weights`, appended into tables
+/// ([`Growing`]): a level's rows are tens to hundreds of megabytes, on huge
+/// pages and recycled by the pool rather than faulted in anew.
+struct Rows<T: Real> {
+    offsets: Growing<u32>,
+    indices: Growing<u32>,
+    weights: Growing<T>,
     /// One more than the largest index (0 without terms).
     base_count: usize,
 }
 
-impl<T: Real> Rows<T> {
-    fn with_rows(rows: usize) -> Self {
-        let mut offsets = Vec::new();
-        if offsets.try_reserve_exact(rows + 1).is_err() {
-            crate::alloc::fail((rows + 1) * size_of::<u32>());
-        }
-        offsets.push(0);
-        Rows {
-            offsets,
-            indices: Vec::new(),
-            weights: Vec::new(),
-            base_count: 0,
-        }
-    }
+/// [`Rows`] as slices, read through their tables once (for the loops that
+/// merge rows).
+#[derive(Clone, Copy)]
+struct RowsView<'a, T> {
+    offsets: &'a [u32],
+    indices: &'a [u32],
+    weights: &'a [T],
+}
 
-    fn get(&self, v: u32) -> (&[u32], &[T]) {
+impl<'a, T> RowsView<'a, T> {
+    #[inline]
+    fn get(&self, v: u32) -> (&'a [u32], &'a [T]) {
         let (a, b) = (
             self.offsets[v as usize] as usize,
             self.offsets[v as usize + 1] as usize,
@@ -46,58 +44,72 @@ impl<T: Real> Rows<T> {
         (&self.indices[a..b], &self.weights[a..b])
     }
 
+    /// Average terms per row (1 without rows).
+    fn average(&self) -> f64 {
+        match self.offsets.len().saturating_sub(1) {
+            0 => 1.0,
+            n => self.indices.len() as f64 / n as f64,
+        }
+    }
+}
+
+impl<T: Real> Rows<T> {
+    fn with_rows(rows: usize) -> Self {
+        let mut offsets = Growing::with_capacity(rows + 1);
+        offsets.push(0);
+        Rows {
+            offsets,
+            indices: Growing::with_capacity(0),
+            weights: Growing::with_capacity(0),
+            base_count: 0,
+        }
+    }
+
+    #[inline]
+    fn view(&self) -> RowsView<'_, T> {
+        RowsView {
+            offsets: self.offsets.as_slice(),
+            indices: self.indices.as_slice(),
+            weights: self.weights.as_slice(),
+        }
+    }
+
     /// Number of rows.
     fn len(&self) -> usize {
         self.offsets.len() - 1
     }
 
-    /// Room for `terms` more terms, or unwinds to [`crate::alloc::guard`]
-    /// (also when the table would outgrow its `u32` offsets).
+    /// Unwinds to [`crate::alloc::guard`] when `terms` more terms would
+    /// outgrow the table's `u32` offsets (the arrays grow as they are
+    /// appended to, unwinding likewise when memory runs out).
+    #[inline]
     fn reserve(&mut self, terms: usize) {
         let total = self.indices.len() + terms;
-        if u32::try_from(total).is_err()
-            || self.indices.try_reserve(terms).is_err()
-            || self.weights.try_reserve(terms).is_err()
-        {
+        if u32::try_from(total).is_err() {
             crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
-        }
-    }
-
-    /// Average terms per row (1 without rows).
-    fn average(&self) -> f64 {
-        match self.len() {
-            0 => 1.0,
-            n => self.indices.len() as f64 / n as f64,
         }
     }
 
     /// Room for about `terms` terms, asked for once rather than found by
     /// doubling the arrays (each doubling copies them): an estimate, as
-    /// pages reserved and never written cost nothing. Only a hint: what
-    /// cannot be had is left to grow as rows are appended.
+    /// pages reserved and never written cost nothing.
     fn expect(&mut self, terms: f64) {
         let terms = terms.min(u32::MAX as f64) as usize;
-        let more = terms.saturating_sub(self.indices.len());
-        let _ = self.indices.try_reserve_exact(more);
-        let _ = self.weights.try_reserve_exact(more);
+        self.indices.reserve_total(terms);
+        self.weights.reserve_total(terms);
     }
 
     /// Appends the rows of `other`.
     fn append(&mut self, other: &Rows<T>) {
         self.reserve(other.indices.len());
-        if self.offsets.try_reserve(other.len()).is_err() {
-            crate::alloc::fail(other.len() * size_of::<u32>());
-        }
         let shift = self.indices.len() as u32;
         self.offsets
-            .extend(other.offsets[1..].iter().map(|&o| o + shift));
-        self.indices.extend_from_slice(&other.indices);
-        self.weights.extend_from_slice(&other.weights);
+            .extend_mapped(&other.offsets.as_slice()[1..], |o| o + shift);
+        self.indices.extend_from_slice(other.indices.as_slice());
+        self.weights.extend_from_slice(other.weights.as_slice());
         self.base_count = self.base_count.max(other.base_count);
     }
-}
 
-impl<T: Real> Rows<T> {
     /// The rows of `parts` one after the other, copied in parallel.
     fn concat<R: std::borrow::Borrow<Rows<T>> + Sync>(parts: &[R]) -> Rows<T> {
         use rayon::prelude::*;
@@ -106,30 +118,20 @@ impl<T: Real> Rows<T> {
         if u32::try_from(terms).is_err() {
             crate::alloc::fail(terms.saturating_mul(size_of::<u32>() + size_of::<T>()));
         }
-        let mut out = Rows {
-            offsets: crate::alloc::vec_or_unwind(0u32, rows + 1),
-            indices: crate::alloc::vec_or_unwind(0u32, terms),
-            weights: crate::alloc::vec_or_unwind(T::ZERO, terms),
-            base_count: parts
-                .iter()
-                .map(|p| p.borrow().base_count)
-                .max()
-                .unwrap_or(0),
-        };
+        let mut offsets = Table::<u32>::for_overwrite(rows + 1);
+        let mut indices = Table::<u32>::for_overwrite(terms);
+        let mut weights = Table::<T>::for_overwrite(terms);
+        offsets[0] = 0;
         // Each part's slices of the three arrays.
         let mut slices = Vec::with_capacity(parts.len());
-        let (mut o, mut i, mut w) = (
-            &mut out.offsets[1..],
-            &mut out.indices[..],
-            &mut out.weights[..],
-        );
+        let (mut o, mut i, mut w) = (&mut offsets[1..], &mut indices[..], &mut weights[..]);
         let mut shift = 0u32;
         for p in parts {
             let p = p.borrow();
             let (oh, ot) = std::mem::take(&mut o).split_at_mut(p.len());
             let (ih, it) = std::mem::take(&mut i).split_at_mut(p.indices.len());
             let (wh, wt) = std::mem::take(&mut w).split_at_mut(p.indices.len());
-            slices.push((p, shift, oh, ih, wh));
+            slices.push((p.view(), shift, oh, ih, wh));
             (o, i, w) = (ot, it, wt);
             shift += p.indices.len() as u32;
         }
@@ -137,23 +139,38 @@ impl<T: Real> Rows<T> {
             for (d, &s) in o.iter_mut().zip(&p.offsets[1..]) {
                 *d = s + shift;
             }
-            i.copy_from_slice(&p.indices);
-            w.copy_from_slice(&p.weights);
+            i.copy_from_slice(p.indices);
+            w.copy_from_slice(p.weights);
         });
-        out
+        Rows {
+            offsets: Growing::from_table(offsets),
+            indices: Growing::from_table(indices),
+            weights: Growing::from_table(weights),
+            base_count: parts
+                .iter()
+                .map(|p| p.borrow().base_count)
+                .max()
+                .unwrap_or(0),
+        }
     }
 }
 
 impl Rows<f64> {
     /// The rows as a table with sizes and offsets (no copy of the terms).
-    fn into_table(mut self) -> StencilTable {
-        let sizes = self.offsets.windows(2).map(|w| w[1] - w[0]).collect();
-        self.offsets.pop();
+    fn into_table(self) -> StencilTable {
+        let sizes = self
+            .offsets
+            .as_slice()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .collect();
+        let mut offsets = self.offsets.finish();
+        offsets.truncate(offsets.len() - 1);
         StencilTable {
             sizes,
-            offsets: self.offsets.into(),
-            indices: self.indices.into(),
-            weights: self.weights.into(),
+            offsets,
+            indices: self.indices.finish(),
+            weights: self.weights.finish(),
         }
     }
 }
@@ -246,8 +263,8 @@ impl<T: Real> RowBuilder<T> {
         &mut self,
         out: &mut Rows<T>,
         terms: &[(Source, T)],
-        prev: Option<&Rows<T>>,
-        faces: &Rows<T>,
+        prev: Option<RowsView<'_, T>>,
+        faces: RowsView<'_, T>,
         f0: u32,
     ) {
         let row_of = |s: Source| match (s, prev) {
@@ -382,7 +399,7 @@ const PAR_ROWS: usize = 1 << 16;
 struct Children<'a, T> {
     refiner: &'a Refiner,
     level: usize,
-    prev: Option<&'a Rows<T>>,
+    prev: Option<RowsView<'a, T>>,
     /// The first face point.
     f0: u32,
 }
@@ -395,7 +412,7 @@ impl<T: Real> Children<'_, T> {
         &self,
         block: Block,
         range: std::ops::Range<usize>,
-        faces: &Rows<T>,
+        faces: RowsView<'_, T>,
         (builder, scratch, cache): &mut Workspace<T>,
         out: &mut Rows<T>,
     ) {
@@ -430,7 +447,7 @@ impl<T: Real> Children<'_, T> {
 
     /// The rows of a whole block in parallel chunks, each with its own
     /// builder.
-    fn block_chunks(&self, block: Block, count: usize, faces: &Rows<T>) -> Vec<Rows<T>> {
+    fn block_chunks(&self, block: Block, count: usize, faces: RowsView<'_, T>) -> Vec<Rows<T>> {
         use rayon::prelude::*;
         let chunk = PAR_ROWS.max(count.div_ceil(4 * rayon::current_num_threads()));
         let base = self.refiner.levels[0].vertex_count;
@@ -453,8 +470,8 @@ impl<T: Real> Children<'_, T> {
     /// merge (an estimate: in a regular mesh a face point merges four
     /// rows of the level above, edge and vertex points about twice a face
     /// point's terms).
-    fn terms_per_row(&self, block: Block, faces: &Rows<T>) -> f64 {
-        let above = self.prev.map_or(1.0, Rows::average);
+    fn terms_per_row(&self, block: Block, faces: RowsView<'_, T>) -> f64 {
+        let above = self.prev.map_or(1.0, |p| p.average());
         match block {
             Block::Faces => 4.0 * above + 1.0,
             Block::Edges | Block::Vertices => 2.0 * faces.average().max(above) + 4.0,
@@ -465,14 +482,14 @@ impl<T: Real> Children<'_, T> {
     /// order.
     fn in_parallel(&self, nf: usize, blocks: [(u32, Block, usize); 3]) -> Rows<T> {
         let none = Rows::with_rows(0);
-        let faces = Rows::concat(&self.block_chunks(Block::Faces, nf, &none));
+        let faces = Rows::concat(&self.block_chunks(Block::Faces, nf, none.view()));
         let mut parts: Vec<Rows<T>> = Vec::new();
         let mut order = Vec::new();
         for (_, block, count) in blocks {
             if block == Block::Faces {
                 order.push(None);
             } else {
-                let chunks = self.block_chunks(block, count, &faces);
+                let chunks = self.block_chunks(block, count, faces.view());
                 order.push(Some(parts.len()..parts.len() + chunks.len()));
                 parts.extend(chunks);
             }
@@ -493,7 +510,7 @@ impl Refiner {
     /// base vertices, in vertex order.
     fn rows_of_level<T: Real>(&self, level: usize) -> Rows<T> {
         let prev = (level > 1).then(|| self.rows_of_level::<T>(level - 1));
-        let prev = prev.as_ref();
+        let prev = prev.as_ref().map(Rows::view);
         let parent = &self.levels[level - 1];
         let r = &self.refinements[level - 1];
         let nf = if r.has_face_points() {
@@ -524,20 +541,21 @@ impl Refiner {
         // The face points first: the edge and vertex points read them.
         let none = Rows::with_rows(0);
         let mut faces = Rows::with_rows(nf);
-        faces.expect(nf as f64 * rows.terms_per_row(Block::Faces, &none));
-        rows.block(Block::Faces, 0..nf, &none, &mut work, &mut faces);
+        faces.expect(nf as f64 * rows.terms_per_row(Block::Faces, none.view()));
+        rows.block(Block::Faces, 0..nf, none.view(), &mut work, &mut faces);
         // Then the three blocks in the order of their child vertices.
         let mut out = Rows::with_rows(self.levels[level].vertex_count);
         let others = self.levels[level].vertex_count - nf;
         out.expect(
-            faces.indices.len() as f64 + others as f64 * rows.terms_per_row(Block::Edges, &faces),
+            faces.indices.len() as f64
+                + others as f64 * rows.terms_per_row(Block::Edges, faces.view()),
         );
         for (first, block, count) in blocks {
             debug_assert_eq!(out.len(), first as usize);
             if block == Block::Faces {
                 out.append(&faces);
             } else {
-                rows.block(block, 0..count, &faces, &mut work, &mut out);
+                rows.block(block, 0..count, faces.view(), &mut work, &mut out);
             }
         }
         out
@@ -547,24 +565,20 @@ impl Refiner {
     fn base_rows<T: Real>(&self) -> Rows<T> {
         let base = self.levels[0].vertex_count;
         Rows {
-            offsets: (0..=base as u32).collect(),
-            indices: (0..base as u32).collect(),
-            weights: vec![T::ONE; base],
+            offsets: Growing::from_table((0..=base as u32).collect()),
+            indices: Growing::from_table((0..base as u32).collect()),
+            weights: Growing::from_table(Table::filled(T::ONE, base)),
             base_count: base,
         }
     }
 
-    /// The rows of the last level, their arrays no longer than their
-    /// terms (the estimate [`Rows::expect`] reserved may be larger; giving
-    /// back the rest moves nothing).
+    /// The rows of the last level (the room [`Rows::expect`] reserved and
+    /// no row used is pages never written).
     fn last_rows<T: Real>(&self) -> Rows<T> {
-        let mut rows = match self.levels.len() - 1 {
+        match self.levels.len() - 1 {
             0 => self.base_rows(),
             last => self.rows_of_level(last),
-        };
-        rows.indices.shrink_to_fit();
-        rows.weights.shrink_to_fit();
-        rows
+        }
     }
 
     /// The stencil table mapping base vertices to the vertices of the last
@@ -598,9 +612,9 @@ impl Refiner {
         crate::alloc::guard(None, || {
             let rows = self.last_rows::<f32>();
             Ok(StencilTableF32::from_checked_parts(
-                rows.offsets,
-                rows.indices,
-                rows.weights,
+                rows.offsets.finish(),
+                rows.indices.finish(),
+                rows.weights.finish(),
                 rows.base_count,
             ))
         })
@@ -614,7 +628,8 @@ impl Refiner {
             if !self.levels[last].has_full_topology() {
                 return Err(crate::Error::NeedsFullTopology);
             }
-            let rows = self.last_rows::<f64>();
+            let last_rows = self.last_rows::<f64>();
+            let rows = last_rows.view();
             let level = &self.levels[last];
             let mut builder = RowBuilder::new(self.levels[0].vertex_count);
             let mut tables = [0, 1, 2].map(|_| Rows::<f64>::with_rows(level.vertex_count));

@@ -31,6 +31,19 @@ impl<T: Pod + Send> Growing<T> {
         }
     }
 
+    /// The values of `table`, with room for no more until they grow.
+    pub(crate) fn from_table(table: Table<T>) -> Self {
+        let len = table.len();
+        Growing { table, len }
+    }
+
+    /// Room for `total` values in all (nothing when there is already).
+    pub(crate) fn reserve_total(&mut self, total: usize) {
+        if self.table.len() < total {
+            self.move_to(total);
+        }
+    }
+
     /// Values appended so far.
     #[inline]
     pub(crate) fn len(&self) -> usize {
@@ -48,6 +61,13 @@ impl<T: Pod + Send> Growing<T> {
     pub(crate) fn push(&mut self, value: T) {
         self.spare(1)[0] = value;
         self.len += 1;
+    }
+
+    /// Appends a copy of `values`.
+    #[inline(always)]
+    pub(crate) fn extend_from_slice(&mut self, values: &[T]) {
+        self.spare(values.len()).copy_from_slice(values);
+        self.len += values.len();
     }
 
     /// Appends the values of `values`, each mapped by `f`, in one pass over
@@ -75,6 +95,11 @@ impl<T: Pod + Send> Growing<T> {
     #[inline(never)]
     fn grow(&mut self, n: usize) {
         let capacity = (2 * self.table.len()).max(self.len + n).max(64);
+        self.move_to(capacity);
+    }
+
+    /// Moves the values into a table of `capacity` values.
+    fn move_to(&mut self, capacity: usize) {
         let mut bigger = Table::for_overwrite(capacity);
         bigger[..self.len].copy_from_slice(&self.table[..self.len]);
         self.table = bigger;
