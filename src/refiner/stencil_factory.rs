@@ -83,7 +83,7 @@ impl<T: Real> Rows<T> {
     /// outgrow the table's `u32` offsets (the arrays grow as they are
     /// appended to, unwinding likewise when memory runs out).
     #[inline]
-    fn reserve(&mut self, terms: usize) {
+    fn check_terms(&self, terms: usize) {
         let total = self.indices.len() + terms;
         if u32::try_from(total).is_err() {
             crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
@@ -101,7 +101,7 @@ impl<T: Real> Rows<T> {
 
     /// Appends the rows of `other`.
     fn append(&mut self, other: &Rows<T>) {
-        self.reserve(other.indices.len());
+        self.check_terms(other.indices.len());
         let shift = self.indices.len() as u32;
         self.offsets
             .extend_mapped(&other.offsets.as_slice()[1..], |o| o + shift);
@@ -249,7 +249,7 @@ impl<T: Real> RowBuilder<T> {
             self.slot[i as usize] = ABSENT;
             out.base_count = out.base_count.max(i as usize + 1);
         }
-        out.reserve(self.len);
+        out.check_terms(self.len);
         out.indices.extend_from_slice(indices);
         out.weights.extend_from_slice(weights);
         out.offsets.push(out.indices.len() as u32);

@@ -1,5 +1,6 @@
 //! A [`Table`] filled by appending, for outputs whose length is known only
-//! once they are built (a patch table's local-point stencils): the values
+//! once they are built (stencil tables: a patch table's local points, the
+//! stencil factory's rows level by level): the values
 //! live in a table from the start — a huge-page map from 2 MiB, recycled
 //! memory where the pool has some — so the finished output is that table,
 //! not a vector copied into one or left on 4 KiB pages.

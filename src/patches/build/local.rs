@@ -110,8 +110,8 @@ impl<R: Real> LocalPoints<R> {
     }
 
     /// Room for about `patches` end caps of `rows` points with `entries`
-    /// stencil entries each.
-    /// Asked before any point is appended (later, it does nothing).
+    /// stencil entries each, asked for before any point is appended (later,
+    /// it does nothing).
     pub fn reserve(&mut self, patches: usize, rows: usize, entries: usize) {
         if self.count > 0 {
             return;
