@@ -42,6 +42,19 @@ pub(crate) fn guard<R>(level: Option<u32>, f: impl FnOnce() -> Result<R>) -> Res
     }
 }
 
+/// Runs `f`, giving `None` when an [`AllocFailure`] is raised inside it:
+/// for memory asked for on an estimate, where doing without is an option.
+/// Every other payload keeps unwinding.
+pub(crate) fn or_none<R>(f: impl FnOnce() -> R) -> Option<R> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(r) => Some(r),
+        Err(payload) => match payload.downcast::<AllocFailure>() {
+            Ok(_) => None,
+            Err(other) => resume_unwind(other),
+        },
+    }
+}
+
 /// `len` copies of `value` in a vector allocated fallibly.
 pub(crate) fn try_vec<T: Clone>(value: T, len: usize) -> Result<Vec<T>> {
     let mut v = Vec::new();
@@ -112,5 +125,8 @@ mod tests {
         let caught = catch_unwind(|| guard(None, || -> Result<()> { panic!("not ours") }));
         assert!(caught.is_err());
         assert_eq!(guard(None, || Ok(7)).unwrap(), 7);
+        assert!(or_none(|| -> u8 { fail(1 << 40) }).is_none());
+        assert_eq!(or_none(|| 7), Some(7));
+        assert!(catch_unwind(|| or_none(|| panic!("not ours"))).is_err());
     }
 }

@@ -21,15 +21,15 @@ pub(crate) struct Growing<T: Pod + Send> {
 }
 
 impl<T: Pod + Send> Growing<T> {
-    /// Room for `capacity` values (an estimate: the map's pages that are
-    /// never written cost nothing). Unwinds with an
-    /// [`AllocFailure`](crate::alloc::AllocFailure) when the memory cannot
-    /// be had, as tables do.
+    /// Room for `capacity` values, an estimate: the map's pages that are
+    /// never written cost nothing, and when that much memory cannot be had
+    /// it starts with none and grows as values come. Only growth past what
+    /// the values need unwinds with an
+    /// [`AllocFailure`](crate::alloc::AllocFailure), as tables do.
     pub(crate) fn with_capacity(capacity: usize) -> Self {
-        Growing {
-            table: Table::for_overwrite(capacity),
-            len: 0,
-        }
+        let table = crate::alloc::or_none(|| Table::for_overwrite(capacity))
+            .unwrap_or_else(|| Table::for_overwrite(0));
+        Growing { table, len: 0 }
     }
 
     /// The values of `table`, with room for no more until they grow.
@@ -38,10 +38,12 @@ impl<T: Pod + Send> Growing<T> {
         Growing { table, len }
     }
 
-    /// Room for `total` values in all (nothing when there is already).
+    /// Room for `total` values in all (nothing when there is already), an
+    /// estimate as [`Growing::with_capacity`]'s: when it cannot be had the
+    /// values stay where they are and grow as they come.
     pub(crate) fn reserve_total(&mut self, total: usize) {
         if self.table.len() < total {
-            self.move_to(total);
+            let _ = crate::alloc::or_none(|| self.move_to(total));
         }
     }
 
@@ -91,12 +93,16 @@ impl<T: Pod + Send> Growing<T> {
     }
 
     /// Moves the values into a table twice as long (or long enough for
-    /// `n` more).
+    /// `n` more); when twice as long cannot be had, into one just long
+    /// enough, which unwinds if that cannot be had either.
     #[cold]
     #[inline(never)]
     fn grow(&mut self, n: usize) {
-        let capacity = (2 * self.table.len()).max(self.len + n).max(64);
-        self.move_to(capacity);
+        let needed = self.len + n;
+        let doubled = (2 * self.table.len()).max(needed).max(64);
+        if crate::alloc::or_none(|| self.move_to(doubled)).is_none() {
+            self.move_to(needed);
+        }
     }
 
     /// Moves the values into a table of `capacity` values.
@@ -136,5 +142,16 @@ mod tests {
         assert!(t.is_mapped() || std::env::var("SUBDIV_HUGE_PAGES").as_deref() == Ok("0"));
         assert!(t.iter().copied().eq(0..n));
         assert!(Growing::<f64>::with_capacity(0).finish().is_empty());
+    }
+
+    /// An estimate no machine can hold is only an estimate: the values
+    /// still come, in memory grown as they do.
+    #[test]
+    fn an_estimate_too_large_to_allocate_is_not_an_error() {
+        let mut g = Growing::<u64>::with_capacity(usize::MAX / 16);
+        g.push(1);
+        g.reserve_total(usize::MAX / 16);
+        g.extend_from_slice(&[2, 3]);
+        assert_eq!(&*g.finish(), &[1, 2, 3]);
     }
 }

@@ -53,32 +53,6 @@ fn varying_corners(patch_type: PatchType) -> &'static [usize] {
     }
 }
 
-/// Stencils computed in the precision of the patch table's options, kept
-/// as the table holds them (weights widened to `f64` as they are pushed),
-/// built into tables ([`StencilRows`]): tens of megabytes on a large mesh,
-/// on huge pages rather than faulted in 4 KiB at a time.
-struct Stencils(StencilRows);
-
-impl Stencils {
-    /// Room for `stencils` stencils of `entries` entries in all (an
-    /// estimate: pages reserved and never written cost nothing; more can
-    /// be pushed).
-    fn with_capacity(stencils: usize, entries: usize) -> Self {
-        Stencils(StencilRows::with_capacity(stencils, entries))
-    }
-
-    /// One stencil: `columns` mapped to points by `point`, with `weights`
-    /// (as many).
-    #[inline]
-    fn push<R: Real>(&mut self, columns: &[usize], weights: &[R], point: impl Fn(usize) -> u32) {
-        self.0.push_mapped(columns, point, weights, |w| w.to_f64());
-    }
-
-    fn finish(self) -> StencilTable {
-        self.0.finish()
-    }
-}
-
 /// The local points made so far.
 pub(super) struct LocalPoints<R> {
     /// Index of the first local point: every level's vertices.
@@ -87,8 +61,12 @@ pub(super) struct LocalPoints<R> {
     share: bool,
     /// B-spline end caps keep source points their matrix copies.
     reuse_sources: bool,
-    stencils: Stencils,
-    varying: Option<Stencils>,
+    /// Stencils computed in the precision of the patch table's options,
+    /// kept as the table holds them (weights widened to `f64`), in tables:
+    /// tens of megabytes on a large mesh, on huge pages rather than faulted
+    /// in 4 KiB at a time.
+    stencils: StencilRows,
+    varying: Option<StencilRows>,
     shared_corners: Vec<Vec<u32>>,
     shared_edges: Vec<Vec<u32>>,
     real: std::marker::PhantomData<R>,
@@ -101,8 +79,8 @@ impl<R: Real> LocalPoints<R> {
             count: 0,
             share,
             reuse_sources,
-            stencils: Stencils::with_capacity(0, 0),
-            varying: varying.then(|| Stencils::with_capacity(0, 0)),
+            stencils: StencilRows::with_capacity(0, 0),
+            varying: varying.then(|| StencilRows::with_capacity(0, 0)),
             shared_corners: vec![Vec::new(); levels],
             shared_edges: vec![Vec::new(); levels],
             real: std::marker::PhantomData,
@@ -116,9 +94,9 @@ impl<R: Real> LocalPoints<R> {
         if self.count > 0 {
             return;
         }
-        self.stencils = Stencils::with_capacity(patches * rows, patches * entries);
+        self.stencils = StencilRows::with_capacity(patches * rows, patches * entries);
         if let Some(v) = &mut self.varying {
-            *v = Stencils::with_capacity(patches * rows, patches * rows);
+            *v = StencilRows::with_capacity(patches * rows, patches * rows);
         }
     }
 
@@ -130,7 +108,7 @@ impl<R: Real> LocalPoints<R> {
     /// The vertex and varying stencil tables (the latter empty when not
     /// asked for).
     pub fn finish(self) -> (StencilTable, StencilTable) {
-        let varying = self.varying.map(Stencils::finish).unwrap_or_default();
+        let varying = self.varying.map(StencilRows::finish).unwrap_or_default();
         (self.stencils.finish(), varying)
     }
 
@@ -178,10 +156,11 @@ impl<R: Real> LocalPoints<R> {
                 _ => next,
             };
             if point == next {
-                self.stencils.push(&row.columns, &row.weights, source);
+                self.stencils
+                    .push_mapped(&row.columns, source, &row.weights, R::to_f64);
                 if let Some(v) = &mut self.varying {
                     let corner = corners.get(i).copied().unwrap_or(0);
-                    v.push(&[corner], &[R::ONE], source);
+                    v.push_mapped(&[corner], source, &[R::ONE], R::to_f64);
                 }
                 self.count += 1;
             }
