@@ -34,6 +34,7 @@ use glam::{DVec3, Vec3};
 
 pub(crate) mod kernel;
 mod limit;
+mod rows;
 mod stencil_factory;
 
 pub use adaptive::AdaptiveRefiner;

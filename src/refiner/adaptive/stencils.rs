@@ -34,73 +34,9 @@ use super::AdaptiveRefiner;
 use crate::error::{Error, Result};
 use crate::real::Real;
 use crate::refiner::fvar_interp::fvar_terms;
+use crate::refiner::rows::{ABSENT, RowBuilder, Rows};
 use crate::refiner::{Emit, Kind, Refiner, Source};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilRows, StencilTable};
-
-/// Marks a coarse vertex without an entry in the row being built.
-const ABSENT: u32 = u32::MAX;
-
-/// Rows in compressed form: row `r` is `offsets[r]..offsets[r + 1]`;
-/// weights in `T`.
-#[derive(Default)]
-struct Rows<T> {
-    offsets: Vec<u32>,
-    indices: Vec<u32>,
-    weights: Vec<T>,
-}
-
-impl<T: Real> Rows<T> {
-    fn new() -> Self {
-        Rows {
-            offsets: vec![0],
-            ..Rows::default()
-        }
-    }
-
-    fn len(&self) -> usize {
-        self.offsets.len() - 1
-    }
-
-    fn row(&self, r: usize) -> (&[u32], &[T]) {
-        let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
-        (&self.indices[a..b], &self.weights[a..b])
-    }
-}
-
-/// The row being built at the end of a [`Rows`], with the position of each
-/// coarse vertex in it.
-struct Merger {
-    slot: Vec<u32>,
-}
-
-impl Merger {
-    /// `StencilBuilder`'s merge: add `x` to the weight of `i`, or append it.
-    #[inline]
-    fn add<T: Real>(&mut self, out: &mut Rows<T>, start: usize, i: u32, x: T) {
-        let slot = &mut self.slot[i as usize];
-        if *slot == ABSENT {
-            *slot = (out.indices.len() - start) as u32;
-            out.indices.push(i);
-            out.weights.push(x);
-        } else {
-            out.weights[start + *slot as usize] += x;
-        }
-    }
-
-    /// Closes the row that starts at `start`.
-    fn end<T: Real>(&mut self, out: &mut Rows<T>, start: usize) -> Result<()> {
-        for &i in &out.indices[start..] {
-            self.slot[i as usize] = ABSENT;
-        }
-        let end = u32::try_from(out.indices.len()).map_err(|_| Error::TooLarge {
-            what: "stencil terms",
-            count: out.indices.len(),
-            bits: 32,
-        })?;
-        out.offsets.push(end);
-        Ok(())
-    }
-}
 
 /// A refinement whose levels the builder walks: its vertices, or the
 /// values of one face-varying channel ([`Channel`]); mask weights in `T`.
@@ -181,62 +117,64 @@ fn level_rows<T: Real>(
     kind: Kind,
     level: usize,
     prev: Option<&Rows<T>>,
-    merger: &mut Merger,
+    builder: &mut RowBuilder<T>,
 ) -> Result<Rows<T>> {
     let count = refinement.vertex_count(level);
+    let prev = prev.map(Rows::view);
     // Rows in the order they are built, and the position of each child's.
-    let mut built = Rows::new();
+    let mut built = Rows::with_rows(count);
     let mut position = vec![ABSENT; count];
     let mut failed = None;
     refinement.walk(kind, level, &mut |child, terms| {
         if failed.is_some() {
             return;
         }
-        let start = built.indices.len();
+        let view = built.view();
+        // A face point of this level: its row, built earlier (read by
+        // position); a parent vertex: its row (factorized) or itself.
+        let row_of = |source: Source| match (source, prev) {
+            (Source::Child(c), _) => view.get(position[c as usize]),
+            (Source::Parent(p), Some(prev)) => prev.get(p),
+            (Source::Parent(_), None) => (&[][..], &[][..]),
+        };
+        let bound = terms.iter().map(|&(s, _)| row_of(s).0.len().max(1)).sum();
+        builder.open(bound);
         for &(source, w) in terms {
             if w == T::ZERO {
                 continue;
             }
             match (source, prev) {
-                // A face point of this level: its row, built earlier (read
-                // by position, as the row being built grows the arrays).
-                (Source::Child(c), _) => {
-                    let r = position[c as usize] as usize;
-                    for k in built.offsets[r] as usize..built.offsets[r + 1] as usize {
-                        let (i, x) = (built.indices[k], built.weights[k]);
-                        merger.add(&mut built, start, i, x * w);
-                    }
-                }
-                // A parent vertex replaced by its row (factorized).
-                (Source::Parent(p), Some(prev)) => {
-                    let (idx, wts) = prev.row(p as usize);
-                    for (&i, &x) in idx.iter().zip(wts) {
-                        merger.add(&mut built, start, i, x * w);
-                    }
-                }
                 // A coarse vertex: as it is.
-                (Source::Parent(p), None) => merger.add(&mut built, start, p, w),
+                (Source::Parent(p), None) => builder.add_row((&[p], &[T::ONE]), w),
+                _ => builder.add_row(row_of(source), w),
             }
         }
-        position[child as usize] = built.len() as u32;
-        if let Err(e) = merger.end(&mut built, start) {
-            failed = Some(e);
+        let terms = built.terms() + builder.len();
+        if u32::try_from(terms).is_err() {
+            failed = Some(Error::TooLarge {
+                what: "stencil terms",
+                count: terms,
+                bits: 32,
+            });
+            return;
         }
+        position[child as usize] = built.len() as u32;
+        builder.end_row(&mut built);
     });
     if let Some(e) = failed {
         return Err(e);
     }
     // Back to vertex order.
-    let mut rows = Rows::new();
-    rows.indices.reserve(built.indices.len());
-    rows.weights.reserve(built.indices.len());
+    let mut rows = Rows::with_rows(count);
+    rows.expect(built.terms() as f64);
+    let view = built.view();
     for &r in &position {
-        if r != ABSENT {
-            let (i, w) = built.row(r as usize);
-            rows.indices.extend_from_slice(i);
-            rows.weights.extend_from_slice(w);
-        }
-        rows.offsets.push(rows.indices.len() as u32);
+        let (indices, weights) = if r == ABSENT {
+            (&[][..], &[][..])
+        } else {
+            view.get(r)
+        };
+        rows.push_row(indices, weights);
     }
     Ok(rows)
 }
@@ -262,20 +200,18 @@ fn build<T: Real>(
         .map(|l| refinement.vertex_count(l))
         .max()
         .unwrap_or(base);
-    let mut merger = Merger {
-        slot: vec![ABSENT; widest.max(base)],
-    };
+    let mut builder = RowBuilder::new(widest.max(base));
     let mut levels: Vec<Rows<T>> = Vec::with_capacity(last);
     for level in 1..=last {
         let prev = (factorize && level > 1).then(|| &levels[level - 2]);
-        let rows = level_rows(refinement, kind, level, prev, &mut merger)?;
+        let rows = level_rows(refinement, kind, level, prev, &mut builder)?;
         levels.push(rows);
     }
     // Room for the rows asked for; weights widened to the table's f64
     // (exactly).
     let (rows, terms) = levels
         .iter()
-        .fold((base, base), |(r, t), l| (r + l.len(), t + l.indices.len()));
+        .fold((base, base), |(r, t), l| (r + l.len(), t + l.terms()));
     let mut table = StencilRows::with_capacity(rows, terms);
     let mut push = |idx: &[u32], w: &[T]| table.push_mapped(idx, |i| i, w, |x| x.to_f64());
     // OpenSubdiv's numbering: base rows, then each level's. Control rows
@@ -292,8 +228,9 @@ fn build<T: Real>(
         last.saturating_sub(1)
     };
     for rows in &levels[from..] {
+        let view = rows.view();
         for r in 0..rows.len() {
-            let (i, w) = rows.row(r);
+            let (i, w) = view.get(r as u32);
             push(i, w);
         }
     }

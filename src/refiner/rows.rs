@@ -1,0 +1,276 @@
+//! Stencil rows level by level, shared by the stencil factories of uniform
+//! and adaptive refiners: [`Rows`], rows in compressed form appended into
+//! tables, and [`RowBuilder`], which merges the terms of one row as
+//! OpenSubdiv's stencil builder does before appending it whole.
+
+use crate::real::Real;
+use crate::stencil::StencilTable;
+use crate::topology::{Growing, Table};
+
+/// Marks a base vertex without a term in the row being built.
+pub(super) const ABSENT: u32 = u32::MAX;
+
+/// Stencil rows in vertex order: row `v` is `offsets[v]..offsets[v + 1]` of
+/// `indices` (base vertices) and `weights`, appended into tables
+/// ([`Growing`]): a level's rows are tens to hundreds of megabytes, on huge
+/// pages and recycled by the pool rather than faulted in anew.
+pub(super) struct Rows<T: Real> {
+    pub(super) offsets: Growing<u32>,
+    pub(super) indices: Growing<u32>,
+    pub(super) weights: Growing<T>,
+    /// One more than the largest index (0 without terms).
+    pub(super) base_count: usize,
+}
+
+/// [`Rows`] as slices, read through their tables once (for the loops that
+/// merge rows).
+#[derive(Clone, Copy)]
+pub(super) struct RowsView<'a, T> {
+    pub(super) offsets: &'a [u32],
+    pub(super) indices: &'a [u32],
+    pub(super) weights: &'a [T],
+}
+
+impl<'a, T> RowsView<'a, T> {
+    #[inline]
+    pub(super) fn get(&self, v: u32) -> (&'a [u32], &'a [T]) {
+        let (a, b) = (
+            self.offsets[v as usize] as usize,
+            self.offsets[v as usize + 1] as usize,
+        );
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+
+    /// Average terms per row (1 without rows).
+    pub(super) fn average(&self) -> f64 {
+        match self.offsets.len().saturating_sub(1) {
+            0 => 1.0,
+            n => self.indices.len() as f64 / n as f64,
+        }
+    }
+}
+
+impl<T: Real> Rows<T> {
+    pub(super) fn with_rows(rows: usize) -> Self {
+        let mut offsets = Growing::with_capacity(rows + 1);
+        offsets.push(0);
+        Rows {
+            offsets,
+            indices: Growing::with_capacity(0),
+            weights: Growing::with_capacity(0),
+            base_count: 0,
+        }
+    }
+
+    #[inline]
+    pub(super) fn view(&self) -> RowsView<'_, T> {
+        RowsView {
+            offsets: self.offsets.as_slice(),
+            indices: self.indices.as_slice(),
+            weights: self.weights.as_slice(),
+        }
+    }
+
+    /// Terms appended so far.
+    pub(super) fn terms(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Appends a row of `indices` and `weights` (as many), copied as they
+    /// are. Unwinds as [`Rows::check_terms`] does.
+    pub(super) fn push_row(&mut self, indices: &[u32], weights: &[T]) {
+        self.check_terms(indices.len());
+        for &i in indices {
+            self.base_count = self.base_count.max(i as usize + 1);
+        }
+        self.indices.extend_from_slice(indices);
+        self.weights.extend_from_slice(weights);
+        self.offsets.push(self.indices.len() as u32);
+    }
+
+    /// Number of rows.
+    pub(super) fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Unwinds to [`crate::alloc::guard`] when `terms` more terms would
+    /// outgrow the table's `u32` offsets (the arrays grow as they are
+    /// appended to, unwinding likewise when memory runs out).
+    #[inline]
+    pub(super) fn check_terms(&self, terms: usize) {
+        let total = self.indices.len() + terms;
+        if u32::try_from(total).is_err() {
+            crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+    }
+
+    /// Room for about `terms` terms, asked for once rather than found by
+    /// doubling the arrays (each doubling copies them): an estimate, as
+    /// pages reserved and never written cost nothing.
+    pub(super) fn expect(&mut self, terms: f64) {
+        let terms = terms.min(u32::MAX as f64) as usize;
+        self.indices.reserve_total(terms);
+        self.weights.reserve_total(terms);
+    }
+
+    /// Appends the rows of `other`.
+    pub(super) fn append(&mut self, other: &Rows<T>) {
+        self.check_terms(other.indices.len());
+        let shift = self.indices.len() as u32;
+        self.offsets
+            .extend_mapped(&other.offsets.as_slice()[1..], |o| o + shift);
+        self.indices.extend_from_slice(other.indices.as_slice());
+        self.weights.extend_from_slice(other.weights.as_slice());
+        self.base_count = self.base_count.max(other.base_count);
+    }
+
+    /// The rows of `parts` one after the other, copied in parallel.
+    pub(super) fn concat<R: std::borrow::Borrow<Rows<T>> + Sync>(parts: &[R]) -> Rows<T> {
+        use rayon::prelude::*;
+        let rows: usize = parts.iter().map(|p| p.borrow().len()).sum();
+        let terms: usize = parts.iter().map(|p| p.borrow().indices.len()).sum();
+        if u32::try_from(terms).is_err() {
+            crate::alloc::fail(terms.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+        let mut offsets = Table::<u32>::for_overwrite(rows + 1);
+        let mut indices = Table::<u32>::for_overwrite(terms);
+        let mut weights = Table::<T>::for_overwrite(terms);
+        offsets[0] = 0;
+        // Each part's slices of the three arrays.
+        let mut slices = Vec::with_capacity(parts.len());
+        let (mut o, mut i, mut w) = (&mut offsets[1..], &mut indices[..], &mut weights[..]);
+        let mut shift = 0u32;
+        for p in parts {
+            let p = p.borrow();
+            let (oh, ot) = std::mem::take(&mut o).split_at_mut(p.len());
+            let (ih, it) = std::mem::take(&mut i).split_at_mut(p.indices.len());
+            let (wh, wt) = std::mem::take(&mut w).split_at_mut(p.indices.len());
+            slices.push((p.view(), shift, oh, ih, wh));
+            (o, i, w) = (ot, it, wt);
+            shift += p.indices.len() as u32;
+        }
+        slices.into_par_iter().for_each(|(p, shift, o, i, w)| {
+            for (d, &s) in o.iter_mut().zip(&p.offsets[1..]) {
+                *d = s + shift;
+            }
+            i.copy_from_slice(p.indices);
+            w.copy_from_slice(p.weights);
+        });
+        Rows {
+            offsets: Growing::from_table(offsets),
+            indices: Growing::from_table(indices),
+            weights: Growing::from_table(weights),
+            base_count: parts
+                .iter()
+                .map(|p| p.borrow().base_count)
+                .max()
+                .unwrap_or(0),
+        }
+    }
+}
+
+impl Rows<f64> {
+    /// The rows as a table with sizes and offsets (no copy of the terms).
+    pub(super) fn into_table(self) -> StencilTable {
+        let sizes = self
+            .offsets
+            .as_slice()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .collect();
+        let mut offsets = self.offsets.finish();
+        offsets.truncate(offsets.len() - 1);
+        StencilTable {
+            sizes,
+            offsets,
+            indices: self.indices.finish(),
+            weights: self.weights.finish(),
+        }
+    }
+}
+
+/// Builds rows at the end of a [`Rows`], merging the terms of each row by
+/// base vertex in order of first contribution, as OpenSubdiv's stencil
+/// builder does: each weight is `0 + x * w` for its first term and `+= x * w`
+/// for the next ones, in the row's precision.
+///
+/// A row is merged in a buffer of the builder's (which stays in cache) and
+/// then appended whole. Every term takes the same steps whether its vertex
+/// is new to the row or not: no branch to mispredict (which it is depends
+/// on the data).
+pub(super) struct RowBuilder<T> {
+    /// Position in the current row of each base vertex, or [`ABSENT`].
+    slot: Vec<u32>,
+    /// The current row: its first `len` entries.
+    indices: Vec<u32>,
+    weights: Vec<T>,
+    len: usize,
+}
+
+impl<T: Real> RowBuilder<T> {
+    pub(super) fn new(base: usize) -> Self {
+        RowBuilder {
+            slot: vec![ABSENT; base],
+            indices: Vec::new(),
+            weights: Vec::new(),
+            len: 0,
+        }
+    }
+
+    /// Starts a row of at most `bound` terms. Unwinds to
+    /// [`crate::alloc::guard`] when the buffer cannot hold it.
+    #[inline]
+    pub(super) fn open(&mut self, bound: usize) {
+        if self.indices.len() < bound {
+            self.grow(bound);
+        }
+        self.len = 0;
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, bound: usize) {
+        let more = bound - self.indices.len();
+        if self.indices.try_reserve(more).is_err() || self.weights.try_reserve(more).is_err() {
+            crate::alloc::fail(bound.saturating_mul(size_of::<u32>() + size_of::<T>()));
+        }
+        self.indices.resize(bound, 0);
+        self.weights.resize(bound, T::ZERO);
+    }
+
+    /// Adds `w` times a row to the open row.
+    #[inline(always)]
+    pub(super) fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
+        let (indices, weights) = (&mut self.indices[..], &mut self.weights[..]);
+        let mut len = self.len;
+        for (&i, &x) in row.0.iter().zip(row.1) {
+            let slot = &mut self.slot[i as usize];
+            let fresh = *slot == ABSENT;
+            let at = if fresh { len } else { *slot as usize };
+            let before = if fresh { T::ZERO } else { weights[at] };
+            weights[at] = before + x * w;
+            indices[at] = i;
+            *slot = at as u32;
+            len += usize::from(fresh);
+        }
+        self.len = len;
+    }
+
+    /// Terms in the open row so far.
+    pub(super) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Closes the open row and appends it to `out`.
+    pub(super) fn end_row(&mut self, out: &mut Rows<T>) {
+        let (indices, weights) = (&self.indices[..self.len], &self.weights[..self.len]);
+        for &i in indices {
+            self.slot[i as usize] = ABSENT;
+            out.base_count = out.base_count.max(i as usize + 1);
+        }
+        out.check_terms(self.len);
+        out.indices.extend_from_slice(indices);
+        out.weights.extend_from_slice(weights);
+        out.offsets.push(out.indices.len() as u32);
+    }
+}
