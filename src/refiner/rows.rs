@@ -190,14 +190,15 @@ impl Rows<f64> {
 }
 
 /// Builds rows at the end of a [`Rows`], merging the terms of each row by
-/// base vertex in order of first contribution, as OpenSubdiv's stencil
-/// builder does: each weight is `0 + x * w` for its first term and `+= x * w`
-/// for the next ones, in the row's precision.
+/// coarse vertex (a base vertex, for rows factorized down to the base
+/// level) in order of first contribution, as OpenSubdiv's stencil builder
+/// does: each weight is `0 + x * w` for its first term and `+= x * w` for
+/// the next ones, in the row's precision.
 ///
 /// A row is merged in a buffer of the builder's (which stays in cache) and
-/// then appended whole. Every term takes the same steps whether its vertex
-/// is new to the row or not: no branch to mispredict (which it is depends
-/// on the data).
+/// then appended whole. Every term is written with the same steps whether
+/// its vertex is new to the row or not (the compiler may still branch on
+/// it: a select with the weight read either way measured the same).
 pub(super) struct RowBuilder<T> {
     /// Position in the current row of each base vertex, or [`ABSENT`].
     slot: Vec<u32>,

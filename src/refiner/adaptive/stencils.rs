@@ -20,8 +20,8 @@
 //!   always replaced by its row;
 //! * within a row, an index already present has the product added to its
 //!   weight, a new one is appended: indices in order of first contribution,
-//!   weights accumulated in the order the terms come (the first product
-//!   stored as it is, later ones added);
+//!   weights accumulated in the order the terms come (`0 + x * w` for the
+//!   first, `+= x * w` for later ones: [`RowBuilder`]);
 //! * mask terms of weight zero are skipped; entries of a row being copied
 //!   are not (none is zero: refinement weights are positive).
 //!
