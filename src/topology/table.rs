@@ -176,7 +176,7 @@ impl<T: Pod + Send> Table<T> {
                 false,
             ));
         }
-        let map = memmap2::MmapOptions::new().len(mapped).map_anon().ok()?;
+        let map = table_pool::fresh_map(mapped)?;
         // Only advice: without transparent huge pages the map keeps
         // ordinary pages.
         #[cfg(target_os = "linux")]
@@ -261,8 +261,11 @@ impl<T: Pod + Send> Table<T> {
     /// map is unmapped, not kept by the pool): for a buffer no table of the
     /// same run is likely to reuse, such as the text of an input file.
     pub(crate) fn free(mut self) {
-        // The map is dropped here (unmapped); `Drop` then finds a vector.
-        drop(std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())));
+        // The map is unmapped here; `Drop` then finds a vector.
+        match std::mem::replace(&mut self.repr, Repr::Vec(Vec::new())) {
+            Repr::Map { map, .. } => table_pool::unmap(map),
+            Repr::Vec(vec) => drop(vec),
+        }
     }
 }
 
@@ -501,5 +504,40 @@ mod tests {
         assert_eq!(p.give(map(11 * M)).len(), 1);
         let (maps, bytes) = p.drain();
         assert_eq!((maps.len(), bytes, p.bytes()), (2, 8 * M, 0));
+    }
+
+    /// Kept maps never carry the maps' total past the most that was in use
+    /// at once: a fresh map beyond that mark unmaps kept ones first, the
+    /// oldest first; one under it keeps them all.
+    #[test]
+    fn kept_maps_never_raise_the_peak() {
+        const M: usize = HUGE_PAGE;
+        let mut p = table_pool::Maps::new(100 * M);
+        // Three tables in use (9 MiB), then two of them dropped: kept.
+        assert!(p.fresh(4 * M).is_empty());
+        assert!(p.fresh(3 * M).is_empty());
+        assert!(p.fresh(2 * M).is_empty());
+        assert!(p.give(map(4 * M)).is_empty());
+        assert!(p.give(map(3 * M)).is_empty());
+        assert_eq!(p.bytes(), (2 * M, 7 * M));
+        // 9 MiB reached before: a fresh 5 MiB (14 in all) unmaps the
+        // oldest kept maps until the total is back at 9: the 4 MiB one
+        // (13 in all) and then the 3 MiB one.
+        let evicted = p.fresh(5 * M);
+        assert_eq!(
+            evicted.iter().map(|m| m.len()).collect::<Vec<_>>(),
+            vec![4 * M, 3 * M]
+        );
+        assert_eq!(p.bytes(), (7 * M, 0));
+        // The same again, now from kept maps: nothing fresh, nothing
+        // unmapped, and a fresh map under the mark keeps what is kept.
+        assert!(p.give(map(5 * M)).is_empty());
+        assert_eq!(p.take(4 * M).map(|m| m.len()), Some(5 * M));
+        assert!(p.give(map(2 * M)).is_empty());
+        assert!(p.fresh(M).is_empty());
+        assert_eq!(p.bytes(), (6 * M, 2 * M));
+        // A table unmapped by its owner is no longer in use.
+        p.forget(6 * M);
+        assert_eq!(p.bytes(), (0, 2 * M));
     }
 }
