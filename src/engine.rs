@@ -22,6 +22,7 @@ use crate::options::UniformOptions;
 use crate::options::{Engine, Options, Request};
 use crate::output::{LevelCounts, Refinement};
 use crate::real::{Precision, Real};
+use std::borrow::Cow;
 
 impl Engine {
     /// Whether this build has the engine (`Osd` needs the feature `osd`).
@@ -67,21 +68,53 @@ impl Engine {
         options: &Options,
         request: impl Into<Request>,
     ) -> Result<Vec<LevelCounts>> {
-        let request = request.into();
+        self.counts(Cow::Borrowed(mesh), options, request.into())
+    }
+
+    /// [`Engine::refine_counts`], consuming the mesh: the native engine
+    /// drops its faces, tags and channel indices once the base level is
+    /// built and its positions once level 1 has been interpolated, which
+    /// lowers the peak memory of a program that needs the mesh no more
+    /// (`subdiv refine` without an output file). The same counts.
+    ///
+    /// ```
+    /// use subdiv::{Engine, Options, Request, shapes};
+    /// let torus = shapes::torus(8, 6);
+    /// let borrowed = Engine::Native.refine_counts(&torus, &Options::default(), Request::new(2))?;
+    /// let owned = Engine::Native.refine_counts_owned(torus, &Options::default(), Request::new(2))?;
+    /// assert_eq!(owned, borrowed);
+    /// assert_eq!(owned[2].faces, 48 * 16);
+    /// # Ok::<(), subdiv::Error>(())
+    /// ```
+    pub fn refine_counts_owned(
+        self,
+        mesh: Mesh,
+        options: &Options,
+        request: impl Into<Request>,
+    ) -> Result<Vec<LevelCounts>> {
+        self.counts(Cow::Owned(mesh), options, request.into())
+    }
+
+    fn counts(
+        self,
+        mesh: Cow<'_, Mesh>,
+        options: &Options,
+        request: Request,
+    ) -> Result<Vec<LevelCounts>> {
         let uniform = request.uniform;
         if request.precision == Precision::F32 {
             // The mesh's own errors come first (a value that is not finite
             // is one); then the values f32 cannot hold.
             mesh.validate()?;
-            crate::limits::check_precision(mesh, request.precision)?;
+            crate::limits::check_precision(&mesh, request.precision)?;
         }
         match (self, request.precision) {
             (Engine::Native, Precision::F64) => native_counts::<f64>(mesh, options, uniform),
             (Engine::Native, Precision::F32) => native_counts::<f32>(mesh, options, uniform),
             #[cfg(feature = "osd")]
-            (Engine::Osd, Precision::F64) => osd_counts::<f64>(mesh, options, uniform),
+            (Engine::Osd, Precision::F64) => osd_counts::<f64>(&mesh, options, uniform),
             #[cfg(feature = "osd")]
-            (Engine::Osd, Precision::F32) => osd_counts::<f32>(mesh, options, uniform),
+            (Engine::Osd, Precision::F32) => osd_counts::<f32>(&mesh, options, uniform),
             #[cfg(not(feature = "osd"))]
             (Engine::Osd, _) => {
                 let _ = (mesh, options, uniform);
@@ -91,16 +124,21 @@ impl Engine {
     }
 }
 
-/// [`Engine::refine_counts`] natively: levels released as they go.
+/// [`Engine::refine_counts`] natively: levels released as they go (and an
+/// owned mesh as soon as nothing reads it).
 fn native_counts<T: Real>(
-    mesh: &Mesh,
+    mesh: Cow<'_, Mesh>,
     options: &Options,
     uniform: UniformOptions,
 ) -> Result<Vec<LevelCounts>> {
-    let base = mesh.positions_as::<T>();
-    let channels = !mesh.fvar_channels.is_empty();
-    let (counts, ..) =
-        crate::refiner::refine_last_with(mesh, options, uniform, 3, &base, channels)?;
+    let (counts, ..) = match mesh {
+        Cow::Owned(mesh) => crate::refiner::refine_last_owned::<T>(mesh, options, uniform)?,
+        Cow::Borrowed(mesh) => {
+            let base = mesh.positions_as::<T>();
+            let channels = !mesh.fvar_channels.is_empty();
+            crate::refiner::refine_last_with(mesh, options, uniform, 3, &base, channels)?
+        }
+    };
     Ok(counts)
 }
 

@@ -335,6 +335,28 @@ impl Mesh {
         std::borrow::Cow::Owned(self.flat_positions())
     }
 
+    /// [`Mesh::positions_as`], consuming the mesh: for `f64` the positions'
+    /// own vector, cast without a copy; for `f32` a converted copy. The
+    /// rest of the mesh is dropped.
+    ///
+    /// ```
+    /// let cube = subdiv::shapes::cube();
+    /// let flat = cube.flat_positions::<f64>();
+    /// assert_eq!(cube.clone().into_flat_positions::<f64>(), flat);
+    /// assert_eq!(cube.clone().into_flat_positions::<f32>(), cube.flat_positions::<f32>());
+    /// ```
+    pub fn into_flat_positions<T: crate::Real>(mut self) -> Vec<T> {
+        if T::PRECISION == crate::Precision::F64 {
+            match bytemuck::allocation::try_cast_vec::<DVec3, T>(std::mem::take(
+                &mut self.positions,
+            )) {
+                Ok(flat) => return flat,
+                Err((_, positions)) => self.positions = positions,
+            }
+        }
+        self.flat_positions()
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

@@ -30,6 +30,7 @@ use super::kernel::{self, MAX_WIDTH};
 use crate::options::Scheme;
 use crate::real::Real;
 use crate::refiner::Kind;
+use crate::topology::Table;
 use crate::topology::fvar::ChannelLevel;
 
 /// The parent elements whose children the vertex kernel has not computed:
@@ -93,7 +94,7 @@ impl Refiner {
         // The channel's values one per parent vertex (its first sibling),
         // refined as vertex data into the front of `dst`, one row per child
         // vertex...
-        let mut by_vertex = crate::alloc::vec_or_unwind(T::ZERO, parent.vertex_count * width);
+        let mut by_vertex = Table::for_overwrite(parent.vertex_count * width);
         for (v, row) in by_vertex.chunks_exact_mut(width).enumerate() {
             let x = pf.vertex_value(v, 0) as usize * width;
             row.copy_from_slice(&src[x..x + width]);
@@ -107,6 +108,9 @@ impl Refiner {
             &by_vertex,
             &mut dst[..child_count * width],
         );
+        // Not read again: its room goes back (to the pool) before the rest
+        // of this pass.
+        drop(by_vertex);
         // ... then moved to their values' rows: from the last, since a
         // child's first value is at or after its own index (siblings only
         // add rows), every row is read before it is overwritten.

@@ -41,8 +41,8 @@ pub use adaptive::AdaptiveRefiner;
 pub(crate) use kernel::{Scratch, accumulate};
 pub use queries::Faces;
 pub use stencil_factory::FactorizedStencils;
-pub(crate) use whole::refine_last_with;
 pub use whole::{refine, refine_last};
+pub(crate) use whole::{refine_last_owned, refine_last_with};
 
 /// The vertex of face `f` opposite edge `e` (Loop's edge-point face weights).
 #[inline(always)]

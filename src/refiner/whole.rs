@@ -7,12 +7,14 @@ use crate::error::{Buffer, Error, Result};
 use crate::limits::{check_level, check_precision};
 use crate::mesh::Mesh;
 use crate::options::Request;
+use crate::options::Scheme;
 use crate::options::{Options, UniformOptions};
 use crate::output::{LevelCounts, Limit, Refinement, Values};
 use crate::real::Precision;
 use crate::real::Real;
 use crate::topology::{Build, Level, Table, fvar, refine_level};
 use glam::{DVec3, Vec3};
+use std::borrow::Cow;
 
 /// Refines `mesh` to `uniform.level` and interpolates `base` (vertex data of
 /// `width` components per base vertex) along the way, releasing each level's
@@ -44,7 +46,7 @@ pub fn refine_last<T: Real>(
 
 /// Every level's counts, the last level's vertex values and each channel's
 /// last-level values.
-pub(crate) type LastLevel<T> = (Vec<LevelCounts>, Values<T>, Vec<Vec<T>>);
+pub(crate) type LastLevel<T> = (Vec<LevelCounts>, Values<T>, Vec<Table<T>>);
 
 /// [`refine_last`], and with `channels` also every face-varying channel of
 /// `mesh` refined and interpolated level by level (in `T`, each level's
@@ -59,30 +61,88 @@ pub(crate) fn refine_last_with<T: Real>(
     channels: bool,
 ) -> Result<LastLevel<T>> {
     crate::alloc::guard(Some(uniform.level), || {
-        check_level(mesh, options, uniform.level)?;
-        let mut r = Refiner::new(mesh, options)?;
-        if !channels {
-            r.fvar.clear();
-        }
+        let first = First::new(mesh, options, uniform, channels)?;
         if width == 0 {
             return Err(Error::ZeroWidth);
         }
-        if base.len() != r.levels[0].vertex_count * width {
+        if base.len() != first.r.levels[0].vertex_count * width {
             return Err(Error::BufferLength {
                 buffer: Buffer::Base,
-                expected: r.levels[0].vertex_count * width,
+                expected: first.r.levels[0].vertex_count * width,
                 got: base.len(),
             });
         }
+        first.refine(uniform, width, Cow::Borrowed(base))
+    })
+}
+
+/// [`refine_last_with`] on the mesh's own positions with every channel,
+/// consuming the mesh: its faces, tags and channel indices are dropped
+/// once the base level is built, and its positions once level 1 has been
+/// interpolated from them, so none of it is left at the peak of a
+/// refinement to level 2 or deeper (and only the positions at level 1).
+pub(crate) fn refine_last_owned<T: Real>(
+    mesh: Mesh,
+    options: &Options,
+    uniform: UniformOptions,
+) -> Result<LastLevel<T>> {
+    crate::alloc::guard(Some(uniform.level), || {
+        let first = First::new(&mesh, options, uniform, true)?;
+        let base = mesh.into_flat_positions::<T>();
+        first.refine(uniform, 3, Cow::Owned(base))
+    })
+}
+
+/// A whole refinement's start: the base level, and each channel's base
+/// values and width when the channels are refined.
+struct First<T> {
+    r: Refiner,
+    channels: Vec<(Vec<T>, usize)>,
+}
+
+impl<T: Real> First<T> {
+    fn new(
+        mesh: &Mesh,
+        options: &Options,
+        uniform: UniformOptions,
+        channels: bool,
+    ) -> Result<Self> {
+        check_level(mesh, options, uniform.level)?;
+        let mut r = Refiner::new(mesh, options)?;
+        let channels = if channels {
+            mesh.fvar_channels
+                .iter()
+                .map(|c| (c.values_as(), c.width))
+                .collect()
+        } else {
+            r.fvar.clear();
+            Vec::new()
+        };
+        Ok(First { r, channels })
+    }
+
+    /// Refines to `uniform.level`, interpolating `base` (`width` values per
+    /// vertex) and the channels level by level, each level released once
+    /// nothing reads it.
+    fn refine(
+        self,
+        uniform: UniformOptions,
+        width: usize,
+        mut base: Cow<'_, [T]>,
+    ) -> Result<LastLevel<T>> {
+        let First { mut r, channels } = self;
+        let (values, widths): (Vec<Vec<T>>, Vec<usize>) = channels.into_iter().unzip();
+        let mut fvar_values: Vec<Table<T>> = values.into_iter().map(Table::from).collect();
         let mut counts = vec![r.level_counts(0)?];
         // Level 1 reads `base` where it is: no copy of it.
         let mut data: Option<Table<T>> = None;
-        let mut fvar_values: Vec<Vec<T>> = if channels {
-            mesh.fvar_channels.iter().map(|c| c.values_as()).collect()
-        } else {
-            Vec::new()
-        };
         for level in 1..=uniform.level as usize {
+            // The grandparent is read while this level is interpolated only
+            // when the parent derives its relations from it: otherwise it
+            // goes before the child is built, lowering the peak by a level.
+            if level >= 2 && !r.levels[level - 1].derived_relations {
+                release(&mut r, level - 2);
+            }
             let (refinement, child) = refine_level(
                 &r.levels[level - 1],
                 &r.options,
@@ -106,27 +166,53 @@ pub(crate) fn refine_last_with<T: Real>(
             r.levels.push(child);
             r.check_unpaired_smooth_step(level - 1)?;
             counts.push(r.level_counts(level as u32)?);
-            let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
-            let src = data.as_deref().unwrap_or(base);
-            r.interpolate_level(Kind::Vertex, level, width, src, &mut next);
-            data = Some(next);
-            for (c, values) in fvar_values.iter_mut().enumerate() {
-                let w = mesh.fvar_channels[c].width;
-                *values = r.interpolate_face_varying(c, level as u32, w, values)?;
+            // The last split is done: what only splitting read goes before
+            // the last level's values take their room.
+            let parent = &mut r.levels[level - 1];
+            if level == uniform.level as usize
+                && r.fvar.is_empty()
+                && r.options.scheme != Scheme::Loop
+                && !parent.derived_relations
+            {
+                parent.release_split_tables();
             }
-            // Nothing reads the grandparent any more (the parent's vertex
-            // relations, when derived, are read from it while interpolating this
-            // level): only this local refiner held it.
+            let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
+            let src = data.as_deref().unwrap_or(&base);
+            r.interpolate_level(Kind::Vertex, level, width, src, &mut next);
+            // The parent's values are not read again, and no later table of
+            // this refinement is small enough to reuse their memory: it goes
+            // back to the system at once (the pool would keep it resident
+            // under the allocations that follow). Owned base values likewise.
+            if let Some(parent_values) = data.replace(next) {
+                parent_values.free();
+            }
+            base = Cow::Borrowed(&[]);
+            for (c, values) in fvar_values.iter_mut().enumerate() {
+                let w = widths[c];
+                // A pooled table: memory the pool keeps serves it, or is
+                // handed back before it is faulted in.
+                let mut next = Table::for_overwrite(r.fvar[c][level].value_count() * w);
+                r.interpolate_face_varying_into(c, level as u32, w, values, &mut next)?;
+                std::mem::replace(values, next).free();
+            }
+            // Nothing reads the grandparent any more (when the parent derives
+            // its vertex relations from it, they were read from it while
+            // interpolating this level): only this local refiner held it.
             if level >= 2 {
-                r.levels[level - 2] = Level::default();
-                for channel in &mut r.fvar {
-                    channel[level - 2] = Default::default();
-                }
+                release(&mut r, level - 2);
             }
         }
-        let last = data.unwrap_or_else(|| Table::from_slice(base));
+        let last = data.unwrap_or_else(|| Table::from_slice(&base));
         Ok((counts, Values(last), fvar_values))
-    })
+    }
+}
+
+/// Drops level `l`'s topology and its channels' (their slots stay, empty).
+fn release(r: &mut Refiner, l: usize) {
+    r.levels[l] = Level::default();
+    for channel in &mut r.fvar {
+        channel[l] = Default::default();
+    }
 }
 
 /// Refines a mesh uniformly with the native engine as `request` says (a

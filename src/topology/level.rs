@@ -88,6 +88,18 @@ impl Level {
         self.num_edges
     }
 
+    /// Drops the tables that only splitting this level and face-varying
+    /// channels read — face-edges and the local indices — keeping what
+    /// interpolating the next level's vertex data reads under Catmull-Clark
+    /// and bilinear rules (Loop's edge points read face-edges). For a
+    /// parent whose last child exists, when no channel is refined.
+    pub(crate) fn release_split_tables(&mut self) {
+        self.face_edges = Table::new();
+        self.edge_face_local = Table::new();
+        self.vertex_face_local = Table::new();
+        self.vertex_edge_local = Table::new();
+    }
+
     /// Whether all relations are present. A last level refined with minimal
     /// topology (OpenSubdiv's default) has only its face-vertices, vertex
     /// sharpness and vertex tags.

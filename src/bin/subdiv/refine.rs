@@ -174,7 +174,7 @@ pub(crate) fn refine(args: &RefineArgs) -> Result<(), Failure> {
             args.adaptive.check_selected_faces(&name, &mesh)?;
             crate::adaptive::refine_adaptive(args, level, &name, &mesh, &options)
         }
-        None => refine_loaded(args, &name, &mesh, &options),
+        None => refine_loaded(args, &name, mesh, &options),
     }
     .map_err(|f| f.in_input(&name))?;
     if args.peak_memory {
@@ -256,27 +256,31 @@ fn refine_all(args: &RefineArgs, inputs: &[Loaded], usda: bool) -> Result<(), Fa
 fn refine_loaded(
     args: &RefineArgs,
     name: &str,
-    mesh: &Mesh,
+    mesh: Mesh,
     options: &Options,
 ) -> Result<(), Failure> {
-    let (mesh, options) = (mesh, *options);
+    let options = *options;
     let request = Request::new(args.level)
         .faces_first(args.mesh.faces_first)
         .precision(args.mesh.precision)
         .limit(args.limit);
-    subdiv::check_level(mesh, &options, args.level)?;
-    subdiv::check_precision(mesh, args.mesh.precision)?;
+    subdiv::check_level(&mesh, &options, args.level)?;
+    subdiv::check_precision(&mesh, args.mesh.precision)?;
     let start = Instant::now();
     let precision = args.mesh.precision;
     if args.output.is_none() && !args.limit {
+        // Counted before the refinement, which consumes the mesh (and
+        // outside its time; its errors after the refinement's).
+        let holes = hole_faces(&mesh, &options, args.level);
+        let start = Instant::now();
         let counts: Vec<(usize, usize)> = args
             .engine
-            .refine_counts(mesh, &options, request)?
+            .refine_counts_owned(mesh, &options, request)?
             .iter()
             .map(|c| (c.vertices, c.faces))
             .collect();
         let seconds = start.elapsed().as_secs_f64();
-        let holes = hole_faces(mesh, &options, args.level)?;
+        let holes = holes?;
         outln!(
             "{}{}",
             summary(
@@ -292,9 +296,9 @@ fn refine_loaded(
         );
     } else if let (Engine::Native, false, Some(path)) = (args.engine, args.limit, &args.output) {
         let input = args.mesh.input.as_deref();
-        write_native_last(path, input, mesh, &options, request.uniform, precision)?;
+        write_native_last(path, input, &mesh, &options, request.uniform, precision)?;
     } else {
-        let r = args.engine.refine(mesh, &options, request)?;
+        let r = args.engine.refine(&mesh, &options, request)?;
         let seconds = start.elapsed().as_secs_f64();
         match &args.output {
             Some(path) => write_refinement(path, args.mesh.input.as_deref(), &r)?,
