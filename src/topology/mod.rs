@@ -26,6 +26,7 @@
 //! | `relation.rs` | [`Relation`]: a relation's members and offsets | (part of `Vtr::Level`) |
 //! | `tags.rs` | [`EdgeTag`], [`VertexTag`] | `Level::ETag`, `Level::VTag` |
 //! | `table.rs` | [`Table`]: the flat tables, on recycled huge pages when large | — |
+//! | `table_pool.rs` | the memory of dropped tables, kept for the next ones without ever raising the peak | — |
 //! | `growing.rs` | a table filled by appending, for outputs whose length is found as they are built | — |
 //! | `base.rs` | [`build_base_level`]: the base level from face-vertex lists | `far/topologyRefinerFactory.cpp`, `vtr/level.cpp` |
 //! | `manifold.rs` | the base level of a mesh whose edges are all manifold, from each vertex's corners (no edge search) | `vtr/level.cpp` (`completeTopologyFromFaceVertices`, `orientIncidentComponents`) |
