@@ -576,6 +576,30 @@ fn exercise_native_refiner(case: &MeshCase) {
         }
         fvar_last.push(values);
     }
+    // The lean whole refinements (levels released as they go): the last
+    // level's positions bit for bit, every level's counts, and the same
+    // counts with the mesh borrowed and consumed.
+    let uniform = case.uniform();
+    let (counts, lean) =
+        refiner::refine_last(mesh, &case.options, uniform, 3, &base).expect("refine_last");
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&lean), bits(last), "refine_last: the last level");
+    for (l, c) in counts.iter().enumerate() {
+        let full = r.level_counts(l as u32).expect("level counts");
+        assert_eq!(
+            (c.vertices, c.faces),
+            (full.vertices, full.faces),
+            "level {l}"
+        );
+    }
+    let request = subdiv::Request::from(uniform);
+    let borrowed = subdiv::Engine::Native
+        .refine_counts(mesh, &case.options, request)
+        .expect("refine_counts");
+    let owned = subdiv::Engine::Native
+        .refine_counts_owned(mesh.clone(), &case.options, request)
+        .expect("refine_counts_owned");
+    assert_eq!(owned, borrowed, "refine_counts_owned");
     // The limit, and its stencils.
     match r.limit(3, last) {
         Ok(limit) => {
