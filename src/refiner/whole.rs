@@ -157,20 +157,39 @@ impl<T: Real> First<T> {
             );
             let around =
                 super::queries::around(&r.levels, &r.refinements, level - 1, r.options.scheme);
+            // Only the last level's values are returned: its channels'
+            // corners are not built.
+            let last = level == uniform.level as usize;
             for channel in &mut r.fvar {
                 let parent = channel.last().expect("the parent level's channel");
-                let next = fvar::refine(around, &child, &refinement, None, parent, &r.options);
+                let next = if last {
+                    fvar::refine_values_only(around, &child, &refinement, parent, &r.options)
+                } else {
+                    fvar::refine(around, &child, &refinement, None, parent, &r.options)
+                };
                 channel.push(next);
             }
             r.refinements.push(refinement);
             r.levels.push(child);
             r.check_unpaired_smooth_step(level - 1)?;
             counts.push(r.level_counts(level as u32)?);
-            // The last split is done: what only splitting read goes before
-            // the last level's values take their room.
+            // The channels first, while the parent's vertex values are still
+            // the smaller ones: then the parent's channel topology and values
+            // go before this level's vertex values take their room.
+            for (c, values) in fvar_values.iter_mut().enumerate() {
+                let w = widths[c];
+                // A pooled table: memory the pool keeps serves it, or is
+                // handed back before it is faulted in.
+                let mut next = Table::for_overwrite(r.fvar[c][level].value_count() * w);
+                r.interpolate_face_varying_into(c, level as u32, w, values, &mut next)?;
+                std::mem::replace(values, next).free();
+                // The next level's channel is split from this level's.
+                r.fvar[c][level - 1] = Default::default();
+            }
+            // The last split is done and the channels interpolated: what only
+            // they read goes before the last level's values take their room.
             let parent = &mut r.levels[level - 1];
             if level == uniform.level as usize
-                && r.fvar.is_empty()
                 && r.options.scheme != Scheme::Loop
                 && !parent.derived_relations
             {
@@ -187,14 +206,6 @@ impl<T: Real> First<T> {
                 parent_values.free();
             }
             base = Cow::Borrowed(&[]);
-            for (c, values) in fvar_values.iter_mut().enumerate() {
-                let w = widths[c];
-                // A pooled table: memory the pool keeps serves it, or is
-                // handed back before it is faulted in.
-                let mut next = Table::for_overwrite(r.fvar[c][level].value_count() * w);
-                r.interpolate_face_varying_into(c, level as u32, w, values, &mut next)?;
-                std::mem::replace(values, next).free();
-            }
             // Nothing reads the grandparent any more (when the parent derives
             // its vertex relations from it, they were read from it while
             // interpolating this level): only this local refiner held it.

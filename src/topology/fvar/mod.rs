@@ -54,7 +54,7 @@ mod refine;
 pub use base::build_base;
 pub use refine::Children;
 pub(crate) use refine::missing;
-pub(crate) use refine::refine;
+pub(crate) use refine::{refine, refine_values_only};
 
 use super::{Around, Hood, Level, Table};
 use crate::options::{CreasingMethod, FVarLinearInterpolation};
@@ -248,7 +248,9 @@ impl ChannelLevel {
         self.value_count
     }
 
-    /// Value index of every face corner, parallel to the level's face-vertices.
+    /// Value index of every face corner, parallel to the level's
+    /// face-vertices (empty in the last level of a refinement that returns
+    /// only that level's values, which builds none).
     #[inline]
     pub fn face_values(&self) -> &[u32] {
         &self.face_values

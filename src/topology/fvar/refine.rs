@@ -178,6 +178,43 @@ pub(crate) fn refine<R: Children>(
     parent_fvar: &ChannelLevel,
     options: &Options,
 ) -> ChannelLevel {
+    split_channel(
+        around,
+        child,
+        r,
+        child_face_parent,
+        parent_fvar,
+        options,
+        true,
+    )
+}
+
+/// [`refine()`] into a uniformly split last level whose values are
+/// interpolated but whose faces nothing reads (a refinement that returns
+/// only the last level's values): the channel without its corners' values
+/// ([`ChannelLevel::face_values`] empty), which interpolation does not
+/// read — a table as large as the level's face-vertices neither built nor
+/// kept.
+pub(crate) fn refine_values_only<R: Children>(
+    around: Around,
+    child: &Level,
+    r: &R,
+    parent_fvar: &ChannelLevel,
+    options: &Options,
+) -> ChannelLevel {
+    split_channel(around, child, r, None, parent_fvar, options, false)
+}
+
+/// [`refine()`], with the corners' values when `with_corners` says so.
+fn split_channel<R: Children>(
+    around: Around,
+    child: &Level,
+    r: &R,
+    child_face_parent: Option<&[u32]>,
+    parent_fvar: &ChannelLevel,
+    options: &Options,
+    with_corners: bool,
+) -> ChannelLevel {
     let parent = around.level;
     let p = parent_fvar;
     let split = FaceSplit::of(options.scheme);
@@ -401,7 +438,9 @@ pub(crate) fn refine<R: Children>(
     }
 
     // Face values: each corner's vertex value, offset by its sibling.
-    fvar.face_values = if total > ncv && !with_siblings {
+    fvar.face_values = if !with_corners {
+        Table::new()
+    } else if total > ncv && !with_siblings {
         face_values_from_parent(around, child, r, split, p, &fvar.value_offsets)
     } else if total > ncv {
         let mut values = first_values(child, &fvar.value_offsets);
