@@ -237,3 +237,60 @@ fn a_corrupted_obj_is_an_error_with_file_and_line() {
     let o = subdiv(&["report", "--levels", "3..1"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// `bench --processes-only` on a user's file: the whole processes at levels
+/// 1 and 2 (native on one thread and as typed, `--engine osd`, the C++
+/// program against OpenSubdiv, each with its peak memory) and the OBJ
+/// reader, nothing measured in process; bench.json holds the same runs.
+#[test]
+fn bench_processes_only_on_an_obj_file() {
+    let dir = scratch("bench-processes-only");
+    let shape = dir.join("seam-crease.obj");
+    std::fs::write(&shape, SHAPE).unwrap();
+    let out = dir.join("bench");
+    let o = subdiv(&[
+        "bench",
+        shape.to_str().unwrap(),
+        "--processes-only",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(!text.contains("| input | scheme |"), "{text}");
+    for level in [1, 2] {
+        let head = format!("Whole process, seam-crease.obj at level {level}, no output file");
+        let at = text.find(&head).unwrap_or_else(|| panic!("{text}"));
+        let block: Vec<&str> = text[at..].lines().skip(1).take(4).collect();
+        let programs = [
+            "subdiv refine --engine native, 1 thread(s): ",
+            "subdiv refine --engine native, every core",
+            "subdiv refine --engine osd: ",
+            "C++ program against OpenSubdiv: ",
+        ];
+        // Every core is a second native run only where there are several.
+        let programs: Vec<&str> = programs
+            .into_iter()
+            .filter(|p| !p.contains("every core") || block[1].contains("every core"))
+            .collect();
+        for (line, program) in block.iter().zip(&programs) {
+            assert!(line.trim_start().starts_with(program), "{line}\n{text}");
+            assert!(line.contains(" ms, peak memory "), "{line}");
+        }
+    }
+    assert!(text.contains("OBJ reader (seam-crease.obj"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    let runs = json["whole_process"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    assert_eq!(
+        (runs[0]["level"].as_u64(), runs[1]["level"].as_u64()),
+        (Some(1), Some(2))
+    );
+    assert!(json["rows"].as_array().unwrap().is_empty());
+    assert!(!out.join("time-per-level.svg").exists());
+    // Only one kind of run at a time.
+    let o = subdiv(&["bench", "--processes-only", "--adaptive-only"]);
+    assert_eq!(o.status.code(), Some(2));
+}

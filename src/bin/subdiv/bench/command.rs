@@ -30,6 +30,12 @@ pub(crate) struct BenchArgs {
     /// faces or more).
     #[arg(long)]
     pub(crate) tessellation_only: bool,
+    /// Only the whole processes (`subdiv refine` against the C++ program
+    /// on the same OBJ file: time and peak memory) and the OBJ reader and
+    /// writer: no in-process rows. Inputs given are each run at levels 1
+    /// and 2; the standard ones as in the full benchmark.
+    #[arg(long, conflicts_with_all = ["adaptive_only", "tessellation_only"])]
+    pub(crate) processes_only: bool,
     /// Threads for the native engine.
     #[arg(long, default_value_t = 1)]
     pub(crate) threads: usize,
@@ -78,21 +84,48 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         v
     };
     let standard = args.inputs.is_empty();
-    let adaptive_inputs = if args.tessellation_only {
+    let adaptive_inputs = if args.tessellation_only || args.processes_only {
         Vec::new()
     } else {
         super::adaptive::adaptive_inputs(&inputs, standard, args.quick)
     };
-    let tessellation_inputs = if args.adaptive_only {
+    let tessellation_inputs = if args.adaptive_only || args.processes_only {
         Vec::new()
     } else {
         super::tessellation::tessellation_inputs(&inputs, standard)
     };
     let all_inputs = &inputs;
-    let inputs: &[subdiv::shapes::BenchShape] = if args.adaptive_only || args.tessellation_only {
-        &[]
+    let inputs: &[subdiv::shapes::BenchShape] =
+        if args.adaptive_only || args.tessellation_only || args.processes_only {
+            &[]
+        } else {
+            all_inputs
+        };
+    // The whole processes: on the standard inputs, the first (the quad
+    // torus) at level 4 and the big ones refined at most two levels in
+    // process (the grid, the production-like mesh) at levels 1 and 2, as
+    // production assets are refined; with `--processes-only`, the inputs
+    // given at levels 1 and 2. Then the OBJ reader on the big inputs (the
+    // inputs given), and on the standard inputs the writer on the first.
+    let processes = !(args.adaptive_only || args.tessellation_only);
+    let (runs, readers) = if !processes {
+        (Vec::new(), Vec::new())
+    } else if standard {
+        // With 100,000 faces or more at full size (`--quick` divides the
+        // face counts by 16).
+        let scale = if args.quick { 16 } else { 1 };
+        let big: Vec<&subdiv::shapes::BenchShape> = all_inputs
+            .iter()
+            .filter(|i| i.max_level <= 2 && i.mesh.face_count() * scale >= 100_000)
+            .collect();
+        let mut runs = vec![(&all_inputs[0], 4)];
+        runs.extend(big.iter().flat_map(|&i| [(i, 1), (i, 2)]));
+        (runs, big)
+    } else if args.processes_only {
+        let runs = all_inputs.iter().flat_map(|i| [(i, 1), (i, 2)]).collect();
+        (runs, all_inputs.iter().collect())
     } else {
-        all_inputs
+        (Vec::new(), Vec::new())
     };
     // Per input: one step per level and eight tasks (nine with UVs); then
     // the two parallel-use steps; then two adaptive steps per isolation
@@ -108,7 +141,8 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         + tessellation_inputs
             .iter()
             .map(|i| super::tessellation::tessellation_rates(i).len() as u64)
-            .sum::<u64>();
+            .sum::<u64>()
+        + (runs.len() + readers.len() + usize::from(standard && !runs.is_empty())) as u64;
     let bar = indicatif::ProgressBar::new(steps);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
@@ -125,31 +159,31 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
             bar.inc(1);
         },
     )?;
-    bar.finish_and_clear();
-    if standard && !inputs.is_empty() {
-        // The first input (the quad torus) at level 4; the big inputs
-        // refined at most two levels in process (the grid, the
-        // production-like mesh) at levels 1 and 2, as production assets are
-        // refined.
-        let mut runs = vec![(&inputs[0], 4)];
-        // The big inputs: refined at most two levels, with 100,000 faces or
-        // more at full size (`--quick` divides the face counts by 16).
-        let scale = if args.quick { 16 } else { 1 };
-        let big = |i: &&subdiv::shapes::BenchShape| {
-            i.max_level <= 2 && i.mesh.face_count() * scale >= 100_000
-        };
-        for input in inputs.iter().filter(big) {
-            runs.extend([(input, 1), (input, 2)]);
-        }
+    let progress = |msg: String| {
+        bar.set_message(msg);
+        bar.inc(1);
+    };
+    if !runs.is_empty() {
+        let dir = tempfile::tempdir()
+            .map_err(|e| Failure::Message(format!("no temporary directory ({e})")))?;
+        let driver = super::process::compile_driver(dir.path());
         for (input, level) in runs {
-            match super::process::whole_process(input, level, args.quick, args.threads) {
+            progress(format!("{}: whole process, level {level}", input.name));
+            match super::process::whole_process(
+                input,
+                level,
+                args.quick,
+                args.threads,
+                driver.as_deref(),
+            ) {
                 Ok(w) => report.whole_process.push(w),
                 Err(e) => report
                     .skipped
                     .push(format!("whole process, {} level {level}: {e}", input.name)),
             }
         }
-        for input in inputs.iter().filter(big) {
+        for input in readers {
+            progress(format!("{}: OBJ reader", input.name));
             match super::process::obj_reader_rate(input, args.threads) {
                 Ok(o) => report.obj_reader.push(o),
                 Err(e) => report
@@ -157,11 +191,16 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
                     .push(format!("OBJ reader, {}: {e}", input.name)),
             }
         }
-        match super::process::obj_writer_rate(&inputs[0]) {
-            Ok(o) => report.obj_writer = Some(o),
-            Err(e) => report.skipped.push(format!("OBJ writer: {e}")),
+        // (Not on the inputs given: it refines to level 3 in memory.)
+        if standard {
+            progress(format!("{}: OBJ writer", all_inputs[0].name));
+            match super::process::obj_writer_rate(&all_inputs[0]) {
+                Ok(o) => report.obj_writer = Some(o),
+                Err(e) => report.skipped.push(format!("OBJ writer: {e}")),
+            }
         }
     }
+    bar.finish_and_clear();
     let text = report.markdown();
     outln!("{text}");
     if let Some(dir) = &args.out {

@@ -121,35 +121,43 @@ pub(crate) fn obj_reader_rate(input: &BenchShape, threads: usize) -> Result<ObjR
     })
 }
 
-/// Whole-process time and peak memory at `level` of `input` (written as an
-/// OBJ file with its tags and UVs, refined with its options, UVs included),
-/// no output file: `subdiv refine` natively (on `threads` threads, and as
-/// typed on every core when that differs), with `--engine osd`, and, when
-/// g++ and libosd-dev are there, an equivalent C++ program against
-/// OpenSubdiv (the driver in cpp/osd_driver.cpp, embedded in this binary).
-/// Medians of interleaved runs.
-pub(crate) fn whole_process(
-    input: &BenchShape,
-    level: u32,
-    quick: bool,
-    threads: usize,
-) -> Result<WholeProcess, String> {
-    use std::process::Command;
-    let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;
-    let obj = dir.path().join("input.obj");
-    subdiv::io::write_mesh_obj(&obj, &input.mesh, Precision::F64).map_err(|e| e.to_string())?;
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let driver_src = dir.path().join("osd_driver.cpp");
-    let driver = dir.path().join("osd_driver");
-    let have_driver = std::fs::write(&driver_src, include_str!("../../../../cpp/osd_driver.cpp"))
+/// The C++ program of the whole-process rows (cpp/osd_driver.cpp,
+/// embedded in this binary) compiled into `dir` against OpenSubdiv, once
+/// per benchmark: its path, or `None` when g++ or libosd-dev is missing
+/// (the rows then leave it out).
+pub(crate) fn compile_driver(dir: &std::path::Path) -> Option<std::path::PathBuf> {
+    let driver_src = dir.join("osd_driver.cpp");
+    let driver = dir.join("osd_driver");
+    let compiled = std::fs::write(&driver_src, include_str!("../../../../cpp/osd_driver.cpp"))
         .is_ok()
-        && Command::new("g++")
+        && std::process::Command::new("g++")
             .args(["-std=c++14", "-O2"])
             .arg(&driver_src)
             .args(["-losdCPU", "-o"])
             .arg(&driver)
             .output()
             .is_ok_and(|o| o.status.success());
+    compiled.then_some(driver)
+}
+
+/// Whole-process time and peak memory at `level` of `input` (written as an
+/// OBJ file with its tags and UVs, refined with its options, UVs included),
+/// no output file: `subdiv refine` natively (on `threads` threads, and as
+/// typed on every core when that differs), with `--engine osd`, and, with
+/// `driver` ([`compile_driver`]), an equivalent C++ program against
+/// OpenSubdiv. Medians of interleaved runs.
+pub(crate) fn whole_process(
+    input: &BenchShape,
+    level: u32,
+    quick: bool,
+    threads: usize,
+    driver: Option<&std::path::Path>,
+) -> Result<WholeProcess, String> {
+    use std::process::Command;
+    let dir = tempfile::tempdir().map_err(|e| format!("no temporary directory ({e})"))?;
+    let obj = dir.path().join("input.obj");
+    subdiv::io::write_mesh_obj(&obj, &input.mesh, Precision::F64).map_err(|e| e.to_string())?;
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     // Nine runs of each program: on this kind of virtual machine a process
     // now and then finds its fresh memory handed back to the host and takes
     // 2-4x its usual time, and once three of five such runs made the median
@@ -212,8 +220,8 @@ pub(crate) fn whole_process(
         "subdiv refine --engine osd".into(),
         refine("osd", None),
     ));
-    if have_driver {
-        let mut c = Command::new(&driver);
+    if let Some(driver) = driver {
+        let mut c = Command::new(driver);
         c.arg(&obj).arg("-").args(options);
         programs.push((ProgramKind::Cpp, "C++ program against OpenSubdiv".into(), c));
     }
