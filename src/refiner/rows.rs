@@ -32,6 +32,7 @@ pub(super) struct RowsView<'a, T> {
 }
 
 impl<'a, T> RowsView<'a, T> {
+    /// Row `v`: its base vertices and their weights.
     #[inline]
     pub(super) fn get(&self, v: u32) -> (&'a [u32], &'a [T]) {
         let (a, b) = (
@@ -51,6 +52,7 @@ impl<'a, T> RowsView<'a, T> {
 }
 
 impl<T: Real> Rows<T> {
+    /// No rows yet, with room for the offsets of `rows` rows.
     pub(super) fn with_rows(rows: usize) -> Self {
         let mut offsets = Growing::with_capacity(rows + 1);
         offsets.push(0);
@@ -62,6 +64,7 @@ impl<T: Real> Rows<T> {
         }
     }
 
+    /// The rows so far as slices.
     #[inline]
     pub(super) fn view(&self) -> RowsView<'_, T> {
         RowsView {
@@ -209,6 +212,7 @@ pub(super) struct RowBuilder<T> {
 }
 
 impl<T: Real> RowBuilder<T> {
+    /// A builder for rows over `base` base vertices (every slot absent).
     pub(super) fn new(base: usize) -> Self {
         RowBuilder {
             slot: vec![ABSENT; base],
@@ -228,6 +232,8 @@ impl<T: Real> RowBuilder<T> {
         self.len = 0;
     }
 
+    /// Makes the buffer `bound` terms long (the first row that long, once),
+    /// unwinding when memory runs out.
     #[cold]
     #[inline(never)]
     fn grow(&mut self, bound: usize) {

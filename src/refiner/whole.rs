@@ -173,6 +173,13 @@ impl<T: Real> First<T> {
             r.levels.push(child);
             r.check_unpaired_smooth_step(level - 1)?;
             counts.push(r.level_counts(level as u32)?);
+            // The last split is done: what only splitting read goes before
+            // the channels' values take their room, the rest after them.
+            let parent = &mut r.levels[level - 1];
+            let split_only = last && r.options.scheme != Scheme::Loop && !parent.derived_relations;
+            if split_only {
+                parent.release_face_edges();
+            }
             // The channels first, while the parent's vertex values are still
             // the smaller ones: then the parent's channel topology and values
             // go before this level's vertex values take their room.
@@ -183,17 +190,17 @@ impl<T: Real> First<T> {
                 let mut next = Table::for_overwrite(r.fvar[c][level].value_count() * w);
                 r.interpolate_face_varying_into(c, level as u32, w, values, &mut next)?;
                 std::mem::replace(values, next).free();
-                // The next level's channel is split from this level's.
+                // The next level's channel is split from this level's; the
+                // last level's is not read again either.
                 r.fvar[c][level - 1] = Default::default();
+                if last {
+                    r.fvar[c][level] = Default::default();
+                }
             }
-            // The last split is done and the channels interpolated: what only
-            // they read goes before the last level's values take their room.
-            let parent = &mut r.levels[level - 1];
-            if level == uniform.level as usize
-                && r.options.scheme != Scheme::Loop
-                && !parent.derived_relations
-            {
-                parent.release_split_tables();
+            // The channels interpolated: what only they read goes before
+            // the last level's values take their room.
+            if split_only {
+                r.levels[level - 1].release_split_tables();
             }
             let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
             let src = data.as_deref().unwrap_or(&base);

@@ -92,12 +92,22 @@ impl Level {
     /// channels read — face-edges and the local indices — keeping what
     /// interpolating the next level's vertex data reads under Catmull-Clark
     /// and bilinear rules (Loop's edge points read face-edges). For a
-    /// parent whose last child exists, when no channel is refined.
+    /// parent whose last child exists, once its channels (if any) are
+    /// interpolated.
     pub(crate) fn release_split_tables(&mut self) {
-        self.face_edges = Table::new();
+        self.release_face_edges();
         self.edge_face_local = Table::new();
         self.vertex_face_local = Table::new();
         self.vertex_edge_local = Table::new();
+    }
+
+    /// Drops the face-edges, which only splitting this level reads under
+    /// Catmull-Clark and bilinear rules when the level stores its
+    /// relations (Loop's edge points and face-varying values read them, and
+    /// a level derived from this one): for a parent whose last child
+    /// exists, before its channels are interpolated.
+    pub(crate) fn release_face_edges(&mut self) {
+        self.face_edges = Table::new();
     }
 
     /// Whether all relations are present. A last level refined with minimal
