@@ -202,6 +202,14 @@ impl<T: Real> First<T> {
             if split_only {
                 r.levels[level - 1].release_split_tables();
             }
+            // The last level's faces were counted, and interpolating its
+            // vertex data reads its vertices' tags and sharpness, not its
+            // faces: they are not returned, so they go before its values
+            // are written (built as OpenSubdiv builds them, kept no longer
+            // than they are read).
+            if last {
+                r.levels[level].face_vertices = Default::default();
+            }
             let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
             let src = data.as_deref().unwrap_or(&base);
             r.interpolate_level(Kind::Vertex, level, width, src, &mut next);
