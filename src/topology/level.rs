@@ -103,9 +103,9 @@ impl Level {
 
     /// Drops the face-edges, which only splitting this level reads under
     /// Catmull-Clark and bilinear rules when the level stores its
-    /// relations (Loop's edge points and face-varying values read them, and
-    /// a level derived from this one): for a parent whose last child
-    /// exists, before its channels are interpolated.
+    /// relations (Loop's edge points read them, vertex and face-varying
+    /// alike, and so does a level derived from this one): for a parent
+    /// whose last child exists, before its channels are interpolated.
     pub(crate) fn release_face_edges(&mut self) {
         self.face_edges = Table::new();
     }
