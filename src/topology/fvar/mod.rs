@@ -222,7 +222,9 @@ pub struct ChannelLevel {
     value_count: usize,
     /// The value of every face corner, parallel to the level's face-vertices
     /// (a [`Table`]: as large as the face-vertices, and like them written
-    /// into memory a dropped refinement left, when there is some).
+    /// into memory a dropped refinement left, when there is some). Empty in
+    /// the last level of `refiner::whole`'s private refiner, which returns
+    /// only that level's values ([`refine_values_only`]).
     face_values: Table<u32>,
     /// Per edge.
     edge_tags: Vec<FVarEdgeTag>,
@@ -248,9 +250,7 @@ impl ChannelLevel {
         self.value_count
     }
 
-    /// Value index of every face corner, parallel to the level's
-    /// face-vertices (empty in the last level of a refinement that returns
-    /// only that level's values, which builds none).
+    /// Value index of every face corner, parallel to the level's face-vertices.
     #[inline]
     pub fn face_values(&self) -> &[u32] {
         &self.face_values
