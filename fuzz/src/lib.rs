@@ -21,7 +21,9 @@ use glam::DVec3;
 use std::path::Path;
 use subdiv::curve::{self, BSplineCurve, CurveError, CurveScheme, Point};
 use subdiv::io::points::{self as points_io, Points, PointsErrorKind};
-use subdiv::io::{mesh_to_obj_string, parse_obj, parse_obj_chunked, parse_obj_general};
+use subdiv::io::{
+    mesh_to_obj_string, parse_obj, parse_obj_chunked, parse_obj_general, parse_obj_streamed,
+};
 use subdiv::refiner::{self, Refiner};
 use subdiv::{
     AdaptiveOptions, BoundaryInterpolation, CreasingMethod, Error, FVarChannel,
@@ -1240,6 +1242,13 @@ pub fn check_obj(data: &[u8]) {
         parse_obj_chunked(&text, file, 3),
         general,
         "the chunked reader and the general parser differ"
+    );
+    // The raw bytes, a block at a time: blocks cutting lines and UTF-8
+    // sequences, lines longer than the buffer.
+    assert_eq!(
+        parse_obj_streamed(data, file, 1 + data.len() % 7),
+        general,
+        "the streaming reader and the general parser differ"
     );
     let lines = text
         .strip_prefix('\u{feff}')

@@ -17,8 +17,8 @@ pub mod usd;
 pub use number::format_g;
 pub use obj::{
     ObjOutput, ObjWarning, ShapeFile, ShapeTags, UvOutput, mesh_to_obj_string, parse_obj,
-    parse_obj_chunked, parse_obj_general, read_obj, write_mesh_obj, write_mesh_obj_to, write_obj,
-    write_obj_to,
+    parse_obj_chunked, parse_obj_general, parse_obj_streamed, read_obj, write_mesh_obj,
+    write_mesh_obj_to, write_obj, write_obj_to,
 };
 #[cfg(feature = "usd")]
 pub use usd::{UsdMesh, UsdMeshOut, UsdReadOptions, UsdStage, read_usd, write_usda};

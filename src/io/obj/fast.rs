@@ -122,18 +122,15 @@ fn number(s: &[u8]) -> Option<f64> {
 /// it, when it is of plain decimal syntax, finite, and the whole field
 /// ([`number`]'s rules): read where it stands, the field's end found by the
 /// parser itself. A number's characters are never whitespace, so the
-/// parser stops where the field ends or earlier.
+/// parser stops where the field ends or earlier. The field's syntax is
+/// `fast-float2`'s to judge: what it reads other than plain decimals
+/// (`inf`, `infinity`, `nan`) is never finite.
 #[inline]
 fn number_at(line: &[u8], at: &mut usize) -> Option<f64> {
-    let s = &line[*at..];
-    let unsigned = match s.first()? {
-        b'+' | b'-' => &s[1..],
-        _ => s,
-    };
-    if !matches!(unsigned.first()?, b'0'..=b'9' | b'.') {
-        return None;
-    }
-    let (x, used): (f64, usize) = fast_float2::parse_partial(s).ok()?;
+    // `fast-float2` reads a field that starts (after an optional sign)
+    // with a digit or a point as a number, or else `inf`, `infinity` or
+    // `nan`, which are not finite.
+    let (x, used): (f64, usize) = fast_float2::parse_partial(line.get(*at..)?).ok()?;
     *at += used;
     let whole = line.get(*at).is_none_or(|&b| is_space(b));
     (whole && x.is_finite()).then_some(x)
@@ -165,7 +162,7 @@ pub(super) fn numbers<const N: usize>(line: &[u8]) -> Option<([f64; N], usize)> 
 /// The digits at `line[*at..]` (at least one, at most `most`) as a
 /// number, `*at` moved past them; `None` without a digit or with more than
 /// `most` (at most 19, so the value fits).
-#[inline]
+#[inline(always)]
 fn digits(line: &[u8], at: &mut usize, most: usize) -> Option<u64> {
     if let Some(n) = digits_in_word(line, at, most) {
         return n;
@@ -189,7 +186,7 @@ fn digits(line: &[u8], at: &mut usize, most: usize) -> Option<u64> {
 /// bytes at `line[*at..]` (face indices nearly always do): `None` when it
 /// cannot tell (fewer than eight bytes left, eight digits), else
 /// [`digits`]' answer.
-#[inline]
+#[inline(always)]
 fn digits_in_word(line: &[u8], at: &mut usize, most: usize) -> Option<Option<u64>> {
     const ONES: u64 = 0x0101_0101_0101_0101;
     let word = u64::from_le_bytes(line.get(*at..*at + 8)?.try_into().ok()?);
@@ -218,14 +215,14 @@ fn digits_in_word(line: &[u8], at: &mut usize, most: usize) -> Option<Option<u64
 
 /// A positive decimal index of at most nine digits (no sign, no overflow)
 /// at `line[*at..]`, `*at` moved past it.
-#[inline]
+#[inline(always)]
 fn index(line: &[u8], at: &mut usize) -> Option<usize> {
     digits(line, at, 9).filter(|&n| n > 0).map(|n| n as usize)
 }
 
 /// A normal index at `line[*at..]` the general parser accepts without a
 /// second look — an optional minus and at most 18 digits — skipped.
-#[inline]
+#[inline(always)]
 fn skip_normal_index(line: &[u8], at: &mut usize) -> Option<()> {
     if line.get(*at) == Some(&b'-') {
         *at += 1;
@@ -265,58 +262,98 @@ pub(super) fn face(
     uvs: &mut Vec<u32>,
 ) -> Option<(bool, usize)> {
     let (had_vertices, had_uvs) = (vertices.len(), uvs.len());
-    // The pass, leaving what it appended when it fails.
-    let mut corners = || -> Option<(bool, usize)> {
-        let first = vertices.len();
-        let mut at = 0;
-        let mut with_uv = None;
-        loop {
-            skip_blank(line, &mut at);
-            if is_line_end(line, at) {
-                return Some((with_uv.unwrap_or(false), at));
-            }
-            let v = index(line, &mut at)?;
-            let mut t = None;
-            if line.get(at) == Some(&b'/') {
+    let read = corners(line, max, vertices, uvs).filter(|c| {
+        vertices.len() - had_vertices >= 3 && c.top_vertex <= vertex_count && c.top_uv <= uv_count
+    });
+    match read {
+        Some(c) => Some((c.with_uv, c.end)),
+        None => {
+            vertices.truncate(had_vertices);
+            uvs.truncate(had_uvs);
+            None
+        }
+    }
+}
+
+/// What [`corners`] read of a face line.
+struct Corners {
+    /// Whether the corners have texture coordinates.
+    with_uv: bool,
+    /// Where the line ends.
+    end: usize,
+    /// The largest (1-based) vertex and texture-coordinate indices.
+    top_vertex: usize,
+    top_uv: usize,
+}
+
+/// The byte at `line[at]`, a line feed past the end of the text (which
+/// ends the line as a line feed does).
+#[inline(always)]
+fn byte(line: &[u8], at: usize) -> u8 {
+    line.get(at).copied().unwrap_or(b'\n')
+}
+
+/// [`face`]'s pass over the corners, appending their 0-based indices,
+/// at most `max` corners, all of one form; their indices' range is left to
+/// the caller, which checks the largest once. `None` (what was appended
+/// left for the caller to take back) for a line the general parser reads.
+#[inline(always)]
+fn corners(
+    line: &[u8],
+    max: usize,
+    vertices: &mut Vec<u32>,
+    uvs: &mut Vec<u32>,
+) -> Option<Corners> {
+    let mut at = 0;
+    // Whether the first corner had a texture coordinate; every other
+    // corner must agree.
+    let mut with_uv = None;
+    let (mut top_vertex, mut top_uv, mut count) = (0, 0, 0);
+    loop {
+        while is_blank(byte(line, at)) {
+            at += 1;
+        }
+        if byte(line, at) == b'\n' {
+            return Some(Corners {
+                with_uv: with_uv.unwrap_or(false),
+                end: at,
+                top_vertex,
+                top_uv,
+            });
+        }
+        let v = index(line, &mut at)?;
+        // 0: no texture coordinate.
+        let mut t = 0;
+        if byte(line, at) == b'/' {
+            at += 1;
+            if byte(line, at) == b'/' {
+                // `v//vn`: a normal index, read but not checked against the
+                // normals, as the general parser does.
                 at += 1;
-                if line.get(at) == Some(&b'/') {
-                    // `v//vn`: a normal index, read but not checked against the
-                    // normals, as the general parser does.
+                skip_normal_index(line, &mut at)?;
+            } else {
+                t = index(line, &mut at)?;
+                if byte(line, at) == b'/' {
                     at += 1;
                     skip_normal_index(line, &mut at)?;
-                } else {
-                    t = Some(index(line, &mut at)?);
-                    if line.get(at) == Some(&b'/') {
-                        at += 1;
-                        skip_normal_index(line, &mut at)?;
-                    }
                 }
-            }
-            // The corner ends here, or the line is not one the fast path reads.
-            if line.get(at).is_some_and(|&b| !is_space(b)) {
-                return None;
-            }
-            if v > vertex_count || *with_uv.get_or_insert(t.is_some()) != t.is_some() {
-                return None;
-            }
-            vertices.push((v - 1) as u32);
-            if let Some(t) = t {
-                if t > uv_count {
-                    return None;
-                }
-                uvs.push((t - 1) as u32);
-            }
-            if vertices.len() - first > max {
-                return None;
             }
         }
-    };
-    let read = corners().filter(|_| vertices.len() - had_vertices >= 3);
-    if read.is_none() {
-        vertices.truncate(had_vertices);
-        uvs.truncate(had_uvs);
+        // The corner ends here, or the line is not one the fast path reads.
+        if !is_space(byte(line, at)) || *with_uv.get_or_insert(t != 0) != (t != 0) {
+            return None;
+        }
+        count += 1;
+        if count > max {
+            return None;
+        }
+        top_vertex = top_vertex.max(v);
+        vertices.push((v - 1) as u32);
+        if t != 0 {
+            top_uv = top_uv.max(t);
+            uvs.push((t - 1) as u32);
+        }
     }
-    read
 }
 
 #[cfg(test)]

@@ -64,7 +64,7 @@ mod read;
 mod write;
 
 pub(crate) use read::escape;
-pub use read::{parse_obj, parse_obj_chunked, parse_obj_general, read_obj};
+pub use read::{parse_obj, parse_obj_chunked, parse_obj_general, parse_obj_streamed, read_obj};
 pub use write::{
     ObjOutput, UvOutput, mesh_to_obj_string, write_mesh_obj, write_mesh_obj_to, write_obj,
     write_obj_to,

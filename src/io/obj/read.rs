@@ -16,12 +16,21 @@ use std::str::SplitAsciiWhitespace;
 /// Failing to read the file is an [`ObjErrorKind::Io`] error on line 0. Bytes
 /// that are not UTF-8 are replaced (they can only matter inside a number, where
 /// they are a syntax error), and a leading byte-order mark is skipped.
+///
+/// On one thread, or for a file under 4 MiB, the file is read a block at a
+/// time and parsed as it arrives, in a buffer that stays in the
+/// processor's cache; a larger file on a pool of several threads is read
+/// whole and parsed in chunks on every thread ([`parse_obj`]). The result
+/// and the first error are the same either way.
 pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
-    let bytes = read_bytes(path).map_err(|e| ObjError {
-        file: path.to_path_buf(),
-        line: 0,
-        kind: ObjErrorKind::Io(e.to_string()),
-    })?;
+    let io = |e: std::io::Error| error_at(path, 0, ObjErrorKind::Io(e.to_string()));
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let len = file.metadata().map_err(io)?.len();
+    // One thread, or a file too small to share: read a block at a time.
+    if rayon::current_num_threads() == 1 || len < PARALLEL_BYTES as u64 {
+        return read_streaming(&mut file, path, BLOCK);
+    }
+    let bytes = read_bytes(path).map_err(io)?;
     // Read as bytes: the fast path's lines are ASCII by construction, and
     // only the general parser's lines are checked for UTF-8 (and their bad
     // bytes replaced), which reads the same text as checking and replacing
@@ -31,6 +40,77 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
     // memory of reading and refining stays what it was with a vector.
     bytes.free();
     result
+}
+
+/// The bytes read from the file at a time by [`read_streaming`]: small
+/// enough for the buffer to stay in the processor's second-level cache
+/// while the parser reads it, large enough for the system calls not to
+/// count.
+const BLOCK: usize = 1 << 18;
+
+/// The file (`source`) read `block` bytes at a time into one buffer and its whole lines
+/// parsed as they arrive ([`Parser::lines`]), the line a block cuts
+/// carried over to the next: the same lines, results and errors as
+/// reading the whole text first ([`parse_lines`]), without a table the
+/// size of the file — no page of it to fault in and zero, no copy of the
+/// text out of the processor's cache before the parser reads it. A line
+/// longer than the buffer grows it. A file that cannot be read is an I/O
+/// error on line 0, unless a line already read is an error: lines are
+/// judged in order, as they arrive.
+fn read_streaming(
+    source: &mut impl std::io::Read,
+    path: &Path,
+    block: usize,
+) -> Result<ShapeFile, ObjError> {
+    let io = |e: &dyn std::fmt::Display| error_at(path, 0, ObjErrorKind::Io(e.to_string()));
+    let mut buffer = Vec::new();
+    buffer.try_reserve_exact(block).map_err(|e| io(&e))?;
+    buffer.resize(block.max(1), 0);
+    let mut parser = Parser::default();
+    let mut line = 0;
+    // Bytes in the buffer not yet parsed (the start of a line), and whether
+    // the first line (which may start with a byte-order mark) is still to
+    // come.
+    let (mut held, mut first) = (0, true);
+    loop {
+        if held == buffer.len() {
+            // A line longer than the buffer.
+            buffer.try_reserve_exact(buffer.len()).map_err(|e| io(&e))?;
+            buffer.resize(2 * buffer.len(), 0);
+        }
+        let read = match source.read(&mut buffer[held..]) {
+            Ok(read) => read,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(io(&e)),
+        };
+        let end_of_file = read == 0;
+        let text = &buffer[..held + read];
+        // Whole lines only, but at the end of the file.
+        let whole = match memchr::memrchr(b'\n', &text[held..]) {
+            Some(at) => held + at + 1,
+            None if end_of_file => text.len(),
+            None => {
+                held = text.len();
+                continue;
+            }
+        };
+        let mut lines = &text[..whole];
+        if first {
+            lines = strip_bom(lines);
+            first = false;
+        }
+        parser
+            .lines(lines, &mut line, true)
+            .map_err(|(line, kind)| error_at(path, line, kind))?;
+        if end_of_file {
+            break;
+        }
+        held = text.len() - whole;
+        buffer.copy_within(whole..whole + held, 0);
+    }
+    parser
+        .finish()
+        .map_err(|(line, kind)| error_at(path, line, kind))
 }
 
 /// The whole file, read into a table (a huge-page map from 2 MiB: a large
@@ -112,6 +192,14 @@ pub fn parse_obj_general(text: &str, file: &Path) -> Result<ShapeFile, ObjError>
 pub fn parse_obj_chunked(text: &str, file: &Path, chunks: usize) -> Result<ShapeFile, ObjError> {
     let text = strip_bom(text.as_bytes());
     parse_chunked(text, file, chunks.max(1)).unwrap_or_else(|| parse_lines(text, file, true))
+}
+
+/// The bytes of an OBJ file (UTF-8 or not) read as [`read_obj`] reads a
+/// file a block at a time, in blocks of `block` bytes: the streaming
+/// reader is tested and fuzzed with it.
+#[doc(hidden)]
+pub fn parse_obj_streamed(bytes: &[u8], file: &Path, block: usize) -> Result<ShapeFile, ObjError> {
+    read_streaming(&mut &bytes[..], file, block)
 }
 
 /// Files from this size are read on every thread of the pool.
@@ -230,21 +318,10 @@ fn parse_chunked(text: &[u8], file: &Path, count: usize) -> Option<Result<ShapeF
 /// The text read line by line (by the fast path where it can, when
 /// `fast_path`).
 fn parse_lines(text: &[u8], file: &Path, fast_path: bool) -> Result<ShapeFile, ObjError> {
-    let error = |line: usize, kind: ObjErrorKind| error_at(file, line, kind);
     let mut parser = Parser::default();
-    let mut cursor = fast::Cursor::new(text);
-    let mut line = 0;
-    while !cursor.is_done() {
-        line += 1;
-        if fast_path && let Some(end) = parser.fast_statement(line, cursor.rest()) {
-            cursor.skip(end);
-            continue;
-        }
-        parser
-            .statement(line, &cursor.take_line())
-            .map_err(|kind| error(line, kind))?;
-    }
-    parser.finish().map_err(|(line, kind)| error(line, kind))
+    let error = |(line, kind)| error_at(file, line, kind);
+    parser.lines(text, &mut 0, fast_path).map_err(error)?;
+    parser.finish().map_err(error)
 }
 
 /// A `crease`, `corner` or `hole` tag, kept until every vertex and face is known.
@@ -437,6 +514,29 @@ impl Parser {
                 fast::ignored(&text[..end]).then_some(end)
             }
         }
+    }
+
+    /// Reads the lines of `text` (by the fast path where it can, when
+    /// `fast_path`), numbered on from `*line`, which ends at the last; the
+    /// first error with its line. `text` is whole lines: a line cut short
+    /// at its end would be read as a shorter line.
+    fn lines(
+        &mut self,
+        text: &[u8],
+        line: &mut usize,
+        fast_path: bool,
+    ) -> Result<(), (usize, ObjErrorKind)> {
+        let mut cursor = fast::Cursor::new(text);
+        while !cursor.is_done() {
+            *line += 1;
+            if fast_path && let Some(end) = self.fast_statement(*line, cursor.rest()) {
+                cursor.skip(end);
+                continue;
+            }
+            self.statement(*line, &cursor.take_line())
+                .map_err(|kind| (*line, kind))?;
+        }
+        Ok(())
     }
 
     /// Reads one line.
@@ -1008,6 +1108,50 @@ mod read_tests {
         assert!(read_bytes(&dir.path().join("missing.obj")).is_err());
     }
 
+    /// A file of many blocks, read a block at a time (one thread, or a
+    /// file under 4 MiB) and whole in chunks (a larger one on several
+    /// threads): what parsing its text gives, an error on the same line;
+    /// a directory is an I/O error on line 0.
+    #[test]
+    fn files_read_a_block_at_a_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("torus.obj");
+        let mesh = crate::shapes::with_torus_uvs(crate::shapes::torus(250, 200), 250, 200);
+        crate::io::write_mesh_obj(&path, &mesh, crate::Precision::F64).unwrap();
+        let mut text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.len() > PARALLEL_BYTES, "{}", text.len());
+        // A line longer than the buffer.
+        text.push_str(&format!("# {}\n", "x".repeat(3 * BLOCK)));
+        for bad in [false, true] {
+            if bad {
+                text.push_str("f 1 2 999999\n");
+            }
+            let want = parse_obj_general(&text, &path);
+            assert_eq!(want.is_err(), bad);
+            // The whole text, and its first lines only.
+            for part in [text.len(), text[..2 * BLOCK + 7].rfind('\n').unwrap() + 1] {
+                let whole = part == text.len();
+                let text = &text[..part];
+                std::fs::write(&path, text).unwrap();
+                let want = if whole {
+                    want.clone()
+                } else {
+                    parse_obj_general(text, &path)
+                };
+                for threads in [1, 2] {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads)
+                        .build()
+                        .unwrap();
+                    let got = pool.install(|| read_obj(&path));
+                    assert_eq!(got, want, "{threads} threads, {} bytes", text.len());
+                }
+            }
+        }
+        let error = read_obj(dir.path()).unwrap_err();
+        assert!(matches!(error.kind, ObjErrorKind::Io(_)) && error.line == 0);
+    }
+
     /// Text that is not UTF-8 everywhere — bad bytes in numbers, keywords,
     /// tags, comments and ignored statements, at line ends, before a
     /// carriage return, cut sequences, a byte-order mark — reads as its
@@ -1015,6 +1159,19 @@ mod read_tests {
     /// and first error, line by line and in chunks.
     #[test]
     fn bytes_read_as_their_lossy_text() {
+        /// Text read at most `most` bytes at a time.
+        struct Trickle<'a> {
+            text: &'a [u8],
+            most: usize,
+        }
+        impl std::io::Read for Trickle<'_> {
+            fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+                let n = buffer.len().min(self.most).min(self.text.len());
+                buffer[..n].copy_from_slice(&self.text[..n]);
+                self.text = &self.text[n..];
+                Ok(n)
+            }
+        }
         let pieces: [&[u8]; 16] = [
             b"v 0 0 0\n",
             b"v 1 0 0\r\n",
@@ -1060,6 +1217,16 @@ mod read_tests {
             let lossy = String::from_utf8_lossy(&text);
             let want = parse_obj_general(&lossy, file);
             assert_eq!(parse(&text, file, true), want, "{lossy:?}");
+            // A block at a time, blocks cutting lines, carriage returns,
+            // byte-order marks and UTF-8 sequences anywhere, lines longer
+            // than the buffer, reads shorter than asked for.
+            for block in [1, 2, 3, 5, 8, 13, 64] {
+                for most in [1, 4, usize::MAX] {
+                    let mut source = Trickle { text: &text, most };
+                    let got = read_streaming(&mut source, file, block);
+                    assert_eq!(got, want, "block {block}, reads of {most}: {lossy:?}");
+                }
+            }
             for chunks in [2, 3] {
                 let text = strip_bom(&text);
                 let got = parse_chunked(text, file, chunks)
