@@ -63,13 +63,40 @@ pub(crate) fn try_vec<T: Clone>(value: T, len: usize) -> Result<Vec<T>> {
     Ok(v)
 }
 
-/// Reserves room for `additional` more elements, fallibly.
+/// Reserves room for `additional` more elements, fallibly: an error when
+/// the room cannot be had, or when a large reservation would leave too
+/// little for the small allocations after it ([`headroom_after`]).
 pub(crate) fn reserve<T>(v: &mut Vec<T>, additional: usize) -> Result<()> {
-    v.try_reserve_exact(additional)
-        .map_err(|_| Error::OutOfMemory {
-            bytes: additional.saturating_mul(size_of::<T>()),
-            level: None,
-        })
+    let bytes = additional.saturating_mul(size_of::<T>());
+    let error = || Error::OutOfMemory { bytes, level: None };
+    v.try_reserve_exact(additional).map_err(|_| error())?;
+    if !headroom_after(bytes) {
+        // The room given back: the caller fails, and others may go on.
+        v.shrink_to_fit();
+        return Err(error());
+    }
+    Ok(())
+}
+
+/// Address space kept free after a large allocation, for the small ones
+/// (masks, buffers, the thread pool's jobs) that Rust cannot make
+/// fallible: they abort the process when they fail.
+const HEADROOM: usize = 16 << 20;
+
+/// Allocations from this size check [`HEADROOM`] after them.
+const CHECKED: usize = 1 << 20;
+
+/// Whether, after an allocation of `bytes` that succeeded, [`HEADROOM`]
+/// bytes can still be allocated — asked of the allocator and given back
+/// at once, which touches no page — the tables kept for reuse released
+/// first if need be. Under an address-space limit (`ulimit -v`) a large
+/// table that takes nearly all that is left would otherwise succeed, and
+/// the next small allocation abort; with this check the large one fails
+/// instead, with a typed error ([`Error::OutOfMemory`]). Small allocations
+/// (under [`CHECKED`]) are not checked.
+pub(crate) fn headroom_after(bytes: usize) -> bool {
+    let probe = || Vec::<u8>::new().try_reserve_exact(HEADROOM).is_ok();
+    bytes < CHECKED || probe() || (crate::topology::release_table_pool() > 0 && probe())
 }
 
 /// A vector of `len` copies of `value`, or an unwinding [`AllocFailure`]:
@@ -86,7 +113,7 @@ pub(crate) fn vec_or_unwind<T: Clone>(value: T, len: usize) -> Vec<T> {
 /// the large per-level copies made under a [`guard`].
 pub(crate) fn collect_n<T>(len: usize, iter: impl IntoIterator<Item = T>) -> Vec<T> {
     let mut v = Vec::new();
-    if v.try_reserve_exact(len).is_err() {
+    if reserve(&mut v, len).is_err() {
         fail(len.saturating_mul(size_of::<T>()));
     }
     v.extend(iter);

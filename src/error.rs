@@ -327,7 +327,6 @@ pub enum LevelRefusal {
 
 impl fmt::Display for LevelRefusal {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        const GIB: f64 = 1024.0 * 1024.0 * 1024.0;
         match *self {
             LevelRefusal::TooDeep { max } => write!(f, "the deepest supported level is {max}"),
             LevelRefusal::TooManyCorners { corners } => write!(
@@ -336,11 +335,28 @@ impl fmt::Display for LevelRefusal {
             ),
             LevelRefusal::OutOfMemory { needed, available } => write!(
                 f,
-                "the level needs about {:.1} GiB, more than the {:.1} GiB available",
-                needed / GIB,
-                available as f64 / GIB
+                "the level needs about {}, more than the {} available",
+                Size(needed),
+                Size(available as f64)
             ),
         }
+    }
+}
+
+/// Bytes for a message: in GiB from 1 GiB, else in MiB (or KiB), so that
+/// a small amount never reads "0.0 GiB".
+struct Size(f64);
+
+impl fmt::Display for Size {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (bytes, mut unit) = (self.0, 1024.0 * 1024.0 * 1024.0);
+        for name in ["GiB", "MiB"] {
+            if bytes >= unit {
+                return write!(f, "{:.1} {name}", bytes / unit);
+            }
+            unit /= 1024.0;
+        }
+        write!(f, "{:.1} KiB", bytes / unit)
     }
 }
 
@@ -725,4 +741,29 @@ pub enum UsdErrorKind {
     /// The mesh the attributes describe is invalid ([`Mesh::validate`](crate::Mesh::validate)).
     #[error("invalid mesh: {0}")]
     Mesh(MeshError),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A refusal's sizes read in the unit that shows them: never "0.0 GiB".
+    #[test]
+    fn refusals_name_sizes_in_a_readable_unit() {
+        let refusal = |needed: f64, available: u64| {
+            LevelRefusal::OutOfMemory { needed, available }.to_string()
+        };
+        assert_eq!(
+            refusal(150.0 * (1u64 << 30) as f64, 3 << 29),
+            "the level needs about 150.0 GiB, more than the 1.5 GiB available"
+        );
+        assert_eq!(
+            refusal((200 << 20) as f64, 90 << 20),
+            "the level needs about 200.0 MiB, more than the 90.0 MiB available"
+        );
+        assert_eq!(
+            refusal(1536.0, 0),
+            "the level needs about 1.5 KiB, more than the 0.0 KiB available"
+        );
+    }
 }

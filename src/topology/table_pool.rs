@@ -217,7 +217,13 @@ pub(super) fn fresh_map(bytes: usize) -> Option<MmapMut> {
     let evicted = lock(&MAPS).fresh(bytes);
     // Unmapped outside the lock, before the new map is faulted in.
     drop(evicted);
-    let map = memmap2::MmapOptions::new().len(bytes).map_anon().ok();
+    // A map that would leave too little for the small allocations after
+    // it is refused too ([`crate::alloc::headroom_after`]).
+    let map = memmap2::MmapOptions::new()
+        .len(bytes)
+        .map_anon()
+        .ok()
+        .filter(|_| crate::alloc::headroom_after(bytes));
     if map.is_none() {
         lock(&MAPS).forget(bytes);
     }
