@@ -208,7 +208,7 @@ impl<T: Real> First<T> {
             // are written (built as OpenSubdiv builds them, kept no longer
             // than they are read).
             if last {
-                r.levels[level].face_vertices = Default::default();
+                r.levels[level].release_faces();
             }
             let mut next = Table::for_overwrite(r.levels[level].vertex_count * width);
             let src = data.as_deref().unwrap_or(&base);

@@ -110,6 +110,13 @@ impl Level {
         self.face_edges = Table::new();
     }
 
+    /// Drops the face-vertices, for a last level whose faces were counted
+    /// and are not returned: interpolating its vertex data reads its
+    /// vertices' tags and sharpness, not its faces.
+    pub(crate) fn release_faces(&mut self) {
+        self.face_vertices = Default::default();
+    }
+
     /// Whether all relations are present. A last level refined with minimal
     /// topology (OpenSubdiv's default) has only its face-vertices, vertex
     /// sharpness and vertex tags.

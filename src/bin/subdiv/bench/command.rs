@@ -148,21 +148,19 @@ pub(crate) fn bench(args: &BenchArgs) -> Result<(), Failure> {
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    // One step done: its name shown, the bar moved on.
+    let progress = |msg: String| {
+        bar.set_message(msg);
+        bar.inc(1);
+    };
     let mut report = super::run::run(
         inputs,
         &adaptive_inputs,
         &tessellation_inputs,
         args.quick,
         args.threads,
-        |msg| {
-            bar.set_message(msg.to_string());
-            bar.inc(1);
-        },
+        |msg| progress(msg.to_string()),
     )?;
-    let progress = |msg: String| {
-        bar.set_message(msg);
-        bar.inc(1);
-    };
     if !runs.is_empty() {
         let dir = tempfile::tempdir()
             .map_err(|e| Failure::Message(format!("no temporary directory ({e})")))?;
