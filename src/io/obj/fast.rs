@@ -188,29 +188,44 @@ fn digits(line: &[u8], at: &mut usize, most: usize) -> Option<u64> {
 /// [`digits`]' answer.
 #[inline(always)]
 fn digits_in_word(line: &[u8], at: &mut usize, most: usize) -> Option<Option<u64>> {
+    let (n, v, _) = word_digits(line, *at)?;
+    if n == 0 || n > most {
+        return Some(None);
+    }
+    *at += n;
+    Some(Some(v))
+}
+
+/// The digits that start the eight bytes at `line[at..]`, when a
+/// non-digit ends them within the eight: how many (0-7), their value and
+/// the byte after them. `None` with fewer than eight bytes left or eight
+/// digits.
+#[inline(always)]
+fn word_digits(line: &[u8], at: usize) -> Option<(usize, u64, u8)> {
     const ONES: u64 = 0x0101_0101_0101_0101;
-    let word = u64::from_le_bytes(line.get(*at..*at + 8)?.try_into().ok()?);
+    let word = u64::from_le_bytes(*line.get(at..)?.first_chunk::<8>()?);
     // Byte by byte (the first in the lowest byte): minus b'0', a digit is
     // 0-9 and no borrow; plus 0x46, a digit does not reach 0x80. The
     // lowest byte with a high bit set in either is the first non-digit;
     // the bytes below it borrowed and carried nothing into it.
     let value = word.wrapping_sub(ONES * u64::from(b'0'));
     let non_digit = (value | word.wrapping_add(ONES * 0x46)) & (ONES * 0x80);
-    let n = (non_digit.trailing_zeros() / 8) as usize;
-    if n == 8 {
+    if non_digit == 0 {
         return None;
     }
-    if n == 0 || n > most {
-        return Some(None);
+    let n = (non_digit.trailing_zeros() / 8) as usize;
+    let next = (word >> (8 * n)) as u8;
+    if n == 0 {
+        return Some((0, 0, next));
     }
     // The n digits moved up to the top bytes (leading zeros below them),
-    // then pairs, fours and eights of them combined.
+    // pairs combined, then the four pairs by two independent products
+    // whose high halves add up to the eight-digit value.
     let mut v = value << (8 * (8 - n));
     v = (v * 10 + (v >> 8)) & 0x00ff_00ff_00ff_00ff;
-    v = (v * 100 + (v >> 16)) & 0x0000_ffff_0000_ffff;
-    v = (v * 10_000 + (v >> 32)) & 0x0000_0000_ffff_ffff;
-    *at += n;
-    Some(Some(v))
+    let low = (v & 0x0000_00ff_0000_00ff).wrapping_mul(100 + (1_000_000 << 32));
+    let high = ((v >> 16) & 0x0000_00ff_0000_00ff).wrapping_mul(1 + (10_000 << 32));
+    Some((n, low.wrapping_add(high) >> 32, next))
 }
 
 /// A positive decimal index of at most nine digits (no sign, no overflow)
@@ -218,6 +233,23 @@ fn digits_in_word(line: &[u8], at: &mut usize, most: usize) -> Option<Option<u64
 #[inline(always)]
 fn index(line: &[u8], at: &mut usize) -> Option<usize> {
     digits(line, at, 9).filter(|&n| n > 0).map(|n| n as usize)
+}
+
+/// [`index`], and the byte after it ([`byte`]), taken from the eight
+/// bytes the index was read from when it ends within them.
+#[inline(always)]
+fn index_and_next(line: &[u8], at: &mut usize) -> Option<(usize, u8)> {
+    match word_digits(line, *at) {
+        Some((0, ..)) => None,
+        Some((n, v, next)) => {
+            *at += n;
+            (v > 0).then_some((v as usize, next))
+        }
+        None => {
+            let v = index(line, at)?;
+            Some((v, byte(line, *at)))
+        }
+    }
 }
 
 /// A normal index at `line[*at..]` the general parser accepts without a
@@ -321,26 +353,28 @@ fn corners(
                 top_uv,
             });
         }
-        let v = index(line, &mut at)?;
+        let (v, mut next) = index_and_next(line, &mut at)?;
         // 0: no texture coordinate.
         let mut t = 0;
-        if byte(line, at) == b'/' {
+        if next == b'/' {
             at += 1;
             if byte(line, at) == b'/' {
                 // `v//vn`: a normal index, read but not checked against the
                 // normals, as the general parser does.
                 at += 1;
                 skip_normal_index(line, &mut at)?;
+                next = byte(line, at);
             } else {
-                t = index(line, &mut at)?;
-                if byte(line, at) == b'/' {
+                (t, next) = index_and_next(line, &mut at)?;
+                if next == b'/' {
                     at += 1;
                     skip_normal_index(line, &mut at)?;
+                    next = byte(line, at);
                 }
             }
         }
         // The corner ends here, or the line is not one the fast path reads.
-        if !is_space(byte(line, at)) || *with_uv.get_or_insert(t != 0) != (t != 0) {
+        if !is_space(next) || *with_uv.get_or_insert(t != 0) != (t != 0) {
             return None;
         }
         count += 1;
