@@ -101,10 +101,7 @@ impl<T: Real> Rows<T> {
     /// appended to, unwinding likewise when memory runs out).
     #[inline]
     pub(super) fn check_terms(&self, terms: usize) {
-        let total = self.indices.len() + terms;
-        if u32::try_from(total).is_err() {
-            crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
-        }
+        check_total::<T>(self.indices.len() + terms);
     }
 
     /// Room for about `terms` terms, asked for once rather than found by
@@ -132,9 +129,7 @@ impl<T: Real> Rows<T> {
         use rayon::prelude::*;
         let rows: usize = parts.iter().map(|p| p.borrow().len()).sum();
         let terms: usize = parts.iter().map(|p| p.borrow().indices.len()).sum();
-        if u32::try_from(terms).is_err() {
-            crate::alloc::fail(terms.saturating_mul(size_of::<u32>() + size_of::<T>()));
-        }
+        check_total::<T>(terms);
         let mut offsets = Table::<u32>::for_overwrite(rows + 1);
         let mut indices = Table::<u32>::for_overwrite(terms);
         let mut weights = Table::<T>::for_overwrite(terms);
@@ -169,6 +164,15 @@ impl<T: Real> Rows<T> {
                 .max()
                 .unwrap_or(0),
         }
+    }
+}
+
+/// Unwinds to [`crate::alloc::guard`] when a table of `total` terms
+/// would outgrow its `u32` offsets.
+#[inline]
+fn check_total<T>(total: usize) {
+    if u32::try_from(total).is_err() {
+        crate::alloc::fail(total.saturating_mul(size_of::<u32>() + size_of::<T>()));
     }
 }
 
