@@ -69,8 +69,10 @@ pub(crate) fn try_vec<T: Clone>(value: T, len: usize) -> Result<Vec<T>> {
 pub(crate) fn reserve<T>(v: &mut Vec<T>, additional: usize) -> Result<()> {
     let bytes = additional.saturating_mul(size_of::<T>());
     let error = || Error::OutOfMemory { bytes, level: None };
+    let had = v.capacity();
     v.try_reserve_exact(additional).map_err(|_| error())?;
-    if !headroom_after(bytes) {
+    // Only memory newly allocated is checked.
+    if v.capacity() != had && !headroom_after(bytes) {
         // The room given back: the caller fails, and others may go on.
         v.shrink_to_fit();
         return Err(error());

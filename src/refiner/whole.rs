@@ -202,11 +202,8 @@ impl<T: Real> First<T> {
             if split_only {
                 r.levels[level - 1].release_split_tables();
             }
-            // The last level's faces were counted, and interpolating its
-            // vertex data reads its vertices' tags and sharpness, not its
-            // faces: they are not returned, so they go before its values
-            // are written (built as OpenSubdiv builds them, kept no longer
-            // than they are read).
+            // Built as OpenSubdiv builds them and counted, the last
+            // level's faces go before its values take their room.
             if last {
                 r.levels[level].release_faces();
             }
