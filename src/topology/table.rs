@@ -123,21 +123,6 @@ impl<T: Pod + Send> Table<T> {
         }
     }
 
-    /// An empty vector with room for at least `len` values, to be pushed
-    /// to and then made a table ([`Table::from`]): a kept vector of a
-    /// dropped table when the pool has one (its memory already faulted
-    /// in), else a new one allocated fallibly (an unwinding
-    /// [`AllocFailure`](crate::alloc::AllocFailure) when it cannot be).
-    pub(crate) fn vec_for_push(len: usize) -> Vec<T> {
-        match table_pool::take_vec::<T>(len) {
-            Some(mut v) => {
-                v.clear();
-                v
-            }
-            None => crate::alloc::with_capacity(len),
-        }
-    }
-
     /// `len` values for the caller to overwrite, every one of them: their
     /// contents are unspecified (zeros, or what a dropped table left in the
     /// memory it handed back). Nothing is cleared first, so a recycled map

@@ -8,107 +8,133 @@ use super::views::Numbering;
 use crate::topology::LevelSlices;
 use crate::topology::{Relation, Table};
 
-/// A relation filled element by element in index order, with a local index
-/// per member. Its vectors — kept ones of dropped tables where the pool has
-/// some ([`Table::vec_for_push`]) — are reserved at the size a topology that
-/// is its own transpose needs ([`Room`]) and grow, fallibly, past it (a
-/// non-manifold topology can need more).
-pub(super) struct Filler {
-    offsets: Vec<u32>,
-    members: Vec<u32>,
-    locals: Vec<u16>,
-    /// The largest element ended so far (kept as elements end, not found
-    /// by another pass over the offsets).
-    max: u32,
+/// The tables a relation is filled into ([`Filler`]): offsets for
+/// `elements` elements and room for `members` members with their local
+/// indices, none of them cleared first (every value used is written).
+pub(super) struct FillTables {
+    offsets: Table<u32>,
+    members: Table<u32>,
+    locals: Table<u16>,
 }
 
-impl Filler {
-    /// Room for `elements` elements of `members` members in all (each
+impl FillTables {
+    /// Tables for `elements` elements and `members` members in all (each
     /// relation here is the transpose of one whose size is known: the
-    /// faces of the edges are the edges of the faces, and so on).
+    /// faces of the edges are the edges of the faces, and so on; see
+    /// [`Room`]).
     pub(super) fn new(elements: usize, members: usize) -> Self {
-        let mut offsets = Table::vec_for_push(elements + 1);
-        offsets.push(0);
+        FillTables {
+            offsets: Table::for_overwrite(elements + 1),
+            members: Table::for_overwrite(members),
+            locals: Table::for_overwrite(members),
+        }
+    }
+
+    /// A filler writing into these tables from their start.
+    pub(super) fn filler(&mut self) -> Filler<'_> {
+        let offsets: &mut [u32] = &mut self.offsets;
+        if let Some(first) = offsets.first_mut() {
+            *first = 0;
+        }
         Filler {
             offsets,
-            members: Table::vec_for_push(members),
-            locals: Table::vec_for_push(members),
+            members: &mut self.members,
+            locals: &mut self.locals,
+            len: 0,
+            ended: 0,
+            start: 0,
             max: 0,
         }
     }
 
-    #[inline]
-    pub(super) fn push(&mut self, member: u32, local: usize) {
-        if self.members.len() == self.members.capacity() {
-            self.grow();
-        }
-        self.members.push(member);
-        self.locals.push(local as u16);
-    }
-
-    /// Doubles the room for members, or unwinds with an
-    /// [`AllocFailure`](crate::alloc::AllocFailure).
-    #[cold]
-    #[inline(never)]
-    fn grow(&mut self) {
-        let more = self.members.len().max(16);
-        if crate::alloc::reserve(&mut self.members, more).is_err() {
-            crate::alloc::fail(4 * more);
-        }
-        if crate::alloc::reserve(&mut self.locals, more).is_err() {
-            crate::alloc::fail(2 * more);
+    /// The relation `filler` filled ([`Filler::finish`]), its local
+    /// indices and its largest element.
+    pub(super) fn finish(mut self, (len, max): (usize, usize)) -> Filled {
+        self.members.truncate(len);
+        self.locals.truncate(len);
+        Filled {
+            relation: Relation::from_parts(self.offsets, self.members),
+            locals: self.locals,
+            max,
         }
     }
+}
 
+/// A relation filled element by element in index order, with a local index
+/// per member, into the slices of [`FillTables`] taken once: a push is a
+/// store and a count, its state in registers. Members past the tables'
+/// room are counted, not written ([`Filler::finish`] then asks for the
+/// room they need: a non-manifold topology can need more than [`Room`]'s).
+pub(super) struct Filler<'a> {
+    offsets: &'a mut [u32],
+    members: &'a mut [u32],
+    locals: &'a mut [u16],
     /// Members pushed so far.
-    #[inline]
-    pub(super) fn len(&self) -> usize {
-        self.members.len()
+    len: usize,
+    /// Elements ended so far.
+    ended: usize,
+    /// Where the current element's members start.
+    start: usize,
+    /// The largest element ended so far.
+    max: usize,
+}
+
+impl Filler<'_> {
+    #[inline(always)]
+    pub(super) fn push(&mut self, member: u32, local: usize) {
+        let n = self.len;
+        if let (Some(m), Some(l)) = (self.members.get_mut(n), self.locals.get_mut(n)) {
+            *m = member;
+            *l = local as u16;
+        }
+        self.len = n + 1;
     }
 
     /// Elements ended so far.
     pub(super) fn elements(&self) -> usize {
-        self.offsets.len() - 1
-    }
-
-    /// Swaps members `i` and `j` (and their local indices).
-    #[inline]
-    pub(super) fn swap(&mut self, i: usize, j: usize) {
-        self.members.swap(i, j);
-        self.locals.swap(i, j);
+        self.ended
     }
 
     /// Ends the current element.
-    #[inline]
+    #[inline(always)]
     pub(super) fn end(&mut self) {
-        let (start, end) = (
-            self.offsets.last().copied().unwrap_or(0),
-            self.members.len() as u32,
+        let end = self.len;
+        self.max = self.max.max(end - self.start);
+        self.start = end;
+        self.ended += 1;
+        if let Some(o) = self.offsets.get_mut(self.ended) {
+            *o = end as u32;
+        }
+    }
+
+    /// The members pushed and the largest element, or `Err` with the
+    /// members pushed when they did not all fit.
+    pub(super) fn finish(self) -> Result<(usize, usize), usize> {
+        debug_assert_eq!(
+            self.ended + 1,
+            self.offsets.len(),
+            "every element ended once"
         );
-        self.max = self.max.max(end - start);
-        if self.offsets.len() == self.offsets.capacity() {
-            Self::grow_offsets(&mut self.offsets);
-        }
-        self.offsets.push(end);
-    }
-
-    #[cold]
-    #[inline(never)]
-    fn grow_offsets(offsets: &mut Vec<u32>) {
-        let more = offsets.len().max(16);
-        if crate::alloc::reserve(offsets, more).is_err() {
-            crate::alloc::fail(4 * more);
+        if self.len <= self.members.len() {
+            Ok((self.len, self.max))
+        } else {
+            Err(self.len)
         }
     }
+}
 
+/// A filled relation: its members by element, their local indices and
+/// its largest element.
+pub(super) struct Filled {
+    relation: Relation,
+    locals: Table<u16>,
+    max: usize,
+}
+
+impl Filled {
     /// The relation, its local indices and its largest element.
     pub(super) fn finish(self) -> (Relation, Table<u16>, usize) {
-        let max = self.max as usize;
-        (
-            Relation::from_parts(self.offsets.into(), self.members.into()),
-            self.locals.into(),
-            max,
-        )
+        (self.relation, self.locals, self.max)
     }
 }
 
@@ -117,9 +143,60 @@ pub(super) struct Topology {
     pub(super) face_vertices: Relation,
     pub(super) face_edges: Table<u32>,
     pub(super) edge_vertices: Table<[u32; 2]>,
-    pub(super) edge_faces: Filler,
-    pub(super) vertex_faces: Filler,
-    pub(super) vertex_edges: Filler,
+    pub(super) edge_faces: Filled,
+    pub(super) vertex_faces: Filled,
+    pub(super) vertex_edges: Filled,
+}
+
+/// The three filled relations of a child level ([`Topology`]'s), in
+/// tables of [`Room`]'s sizes, or the room they turned out to need.
+pub(super) struct Fills {
+    edge_faces: FillTables,
+    vertex_faces: FillTables,
+    vertex_edges: FillTables,
+}
+
+impl Fills {
+    /// Tables for `edges` edges and `vertices` vertices in `room`.
+    pub(super) fn new(edges: usize, vertices: usize, room: Room) -> Self {
+        Fills {
+            edge_faces: FillTables::new(edges, room.edge_faces),
+            vertex_faces: FillTables::new(vertices, room.vertex_faces),
+            vertex_edges: FillTables::new(vertices, room.vertex_edges),
+        }
+    }
+
+    /// A filler for each: edge-faces, vertex-faces, vertex-edges.
+    pub(super) fn fillers(&mut self) -> [Filler<'_>; 3] {
+        [
+            self.edge_faces.filler(),
+            self.vertex_faces.filler(),
+            self.vertex_edges.filler(),
+        ]
+    }
+
+    /// The filled relations (`done`: the fillers' [`Filler::finish`]), or
+    /// the room they need when one did not fit.
+    pub(super) fn finish(
+        self,
+        done: [Result<(usize, usize), usize>; 3],
+    ) -> Result<[Filled; 3], Room> {
+        match done {
+            [Ok(ef), Ok(vf), Ok(ve)] => Ok([
+                self.edge_faces.finish(ef),
+                self.vertex_faces.finish(vf),
+                self.vertex_edges.finish(ve),
+            ]),
+            [ef, vf, ve] => {
+                let need = |r: Result<(usize, usize), usize>| r.map_or_else(|n| n, |(n, _)| n);
+                Err(Room {
+                    edge_faces: need(ef),
+                    vertex_faces: need(vf),
+                    vertex_edges: need(ve),
+                })
+            }
+        }
+    }
 }
 
 /// Room for the members of a child level's edge-faces, vertex-faces and
@@ -153,7 +230,7 @@ pub(super) fn edge_halves(
     parent: LevelSlices<'_>,
     s: Numbering<'_>,
     edge_vertices: &mut Table<[u32; 2]>,
-    edge_faces: &mut Filler,
+    edge_faces: &mut Filler<'_>,
     corner: impl Fn(usize, usize) -> u32,
     child_face: impl Fn(usize, usize, usize) -> (u32, usize),
 ) {
@@ -189,7 +266,7 @@ pub(super) fn halves_of_edge(
     s: Numbering<'_>,
     e: usize,
     child_edge_vertices: &mut [[u32; 2]],
-    edge_faces: &mut Filler,
+    edge_faces: &mut Filler<'_>,
     half_face: &impl Fn(usize, usize, usize, [u32; 2]) -> (u32, usize),
 ) -> bool {
     let halves = s.edge_child_edges[e];
@@ -219,11 +296,12 @@ pub(super) fn halves_of_edge(
 /// vertex's corner of each of its faces that exists (`child_face(pf, k)`:
 /// the child of face `pf` at its corner `k`, with its local index of the
 /// vertex) and the half of each of its edges at it.
+#[inline(always)]
 pub(super) fn vertex_point(
     parent: LevelSlices<'_>,
     s: Numbering<'_>,
     v: usize,
-    (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
+    (vertex_faces, vertex_edges): (&mut Filler<'_>, &mut Filler<'_>),
     child_face: impl Fn(usize, usize) -> (u32, usize),
 ) {
     let (faces, locals) = parent.vertex_faces(v);
@@ -239,5 +317,59 @@ pub(super) fn vertex_point(
         if valid(ce) {
             vertex_edges.push(ce, 1);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fills edge-faces [[7, 8], [], [9]] and vertex-faces and vertex-edges
+    /// of one vertex with one member each.
+    fn fill(room: Room) -> Result<[Filled; 3], Room> {
+        let mut fills = Fills::new(3, 1, room);
+        let [mut ef, mut vf, mut ve] = fills.fillers();
+        ef.push(7, 0);
+        ef.push(8, 1);
+        ef.end();
+        ef.end();
+        ef.push(9, 2);
+        ef.end();
+        vf.push(4, 3);
+        vf.end();
+        ve.push(5, 1);
+        ve.end();
+        assert_eq!((ef.elements(), vf.elements()), (3, 1));
+        let done = [ef.finish(), vf.finish(), ve.finish()];
+        fills.finish(done)
+    }
+
+    #[test]
+    fn a_fill_past_its_room_asks_for_the_room_it_needs() {
+        let small = Room {
+            edge_faces: 2,
+            vertex_faces: 1,
+            vertex_edges: 0,
+        };
+        let Err(need) = fill(small) else {
+            panic!("three members fitted in room for two");
+        };
+        assert_eq!(
+            (need.edge_faces, need.vertex_faces, need.vertex_edges),
+            (3, 1, 1)
+        );
+        let Ok([ef, vf, ve]) = fill(need) else {
+            panic!("the counted room did not fit");
+        };
+        let (relation, locals, max) = ef.finish();
+        assert_eq!(relation.get(0), &[7, 8]);
+        assert!(relation.get(1).is_empty());
+        assert_eq!(relation.get(2), &[9]);
+        assert_eq!(&locals[..], &[0, 1, 2]);
+        assert_eq!(max, 2);
+        let (relation, locals, max) = vf.finish();
+        assert_eq!((relation.get(0), &locals[..], max), (&[4][..], &[3][..], 1));
+        let (relation, locals, max) = ve.finish();
+        assert_eq!((relation.get(0), &locals[..], max), (&[5][..], &[1][..], 1));
     }
 }

@@ -3,7 +3,7 @@
 //! level's relations (`QuadRefinement::populate*Relation`), children that
 //! were not created left out.
 
-use super::child::{self, Filler, Room, Topology};
+use super::child::{self, Filler, Fills, Room, Topology};
 use super::views::{Faces, Numbering};
 use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::LevelSlices;
@@ -103,12 +103,34 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
 /// [`topology`], `QUADS` when every parent face is a quad with implicit
 /// offsets: a face's corners without its offsets, its size a constant.
 fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topology {
+    let mut room = Room::transposes(
+        split.child_face_parent.len(),
+        4,
+        split.child_edge_parent.len(),
+    );
+    // The counts of a first fill that did not fit are the second's room.
+    loop {
+        match fill::<QUADS>(parent, split, room) {
+            Ok(t) => return t,
+            Err(needed) => room = needed,
+        }
+    }
+}
+
+/// [`topology_of`] with the filled relations in `room`, or the room they
+/// need.
+fn fill<const QUADS: bool>(
+    parent: &Level,
+    split: &SparseSplit,
+    room: Room,
+) -> Result<Topology, Room> {
     let faces = Faces::<QUADS>::of(parent);
     let nf = split.child_face_parent.len();
     let ne = split.child_edge_parent.len();
     let nv = split.child_vertex_parent.len();
     let (pv, s) = (parent.slices(), Numbering::of(split));
-    let room = Room::transposes(nf, 4, ne);
+    let mut fills = Fills::new(ne, nv, room);
+    let [mut edge_faces, mut vertex_faces, mut vertex_edges] = fills.fillers();
     // Face-vertices and face-edges.
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 4);
     let mut face_edges = Table::for_overwrite(4 * nf);
@@ -161,7 +183,6 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
     // Edge-vertices and edge-faces, child edges in index order: those
     // inside faces, then the halves of edges.
     let mut edge_vertices = Table::<[u32; 2]>::for_overwrite(ne);
-    let mut edge_faces = Filler::new(ne, room.edge_faces);
     let inner_edge_vertices: &mut [[u32; 2]] = &mut edge_vertices;
     for f in 0..parent.face_count() {
         let range = faces.range(f);
@@ -189,8 +210,6 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
         }
     }
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
-    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     // The halves' edge-vertices and edge-faces are written in the same pass
     // over the parent's edges as the edge points' faces and edges (both in
     // parent edge order, the halves after the edges inside faces, the edge
@@ -252,14 +271,20 @@ fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topolo
         c += 1;
     }
 
-    Topology {
+    let done = [
+        edge_faces.finish(),
+        vertex_faces.finish(),
+        vertex_edges.finish(),
+    ];
+    let [edge_faces, vertex_faces, vertex_edges] = fills.finish(done)?;
+    Ok(Topology {
         face_vertices,
         face_edges,
         edge_vertices,
         edge_faces,
         vertex_faces,
         vertex_edges,
-    }
+    })
 }
 
 /// One pass over the parent's edges, in order: the edge-vertices and
@@ -271,8 +296,8 @@ fn edges_and_edge_points<const QUADS: bool>(
     s: Numbering<'_>,
     faces: Faces<'_, QUADS>,
     edge_vertices: &mut Table<[u32; 2]>,
-    edge_faces: &mut Filler,
-    (vertex_faces, vertex_edges): (&mut Filler, &mut Filler),
+    edge_faces: &mut Filler<'_>,
+    (vertex_faces, vertex_edges): (&mut Filler<'_>, &mut Filler<'_>),
 ) -> usize {
     let child_edge_vertices: &mut [[u32; 2]] = edge_vertices;
     let half_face = |pf: usize, k: usize, j: usize, ends: [u32; 2]| {
@@ -297,10 +322,18 @@ fn edges_and_edge_points<const QUADS: bool>(
         let (pfaces, locals) = parent.edge_faces(e);
         // The edge point.
         debug_assert!(valid(point));
-        let first = vertex_edges.len();
-        for &half in &halves {
-            if valid(half) {
-                vertex_edges.push(half, 0);
+        // Its edges: [half, inner edge of the first face, half, inner
+        // edges of the other faces], the halves as the edge runs in the
+        // first face, when both halves and that inner edge exist; else the
+        // halves that exist, then the inner edges. Chosen before pushing:
+        // pushing and then swapping members just stored makes loads wait
+        // on stores they cannot be forwarded from.
+        let both = valid(halves[0]) && valid(halves[1]);
+        if !both {
+            for &half in &halves {
+                if valid(half) {
+                    vertex_edges.push(half, 0);
+                }
             }
         }
         for (i, (&pf, &in_face)) in pfaces.iter().zip(locals).enumerate() {
@@ -318,17 +351,28 @@ fn edges_and_edge_points<const QUADS: bool>(
                 vertex_faces.push(f0, if n == 4 { c1 } else { 1 });
             }
             let inner = s.face_child_edges[range.start + in_face];
-            if valid(inner) {
-                vertex_edges.push(inner, 1);
-                // Order [half, inner edge of the first face, half, ...],
-                // the halves as the edge runs in that face.
-                if i == 0 && vertex_edges.len() - first == 3 {
-                    if ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0] {
-                        vertex_edges.swap(first, first + 1);
-                    }
-                    vertex_edges.swap(first + 1, first + 2);
+            if i == 0 && both {
+                if valid(inner) {
+                    let against = ends[0] != ends[1] && faces.corner(pf, in_face) == ends[0];
+                    let (a, b) = if against {
+                        (halves[1], halves[0])
+                    } else {
+                        (halves[0], halves[1])
+                    };
+                    vertex_edges.push(a, 0);
+                    vertex_edges.push(inner, 1);
+                    vertex_edges.push(b, 0);
+                } else {
+                    vertex_edges.push(halves[0], 0);
+                    vertex_edges.push(halves[1], 0);
                 }
+            } else if valid(inner) {
+                vertex_edges.push(inner, 1);
             }
+        }
+        if both && pfaces.is_empty() {
+            vertex_edges.push(halves[0], 0);
+            vertex_edges.push(halves[1], 0);
         }
         vertex_faces.end();
         vertex_edges.end();

@@ -5,7 +5,7 @@
 //! `j`) and a middle one (child 3); its three inner edges are the middle
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
-use super::child::{self, Filler, Room, Topology};
+use super::child::{self, Fills, Room, Topology};
 use super::views::Numbering;
 use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::{Level, Relation, Table};
@@ -57,15 +57,28 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
 
 /// The relations of the child level.
 pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
+    let mut room = Room::transposes(s.child_face_parent.len(), 3, s.child_edge_parent.len());
+    // The counts of a first fill that did not fit are the second's room.
+    loop {
+        match fill(parent, s, room) {
+            Ok(t) => return t,
+            Err(needed) => room = needed,
+        }
+    }
+}
+
+/// [`topology`] with the filled relations in `room`, or the room they
+/// need.
+fn fill(parent: &Level, s: &SparseSplit, room: Room) -> Result<Topology, Room> {
     let nf = s.child_face_parent.len();
     let ne = s.child_edge_parent.len();
     let nv = s.child_vertex_parent.len();
-    let room = Room::transposes(nf, 3, ne);
+    let mut fills = Fills::new(ne, nv, room);
+    let [mut edge_faces, mut vertex_faces, mut vertex_edges] = fills.fillers();
     let (pv, numbering) = (parent.slices(), Numbering::of(s));
     let mut face_vertices = Relation::uniform_for_overwrite(nf, 3);
     let mut face_edges = Table::zeroed(3 * nf);
     let mut edge_vertices = Table::<[u32; 2]>::zeroed(ne);
-    let mut edge_faces = Filler::new(ne, room.edge_faces);
 
     // Faces, and the inner edges in index order (parent face order).
     for f in 0..parent.face_count() {
@@ -133,8 +146,6 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
     );
 
     // Vertex-faces and vertex-edges, child vertices in index order.
-    let mut vertex_faces = Filler::new(nv, room.vertex_faces);
-    let mut vertex_edges = Filler::new(nv, room.vertex_edges);
     for &p in s.child_vertex_parent.iter() {
         match p.get() {
             VertexParent::Edge(e) => {
@@ -185,12 +196,18 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
         vertex_faces.end();
         vertex_edges.end();
     }
-    Topology {
+    let done = [
+        edge_faces.finish(),
+        vertex_faces.finish(),
+        vertex_edges.finish(),
+    ];
+    let [edge_faces, vertex_faces, vertex_edges] = fills.finish(done)?;
+    Ok(Topology {
         face_vertices,
         face_edges,
         edge_vertices,
         edge_faces,
         vertex_faces,
         vertex_edges,
-    }
+    })
 }
