@@ -3,16 +3,24 @@
 //! the location gets alone, in the caller's order, and an error names the
 //! first bad location in the caller's order.
 
-use subdiv::patches::{self, Derivatives, PatchData, PatchMap, PatchOptions, PatchTable};
+use subdiv::patches::{
+    self, Derivatives, PatchData, PatchMap, PatchOptions, PatchTable, PatchType,
+};
 use subdiv::ptex::PtexIndices;
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
-use subdiv::{Error, Mesh, Options, shapes};
+use subdiv::{BoundaryInterpolation, Error, Mesh, Options, Scheme, shapes};
 
 /// A mesh with quads, triangles and extraordinary vertices, refined and
 /// its patch table (Gregory end caps) built.
 fn setup(mesh: &Mesh) -> (AdaptiveRefiner, PatchTable) {
+    setup_with(mesh, &Options::default())
+}
+
+/// [`setup`] under `options`.
+fn setup_with(mesh: &Mesh, options: &Options) -> (AdaptiveRefiner, PatchTable) {
+    let options_ = options;
     let options = PatchOptions::new().max_isolation(3);
-    let adaptive = Refiner::new(mesh, &Options::default())
+    let adaptive = Refiner::new(mesh, options_)
         .unwrap()
         .refine_adaptive(options.refine_adaptive_options(), &[])
         .unwrap();
@@ -147,6 +155,58 @@ fn a_batch_gives_each_location_its_own_value(mesh: Mesh, face_order: bool) {
                         "width {width}, {derivatives:?}, {threads} threads, kind {kind}"
                     );
                 }
+            }
+        }
+    }
+}
+
+/// Under Loop, a batch computes each regular patch's polynomial once for
+/// all its locations, a location alone its own patch's: the same values,
+/// bit for bit, boundary patches (their phantom points folded in)
+/// included.
+#[test]
+fn loop_patches_give_each_location_its_own_value() {
+    let mesh = shapes::triangulate(&shapes::grid(14, 12));
+    let options = Options::default()
+        .with_scheme(Scheme::Loop)
+        .with_boundary(BoundaryInterpolation::EdgeOnly);
+    let (adaptive, table) = setup_with(&mesh, &options);
+    assert!(
+        table
+            .arrays
+            .iter()
+            .any(|a| a.patch_type == PatchType::Loop && a.params.iter().any(|p| p.boundary() != 0)),
+        "no boundary box-spline patches"
+    );
+    let map = PatchMap::new(&table);
+    let locations = scattered(&table, &map, 5_000);
+    let points = adaptive
+        .patch_points(&table, 3, &mesh.flat_positions::<f64>())
+        .unwrap();
+    for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
+        let alone = one_by_one(&map, &table, &points, 3, &locations, derivatives);
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let s = pool
+                .install(|| {
+                    patches::evaluate_with(&map, &table, &points, 3, &locations, derivatives)
+                })
+                .unwrap();
+            let v = s.values;
+            for (kind, (got, want)) in [v.point, v.du, v.dv, v.duu, v.duv, v.dvv]
+                .iter()
+                .zip(&alone)
+                .enumerate()
+            {
+                let same = got.len() == want.len()
+                    && got
+                        .iter()
+                        .zip(want)
+                        .all(|(a, b)| a.to_bits() == b.to_bits());
+                assert!(same, "{derivatives:?}, {threads} threads, kind {kind}");
             }
         }
     }

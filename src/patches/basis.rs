@@ -584,6 +584,38 @@ pub(crate) fn evaluate_basis_into<R: Real>(
     evaluate_basis_ordered(patch_type, param, u, v, derivatives, exact, order, buf)
 }
 
+/// The error of a location (`u`, `v`) outside the unit square.
+#[inline(always)]
+fn check_unit(param: PatchParam, u: f64, v: f64) -> Result<()> {
+    for (coordinate, value) in [("u", u), ("v", v)] {
+        if !(0.0..=1.0).contains(&value) {
+            return Err(Error::Location {
+                face: param.face_id(),
+                coordinate,
+                value,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Where (`u`, `v`) of the ptex face lies in the triangular patch of
+/// `param`: its coordinates (`s`, `t`) in the patch and the factor of first
+/// derivatives with respect to the ptex face (the `exact` limit's or
+/// OpenSubdiv's, as [`evaluate_basis_into`] scales them), or the error of a
+/// location outside the unit square.
+#[inline(always)]
+pub(crate) fn triangle_coords(
+    param: PatchParam,
+    u: f64,
+    v: f64,
+    exact: bool,
+) -> Result<(f64, f64, f64)> {
+    check_unit(param, u, v)?;
+    let at = PatchCoords::of(param, u, v, true);
+    Ok((at.s, at.t, at.first_factor(param, exact)))
+}
+
 /// [`evaluate_basis_into`] with the curves and blends in `order` (the
 /// tests check OpenSubdiv's order in `f64` against `EvaluateBasis<double>`).
 #[allow(clippy::too_many_arguments)]
@@ -597,15 +629,7 @@ pub(crate) fn evaluate_basis_ordered<R: Real>(
     order: Order,
     buf: &mut BasisBuffer<R>,
 ) -> Result<usize> {
-    for (coordinate, value) in [("u", u.to_f64()), ("v", v.to_f64())] {
-        if !(0.0..=1.0).contains(&value) {
-            return Err(Error::Location {
-                face: param.face_id(),
-                coordinate,
-                value,
-            });
-        }
-    }
+    check_unit(param, u.to_f64(), v.to_f64())?;
     let triangular = matches!(
         patch_type,
         PatchType::Triangles | PatchType::Loop | PatchType::GregoryTriangle

@@ -8,17 +8,21 @@
 //! curves instead (each row of control points along s, then the rows
 //! along t): with first derivatives 132 multiply-adds against the 192 of
 //! sixteen weights per table and their sums, and no weights written and
-//! read back; the same surface to rounding (within 1e-12 of OpenSubdiv's,
-//! as every evaluation is: `tests/native_patches.rs`).
+//! read back. A regular Loop patch's are summed from its polynomial's
+//! coefficients ([`LoopPolynomial`]), computed once per patch. Both give
+//! the same surface to rounding (within 1e-12 of OpenSubdiv's, as every
+//! evaluation is: `tests/native_patches.rs`).
 
-use super::basis::{BasisBuffer, crease_of, evaluate_basis_into, regular_curves};
+use super::basis::{BasisBuffer, crease_of, evaluate_basis_into, regular_curves, triangle_coords};
 use super::exact::exact_sharpness;
+use super::loop_poly::LoopPolynomial;
 use super::{
     Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
     SurfaceSamples,
 };
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
+use rayon::prelude::*;
 
 /// Which primvar a table's patches are evaluated for: vertex data over the
 /// patches themselves (`EvaluateBasis`), varying data over each patch's
@@ -363,6 +367,11 @@ pub fn evaluate_data_as(
     for out in outs.iter_mut().take(kinds) {
         *out = crate::alloc::try_vec(0.0, len)?;
     }
+    let loop_polynomials = if width == 3 && kinds <= 3 {
+        loop_polynomials(table, data, points, locations.len())
+    } else {
+        Vec::new()
+    };
     let evaluator = Evaluator {
         evaluation,
         map,
@@ -371,12 +380,103 @@ pub fn evaluate_data_as(
         points,
         width,
         derivatives,
+        loop_polynomials,
     };
     super::locations::evaluate_all(&evaluator, locations, &mut outs[..kinds])?;
     Ok(SurfaceSamples {
         width,
         values: Partials::from_columns(outs),
     })
+}
+
+/// The most bytes [`loop_polynomials`] may take.
+const LOOP_POLYNOMIAL_BYTES: usize = 64 << 20;
+
+/// The polynomial of every regular Loop patch of `table` for `data` over
+/// `points` (width 3), by array (empty for the other arrays), when
+/// evaluating `locations` locations reads each patch at least once on
+/// average and they take at most [`LOOP_POLYNOMIAL_BYTES`]: each patch's
+/// polynomial is then computed once, whatever order the locations come in.
+/// None otherwise, or when memory for them cannot be had or a patch names a
+/// point `points` lacks (its locations then compute their patch's
+/// polynomial themselves, and report that error). The values are the same
+/// either way.
+fn loop_polynomials(
+    table: &PatchTable,
+    data: PatchData,
+    points: &[f64],
+    locations: usize,
+) -> Vec<Vec<LoopPolynomial>> {
+    let is_loop = |array: usize| {
+        matches!(
+            patch_of(table, data, PatchHandle { array, patch: 0 }),
+            Ok((PatchType::Loop, ..))
+        )
+    };
+    let patches: usize = (0..table.arrays.len())
+        .filter(|&a| is_loop(a))
+        .map(|a| table.arrays[a].len())
+        .sum();
+    if patches == 0
+        || patches > locations
+        || patches.saturating_mul(size_of::<LoopPolynomial>()) > LOOP_POLYNOMIAL_BYTES
+    {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for a in 0..table.arrays.len() {
+        if !is_loop(a) {
+            out.push(Vec::new());
+            continue;
+        }
+        let Ok(mut polys) = crate::alloc::try_vec(LoopPolynomial::ZERO, table.arrays[a].len())
+        else {
+            return Vec::new();
+        };
+        let made = polys
+            .par_iter_mut()
+            .enumerate()
+            .try_for_each(|(patch, poly)| -> Option<()> {
+                let (_, param, cvs) =
+                    patch_of(table, data, PatchHandle { array: a, patch }).ok()?;
+                *poly = LoopPolynomial::of(&loop_points(points, cvs).ok()?, param.boundary());
+                Some(())
+            });
+        if made.is_none() {
+            return Vec::new();
+        }
+        out.push(polys);
+    }
+    out
+}
+
+/// The values of a Loop patch's twelve control points `cvs` in `points`
+/// (width 3), or the error naming the buffer too short for one.
+fn loop_points(points: &[f64], cvs: &[u32]) -> Result<[[f64; 3]; 12]> {
+    let mut at = [[0.0f64; 3]; 12];
+    for (p, &cv) in at.iter_mut().zip(cvs) {
+        let x = point_of(points, cv)?;
+        *p = [x[0], x[1], x[2]];
+    }
+    Ok(at)
+}
+
+/// What evaluating locations one after another keeps between them: the
+/// basis buffer, and the polynomial of the last regular Loop patch
+/// evaluated (for one evaluator: the handle names the patch of its table
+/// and data).
+pub(crate) struct EvalScratch {
+    basis: BasisBuffer,
+    loop_patch: Option<(PatchHandle, LoopPolynomial)>,
+}
+
+impl Default for EvalScratch {
+    fn default() -> Self {
+        EvalScratch {
+            basis: [[0.0; 20]; 6],
+            loop_patch: None,
+        }
+    }
 }
 
 /// What evaluating one location needs: the table, its map, the data and
@@ -390,6 +490,9 @@ pub(crate) struct Evaluator<'a> {
     /// Values per point.
     pub(crate) width: usize,
     derivatives: Derivatives,
+    /// The regular Loop patches' polynomials by array, when computed
+    /// beforehand ([`loop_polynomials`]).
+    loop_polynomials: Vec<Vec<LoopPolynomial>>,
 }
 
 impl Evaluator<'_> {
@@ -417,6 +520,27 @@ impl Evaluator<'_> {
         self.map.find_patch(face, u, v)
     }
 
+    /// Reads the data of the patches of `handles` that the evaluation of
+    /// their locations reads first (the precomputed Loop polynomials), so
+    /// that its cache misses overlap with other work.
+    #[inline]
+    pub(crate) fn touch(&self, handles: &[Option<PatchHandle>]) {
+        if self.loop_polynomials.is_empty() {
+            return;
+        }
+        let mut sum = 0.0;
+        for h in handles.iter().flatten() {
+            if let Some(p) = self
+                .loop_polynomials
+                .get(h.array)
+                .and_then(|a| a.get(h.patch))
+            {
+                sum += p.touch();
+            }
+        }
+        std::hint::black_box(sum);
+    }
+
     /// Evaluates the limit at (`face`, `u`, `v`), a location
     /// [`check_location`] accepted whose patch is `handle` (as
     /// [`Evaluator::locate`] found it), into value `i` of each of `columns`
@@ -427,7 +551,7 @@ impl Evaluator<'_> {
         (face, u, v): (u32, f64, f64),
         handle: Option<PatchHandle>,
         i: usize,
-        buf: &mut BasisBuffer,
+        scratch: &mut EvalScratch,
         columns: &mut [&mut [f64]],
     ) -> Result<()> {
         let (table, points, width) = (self.table, self.points, self.width);
@@ -465,6 +589,35 @@ impl Evaluator<'_> {
             }
             return Ok(());
         }
+        // A regular Loop patch of positions, with or without first
+        // derivatives: from its polynomial ([`LoopPolynomial`]), computed
+        // beforehand or kept from the location before.
+        if let (PatchType::Loop, 3, [point, rest @ ..]) = (patch_type, width, &mut *columns)
+            && matches!(rest.len(), 0 | 2)
+            && cvs.len() >= 12
+        {
+            let (s, t, d1) = triangle_coords(param, u, v, exact.is_some())?;
+            let known = self
+                .loop_polynomials
+                .get(handle.array)
+                .and_then(|polys| polys.get(handle.patch));
+            let poly = match (known, &scratch.loop_patch) {
+                (Some(poly), _) => poly,
+                (None, Some((h, poly))) if *h == handle => poly,
+                (None, _) => {
+                    let poly = LoopPolynomial::of(&loop_points(points, cvs)?, param.boundary());
+                    &scratch.loop_patch.insert((handle, poly)).1
+                }
+            };
+            let [p, du, dv] = poly.evaluate(s, t, !rest.is_empty(), d1);
+            point[i * 3..i * 3 + 3].copy_from_slice(&p);
+            if let [d_u, d_v] = rest {
+                d_u[i * 3..i * 3 + 3].copy_from_slice(&du);
+                d_v[i * 3..i * 3 + 3].copy_from_slice(&dv);
+            }
+            return Ok(());
+        }
+        let buf = &mut scratch.basis;
         let n = evaluate_basis_into(patch_type, param, u, v, self.derivatives, exact, buf)?;
         // Every control point's values, once per table asked for; points
         // of width 3 (positions) summed in registers, in the same order:

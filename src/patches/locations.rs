@@ -9,8 +9,7 @@
 //! sums in the same order); only the order of the locations changes, and
 //! the results are written back in the caller's order.
 
-use super::basis::BasisBuffer;
-use super::eval::Evaluator;
+use super::eval::{EvalScratch, Evaluator};
 use crate::alloc::try_vec;
 use crate::error::Result;
 use rayon::prelude::*;
@@ -66,7 +65,7 @@ fn in_given_order(
 ) -> Result<()> {
     let width = evaluator.width;
     let each =
-        |locations: &[(u32, f64, f64)], buf: &mut BasisBuffer, mut stretch: Vec<&mut [f64]>| {
+        |locations: &[(u32, f64, f64)], buf: &mut EvalScratch, mut stretch: Vec<&mut [f64]>| {
             evaluate_run(evaluator, locations, buf, &mut stretch)
         };
     if rayon::current_num_threads() > 1 && locations.len() >= ORDERED_FROM {
@@ -81,15 +80,14 @@ fn in_given_order(
         let done = locations
             .par_chunks(CHUNK)
             .zip(stretches)
-            .try_for_each_init(
-                || -> BasisBuffer { [[0.0; 20]; 6] },
-                |buf, (locations, stretch)| each(locations, buf, stretch),
-            );
+            .try_for_each_init(EvalScratch::default, |buf, (locations, stretch)| {
+                each(locations, buf, stretch)
+            });
         if done.is_ok() {
             return Ok(());
         }
     }
-    let mut buf: BasisBuffer = [[0.0; 20]; 6];
+    let mut buf = EvalScratch::default();
     each(
         locations,
         &mut buf,
@@ -101,14 +99,15 @@ fn in_given_order(
 const BATCH: usize = 8;
 
 /// Evaluates `locations` in order into values 0, 1, … of `columns`, the
-/// patches of a batch of [`BATCH`] found first, in a loop of their own:
-/// the map's nodes of neighbouring locations are then read side by side,
-/// not each after the previous location's evaluation. The first error is
-/// the first failing location's.
+/// patches of a batch of [`BATCH`] found (and their data touched,
+/// [`Evaluator::touch`]) first, in a loop of their own: the map's nodes
+/// and the patches' data of neighbouring locations are then read side by
+/// side, not each after the previous location's evaluation. The first
+/// error is the first failing location's.
 fn evaluate_run(
     evaluator: &Evaluator<'_>,
     locations: &[(u32, f64, f64)],
-    buf: &mut BasisBuffer,
+    buf: &mut EvalScratch,
     columns: &mut [&mut [f64]],
 ) -> Result<()> {
     for (b, batch) in locations.chunks(BATCH).enumerate() {
@@ -116,6 +115,7 @@ fn evaluate_run(
         for (handle, &location) in handles.iter_mut().zip(batch) {
             *handle = evaluator.locate(location);
         }
+        evaluator.touch(&handles);
         for (j, (&location, &handle)) in batch.iter().zip(&handles).enumerate() {
             evaluator.at(location, handle, b * BATCH + j, buf, columns)?;
         }
@@ -217,19 +217,12 @@ fn in_face_order(
     Ok(())
 }
 
-/// A task's scratch space: its stretch's locations and a basis buffer.
+/// A task's scratch space: its stretch's locations and what evaluating
+/// them keeps between locations.
+#[derive(Default)]
 struct Scratch {
     locations: Vec<(u32, f64, f64)>,
-    buf: BasisBuffer,
-}
-
-impl Default for Scratch {
-    fn default() -> Self {
-        Scratch {
-            locations: Vec::new(),
-            buf: [[0.0; 20]; 6],
-        }
-    }
+    buf: EvalScratch,
 }
 
 /// Copies `to.len() / width` values of `width` reals: value `from_at(k)`

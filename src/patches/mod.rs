@@ -33,6 +33,7 @@ mod eval;
 mod exact;
 pub(crate) mod limit_stencils;
 mod locations;
+mod loop_poly;
 mod map;
 mod param;
 mod triangle_basis;

@@ -50,7 +50,7 @@ const MONOMIALS: [(usize, usize); 15] = [
 /// ```
 ///
 /// with the patch the triangle 4, 5, 8.
-const BOX_SPLINE: [[i32; 15]; 12] = [
+pub(super) const BOX_SPLINE: [[i32; 15]; 12] = [
     [1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1],
     [1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1],
     [0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0],
