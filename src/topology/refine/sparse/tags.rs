@@ -6,31 +6,54 @@
 use super::{SparseSplit, valid};
 use crate::options::Options;
 use crate::rules::crease;
-use crate::topology::Level;
 use crate::topology::refine::tags::{child_edge, edge_point_tag, vertex_point_sharpness};
+use crate::topology::tags::{EdgeTag, VertexTag};
+use crate::topology::{Level, Table};
 
 /// Child tags (`Refinement::propagateComponentTags`): halves of edges
 /// inherit their parent's tags, edges inside faces and face points are
 /// smooth, edge points take their tags from the parent edge, vertex points
 /// inherit their parent's.
 pub(super) fn propagate_tags(parent: &Level, child: &mut Level, s: &SparseSplit) {
+    let (edge_tags, vertex_tags): (&[EdgeTag], &[VertexTag]) =
+        (&parent.edge_tags, &parent.vertex_tags);
+    let default_point = edge_point_tag(EdgeTag::default());
+    if edge_tags.is_empty() && vertex_tags.is_empty() && default_point == VertexTag::default() {
+        // Every tag the default, the child's too (its tables stay empty).
+        return;
+    }
+    // Written through slices, whole tables (emptied again by
+    // `Level::drop_default_tags` if every tag is the default).
+    let mut child_edges = if edge_tags.is_empty() {
+        Table::new()
+    } else {
+        Table::<EdgeTag>::zeroed(child.num_edges)
+    };
+    let mut child_vertices = Table::<VertexTag>::zeroed(child.vertex_count);
+    let (ce, cv): (&mut [EdgeTag], &mut [VertexTag]) = (&mut child_edges, &mut child_vertices);
     for (e, halves) in s.edge_child_edges.iter().enumerate() {
-        let t = parent.edge_tag(e);
-        for &c in halves {
-            if valid(c) {
-                child.set_edge_tag(c as usize, t);
+        let t = edge_tags.get(e).copied().unwrap_or_default();
+        if !ce.is_empty() {
+            for &c in halves {
+                if valid(c) {
+                    ce[c as usize] = t;
+                }
             }
         }
         let c = s.edge_child_vertex[e];
         if valid(c) {
-            child.set_vertex_tag(c as usize, edge_point_tag(t));
+            cv[c as usize] = edge_point_tag(t);
         }
     }
-    for (v, &c) in s.vertex_child_vertex.iter().enumerate() {
-        if valid(c) {
-            child.set_vertex_tag(c as usize, parent.vertex_tag(v));
+    if !vertex_tags.is_empty() {
+        for (&t, &c) in vertex_tags.iter().zip(s.vertex_child_vertex.iter()) {
+            if valid(c) {
+                cv[c as usize] = t;
+            }
         }
     }
+    child.edge_tags = child_edges;
+    child.vertex_tags = child_vertices;
 }
 
 /// Edge and vertex sharpness of the child, then the rules of child vertices
