@@ -439,6 +439,7 @@ fn loop_polynomials(
             .try_for_each(|(patch, poly)| -> Option<()> {
                 let (_, param, cvs) =
                     patch_of(table, data, PatchHandle { array: a, patch }).ok()?;
+                let cvs = cvs.get(..12)?;
                 *poly = LoopPolynomial::of(&loop_points(points, cvs).ok()?, param.boundary());
                 Some(())
             });
@@ -450,8 +451,9 @@ fn loop_polynomials(
     out
 }
 
-/// The values of a Loop patch's twelve control points `cvs` in `points`
-/// (width 3), or the error naming the buffer too short for one.
+/// The values of a Loop patch's twelve control points `cvs` (at least
+/// twelve) in `points` (width 3), or the error naming the buffer too short
+/// for one.
 fn loop_points(points: &[f64], cvs: &[u32]) -> Result<[[f64; 3]; 12]> {
     let mut at = [[0.0f64; 3]; 12];
     for (p, &cv) in at.iter_mut().zip(cvs) {
