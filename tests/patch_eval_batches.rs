@@ -80,6 +80,49 @@ fn one_by_one(
     columns
 }
 
+/// Each of `locations` evaluated in one batch, on each number of
+/// `threads`, gets the value it gets alone, bit for bit: the same sums,
+/// only in another order of locations.
+fn batches_match_alone(
+    map: &PatchMap,
+    table: &PatchTable,
+    points: &[f64],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    threads: &[usize],
+) {
+    for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
+        let alone = one_by_one(map, table, points, width, locations, derivatives);
+        for &threads in threads {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let s = pool
+                .install(|| {
+                    patches::evaluate_with(map, table, points, width, locations, derivatives)
+                })
+                .unwrap();
+            let v = s.values;
+            for (kind, (got, want)) in [v.point, v.du, v.dv, v.duu, v.duv, v.dvv]
+                .iter()
+                .zip(&alone)
+                .enumerate()
+            {
+                assert_eq!(got.len(), want.len());
+                let differ = got
+                    .iter()
+                    .zip(want)
+                    .position(|(a, b)| a.to_bits() != b.to_bits());
+                assert_eq!(
+                    differ, None,
+                    "width {width}, {derivatives:?}, {threads} threads, kind {kind}"
+                );
+            }
+        }
+    }
+}
+
 /// Whether a batch of locations on `table` with `points` is evaluated in
 /// face order: when the data it reads do not stay in the caches (more than
 /// the 2 MiB below which locations are evaluated as given).
@@ -118,45 +161,7 @@ fn a_batch_gives_each_location_its_own_value(mesh: Mesh, face_order: bool) {
     for (width, base) in [(3, &base3), (4, &base4)] {
         let points = adaptive.patch_points(&table, width, base).unwrap();
         assert_eq!(in_face_order(&table, &points), face_order);
-        for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
-            let alone = one_by_one(&map, &table, &points, width, &locations, derivatives);
-            for threads in [1, 2, 3] {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
-                let s = pool
-                    .install(|| {
-                        patches::evaluate_with(
-                            &map,
-                            &table,
-                            &points,
-                            width,
-                            &locations,
-                            derivatives,
-                        )
-                    })
-                    .unwrap();
-                let v = s.values;
-                for (kind, (got, want)) in [v.point, v.du, v.dv, v.duu, v.duv, v.dvv]
-                    .iter()
-                    .zip(&alone)
-                    .enumerate()
-                {
-                    assert_eq!(got.len(), want.len());
-                    // Bit for bit: the same sums, only in another order of
-                    // locations.
-                    let differ = got
-                        .iter()
-                        .zip(want)
-                        .position(|(a, b)| a.to_bits() != b.to_bits());
-                    assert_eq!(
-                        differ, None,
-                        "width {width}, {derivatives:?}, {threads} threads, kind {kind}"
-                    );
-                }
-            }
-        }
+        batches_match_alone(&map, &table, &points, width, &locations, &[1, 2, 3]);
     }
 }
 
@@ -183,33 +188,7 @@ fn loop_patches_give_each_location_its_own_value() {
     let points = adaptive
         .patch_points(&table, 3, &mesh.flat_positions::<f64>())
         .unwrap();
-    for derivatives in [Derivatives::None, Derivatives::First, Derivatives::Second] {
-        let alone = one_by_one(&map, &table, &points, 3, &locations, derivatives);
-        for threads in [1, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            let s = pool
-                .install(|| {
-                    patches::evaluate_with(&map, &table, &points, 3, &locations, derivatives)
-                })
-                .unwrap();
-            let v = s.values;
-            for (kind, (got, want)) in [v.point, v.du, v.dv, v.duu, v.duv, v.dvv]
-                .iter()
-                .zip(&alone)
-                .enumerate()
-            {
-                let same = got.len() == want.len()
-                    && got
-                        .iter()
-                        .zip(want)
-                        .all(|(a, b)| a.to_bits() == b.to_bits());
-                assert!(same, "{derivatives:?}, {threads} threads, kind {kind}");
-            }
-        }
-    }
+    batches_match_alone(&map, &table, &points, 3, &locations, &[1, 2]);
 }
 
 #[test]

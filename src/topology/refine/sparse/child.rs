@@ -175,12 +175,31 @@ impl Fills {
         ]
     }
 
-    /// The filled relations (`done`: the fillers' [`Filler::finish`]), or
-    /// the room they need when one did not fit.
-    pub(super) fn finish(
+    /// The child level's relations: the ones these tables' fillers
+    /// filled (`done`: their [`Filler::finish`], in [`Fills::fillers`]'
+    /// order), with the others given, or the room the filled ones need
+    /// when one did not fit.
+    pub(super) fn topology(
         self,
         done: [Result<(usize, usize), usize>; 3],
-    ) -> Result<[Filled; 3], Room> {
+        face_vertices: Relation,
+        face_edges: Table<u32>,
+        edge_vertices: Table<[u32; 2]>,
+    ) -> Result<Topology, Room> {
+        let [edge_faces, vertex_faces, vertex_edges] = self.finish(done)?;
+        Ok(Topology {
+            face_vertices,
+            face_edges,
+            edge_vertices,
+            edge_faces,
+            vertex_faces,
+            vertex_edges,
+        })
+    }
+
+    /// The filled relations (`done`: the fillers' [`Filler::finish`]), or
+    /// the room they need when one did not fit.
+    fn finish(self, done: [Result<(usize, usize), usize>; 3]) -> Result<[Filled; 3], Room> {
         match done {
             [Ok(ef), Ok(vf), Ok(ve)] => Ok([
                 self.edge_faces.finish(ef),
@@ -195,6 +214,21 @@ impl Fills {
                     vertex_edges: need(ve),
                 })
             }
+        }
+    }
+}
+
+/// The child level's relations, filled by `fill` in `room` and, when they
+/// did not fit, again in the room they were counted to need (the second
+/// fill always fits: it counts the same members).
+pub(super) fn fill_in(
+    mut room: Room,
+    mut fill: impl FnMut(Room) -> Result<Topology, Room>,
+) -> Topology {
+    loop {
+        match fill(room) {
+            Ok(t) => return t,
+            Err(needed) => room = needed,
         }
     }
 }

@@ -103,18 +103,12 @@ pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
 /// [`topology`], `QUADS` when every parent face is a quad with implicit
 /// offsets: a face's corners without its offsets, its size a constant.
 fn topology_of<const QUADS: bool>(parent: &Level, split: &SparseSplit) -> Topology {
-    let mut room = Room::transposes(
+    let room = Room::transposes(
         split.child_face_parent.len(),
         4,
         split.child_edge_parent.len(),
     );
-    // The counts of a first fill that did not fit are the second's room.
-    loop {
-        match fill::<QUADS>(parent, split, room) {
-            Ok(t) => return t,
-            Err(needed) => room = needed,
-        }
-    }
+    child::fill_in(room, |room| fill::<QUADS>(parent, split, room))
 }
 
 /// [`topology_of`] with the filled relations in `room`, or the room they
@@ -271,20 +265,8 @@ fn fill<const QUADS: bool>(
         c += 1;
     }
 
-    let done = [
-        edge_faces.finish(),
-        vertex_faces.finish(),
-        vertex_edges.finish(),
-    ];
-    let [edge_faces, vertex_faces, vertex_edges] = fills.finish(done)?;
-    Ok(Topology {
-        face_vertices,
-        face_edges,
-        edge_vertices,
-        edge_faces,
-        vertex_faces,
-        vertex_edges,
-    })
+    let done = [edge_faces, vertex_faces, vertex_edges].map(Filler::finish);
+    fills.topology(done, face_vertices, face_edges, edge_vertices)
 }
 
 /// One pass over the parent's edges, in order: the edge-vertices and

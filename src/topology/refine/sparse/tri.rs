@@ -5,7 +5,7 @@
 //! `j`) and a middle one (child 3); its three inner edges are the middle
 //! triangle's (edge `j` opposite corner `j`); there is no face point.
 
-use super::child::{self, Fills, Room, Topology};
+use super::child::{self, Filler, Fills, Room, Topology};
 use super::views::Numbering;
 use super::{FaceMarks, MARKED, Selection, SparseSplit, VertexParent, valid};
 use crate::topology::{Level, Relation, Table};
@@ -57,14 +57,8 @@ pub(super) fn mark_faces(parent: &Level, sel: &Selection, edge_transitional: &[b
 
 /// The relations of the child level.
 pub(super) fn topology(parent: &Level, s: &SparseSplit) -> Topology {
-    let mut room = Room::transposes(s.child_face_parent.len(), 3, s.child_edge_parent.len());
-    // The counts of a first fill that did not fit are the second's room.
-    loop {
-        match fill(parent, s, room) {
-            Ok(t) => return t,
-            Err(needed) => room = needed,
-        }
-    }
+    let room = Room::transposes(s.child_face_parent.len(), 3, s.child_edge_parent.len());
+    child::fill_in(room, |room| fill(parent, s, room))
 }
 
 /// [`topology`] with the filled relations in `room`, or the room they
@@ -196,18 +190,6 @@ fn fill(parent: &Level, s: &SparseSplit, room: Room) -> Result<Topology, Room> {
         vertex_faces.end();
         vertex_edges.end();
     }
-    let done = [
-        edge_faces.finish(),
-        vertex_faces.finish(),
-        vertex_edges.finish(),
-    ];
-    let [edge_faces, vertex_faces, vertex_edges] = fills.finish(done)?;
-    Ok(Topology {
-        face_vertices,
-        face_edges,
-        edge_vertices,
-        edge_faces,
-        vertex_faces,
-        vertex_edges,
-    })
+    let done = [edge_faces, vertex_faces, vertex_edges].map(Filler::finish);
+    fills.topology(done, face_vertices, face_edges, edge_vertices)
 }
