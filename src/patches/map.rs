@@ -11,6 +11,7 @@
 //! follows the location's path down until a patch sits there.
 
 use super::{PatchHandle, PatchParam, PatchTable};
+use std::collections::BTreeMap;
 
 /// No index.
 const NONE: u32 = u32::MAX;
@@ -62,9 +63,19 @@ pub struct PatchMap {
     nodes: Vec<[Child; 4]>,
     /// Per ptex face: whether its first quadrant is covered (OpenSubdiv's
     /// test for a face with patches), the patch covering all of it, and
-    /// the node of its quadrants (`NONE`: none).
-    roots: Vec<(bool, Option<PatchHandle>, u32)>,
+    /// the node of its quadrants (`NONE`: none). Dense over the faces up
+    /// to a bound the number of patches sets ([`PatchMap::new`]).
+    roots: Vec<Root>,
+    /// The roots of faces past `roots` (face ids far beyond the table's
+    /// patches: a table built by hand), by face.
+    far_roots: BTreeMap<u32, Root>,
 }
+
+/// A ptex face's entry of the map ([`PatchMap`]'s `roots`).
+type Root = (bool, Option<PatchHandle>, u32);
+
+/// A face without patches.
+const NO_ROOT: Root = (false, None, NONE);
 
 /// The quadrant of (`u`, `v`) in a square halved at `median`, and (`u`,
 /// `v`) moved into it.
@@ -136,11 +147,23 @@ impl PatchMap {
     pub fn new(table: &PatchTable) -> PatchMap {
         let triangular = table.varying_patch_type.control_vertices() == 3;
         let patches: usize = table.arrays.iter().map(|a| a.params.len()).sum();
+        // Dense roots for the faces a table's patches can name (every face
+        // of a table a factory built), never more than the patches bound:
+        // a hand-made table's word may name face 2^28.
+        let last = table
+            .arrays
+            .iter()
+            .flat_map(|a| &a.params)
+            .map(|p| p.face_id() as usize + 1)
+            .max()
+            .unwrap_or(0);
+        let dense = last.max(table.ptex_faces).min(4 * patches + 64);
         let mut map = PatchMap {
             triangular,
             max_depth: 0,
             nodes: Vec::with_capacity(patches / 2),
-            roots: vec![(false, None, NONE); table.ptex_faces],
+            roots: vec![NO_ROOT; dense],
+            far_roots: BTreeMap::new(),
         };
         for (a, array) in table.arrays.iter().enumerate() {
             for (k, &p) in array.params.iter().enumerate() {
@@ -166,20 +189,27 @@ impl PatchMap {
                 // A root patch fills every quadrant; any other covers the
                 // first one when its path starts there.
                 let face = p.face_id() as usize;
-                if face >= map.roots.len() {
-                    map.roots.resize(face + 1, (false, None, NONE));
-                }
+                let root = map.root_mut(face);
                 if levels == 0 || path >> (2 * (levels - 1)) == 0 {
-                    map.roots[face].0 = true;
+                    root.0 = true;
                 }
                 if levels == 0 {
-                    map.roots[face].1 = Some(handle);
+                    root.1 = Some(handle);
                 } else {
                     map.insert(face, levels, path, handle);
                 }
             }
         }
         map
+    }
+
+    /// The entry of ptex face `face`, made when it has none.
+    fn root_mut(&mut self, face: usize) -> &mut Root {
+        if face < self.roots.len() {
+            &mut self.roots[face]
+        } else {
+            self.far_roots.entry(face as u32).or_insert(NO_ROOT)
+        }
     }
 
     /// A new node without quadrants, its index.
@@ -191,10 +221,10 @@ impl PatchMap {
     /// Puts `handle` at quadrant path `path` (`levels` levels deep) of ptex
     /// face `face`, in place of any patch there before.
     fn insert(&mut self, face: usize, levels: u32, path: u64, handle: PatchHandle) {
-        let mut node = self.roots[face].2;
+        let mut node = self.root_mut(face).2;
         if node == NONE {
             node = self.new_node();
-            self.roots[face].2 = node;
+            self.root_mut(face).2 = node;
         }
         for level in 1..=levels {
             let q = ((path >> (2 * (levels - level))) & 3) as usize;
@@ -225,7 +255,11 @@ impl PatchMap {
         if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
             return None;
         }
-        let mut node = match self.roots.get(face as usize) {
+        let root = match self.roots.get(face as usize) {
+            Some(root) => Some(root),
+            None => self.far_roots.get(&face),
+        };
+        let mut node = match root {
             Some((true, Some(root), _)) => return Some(*root),
             Some((true, None, node)) => *node,
             _ => return None,
@@ -250,5 +284,58 @@ impl PatchMap {
             node = child.node;
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::patches::{PatchArray, PatchType};
+
+    /// A hand-made table whose patches name faces far past their number:
+    /// the map stays small (no dense entry per face up to 2^28) and finds
+    /// them all.
+    #[test]
+    fn faces_far_past_the_patches_are_found_without_a_dense_entry_each() {
+        let (far, farther) = ((1u32 << 28) - 1, 1u32 << 27);
+        // Depth-0 roots (field1 0) and one depth-1 patch in the first
+        // quadrant (u = v = 0, depth 1) of `farther`.
+        let params = vec![
+            PatchParam {
+                field0: far,
+                field1: 0,
+            },
+            PatchParam {
+                field0: 3,
+                field1: 0,
+            },
+            PatchParam {
+                field0: farther,
+                field1: 1,
+            },
+        ];
+        let table = PatchTable {
+            arrays: vec![PatchArray {
+                patch_type: PatchType::Regular,
+                control_vertices: vec![0; 16 * params.len()],
+                sharpness: vec![0.0; params.len()],
+                params,
+                varying_vertices: Vec::new(),
+            }],
+            ..PatchTable::default()
+        };
+        let map = PatchMap::new(&table);
+        assert!(
+            map.roots.len() <= 4 * 3 + 64,
+            "{} dense roots",
+            map.roots.len()
+        );
+        let handle = |patch| Some(PatchHandle { array: 0, patch });
+        assert_eq!(map.find_patch(far, 0.5, 0.5), handle(0));
+        assert_eq!(map.find_patch(3, 0.25, 0.75), handle(1));
+        assert_eq!(map.find_patch(farther, 0.25, 0.25), handle(2));
+        assert_eq!(map.find_patch(farther, 0.75, 0.75), None);
+        assert_eq!(map.find_patch(4, 0.5, 0.5), None);
+        assert_eq!(map.find_patch(far - 1, 0.5, 0.5), None);
     }
 }
