@@ -584,11 +584,13 @@ impl Evaluator<'_> {
                 }
                 acc.map(|a| a * factor)
             };
-            point[i * 3..i * 3 + 3].copy_from_slice(&sum(&bt[0], &rows[0], 1.0));
-            if let [du, dv] = rest {
-                du[i * 3..i * 3 + 3].copy_from_slice(&sum(&bt[0], &rows[1], d1));
-                dv[i * 3..i * 3 + 3].copy_from_slice(&sum(&bt[1], &rows[0], d1));
-            }
+            let p = sum(&bt[0], &rows[0], 1.0);
+            let [du, dv] = if rest.is_empty() {
+                [[0.0; 3]; 2]
+            } else {
+                [sum(&bt[0], &rows[1], d1), sum(&bt[1], &rows[0], d1)]
+            };
+            put3(point, rest, i, [p, du, dv]);
             return Ok(());
         }
         // A regular Loop patch of positions, with or without first
@@ -611,12 +613,7 @@ impl Evaluator<'_> {
                     &scratch.loop_patch.insert((handle, poly)).1
                 }
             };
-            let [p, du, dv] = poly.evaluate(s, t, !rest.is_empty(), d1);
-            point[i * 3..i * 3 + 3].copy_from_slice(&p);
-            if let [d_u, d_v] = rest {
-                d_u[i * 3..i * 3 + 3].copy_from_slice(&du);
-                d_v[i * 3..i * 3 + 3].copy_from_slice(&dv);
-            }
+            put3(point, rest, i, poly.evaluate(s, t, !rest.is_empty(), d1));
             return Ok(());
         }
         let buf = &mut scratch.basis;
@@ -672,6 +669,18 @@ impl Evaluator<'_> {
             }
         }
         Ok(())
+    }
+}
+
+/// Writes value `i` (width 3) of `point`, and of `rest` when it holds the
+/// first derivatives' columns (du, dv): the three values of `values`.
+#[inline(always)]
+fn put3(point: &mut [f64], rest: &mut [&mut [f64]], i: usize, values: [[f64; 3]; 3]) {
+    let [p, du, dv] = values;
+    point[i * 3..i * 3 + 3].copy_from_slice(&p);
+    if let [d_u, d_v] = rest {
+        d_u[i * 3..i * 3 + 3].copy_from_slice(&du);
+        d_v[i * 3..i * 3 + 3].copy_from_slice(&dv);
     }
 }
 

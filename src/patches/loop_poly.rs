@@ -7,9 +7,11 @@
 //! coefficients made of the points, `C_j = Σ_i B_ij X_i / 12`: once the
 //! coefficients are known, a location costs 15 products for its position
 //! and 10 more for each first derivative, where the weights cost about 240
-//! products and the sum 108. The coefficients depend on the patch only, so
-//! the locations of one patch (in face order, [`super::locations`]) share
-//! them. They are taken relative to the patch's first corner (point 4):
+//! products and the sum 108. The coefficients depend on the patch only:
+//! computed for every patch before a large batch of locations, else kept
+//! from one location to the next of the same patch (in face order,
+//! [`super::locations`]). They are taken relative to the patch's first
+//! corner (point 4):
 //! every coefficient but the constant one is then made of differences of
 //! nearby points, not of their absolute positions, which keeps the
 //! derivatives of small deep patches accurate.
