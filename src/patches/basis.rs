@@ -323,6 +323,7 @@ pub(crate) fn crease_of(param: PatchParam, exact: Option<f32>) -> Option<(u32, f
 /// points summed in s, the rows then in t): fewer products than the
 /// sixteen weights per table, the same surface to rounding. `u` and `v`
 /// must lie in [0, 1].
+#[inline(always)]
 pub(crate) fn regular_curves(
     param: PatchParam,
     u: f64,

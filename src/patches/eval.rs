@@ -574,22 +574,8 @@ impl Evaluator<'_> {
             && cvs.len() >= 16
         {
             let (bs, bt, d1) = regular_curves(param, u, v, exact.is_some());
-            let rows = regular_rows(points, &cvs[..16], &bs, !rest.is_empty())?;
-            let sum = |c: &[f64; 4], rows: &[[f64; 3]; 4], factor: f64| {
-                let mut acc = [0.0f64; 3];
-                for (w, row) in c.iter().zip(rows) {
-                    for (a, x) in acc.iter_mut().zip(row) {
-                        *a += w * x;
-                    }
-                }
-                acc.map(|a| a * factor)
-            };
-            let p = sum(&bt[0], &rows[0], 1.0);
-            let [du, dv] = if rest.is_empty() {
-                [[0.0; 3]; 2]
-            } else {
-                [sum(&bt[0], &rows[1], d1), sum(&bt[1], &rows[0], d1)]
-            };
+            let [p, du, dv] = regular_sums(points, &cvs[..16], (&bs, &bt), !rest.is_empty())?;
+            let (du, dv) = (du.map(|x| x * d1), dv.map(|x| x * d1));
             put3(point, rest, i, [p, du, dv]);
             return Ok(());
         }
@@ -684,18 +670,23 @@ fn put3(point: &mut [f64], rest: &mut [&mut [f64]], i: usize, values: [[f64; 3];
     }
 }
 
-/// A bicubic B-spline patch's rows of control points (`cvs`, row by row
-/// from t = 0) summed along s: for each row, the sum weighted by the
-/// functions of `bs[0]`, and when `first` (first derivatives asked for) by
-/// those of `bs[1]`.
+/// A bicubic B-spline patch at one location from its curves ([`regular_curves`]'s
+/// `bs` and `bt`): each row of control points (`cvs`, row by row from
+/// t = 0) summed along s by `bs[0]` (and, when `first` asks for first
+/// derivatives, by `bs[1]`), and the rows' sums added up along t as each
+/// row is done — the point by `bt[0]`, the derivative in s from the rows'
+/// `bs[1]` sums by `bt[0]`, the one in t from their `bs[0]` sums by
+/// `bt[1]` (unscaled, zero without `first`). Each value's products and
+/// sums in the same order as summing all the rows first: the same bits;
+/// the rows are not stored and read back.
 #[inline(always)]
-fn regular_rows(
+fn regular_sums(
     points: &[f64],
     cvs: &[u32],
-    bs: &[[f64; 4]; 2],
+    (bs, bt): (&[[f64; 4]; 2], &[[f64; 4]; 2]),
     first: bool,
-) -> Result<[[[f64; 3]; 4]; 2]> {
-    let mut rows = [[[0.0f64; 3]; 4]; 2];
+) -> Result<[[f64; 3]; 3]> {
+    let mut out = [[0.0f64; 3]; 3];
     for (r, row) in cvs.chunks_exact(4).enumerate() {
         let (mut p, mut d) = ([0.0f64; 3], [0.0f64; 3]);
         for (k, &cv) in row.iter().enumerate() {
@@ -706,12 +697,17 @@ fn regular_rows(
                 d[c] += dw * x[c];
             }
         }
-        rows[0][r] = p;
+        for c in 0..3 {
+            out[0][c] += bt[0][r] * p[c];
+        }
         if first {
-            rows[1][r] = d;
+            for c in 0..3 {
+                out[1][c] += bt[0][r] * d[c];
+                out[2][c] += bt[1][r] * p[c];
+            }
         }
     }
-    Ok(rows)
+    Ok(out)
 }
 
 /// The three values of control point `cv` in `points` (width 3), or the
