@@ -16,6 +16,7 @@
 use super::basis::{BasisBuffer, crease_of, evaluate_basis_into, regular_curves, triangle_coords};
 use super::exact::exact_sharpness;
 use super::loop_poly::LoopPolynomial;
+use super::map::Found;
 use super::{
     Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
     SurfaceSamples,
@@ -516,22 +517,22 @@ impl Evaluator<'_> {
     }
 
     /// The patch covering (`face`, `u`, `v`) ([`PatchMap::find_patch`]),
-    /// `None` on a hole.
+    /// [`Found::NONE`] on a hole.
     #[inline]
-    pub(crate) fn locate(&self, (face, u, v): (u32, f64, f64)) -> Option<PatchHandle> {
-        self.map.find_patch(face, u, v)
+    pub(crate) fn locate(&self, (face, u, v): (u32, f64, f64)) -> Found {
+        self.map.find(face, u, v)
     }
 
     /// Reads the data of the patches of `handles` that the evaluation of
     /// their locations reads first (the precomputed Loop polynomials), so
     /// that its cache misses overlap with other work.
     #[inline]
-    pub(crate) fn touch(&self, handles: &[Option<PatchHandle>]) {
+    pub(crate) fn touch(&self, handles: &[Found]) {
         if self.loop_polynomials.is_empty() {
             return;
         }
         let mut sum = 0.0;
-        for h in handles.iter().flatten() {
+        for h in handles.iter().filter_map(|f| f.handle()) {
             if let Some(p) = self
                 .loop_polynomials
                 .get(h.array)
@@ -544,14 +545,14 @@ impl Evaluator<'_> {
     }
 
     /// Evaluates the limit at (`face`, `u`, `v`), a location
-    /// [`check_location`] accepted whose patch is `handle` (as
+    /// [`check_location`] accepted whose patch is `found` (as
     /// [`Evaluator::locate`] found it), into value `i` of each of `columns`
     /// (one per kind of value asked for, `width` reals per value).
     #[inline]
     pub(crate) fn at(
         &self,
         (face, u, v): (u32, f64, f64),
-        handle: Option<PatchHandle>,
+        found: Found,
         i: usize,
         scratch: &mut EvalScratch,
         columns: &mut [&mut [f64]],
@@ -559,7 +560,7 @@ impl Evaluator<'_> {
         let (table, points, width) = (self.table, self.points, self.width);
         // (let-else, not `ok_or`: an error built and dropped per location
         // cost 7-9% of the evaluation.)
-        let Some(handle) = handle else {
+        let Some(handle) = found.handle() else {
             return Err(Error::NoPatchAt { face, u, v });
         };
         // A map of another table names patches this one may not have.

@@ -10,6 +10,7 @@
 //! the results are written back in the caller's order.
 
 use super::eval::{EvalScratch, Evaluator};
+use super::map::Found;
 use crate::alloc::try_vec;
 use crate::error::Result;
 use rayon::prelude::*;
@@ -111,7 +112,7 @@ fn evaluate_run(
     columns: &mut [&mut [f64]],
 ) -> Result<()> {
     for (b, batch) in locations.chunks(BATCH).enumerate() {
-        let mut handles = [None; BATCH];
+        let mut handles = [Found::NONE; BATCH];
         for (handle, &location) in handles.iter_mut().zip(batch) {
             *handle = evaluator.locate(location);
         }

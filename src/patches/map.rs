@@ -71,11 +71,53 @@ pub struct PatchMap {
     far_roots: BTreeMap<u32, Root>,
 }
 
-/// A ptex face's entry of the map ([`PatchMap`]'s `roots`).
-type Root = (bool, Option<PatchHandle>, u32);
+/// A ptex face's entry of the map ([`PatchMap`]'s `roots`): 16 bytes, so
+/// that the roots of many faces share the cache.
+#[derive(Debug, Clone, Copy)]
+struct Root {
+    /// Whether its first quadrant is covered.
+    covered: bool,
+    /// The patch covering all of it, if any.
+    patch: Found,
+    /// The node of its quadrants (`NONE`: none).
+    node: u32,
+}
 
 /// A face without patches.
-const NO_ROOT: Root = (false, None, NONE);
+const NO_ROOT: Root = Root {
+    covered: false,
+    patch: Found::NONE,
+    node: NONE,
+};
+
+/// A patch [`PatchMap::find`] found, or none: its array and its index in
+/// the array packed into one word (`u64::MAX` for none), which a call
+/// returns in a register. (An `Option<PatchHandle>` is three words,
+/// returned through memory and read back as wider loads than it was
+/// written with: a store-forwarding stall on every location evaluated.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Found(u64);
+
+impl Found {
+    /// No patch.
+    pub(crate) const NONE: Found = Found(u64::MAX);
+
+    /// Patch `patch` of array `array` (neither `u32::MAX`, which the map
+    /// never stores).
+    #[inline]
+    fn new(array: u32, patch: u32) -> Found {
+        Found(u64::from(array) << 32 | u64::from(patch))
+    }
+
+    /// The patch, or `None`.
+    #[inline]
+    pub(crate) fn handle(self) -> Option<PatchHandle> {
+        (self != Found::NONE).then_some(PatchHandle {
+            array: (self.0 >> 32) as usize,
+            patch: (self.0 & 0xffff_ffff) as usize,
+        })
+    }
+}
 
 /// The quadrant of (`u`, `v`) in a square halved at `median`, and (`u`,
 /// `v`) moved into it.
@@ -167,7 +209,7 @@ impl PatchMap {
         };
         for (a, array) in table.arrays.iter().enumerate() {
             for (k, &p) in array.params.iter().enumerate() {
-                let handle = PatchHandle { array: a, patch: k };
+                let found = Found::new(a as u32, k as u32);
                 let (depth, root) = (p.depth(), u32::from(p.non_quad_root()));
                 map.max_depth = map.max_depth.max(depth);
                 let levels = depth.saturating_sub(root);
@@ -191,12 +233,12 @@ impl PatchMap {
                 let face = p.face_id() as usize;
                 let root = map.root_mut(face);
                 if levels == 0 || path >> (2 * (levels - 1)) == 0 {
-                    root.0 = true;
+                    root.covered = true;
                 }
                 if levels == 0 {
-                    root.1 = Some(handle);
+                    root.patch = found;
                 } else {
-                    map.insert(face, levels, path, handle);
+                    map.insert(face, levels, path, found);
                 }
             }
         }
@@ -218,20 +260,20 @@ impl PatchMap {
         (self.nodes.len() - 1) as u32
     }
 
-    /// Puts `handle` at quadrant path `path` (`levels` levels deep) of ptex
+    /// Puts `found` at quadrant path `path` (`levels` levels deep) of ptex
     /// face `face`, in place of any patch there before.
-    fn insert(&mut self, face: usize, levels: u32, path: u64, handle: PatchHandle) {
-        let mut node = self.root_mut(face).2;
+    fn insert(&mut self, face: usize, levels: u32, path: u64, found: Found) {
+        let mut node = self.root_mut(face).node;
         if node == NONE {
             node = self.new_node();
-            self.root_mut(face).2 = node;
+            self.root_mut(face).node = node;
         }
         for level in 1..=levels {
             let q = ((path >> (2 * (levels - level))) & 3) as usize;
             if level == levels {
                 let child = &mut self.nodes[node as usize][q];
-                child.array = handle.array as u32;
-                child.patch = handle.patch as u32;
+                child.array = (found.0 >> 32) as u32;
+                child.patch = found.0 as u32;
                 return;
             }
             let next = self.nodes[node as usize][q].node;
@@ -252,22 +294,30 @@ impl PatchMap {
     /// OpenSubdiv's quadtree sends them; u and v outside [0, 1] find
     /// nothing.
     pub fn find_patch(&self, face: u32, u: f64, v: f64) -> Option<PatchHandle> {
+        self.find(face, u, v).handle()
+    }
+
+    /// [`PatchMap::find_patch`], the patch packed into one word.
+    #[inline]
+    pub(crate) fn find(&self, face: u32, u: f64, v: f64) -> Found {
         if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
-            return None;
+            return Found::NONE;
         }
         let root = match self.roots.get(face as usize) {
             Some(root) => Some(root),
             None => self.far_roots.get(&face),
         };
         let mut node = match root {
-            Some((true, Some(root), _)) => return Some(*root),
-            Some((true, None, node)) => *node,
-            _ => return None,
+            Some(r) if r.covered && r.patch != Found::NONE => return r.patch,
+            Some(r) if r.covered => r.node,
+            _ => return Found::NONE,
         };
         let (mut u, mut v) = (u, v);
         let (mut median, mut rotated) = (0.5, false);
         for _ in 0..=self.max_depth {
-            let children = self.nodes.get(node as usize)?;
+            let Some(children) = self.nodes.get(node as usize) else {
+                return Found::NONE;
+            };
             let q = if self.triangular {
                 tri_quadrant(median, &mut u, &mut v, &mut rotated)
             } else {
@@ -276,14 +326,11 @@ impl PatchMap {
             median *= 0.5;
             let child = children[q as usize];
             if child.patch != NONE {
-                return Some(PatchHandle {
-                    array: child.array as usize,
-                    patch: child.patch as usize,
-                });
+                return Found::new(child.array, child.patch);
             }
             node = child.node;
         }
-        None
+        Found::NONE
     }
 }
 
