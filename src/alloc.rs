@@ -63,6 +63,21 @@ pub(crate) fn try_vec<T: Clone>(value: T, len: usize) -> Result<Vec<T>> {
     Ok(v)
 }
 
+/// `len` zeros in a vector allocated fallibly and zeroed by the allocator
+/// (`calloc`): a large one is fresh pages, zero already, that the caller's
+/// writes fault in — no pass writing zeros over it first, as
+/// [`try_vec`]'s fill makes. For outputs every element of which is written
+/// anyway.
+pub(crate) fn try_zeroed<T: bytemuck::Zeroable>(len: usize) -> Result<Vec<T>> {
+    let bytes = len.saturating_mul(size_of::<T>());
+    let error = || Error::OutOfMemory { bytes, level: None };
+    let v = bytemuck::allocation::try_zeroed_vec(len).map_err(|()| error())?;
+    if !headroom_after(bytes) {
+        return Err(error());
+    }
+    Ok(v)
+}
+
 /// Reserves room for `additional` more elements, fallibly: an error when
 /// the room cannot be had, or when a large reservation would leave too
 /// little for the small allocations after it ([`headroom_after`]).
@@ -154,6 +169,18 @@ mod tests {
             matches!(huge, Error::OutOfMemory { level: None, .. }),
             "{huge}"
         );
+        // The same through the allocator's zeroed allocation.
+        let huge = try_zeroed::<u64>(usize::MAX / 16).unwrap_err();
+        assert!(
+            matches!(huge, Error::OutOfMemory { level: None, .. }),
+            "{huge}"
+        );
+        // Zeros, large (fresh pages) and small.
+        for len in [0, 5, 3 << 20] {
+            let zeros = try_zeroed::<f64>(len).unwrap();
+            assert_eq!(zeros.len(), len);
+            assert!(zeros.iter().all(|&x| x.to_bits() == 0));
+        }
         let caught = catch_unwind(|| guard(None, || -> Result<()> { panic!("not ours") }));
         assert!(caught.is_err());
         assert_eq!(guard(None, || Ok(7)).unwrap(), 7);

@@ -366,7 +366,7 @@ pub fn evaluate_data_as(
     }
     let mut outs: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::new());
     for out in outs.iter_mut().take(kinds) {
-        *out = crate::alloc::try_vec(0.0, len)?;
+        *out = crate::alloc::try_zeroed(len)?;
     }
     let loop_polynomials = if width == 3 && kinds <= 3 {
         loop_polynomials(table, data, points, locations.len())
