@@ -79,7 +79,7 @@ impl StencilTable {
     pub fn apply_par(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
         use rayon::prelude::*;
         self.check_apply(width, base)?;
-        let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
+        let mut out = crate::alloc::try_zeroed(self.len() * width)?;
         out.par_chunks_mut(width * 256)
             .enumerate()
             .for_each(|(block, chunk)| self.apply_rows_into(block * 256, width, base, chunk));
@@ -257,7 +257,7 @@ impl StencilTable {
     /// Applies the table to base data of `width` components per vertex.
     pub fn apply(&self, width: usize, base: &[f64]) -> Result<Vec<f64>> {
         self.check_apply(width, base)?;
-        let mut out = crate::alloc::try_vec(0.0, self.len() * width)?;
+        let mut out = crate::alloc::try_zeroed(self.len() * width)?;
         self.apply_rows_into(0, width, base, &mut out);
         Ok(out)
     }
@@ -484,7 +484,7 @@ impl StencilTableF32 {
             count: usize::MAX,
             bits: usize::BITS,
         })?;
-        let mut out = crate::alloc::try_vec(0.0, len)?;
+        let mut out = crate::alloc::try_zeroed(len)?;
         self.apply_into(width, base, &mut out)?;
         Ok(out)
     }
