@@ -70,8 +70,10 @@ const ORIGIN: usize = 4;
 /// A regular Loop patch's limit surface as a polynomial: its value at
 /// `(s, t)` is `origin + Σ_j m_j(s, t) c[j]`, `m_j` the monomials in the
 /// order of [`BOX_SPLINE`]'s columns (1, s, t, s², st, t², s³, s²t, st²,
-/// t³, s⁴, s³t, s²t², st³, t⁴).
+/// t³, s⁴, s³t, s²t², st³, t⁴). Aligned to a cache line: its 384 bytes
+/// then span six lines, not seven (read at random, one location each).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
 pub(crate) struct LoopPolynomial {
     origin: P3,
     c: [P3; 15],
