@@ -214,28 +214,26 @@ impl<T: Real> Cache<T> {
 
     /// The weights of a smooth edge between two faces; `tri` says which
     /// are triangles under the smooth-triangle rule. `None` for a mask of
-    /// another shape (then the general path computes the edge).
+    /// another shape (then the general path computes the edge). A
+    /// reference into the cache, not a copy: a copy came back through the
+    /// stack in 4-byte halves read back as 8-byte pairs, a
+    /// store-forwarding stall on every edge point.
     #[inline(always)]
     pub(super) fn smooth_edge(
         &mut self,
         rules: &SchemeRules,
         tri: [bool; 2],
-    ) -> Option<EdgeWeights<T>> {
+    ) -> Option<&EdgeWeights<T>> {
         let key = tri[0] as usize | (tri[1] as usize) << 1;
-        match self.edge[key] {
-            Some(w) => w,
-            None => self.fill_smooth_edge(rules, key, tri),
+        if self.edge[key].is_none() {
+            self.fill_smooth_edge(rules, key, tri);
         }
+        self.edge[key].as_ref().and_then(Option::as_ref)
     }
 
     #[cold]
     #[inline(never)]
-    fn fill_smooth_edge(
-        &mut self,
-        rules: &SchemeRules,
-        key: usize,
-        tri: [bool; 2],
-    ) -> Option<EdgeWeights<T>> {
+    fn fill_smooth_edge(&mut self, rules: &SchemeRules, key: usize, tri: [bool; 2]) {
         let sizes = [if tri[0] { 3 } else { 4 }, if tri[1] { 3 } else { 4 }];
         let hood = EdgeNeighborhood {
             sharpness: 0.0,
@@ -254,7 +252,6 @@ impl<T: Real> Cache<T> {
             })
         })();
         self.edge[key] = Some(weights);
-        weights
     }
 
     /// The smooth mask of an interior vertex with `n` faces and `n` edges.
