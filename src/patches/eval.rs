@@ -15,7 +15,7 @@
 
 use super::basis::{BasisBuffer, crease_of, evaluate_basis_into, regular_curves, triangle_coords};
 use super::exact::exact_sharpness;
-use super::loop_poly::LoopPolynomial;
+use super::loop_poly::{LoopPolynomial, loop_points, loop_polynomials};
 use super::map::Found;
 use super::{
     Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
@@ -23,7 +23,6 @@ use super::{
 };
 use crate::error::{Buffer, Error, Result};
 use crate::refiner::AdaptiveRefiner;
-use rayon::prelude::*;
 
 /// Which primvar a table's patches are evaluated for: vertex data over the
 /// patches themselves (`EvaluateBasis`), varying data over each patch's
@@ -390,80 +389,6 @@ pub fn evaluate_data_as(
     })
 }
 
-/// The most bytes [`loop_polynomials`] may take.
-const LOOP_POLYNOMIAL_BYTES: usize = 64 << 20;
-
-/// The polynomial of every regular Loop patch of `table` for `data` over
-/// `points` (width 3), by array (empty for the other arrays), when
-/// evaluating `locations` locations reads each patch at least once on
-/// average and they take at most [`LOOP_POLYNOMIAL_BYTES`]: each patch's
-/// polynomial is then computed once, whatever order the locations come in.
-/// None otherwise, or when memory for them cannot be had or a patch names a
-/// point `points` lacks (its locations then compute their patch's
-/// polynomial themselves, and report that error). The values are the same
-/// either way.
-fn loop_polynomials(
-    table: &PatchTable,
-    data: PatchData,
-    points: &[f64],
-    locations: usize,
-) -> Vec<Vec<LoopPolynomial>> {
-    let is_loop = |array: usize| {
-        matches!(
-            patch_of(table, data, PatchHandle { array, patch: 0 }),
-            Ok((PatchType::Loop, ..))
-        )
-    };
-    let patches: usize = (0..table.arrays.len())
-        .filter(|&a| is_loop(a))
-        .map(|a| table.arrays[a].len())
-        .sum();
-    if patches == 0
-        || patches > locations
-        || patches.saturating_mul(size_of::<LoopPolynomial>()) > LOOP_POLYNOMIAL_BYTES
-    {
-        return Vec::new();
-    }
-    let mut out = Vec::new();
-    for a in 0..table.arrays.len() {
-        if !is_loop(a) {
-            out.push(Vec::new());
-            continue;
-        }
-        let Ok(mut polys) = crate::alloc::try_vec(LoopPolynomial::ZERO, table.arrays[a].len())
-        else {
-            return Vec::new();
-        };
-        let made = polys
-            .par_iter_mut()
-            .enumerate()
-            .try_for_each(|(patch, poly)| -> Option<()> {
-                let (_, param, cvs) =
-                    patch_of(table, data, PatchHandle { array: a, patch }).ok()?;
-                let cvs = cvs.get(..12)?;
-                *poly = LoopPolynomial::of(&loop_points(points, cvs).ok()?, param.boundary());
-                Some(())
-            });
-        if made.is_none() {
-            return Vec::new();
-        }
-        out.push(polys);
-    }
-    out
-}
-
-/// The values of a Loop patch's twelve control points `cvs` (at least
-/// twelve) in `points` (width 3), or the error naming the buffer too short
-/// for one.
-fn loop_points(points: &[f64], cvs: &[u32]) -> Result<[[f64; 3]; 12]> {
-    let mut at = [[0.0f64; 3]; 12];
-    for (p, &cv) in at.iter_mut().zip(cvs) {
-        let x = point_of(points, cv)?;
-        *p = [x[0], x[1], x[2]];
-    }
-    Ok(at)
-}
-
 /// What evaluating locations one after another keeps between them: the
 /// basis buffer, and the polynomial of the last regular Loop patch
 /// evaluated (for one evaluator: the handle names the patch of its table
@@ -714,7 +639,7 @@ fn regular_sums(
 /// The three values of control point `cv` in `points` (width 3), or the
 /// error naming the buffer too short for it.
 #[inline(always)]
-fn point_of(points: &[f64], cv: u32) -> Result<&[f64]> {
+pub(super) fn point_of(points: &[f64], cv: u32) -> Result<&[f64]> {
     let start = cv as usize * 3;
     // (let-else: no error built unless it is returned.)
     let Some(row) = points.get(start..start + 3) else {

@@ -8,7 +8,8 @@
 //! coefficients are known, a location costs 15 products for its position
 //! and 10 more for each first derivative, where the weights cost about 240
 //! products and the sum 108. The coefficients depend on the patch only:
-//! computed for every patch before a large batch of locations, else kept
+//! computed for every patch before a large batch of locations
+//! ([`loop_polynomials`], the table this module builds), else kept
 //! from one location to the next of the same patch (in face order,
 //! [`super::locations`]). They are taken relative to the patch's first
 //! corner (point 4):
@@ -21,7 +22,11 @@
 //! bits whether it is evaluated alone or among others, as the coefficients
 //! of a patch are always computed the same way.
 
+use super::eval::{PatchData, patch_of, point_of};
 use super::triangle_basis::{BOX_SPLINE, fold_box_spline_phantoms};
+use super::{PatchHandle, PatchTable, PatchType};
+use crate::error::Result;
+use rayon::prelude::*;
 
 /// A point's value: `[x, y, z]`.
 type P3 = [f64; 3];
@@ -209,6 +214,80 @@ impl LoopPolynomial {
         }
         [p, du.map(|x| x * d1), dv.map(|x| x * d1)]
     }
+}
+
+/// The most bytes [`loop_polynomials`] may take.
+const LOOP_POLYNOMIAL_BYTES: usize = 64 << 20;
+
+/// The polynomial of every regular Loop patch of `table` for `data` over
+/// `points` (width 3), by array (empty for the other arrays), when
+/// evaluating `locations` locations reads each patch at least once on
+/// average and they take at most [`LOOP_POLYNOMIAL_BYTES`]: each patch's
+/// polynomial is then computed once, whatever order the locations come in.
+/// None otherwise, or when memory for them cannot be had or a patch names a
+/// point `points` lacks (its locations then compute their patch's
+/// polynomial themselves, and report that error). The values are the same
+/// either way.
+pub(super) fn loop_polynomials(
+    table: &PatchTable,
+    data: PatchData,
+    points: &[f64],
+    locations: usize,
+) -> Vec<Vec<LoopPolynomial>> {
+    let is_loop = |array: usize| {
+        matches!(
+            patch_of(table, data, PatchHandle { array, patch: 0 }),
+            Ok((PatchType::Loop, ..))
+        )
+    };
+    let patches: usize = (0..table.arrays.len())
+        .filter(|&a| is_loop(a))
+        .map(|a| table.arrays[a].len())
+        .sum();
+    if patches == 0
+        || patches > locations
+        || patches.saturating_mul(size_of::<LoopPolynomial>()) > LOOP_POLYNOMIAL_BYTES
+    {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for a in 0..table.arrays.len() {
+        if !is_loop(a) {
+            out.push(Vec::new());
+            continue;
+        }
+        let Ok(mut polys) = crate::alloc::try_vec(LoopPolynomial::ZERO, table.arrays[a].len())
+        else {
+            return Vec::new();
+        };
+        let made = polys
+            .par_iter_mut()
+            .enumerate()
+            .try_for_each(|(patch, poly)| -> Option<()> {
+                let (_, param, cvs) =
+                    patch_of(table, data, PatchHandle { array: a, patch }).ok()?;
+                let cvs = cvs.get(..12)?;
+                *poly = LoopPolynomial::of(&loop_points(points, cvs).ok()?, param.boundary());
+                Some(())
+            });
+        if made.is_none() {
+            return Vec::new();
+        }
+        out.push(polys);
+    }
+    out
+}
+
+/// The values of a Loop patch's twelve control points `cvs` (at least
+/// twelve) in `points` (width 3), or the error naming the buffer too short
+/// for one.
+pub(super) fn loop_points(points: &[f64], cvs: &[u32]) -> Result<[[f64; 3]; 12]> {
+    let mut at = [[0.0f64; 3]; 12];
+    for (p, &cv) in at.iter_mut().zip(cvs) {
+        let x = point_of(points, cv)?;
+        *p = [x[0], x[1], x[2]];
+    }
+    Ok(at)
 }
 
 #[cfg(test)]
