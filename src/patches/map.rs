@@ -109,12 +109,19 @@ impl Found {
         Found(u64::from(array) << 32 | u64::from(patch))
     }
 
+    /// Its array and its index in the array (both `u32::MAX` for none).
+    #[inline]
+    fn parts(self) -> (u32, u32) {
+        ((self.0 >> 32) as u32, self.0 as u32)
+    }
+
     /// The patch, or `None`.
     #[inline]
     pub(crate) fn handle(self) -> Option<PatchHandle> {
+        let (array, patch) = self.parts();
         (self != Found::NONE).then_some(PatchHandle {
-            array: (self.0 >> 32) as usize,
-            patch: (self.0 & 0xffff_ffff) as usize,
+            array: array as usize,
+            patch: patch as usize,
         })
     }
 }
@@ -272,8 +279,7 @@ impl PatchMap {
             let q = ((path >> (2 * (levels - level))) & 3) as usize;
             if level == levels {
                 let child = &mut self.nodes[node as usize][q];
-                child.array = (found.0 >> 32) as u32;
-                child.patch = found.0 as u32;
+                (child.array, child.patch) = found.parts();
                 return;
             }
             let next = self.nodes[node as usize][q].node;
