@@ -223,12 +223,14 @@ pub(super) fn fresh_map(bytes: usize) -> Option<MmapMut> {
     let evicted = lock(&MAPS).fresh(bytes);
     // Unmapped outside the lock, before the new map is faulted in.
     drop(evicted);
-    // A map that would leave too little for the small allocations after
-    // it is refused too ([`crate::alloc::headroom_after`]).
-    let map = memmap2::MmapOptions::new()
-        .len(bytes)
-        .map_anon()
-        .ok()
+    // A map the system refuses is asked for again once the kept maps are
+    // handed back (under an address-space limit they can be what is in
+    // the way). A map that would leave too little for the small
+    // allocations after it is refused too
+    // ([`crate::alloc::headroom_after`]).
+    let map_anon = || memmap2::MmapOptions::new().len(bytes).map_anon().ok();
+    let map = map_anon()
+        .or_else(|| (release() > 0).then(map_anon).flatten())
         .filter(|_| crate::alloc::headroom_after(bytes));
     if map.is_none() {
         lock(&MAPS).forget(bytes);
