@@ -27,9 +27,10 @@ use std::any::{Any, TypeId};
 use std::sync::{Mutex, MutexGuard};
 
 /// At most this many bytes of maps are kept. Enough for the tables of an
-/// adaptive refinement to isolation 6 of the benchmark's meshes (0.4-0.6
-/// GB): with 256 MiB, its deeper levels took fresh maps in every
-/// refinement, the kernel zeroing their pages (a tenth of the time).
+/// adaptive refinement to isolation 6 of the benchmark's meshes (a
+/// one-thread driver's peak: 0.37-0.63 GB): with 256 MiB, its deeper
+/// levels took fresh maps in every refinement, the kernel zeroing their
+/// pages (10-18% of the samples on the mixed torus).
 /// Kept maps never raise the peak (above); what a process holds after its
 /// tables are dropped is at most its own peak of tables, and
 /// [`release_buffer_pool`](crate::release_buffer_pool) hands it back.
