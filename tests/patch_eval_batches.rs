@@ -8,7 +8,7 @@ use subdiv::patches::{
 };
 use subdiv::ptex::PtexIndices;
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
-use subdiv::{BoundaryInterpolation, Error, Mesh, Options, Scheme, shapes};
+use subdiv::{BoundaryInterpolation, Error, Mesh, Options, Real, Scheme, shapes};
 
 /// A mesh with quads, triangles and extraordinary vertices, refined and
 /// its patch table (Gregory end caps) built.
@@ -49,14 +49,14 @@ fn scattered(table: &PatchTable, map: &PatchMap, count: usize) -> Vec<(u32, f64,
 }
 
 /// Each location evaluated alone (a batch of one is evaluated as given).
-fn one_by_one(
+fn one_by_one<R: Real>(
     map: &PatchMap,
     table: &PatchTable,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
-) -> Vec<Vec<f64>> {
+) -> Vec<Vec<R>> {
     let mut columns = vec![Vec::new(); 6];
     for &l in locations {
         let s = patches::evaluate_data(
@@ -83,10 +83,10 @@ fn one_by_one(
 /// Each of `locations` evaluated in one batch, on each number of
 /// `threads`, gets the value it gets alone, bit for bit: the same sums,
 /// only in another order of locations.
-fn batches_match_alone(
+fn batches_match_alone<R: Real>(
     map: &PatchMap,
     table: &PatchTable,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     threads: &[usize],
@@ -113,7 +113,7 @@ fn batches_match_alone(
                 let differ = got
                     .iter()
                     .zip(want)
-                    .position(|(a, b)| a.to_bits() != b.to_bits());
+                    .position(|(a, b)| a.to_f64().to_bits() != b.to_f64().to_bits());
                 assert_eq!(
                     differ, None,
                     "width {width}, {derivatives:?}, {threads} threads, kind {kind}"
@@ -126,13 +126,24 @@ fn batches_match_alone(
 /// Whether a batch of locations on `table` with `points` is evaluated in
 /// face order: when the data it reads do not stay in the caches (more than
 /// the 2 MiB below which locations are evaluated as given).
-fn in_face_order(table: &PatchTable, points: &[f64]) -> bool {
+fn in_face_order<R>(table: &PatchTable, points: &[R]) -> bool {
     let patches: usize = table
         .arrays
         .iter()
         .map(|a| a.control_vertices.len() * 4 + a.params.len() * 8)
         .sum();
-    points.len() * 8 + patches > 2 << 20
+    std::mem::size_of_val(points) + patches > 2 << 20
+}
+
+/// Data of widths 3 (positions, summed in registers) and 4 (any other
+/// width) at `mesh`'s vertices.
+fn bases(mesh: &Mesh) -> (Vec<f64>, Vec<f64>) {
+    let base4 = mesh
+        .positions
+        .iter()
+        .flat_map(|p| [p.x, p.y, p.z, p.x * p.y - p.z])
+        .collect();
+    (mesh.flat_positions::<f64>(), base4)
 }
 
 /// The meshes batches are tried on: one whose data stay in the caches
@@ -151,17 +162,58 @@ fn a_batch_gives_each_location_its_own_value(mesh: Mesh, face_order: bool) {
     let (adaptive, table) = setup(&mesh);
     let map = PatchMap::new(&table);
     let locations = scattered(&table, &map, 20_000);
-    // Widths 3 (positions, summed in registers) and 4 (any other width).
-    let base3 = mesh.flat_positions::<f64>();
-    let base4: Vec<f64> = mesh
-        .positions
-        .iter()
-        .flat_map(|p| [p.x, p.y, p.z, p.x * p.y - p.z])
-        .collect();
+    let (base3, base4) = bases(&mesh);
     for (width, base) in [(3, &base3), (4, &base4)] {
         let points = adaptive.patch_points(&table, width, base).unwrap();
         assert_eq!(in_face_order(&table, &points), face_order);
         batches_match_alone(&map, &table, &points, width, &locations, &[1, 2, 3]);
+    }
+}
+
+/// Points in `f32` (as OpenSubdiv's evaluators take them): a batch gives
+/// each location its own value too, in the given order and in face order
+/// (the larger mesh), and positions (width 3, summed in `f64` and rounded
+/// once) are the `f64` values of the same points rounded, bit for bit.
+#[test]
+fn f32_points_give_each_location_its_own_value() {
+    for (u, v, face_order) in [(12, 10, false), (40, 32, true)] {
+        let mesh = shapes::torus_mixed(u, v);
+        let (adaptive, table) = setup(&mesh);
+        let map = PatchMap::new(&table);
+        let locations = scattered(&table, &map, 20_000);
+        let (base3, base4) = bases(&mesh);
+        for (width, base) in [(3, &base3), (4, &base4)] {
+            let points: Vec<f32> = adaptive
+                .patch_points(&table, width, base)
+                .unwrap()
+                .iter()
+                .map(|&x| x as f32)
+                .collect();
+            assert_eq!(in_face_order(&table, &points), face_order);
+            batches_match_alone(&map, &table, &points, width, &locations, &[1, 2]);
+            if width != 3 {
+                continue;
+            }
+            let widened: Vec<f64> = points.iter().map(|&x| f64::from(x)).collect();
+            for derivatives in [Derivatives::First, Derivatives::Second] {
+                let narrow =
+                    patches::evaluate_with(&map, &table, &points, 3, &locations, derivatives)
+                        .unwrap()
+                        .values;
+                let wide =
+                    patches::evaluate_with(&map, &table, &widened, 3, &locations, derivatives)
+                        .unwrap()
+                        .values;
+                for (got, want) in [
+                    (&narrow.point, &wide.point),
+                    (&narrow.du, &wide.du),
+                    (&narrow.dvv, &wide.dvv),
+                ] {
+                    assert_eq!(got.len(), want.len());
+                    assert!(got.iter().zip(want).all(|(&a, &b)| a == b as f32));
+                }
+            }
+        }
     }
 }
 

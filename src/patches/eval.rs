@@ -22,6 +22,7 @@ use super::{
     SurfaceSamples,
 };
 use crate::error::{Buffer, Error, Result};
+use crate::real::Real;
 use crate::refiner::AdaptiveRefiner;
 
 /// Which primvar a table's patches are evaluated for: vertex data over the
@@ -213,6 +214,11 @@ impl AdaptiveRefiner {
 /// `osd::OsdPatchTable`'s refined data give them), with the derivatives
 /// asked for.
 ///
+/// `points` in `f64` or `f32` (`R`), the values in the same precision:
+/// `f32` points (as OpenSubdiv's `Osd::CpuEvaluator::EvalPatches` takes
+/// them) are weighed and summed in `f64` and each value rounded once, so
+/// that positions are the `f64` evaluation of the same points, rounded.
+///
 /// Refused: a location outside the mesh's ptex faces
 /// ([`Error::NoSuchPtexFace`]) or its unit square ([`Error::Location`]),
 /// on a hole ([`Error::NoPatchAt`]); a patch without a native basis
@@ -232,13 +238,13 @@ impl AdaptiveRefiner {
 /// assert!(p[0].abs() < 1e-6 && p[1].abs() < 1e-6 && p[2].abs() < 0.5);
 /// # Ok::<(), subdiv::Error>(())
 /// ```
-pub fn evaluate(
+pub fn evaluate<R: Real>(
     table: &PatchTable,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
-) -> Result<SurfaceSamples> {
+) -> Result<SurfaceSamples<R>> {
     evaluate_with(
         &PatchMap::new(table),
         table,
@@ -253,14 +259,14 @@ pub fn evaluate(
 /// evaluating the same table again and again (each frame's points, say)
 /// without rebuilding it. A map of another table gives wrong patches or
 /// [`Error::NoSuchPatch`], never a panic.
-pub fn evaluate_with(
+pub fn evaluate_with<R: Real>(
     map: &PatchMap,
     table: &PatchTable,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
-) -> Result<SurfaceSamples> {
+) -> Result<SurfaceSamples<R>> {
     evaluate_data(
         map,
         table,
@@ -292,15 +298,15 @@ pub fn evaluate_with(
 /// assert_eq!(s.values.point.len(), 2); // the UV at the centre of ptex face 0
 /// # Ok::<(), subdiv::Error>(())
 /// ```
-pub fn evaluate_data(
+pub fn evaluate_data<R: Real>(
     map: &PatchMap,
     table: &PatchTable,
     data: PatchData,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
-) -> Result<SurfaceSamples> {
+) -> Result<SurfaceSamples<R>> {
     evaluate_data_as(
         Evaluation::OpenSubdiv,
         map,
@@ -339,16 +345,16 @@ pub fn evaluate_data(
 /// # Ok::<(), subdiv::Error>(())
 /// ```
 #[allow(clippy::too_many_arguments)]
-pub fn evaluate_data_as(
+pub fn evaluate_data_as<R: Real>(
     evaluation: Evaluation,
     map: &PatchMap,
     table: &PatchTable,
     data: PatchData,
-    points: &[f64],
+    points: &[R],
     width: usize,
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
-) -> Result<SurfaceSamples> {
+) -> Result<SurfaceSamples<R>> {
     if width == 0 {
         return Err(Error::ZeroWidth);
     }
@@ -363,7 +369,7 @@ pub fn evaluate_data_as(
     for &(face, u, v) in locations {
         check_location(table, face, u, v)?;
     }
-    let mut outs: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::new());
+    let mut outs: [Vec<R>; 6] = std::array::from_fn(|_| Vec::new());
     for out in outs.iter_mut().take(kinds) {
         *out = crate::alloc::try_zeroed(len)?;
     }
@@ -409,12 +415,12 @@ impl Default for EvalScratch {
 
 /// What evaluating one location needs: the table, its map, the data and
 /// how to evaluate.
-pub(crate) struct Evaluator<'a> {
+pub(crate) struct Evaluator<'a, R> {
     evaluation: Evaluation,
     map: &'a PatchMap,
     table: &'a PatchTable,
     data: PatchData,
-    points: &'a [f64],
+    points: &'a [R],
     /// Values per point.
     pub(crate) width: usize,
     derivatives: Derivatives,
@@ -423,7 +429,7 @@ pub(crate) struct Evaluator<'a> {
     loop_polynomials: Vec<Vec<LoopPolynomial>>,
 }
 
-impl Evaluator<'_> {
+impl<R: Real> Evaluator<'_, R> {
     /// The bytes of data locations read: the points, the patches' control
     /// vertices (or values) and parameters.
     pub(crate) fn data_bytes(&self) -> usize {
@@ -433,7 +439,7 @@ impl Evaluator<'_> {
             .iter()
             .map(|a| a.control_vertices.len() * 4 + a.params.len() * 8)
             .sum();
-        self.points.len() * 8 + patches
+        std::mem::size_of_val(self.points) + patches
     }
 
     /// The number of ptex faces locations are on.
@@ -480,7 +486,7 @@ impl Evaluator<'_> {
         found: Found,
         i: usize,
         scratch: &mut EvalScratch,
-        columns: &mut [&mut [f64]],
+        columns: &mut [&mut [R]],
     ) -> Result<()> {
         let (table, points, width) = (self.table, self.points, self.width);
         // (let-else, not `ok_or`: an error built and dropped per location
@@ -538,7 +544,7 @@ impl Evaluator<'_> {
             let mut acc = [[0.0f64; 3]; 3];
             let [wp, wu, wv] = [0, 1, 2].map(|k| &buf[k][..n]);
             for (k, &cv) in cvs.iter().enumerate().take(n) {
-                let row = point_of(points, cv)?;
+                let row = point3(points, cv)?;
                 for (a, w) in acc.iter_mut().zip([wp[k], wu[k], wv[k]]) {
                     a[0] += w * row[0];
                     a[1] += w * row[1];
@@ -546,7 +552,7 @@ impl Evaluator<'_> {
                 }
             }
             for (out, a) in [point, du, dv].into_iter().zip(&acc) {
-                out[i * 3..i * 3 + 3].copy_from_slice(a);
+                store3(out, i, a);
             }
             return Ok(());
         }
@@ -554,18 +560,18 @@ impl Evaluator<'_> {
             for (out, weights) in columns.iter_mut().zip(buf.iter()) {
                 let mut acc = [0.0f64; 3];
                 for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
-                    let row = point_of(points, cv)?;
+                    let row = point3(points, cv)?;
                     acc[0] += w * row[0];
                     acc[1] += w * row[1];
                     acc[2] += w * row[2];
                 }
-                out[i * 3..i * 3 + 3].copy_from_slice(&acc);
+                store3(out, i, &acc);
             }
             return Ok(());
         }
         for (out, weights) in columns.iter_mut().zip(buf.iter()) {
             let dst = &mut out[i * width..(i + 1) * width];
-            dst.fill(0.0);
+            dst.fill(R::ZERO);
             for (&cv, &w) in cvs.iter().zip(&weights[..n]) {
                 let end = (cv as usize + 1).saturating_mul(width);
                 let Some(row) = points.get(end - width..end) else {
@@ -575,8 +581,9 @@ impl Evaluator<'_> {
                         got: points.len(),
                     });
                 };
+                // (In `f64`, `*o += w * x`; in `f32`, each sum rounded.)
                 for (o, &x) in dst.iter_mut().zip(row) {
-                    *o += w * x;
+                    *o = R::from_f64(o.to_f64() + w * x.to_f64());
                 }
             }
         }
@@ -587,13 +594,19 @@ impl Evaluator<'_> {
 /// Writes value `i` (width 3) of `point`, and of `rest` when it holds the
 /// first derivatives' columns (du, dv): the three values of `values`.
 #[inline(always)]
-fn put3(point: &mut [f64], rest: &mut [&mut [f64]], i: usize, values: [[f64; 3]; 3]) {
+fn put3<R: Real>(point: &mut [R], rest: &mut [&mut [R]], i: usize, values: [[f64; 3]; 3]) {
     let [p, du, dv] = values;
-    point[i * 3..i * 3 + 3].copy_from_slice(&p);
+    store3(point, i, &p);
     if let [d_u, d_v] = rest {
-        d_u[i * 3..i * 3 + 3].copy_from_slice(&du);
-        d_v[i * 3..i * 3 + 3].copy_from_slice(&dv);
+        store3(d_u, i, &du);
+        store3(d_v, i, &dv);
     }
+}
+
+/// Writes `value` as value `i` (width 3) of `out`, rounded to `R`.
+#[inline(always)]
+fn store3<R: Real>(out: &mut [R], i: usize, value: &[f64; 3]) {
+    out[i * 3..i * 3 + 3].copy_from_slice(&value.map(R::from_f64));
 }
 
 /// A bicubic B-spline patch at one location from its curves ([`regular_curves`]'s
@@ -606,8 +619,8 @@ fn put3(point: &mut [f64], rest: &mut [&mut [f64]], i: usize, values: [[f64; 3];
 /// sums in the same order as summing all the rows first: the same bits;
 /// the rows are not stored and read back.
 #[inline(always)]
-fn regular_sums(
-    points: &[f64],
+fn regular_sums<R: Real>(
+    points: &[R],
     cvs: &[u32],
     (bs, bt): (&[[f64; 4]; 2], &[[f64; 4]; 2]),
     first: bool,
@@ -616,7 +629,7 @@ fn regular_sums(
     for (r, row) in cvs.chunks_exact(4).enumerate() {
         let (mut p, mut d) = ([0.0f64; 3], [0.0f64; 3]);
         for (k, &cv) in row.iter().enumerate() {
-            let x = point_of(points, cv)?;
+            let x = point3(points, cv)?;
             let (w, dw) = (bs[0][k], bs[1][k]);
             for c in 0..3 {
                 p[c] += w * x[c];
@@ -636,10 +649,18 @@ fn regular_sums(
     Ok(out)
 }
 
+/// The three values of control point `cv` in `points` (width 3), in
+/// `f64`, or the error naming the buffer too short for it.
+#[inline(always)]
+pub(super) fn point3<R: Real>(points: &[R], cv: u32) -> Result<[f64; 3]> {
+    let row = point_of(points, cv)?;
+    Ok([row[0].to_f64(), row[1].to_f64(), row[2].to_f64()])
+}
+
 /// The three values of control point `cv` in `points` (width 3), or the
 /// error naming the buffer too short for it.
 #[inline(always)]
-pub(super) fn point_of(points: &[f64], cv: u32) -> Result<&[f64]> {
+pub(super) fn point_of<R>(points: &[R], cv: u32) -> Result<&[R]> {
     let start = cv as usize * 3;
     // (let-else: no error built unless it is returned.)
     let Some(row) = points.get(start..start + 3) else {

@@ -13,6 +13,7 @@ use super::eval::{EvalScratch, Evaluator};
 use super::map::Found;
 use crate::alloc::try_vec;
 use crate::error::Result;
+use crate::real::Real;
 use rayon::prelude::*;
 
 /// The fewest locations evaluated in face order (fewer are evaluated as
@@ -37,10 +38,10 @@ const CHUNK: usize = 8192;
 /// `columns` (one per kind of value, `evaluator.width` reals per
 /// location). An error is the first location's error in the caller's
 /// order.
-pub(super) fn evaluate_all(
-    evaluator: &Evaluator<'_>,
+pub(super) fn evaluate_all<R: Real>(
+    evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<f64>],
+    columns: &mut [Vec<R>],
 ) -> Result<()> {
     if locations.len() < ORDERED_FROM
         || evaluator.data_bytes() <= CACHED_BYTES
@@ -59,20 +60,20 @@ pub(super) fn evaluate_all(
 /// [`CHUNK`] locations side by side, each into its own stretch of the
 /// columns (an error is then looked for again in order, so that it is the
 /// first location's).
-fn in_given_order(
-    evaluator: &Evaluator<'_>,
+fn in_given_order<R: Real>(
+    evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<f64>],
+    columns: &mut [Vec<R>],
 ) -> Result<()> {
     let width = evaluator.width;
     let each =
-        |locations: &[(u32, f64, f64)], buf: &mut EvalScratch, mut stretch: Vec<&mut [f64]>| {
+        |locations: &[(u32, f64, f64)], buf: &mut EvalScratch, mut stretch: Vec<&mut [R]>| {
             evaluate_run(evaluator, locations, buf, &mut stretch)
         };
     if rayon::current_num_threads() > 1 && locations.len() >= ORDERED_FROM {
         // Each task's stretch of every column.
         let tasks = locations.len().div_ceil(CHUNK);
-        let mut stretches: Vec<Vec<&mut [f64]>> = (0..tasks).map(|_| Vec::new()).collect();
+        let mut stretches: Vec<Vec<&mut [R]>> = (0..tasks).map(|_| Vec::new()).collect();
         for column in columns.iter_mut() {
             for (task, piece) in stretches.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
                 task.push(piece);
@@ -105,11 +106,11 @@ const BATCH: usize = 8;
 /// and the patches' data of neighbouring locations are then read side by
 /// side, not each after the previous location's evaluation. The first
 /// error is the first failing location's.
-fn evaluate_run(
-    evaluator: &Evaluator<'_>,
+fn evaluate_run<R: Real>(
+    evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
     buf: &mut EvalScratch,
-    columns: &mut [&mut [f64]],
+    columns: &mut [&mut [R]],
 ) -> Result<()> {
     for (b, batch) in locations.chunks(BATCH).enumerate() {
         let mut handles = [Found::NONE; BATCH];
@@ -150,16 +151,16 @@ fn face_order(locations: &[(u32, f64, f64)], faces: usize) -> Result<Vec<u32>> {
 /// they came one at a time.) On one thread each stretch is scattered as
 /// it is done; on several, the stretches go into sorted copies of the
 /// columns in parallel, gathered back afterwards.
-fn in_face_order(
-    evaluator: &Evaluator<'_>,
+fn in_face_order<R: Real>(
+    evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<f64>],
+    columns: &mut [Vec<R>],
 ) -> Result<()> {
     let order = face_order(locations, evaluator.ptex_faces())?;
     let width = evaluator.width;
     let kinds = columns.len();
     let evaluate =
-        |indices: &[u32], scratch: &mut Scratch, stretch: &mut [&mut [f64]]| -> Result<()> {
+        |indices: &[u32], scratch: &mut Scratch, stretch: &mut [&mut [R]]| -> Result<()> {
             scratch.locations.clear();
             scratch
                 .locations
@@ -168,12 +169,12 @@ fn in_face_order(
         };
     if rayon::current_num_threads() <= 1 {
         let mut scratch = Scratch::default();
-        let mut sorted: Vec<Vec<f64>> = Vec::new();
+        let mut sorted: Vec<Vec<R>> = Vec::new();
         for _ in 0..kinds {
-            sorted.push(try_vec(0.0, CHUNK.min(order.len()) * width)?);
+            sorted.push(try_vec(R::ZERO, CHUNK.min(order.len()) * width)?);
         }
         for indices in order.chunks(CHUNK) {
-            let mut stretch: Vec<&mut [f64]> = sorted
+            let mut stretch: Vec<&mut [R]> = sorted
                 .iter_mut()
                 .map(|c| &mut c[..indices.len() * width])
                 .collect();
@@ -186,11 +187,11 @@ fn in_face_order(
     }
     let mut sorted = Vec::new();
     for column in columns.iter() {
-        sorted.push(try_vec(0.0, column.len())?);
+        sorted.push(try_vec(R::ZERO, column.len())?);
     }
     // Each task's stretch of every sorted column.
     let tasks = order.len().div_ceil(CHUNK);
-    let mut stretches: Vec<Vec<&mut [f64]>> = (0..tasks).map(|_| Vec::new()).collect();
+    let mut stretches: Vec<Vec<&mut [R]>> = (0..tasks).map(|_| Vec::new()).collect();
     for column in sorted.iter_mut() {
         for (task, piece) in stretches.iter_mut().zip(column.chunks_mut(CHUNK * width)) {
             task.push(piece);
@@ -230,32 +231,32 @@ struct Scratch {
 /// of `from` to value `to_at(k)` of `to`, for each `k`. Small widths
 /// are copied as fixed-size arrays (a copy of a slice of run-time length
 /// is a call to `memcpy` per value).
-fn move_values(
+fn move_values<R: Copy>(
     width: usize,
-    from: &[f64],
+    from: &[R],
     from_at: impl Fn(usize) -> usize,
-    to: &mut [f64],
+    to: &mut [R],
     to_at: impl Fn(usize) -> usize,
 ) {
-    fn fixed<const N: usize>(
-        from: &[f64],
+    fn fixed<R: Copy, const N: usize>(
+        from: &[R],
         from_at: impl Fn(usize) -> usize,
-        to: &mut [f64],
+        to: &mut [R],
         to_at: impl Fn(usize) -> usize,
         count: usize,
     ) {
         for k in 0..count {
             let (f, t) = (from_at(k) * N, to_at(k) * N);
-            let value: [f64; N] = std::array::from_fn(|c| from[f + c]);
+            let value: [R; N] = std::array::from_fn(|c| from[f + c]);
             to[t..t + N].copy_from_slice(&value);
         }
     }
     let count = from.len().min(to.len()) / width;
     match width {
-        1 => fixed::<1>(from, from_at, to, to_at, count),
-        2 => fixed::<2>(from, from_at, to, to_at, count),
-        3 => fixed::<3>(from, from_at, to, to_at, count),
-        4 => fixed::<4>(from, from_at, to, to_at, count),
+        1 => fixed::<R, 1>(from, from_at, to, to_at, count),
+        2 => fixed::<R, 2>(from, from_at, to, to_at, count),
+        3 => fixed::<R, 3>(from, from_at, to, to_at, count),
+        4 => fixed::<R, 4>(from, from_at, to, to_at, count),
         _ => {
             for k in 0..count {
                 let (f, t) = (from_at(k) * width, to_at(k) * width);

@@ -517,10 +517,10 @@ pub struct Partials<R = f64> {
     pub dvv: Vec<R>,
 }
 
-impl Partials {
+impl<R> Partials<R> {
     /// The six columns in their order: values, ∂/∂u, ∂/∂v, ∂²/∂u²,
     /// ∂²/∂u∂v, ∂²/∂v² (those not computed empty).
-    pub(crate) fn from_columns(columns: [Vec<f64>; 6]) -> Partials {
+    pub(crate) fn from_columns(columns: [Vec<R>; 6]) -> Partials<R> {
         let [point, du, dv, duu, duv, dvv] = columns;
         Partials {
             point,
@@ -531,7 +531,9 @@ impl Partials {
             dvv,
         }
     }
+}
 
+impl Partials {
     /// Copies the kinds of values there are `columns` for (values, ∂u,
     /// ∂v, ...) into them; refused when a length differs.
     pub(crate) fn copy_into(&self, columns: &mut [&mut [f64]]) -> crate::error::Result<()> {
@@ -562,11 +564,13 @@ impl Partials {
 }
 
 /// Values of the limit surface at a list of locations, `width` components
-/// each, location after location, with the derivatives asked for.
+/// each, location after location, with the derivatives asked for; in
+/// `f64` unless `R` names another precision (points given in `f32`,
+/// [`evaluate_data_as`]).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct SurfaceSamples {
+pub struct SurfaceSamples<R = f64> {
     /// Components per value.
     pub width: usize,
     /// The values and derivatives.
-    pub values: Partials,
+    pub values: Partials<R>,
 }
