@@ -1,8 +1,8 @@
 //! Builds the C++ shim over OpenSubdiv (feature `osd`, on by default).
 //!
 //! * `cc` compiles `cpp/shim.cpp`, `cpp/patches.cpp`,
-//!   `cpp/limit_stencils.cpp`, `cpp/bfr.cpp`, `cpp/bfr_surface.cpp` and
-//!   `cpp/bfr_mesh.cpp` (their shared internals in `cpp/internal.h` and
+//!   `cpp/osd_evaluator.cpp`, `cpp/limit_stencils.cpp`, `cpp/bfr.cpp`,
+//!   `cpp/bfr_surface.cpp` and `cpp/bfr_mesh.cpp` (their shared internals in `cpp/internal.h` and
 //!   `cpp/bfr_internal.h`); `bindgen` binds `cpp/shim.h` only.
 //! * OpenSubdiv is found in `SUBDIV_OSD_DIR` (with `include/` and `lib/`) when
 //!   set, else in the system paths where Debian's `libosd-dev` installs it.
@@ -22,6 +22,7 @@ mod osd {
         println!("cargo:rerun-if-changed=cpp/shim.h");
         println!("cargo:rerun-if-changed=cpp/shim.cpp");
         println!("cargo:rerun-if-changed=cpp/patches.cpp");
+        println!("cargo:rerun-if-changed=cpp/osd_evaluator.cpp");
         println!("cargo:rerun-if-changed=cpp/limit_stencils.cpp");
         println!("cargo:rerun-if-changed=cpp/bfr.cpp");
         println!("cargo:rerun-if-changed=cpp/bfr_surface.cpp");
@@ -54,6 +55,7 @@ mod osd {
             .std("c++14")
             .file("cpp/shim.cpp")
             .file("cpp/patches.cpp")
+            .file("cpp/osd_evaluator.cpp")
             .file("cpp/limit_stencils.cpp")
             .file("cpp/bfr.cpp")
             .file("cpp/bfr_surface.cpp")

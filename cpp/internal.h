@@ -1,4 +1,5 @@
-// Internals the shim's C++ files share (cpp/shim.cpp, cpp/patches.cpp): the
+// Internals the shim's C++ files share (cpp/shim.cpp, cpp/patches.cpp,
+// cpp/osd_evaluator.cpp, ...): the
 // opaque types behind cpp/shim.h and the error machinery every entry point
 // uses. Not part of the C ABI.
 #ifndef SUBDIV_SHIM_INTERNAL_H
@@ -6,6 +7,8 @@
 
 #include "shim.h"
 
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/topologyRefiner.h>
 
@@ -29,6 +32,11 @@ struct sdv_refiner {
     // of other faces are undefined, so patch tables refuse them.
     std::vector<bool> adaptive_faces;
     ~sdv_refiner() { delete refiner; }
+};
+
+struct sdv_patches {
+    std::unique_ptr<OpenSubdiv::Far::PatchTable> table;
+    std::unique_ptr<OpenSubdiv::Far::PatchMap> map;
 };
 
 struct sdv_stencils {
@@ -118,6 +126,34 @@ void check_smooth_vertex_masks(const Far::TopologyRefiner &tr, int parent, int c
 void check_no_repeated_vertices(Far::TopologyLevel const &base);
 void check_loop_folded_triangles(Far::TopologyRefiner const &tr);
 void check_unit(double x, const char *name);
+
+// Patch tables (patches.cpp): the table behind a handle (refusing a null
+// one); its PatchMap (refusing a table without one: every level of a
+// uniform table); whether EvaluateBasis has a basis for a patch type.
+const sdv_patches &need_patches(const sdv_patches *p);
+Far::PatchMap const &need_map(sdv_patches const &p);
+bool evaluable(Far::PatchDescriptor::Type t);
+
+// An evaluation at n locations (faces[i], us[i], vs[i]) over num_points
+// points of `width` values, into the outputs asked for (values, then du,
+// dv, duu, duv, dvv; NULL when not asked for).
+struct EvaluationInputs {
+    const void *points;
+    size_t num_points;
+    int32_t width;
+    const int32_t *faces;
+    const double *us;
+    const double *vs;
+    size_t n;
+    const void *outputs[6];
+};
+// Refuses, before OpenSubdiv sees them: a width that is not positive, null
+// arrays, derivatives asked for in part, a patch type `evaluator` has no
+// basis for, a control vertex beyond the points.
+void check_evaluation(Far::PatchTable const &t, EvaluationInputs const &in, const char *evaluator);
+// The patch of location i, refusing a location off the ptex faces or the
+// unit square, or in a hole (the error names the location).
+Far::PatchTable::PatchHandle const *location_patch(sdv_patches const &p, EvaluationInputs const &in, size_t i);
 
 }  // namespace sdv_internal
 

@@ -130,12 +130,7 @@ void check_unit(double x, const char *name) {
 
 }  // namespace sdv_internal
 
-struct sdv_patches {
-    std::unique_ptr<Far::PatchTable> table;
-    std::unique_ptr<Far::PatchMap> map;
-};
-
-namespace {
+namespace sdv_internal {
 
 // The table's PatchMap, which a uniform table of every level does not have.
 Far::PatchMap const &need_map(sdv_patches const &p) {
@@ -149,6 +144,54 @@ const sdv_patches &need_patches(const sdv_patches *p) {
     if (!p || !p->table) fail("null patch table");
     return *p;
 }
+
+bool evaluable(Far::PatchDescriptor::Type t) {
+    switch (t) {
+        case Far::PatchDescriptor::REGULAR:
+        case Far::PatchDescriptor::LOOP:
+        case Far::PatchDescriptor::GREGORY_BASIS:
+        case Far::PatchDescriptor::GREGORY_TRIANGLE:
+        case Far::PatchDescriptor::QUADS:
+        case Far::PatchDescriptor::TRIANGLES:
+            return true;
+        default:
+            return false;
+    }
+}
+
+void check_evaluation(Far::PatchTable const &t, EvaluationInputs const &in, const char *evaluator) {
+    if (in.width <= 0) fail("width " + str(in.width) + " is not positive");
+    if (in.n > 0 && (!in.faces || !in.us || !in.vs || !in.outputs[0])) fail("null argument");
+    const void *const *o = in.outputs;
+    if ((o[1] == nullptr) != (o[2] == nullptr)) fail("first derivatives come in pairs");
+    if ((o[3] == nullptr) != (o[4] == nullptr) || (o[3] == nullptr) != (o[5] == nullptr))
+        fail("second derivatives come in threes");
+    if (o[3] && !o[1]) fail("second derivatives need the first");
+    if (in.num_points > 0 && !in.points) fail("null points");
+    for (int a = 0; a < t.GetNumPatchArrays(); ++a)
+        if (t.GetNumPatches(a) > 0 && !evaluable(t.GetPatchArrayDescriptor(a).GetType()))
+            fail("patches of type " + str((int)t.GetPatchArrayDescriptor(a).GetType()) + " cannot be evaluated (" +
+                 evaluator + " has no basis for them)");
+    for (Far::Index cv : t.GetPatchControlVerticesTable())
+        if (cv < 0 || (size_t)cv >= in.num_points)
+            fail("a patch names point " + str(cv) + ", beyond the " + str((long long)in.num_points) + " given");
+}
+
+Far::PatchTable::PatchHandle const *location_patch(sdv_patches const &p, EvaluationInputs const &in, size_t i) {
+    int ptex = p.table->GetNumPtexFaces();
+    if (in.faces[i] < 0 || in.faces[i] >= ptex)
+        fail("location " + str((long long)i) + ": ptex face " + str(in.faces[i]) + " does not exist (" + str(ptex) +
+             " ptex faces)");
+    check_unit(in.us[i], "u");
+    check_unit(in.vs[i], "v");
+    Far::PatchTable::PatchHandle const *h = need_map(p).FindPatch(in.faces[i], in.us[i], in.vs[i]);
+    if (!h) fail("location " + str((long long)i) + " is in a hole");
+    return h;
+}
+
+}  // namespace sdv_internal
+
+namespace {
 
 bool flag(int32_t v, const char *name) {
     if (v != 0 && v != 1) fail(std::string("patch option ") + name + " is " + str(v) + ", not 0 or 1");
@@ -254,20 +297,6 @@ void check_legacy_gregory(Far::TopologyRefiner const &tr, Far::PatchTableFactory
                             "); one is at level " + str(depth) +
                             " (secondary or maximum isolation level below it: OpenSubdiv would read out of bounds)");
         }
-    }
-}
-
-bool evaluable(Far::PatchDescriptor::Type t) {
-    switch (t) {
-        case Far::PatchDescriptor::REGULAR:
-        case Far::PatchDescriptor::LOOP:
-        case Far::PatchDescriptor::GREGORY_BASIS:
-        case Far::PatchDescriptor::GREGORY_TRIANGLE:
-        case Far::PatchDescriptor::QUADS:
-        case Far::PatchDescriptor::TRIANGLES:
-            return true;
-        default:
-            return false;
     }
 }
 
@@ -534,33 +563,14 @@ int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size
     return guarded(err, err_len, [&] {
         sdv_patches const &pp = need_patches(p);
         Far::PatchTable const &t = *pp.table;
-        if (width <= 0) fail("width " + str(width) + " is not positive");
-        if (n > 0 && (!faces || !us || !vs || !out)) fail("null argument");
-        if ((du == nullptr) != (dv == nullptr)) fail("first derivatives come in pairs");
-        if ((duu == nullptr) != (duv == nullptr) || (duu == nullptr) != (dvv == nullptr))
-            fail("second derivatives come in threes");
-        if (duu && !du) fail("second derivatives need the first");
-        if (num_points > 0 && !points) fail("null points");
-        for (int a = 0; a < t.GetNumPatchArrays(); ++a)
-            if (t.GetNumPatches(a) > 0 && !evaluable(t.GetPatchArrayDescriptor(a).GetType()))
-                fail("patches of type " + str((int)t.GetPatchArrayDescriptor(a).GetType()) +
-                     " cannot be evaluated (EvaluateBasis has no basis for them)");
-        for (Far::Index cv : t.GetPatchControlVerticesTable())
-            if (cv < 0 || (size_t)cv >= num_points)
-                fail("a patch names point " + str(cv) + ", beyond the " + str((long long)num_points) + " given");
-        int ptex = t.GetNumPtexFaces();
+        EvaluationInputs in = {points, num_points, width, faces, us, vs, n, {out, du, dv, duu, duv, dvv}};
+        check_evaluation(t, in, "EvaluateBasis");
         size_t w = (size_t)width;
         double bw[6][20];
         double *outs[6] = {out, du, dv, duu, duv, dvv};
         int kinds = duu ? 6 : du ? 3 : 1;
         for (size_t i = 0; i < n; ++i) {
-            if (faces[i] < 0 || faces[i] >= ptex)
-                fail("location " + str((long long)i) + ": ptex face " + str(faces[i]) + " does not exist (" +
-                     str(ptex) + " ptex faces)");
-            check_unit(us[i], "u");
-            check_unit(vs[i], "v");
-            Far::PatchTable::PatchHandle const *h = need_map(pp).FindPatch(faces[i], us[i], vs[i]);
-            if (!h) fail("location " + str((long long)i) + " is in a hole");
+            Far::PatchTable::PatchHandle const *h = location_patch(pp, in, i);
             t.EvaluateBasis<double>(*h, us[i], vs[i], bw[0], du ? bw[1] : nullptr, du ? bw[2] : nullptr,
                                     duu ? bw[3] : nullptr, duu ? bw[4] : nullptr, duu ? bw[5] : nullptr);
             Far::ConstIndexArray cvs = t.GetPatchVertices(*h);

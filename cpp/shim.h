@@ -459,6 +459,34 @@ int sdv_patches_evaluate_points(const sdv_patches *p, const double *points, size
                                 char *err, size_t err_len);
 
 /*
+ * Osd::CpuPatchTable::Create(table): the table as OpenSubdiv's CPU evaluator
+ * reads it (patch arrays, control-vertex indices, parameters with each
+ * patch's sharpness), copied. It keeps a pointer to `p` (for its PatchMap):
+ * `p` must outlive it. Refused: tables whose arrays are shorter than their
+ * patches (the constructor copies them unchecked).
+ */
+typedef struct sdv_cpu_patches sdv_cpu_patches;
+int sdv_cpu_patches_create(const sdv_patches *p, sdv_cpu_patches **out, char *err, size_t err_len);
+void sdv_cpu_patches_destroy(sdv_cpu_patches *c);
+
+/*
+ * The limit surface at n locations (faces[i], us[i], vs[i]) the way
+ * OpenSubdiv's evaluators compute it, in float: each location's patch
+ * found with PatchMap::FindPatch into an Osd::PatchCoord (u and v rounded
+ * to float), then one Osd::CpuEvaluator::EvalPatches over `points`
+ * (num_points points of `width` floats: every level's vertices, then the
+ * local points). Outputs hold n * width floats each; du and dv may be NULL
+ * (together), duu, duv and dvv too (and need du and dv). Refused before OpenSubdiv sees them, as
+ * sdv_patches_evaluate_points: a control vertex beyond num_points, a patch
+ * type without a basis, a location off the ptex faces or the unit square
+ * or in a hole (the error names the location's index).
+ */
+int sdv_cpu_patches_evaluate(const sdv_cpu_patches *c, const float *points, size_t num_points, int32_t width,
+                             const int32_t *faces, const double *us, const double *vs, size_t n, float *out,
+                             float *du, float *dv, float *duu, float *duv, float *dvv, char *err,
+                             size_t err_len);
+
+/*
  * Far::LimitStencilTableFactoryReal<double>::Create(refiner, locations) with
  * its own stencil and patch tables (as OpenSubdiv builds them when given
  * none) and Options (interpolation 0 vertex, 1 varying, 2 face-varying of

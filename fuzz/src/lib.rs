@@ -1219,6 +1219,55 @@ fn check_osd_patches(
             }
         }
     }
+    check_eval_patches(native, &patches, &base);
+}
+
+/// OpenSubdiv's CPU evaluator (`EvalPatches`, `f32`) over the native
+/// engine's points against the native evaluation of the same `f32` points:
+/// both refuse the same locations (holes, patches without a basis) or give
+/// positions within `f32` rounding (where both are finite).
+fn check_eval_patches(
+    native: &subdiv::refiner::AdaptiveRefiner,
+    patches: &subdiv::osd::OsdPatchTable,
+    base: &[f64],
+) {
+    let t = patches.table();
+    // EvalPatches is refused for a whole table with patches it has no basis
+    // for (legacy Gregory), the native engine only where they are asked for.
+    if t.arrays
+        .iter()
+        .any(|a| !a.is_empty() && !a.patch_type.is_evaluable())
+    {
+        return;
+    }
+    let Ok(points) = native.patch_points(t, 3, base) else {
+        return;
+    };
+    let points: Vec<f32> = points.iter().map(|&x| x as f32).collect();
+    let locations: Vec<(u32, f64, f64)> = (0..t.ptex_faces.min(16) as u32)
+        .flat_map(|f| [(f, 0.5, 0.5), (f, 0.0, 1.0), (f, 0.25, 0.75)])
+        .collect();
+    let cpu = patches.cpu_patch_table().expect("a CPU patch table");
+    use subdiv::patches::Derivatives;
+    let theirs = cpu.evaluate(&points, 3, &locations, Derivatives::First);
+    let mine = subdiv::patches::evaluate(t, &points, 3, &locations, Derivatives::First);
+    let (theirs, mine) = match (theirs, mine) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(_), Err(_)) => return,
+        (a, b) => panic!("EvalPatches {a:?}, native {b:?}"),
+    };
+    let size = 1.0
+        + points
+            .iter()
+            .fold(0.0f64, |m, &x| m.max(f64::from(x).abs()));
+    for (a, b) in theirs.values.point.iter().zip(&mine.values.point) {
+        if a.is_finite() && b.is_finite() {
+            assert!(
+                f64::from((a - b).abs()) <= 1e-4 * size,
+                "EvalPatches {a} against native {b}"
+            );
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------

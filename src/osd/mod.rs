@@ -56,9 +56,11 @@ pub fn version_number() -> u32 {
 }
 
 mod adaptive;
+mod at_locations;
 pub mod bfr;
 pub mod bfr_mesh;
 pub mod bfr_surface;
+mod evaluator;
 mod patches;
 mod refiner;
 mod shim;
@@ -66,6 +68,7 @@ mod stencils;
 mod whole;
 
 pub use crate::output::{LevelCounts, LimitData};
+pub use evaluator::OsdCpuPatchTable;
 pub use patches::OsdPatchTable;
 pub use refiner::TopologyRefiner;
 pub use stencils::StencilEvaluator;

@@ -5,6 +5,7 @@
 
 use super::ERR_LEN;
 use super::TopologyRefiner;
+use super::at_locations::AtLocations;
 use super::ffi;
 use super::shim::{ErrBuf, check_length, internal, to_i32};
 use crate::alloc::try_vec;
@@ -21,7 +22,7 @@ use std::ptr::NonNull;
 /// ([`OsdPatchTable::table`]); locating and basis evaluation call
 /// OpenSubdiv.
 pub struct OsdPatchTable {
-    raw: NonNull<ffi::sdv_patches>,
+    pub(super) raw: NonNull<ffi::sdv_patches>,
     table: PatchTable,
     options: PatchOptions,
 }
@@ -549,86 +550,33 @@ impl OsdPatchTable {
         locations: &[(u32, f64, f64)],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
-        if width == 0 {
-            return Err(Error::ZeroWidth);
-        }
-        if !points.len().is_multiple_of(width) {
-            return Err(Error::NotWholeElements {
-                buffer: Buffer::Source,
-                len: points.len(),
-                width,
-            });
-        }
-        let w32 = to_i32(width, "width")?;
-        let n = locations.len();
-        let len = n.checked_mul(width).ok_or(Error::TooLarge {
-            what: "evaluated values",
-            count: usize::MAX,
-            bits: usize::BITS,
-        })?;
-        let faces: Vec<i32> = locations
-            .iter()
-            .map(|&(f, ..)| i32::try_from(f).unwrap_or(i32::MAX))
-            .collect();
-        let us: Vec<f64> = locations.iter().map(|&(_, u, _)| u).collect();
-        let vs: Vec<f64> = locations.iter().map(|&(.., v)| v).collect();
-        let first = derivatives != Derivatives::None;
-        let second = derivatives == Derivatives::Second;
-        let mut out = Partials {
-            point: try_vec(0.0, len)?,
-            ..Partials::default()
-        };
-        for (on, v) in [
-            (first, &mut out.du),
-            (first, &mut out.dv),
-            (second, &mut out.duu),
-            (second, &mut out.duv),
-            (second, &mut out.dvv),
-        ] {
-            if on {
-                *v = try_vec(0.0, len)?;
-            }
-        }
-        let ptr = |v: &mut Vec<f64>| {
-            if v.is_empty() {
-                std::ptr::null_mut()
-            } else {
-                v.as_mut_ptr()
-            }
-        };
-        let ptrs = [
-            out.point.as_mut_ptr(),
-            ptr(&mut out.du),
-            ptr(&mut out.dv),
-            ptr(&mut out.duu),
-            ptr(&mut out.duv),
-            ptr(&mut out.dvv),
-        ];
+        let mut at = AtLocations::new(points.len(), width, locations, derivatives)?;
+        let outs = at.outputs();
         let mut err = ErrBuf::new();
-        // SAFETY: the table is live; `points` holds `points.len() / width`
-        // points of `width` values; the location arrays hold `n` entries and
-        // every non-null output `n * width` values, as passed.
+        // SAFETY: the table is live; `points` holds `at.points` points of
+        // `width` values; the location arrays hold `at.len()` entries and
+        // every non-null output `at.len() * width` values, as passed.
         err.run(|e| unsafe {
             ffi::sdv_patches_evaluate_points(
                 self.raw.as_ptr(),
                 points.as_ptr(),
-                points.len() / width,
-                w32,
-                faces.as_ptr(),
-                us.as_ptr(),
-                vs.as_ptr(),
-                n,
-                ptrs[0],
-                ptrs[1],
-                ptrs[2],
-                ptrs[3],
-                ptrs[4],
-                ptrs[5],
+                at.points,
+                at.width_i32,
+                at.faces.as_ptr(),
+                at.us.as_ptr(),
+                at.vs.as_ptr(),
+                at.len(),
+                outs[0],
+                outs[1],
+                outs[2],
+                outs[3],
+                outs[4],
+                outs[5],
                 e,
                 ERR_LEN,
             )
         })?;
-        Ok(SurfaceSamples { width, values: out })
+        Ok(at.finish())
     }
 
     /// The limit surface at `locations` (ptex face, u, v) for vertex data of
