@@ -492,11 +492,16 @@ fn adaptive_rows_on_tiny_inputs() {
                 3,
                 3
             ),
+            (
+                "limit evaluation in f32 against EvalPatches (1000 locations, positions + first derivatives, isolation 3)",
+                3,
+                3
+            ),
             ("adaptive topology (isolation 6)", 6, 6),
             ("adaptive positions (f32, isolation 6)", 6, 6),
         ]
     );
-    assert_eq!(steps, 6);
+    assert_eq!(steps, 7);
     for a in &mixed {
         assert_eq!(a.row.level, a.isolation);
         assert!(a.row.native > 0.0 && a.row.osd > 0.0, "{a:?}");
@@ -513,7 +518,7 @@ fn adaptive_rows_on_tiny_inputs() {
     .unwrap();
     // The patch rows still measure its table (all regular patches) and
     // their evaluation.
-    assert_eq!(regular.len(), 4);
+    assert_eq!(regular.len(), 5);
     assert!(
         regular
             .iter()
