@@ -476,10 +476,11 @@ void sdv_cpu_patches_destroy(sdv_cpu_patches *c);
  * to float), then one Osd::CpuEvaluator::EvalPatches over `points`
  * (num_points points of `width` floats: every level's vertices, then the
  * local points). Outputs hold n * width floats each; du and dv may be NULL
- * (together), duu, duv and dvv too (and need du and dv). Refused before OpenSubdiv sees them, as
- * sdv_patches_evaluate_points: a control vertex beyond num_points, a patch
- * type without a basis, a location off the ptex faces or the unit square
- * or in a hole (the error names the location's index).
+ * (together), duu, duv and dvv too (and need du and dv). Refused before
+ * OpenSubdiv sees them, as sdv_patches_evaluate_points: a control vertex
+ * beyond num_points, a patch type without a basis, a location off the ptex
+ * faces or the unit square or in a hole (the error names the location's
+ * index).
  */
 int sdv_cpu_patches_evaluate(const sdv_cpu_patches *c, const float *points, size_t num_points, int32_t width,
                              const int32_t *faces, const double *us, const double *vs, size_t n, float *out,

@@ -252,3 +252,49 @@ fn eval_patches_refusals() {
     let e = message(cpu.evaluate(&many, 3, &ok, Derivatives::None));
     assert!(e.contains("cannot be evaluated"), "{e}");
 }
+
+/// Uniform tables (the last level's faces as bilinear `QUADS`, or
+/// `TRIANGLES` with `triangulate_quads`): `EvalPatches` over them agrees
+/// with the native evaluation of the same table.
+#[test]
+fn uniform_tables_match_eval_patches() {
+    let mesh = shapes::torus_mixed(5, 4);
+    let mut r = osd::TopologyRefiner::new(&mesh, &Options::default()).unwrap();
+    r.refine_uniform(subdiv::UniformOptions::new(2)).unwrap();
+    let base = mesh.flat_positions::<f64>();
+    let levels = r.interpolate_all(3, &base).unwrap();
+    // The base level's indices first (`includeBaseLevelIndices`), then the
+    // last level's.
+    let points: Vec<f32> = base
+        .iter()
+        .chain(levels.last().unwrap())
+        .map(|&x| x as f32)
+        .collect();
+    for triangulate_quads in [false, true] {
+        let po = PatchOptions {
+            triangulate_quads,
+            ..PatchOptions::new()
+        };
+        let osds = r.patch_table(&po, &[]).unwrap();
+        let table = osds.table();
+        let cpu = osds.cpu_patch_table().unwrap();
+        let at = locations(table.ptex_faces, false);
+        let a = patches::evaluate(table, &points, 3, &at, Derivatives::First).unwrap();
+        let b = cpu.evaluate(&points, 3, &at, Derivatives::First).unwrap();
+        for (x, y) in [
+            (&a.values.point, &b.values.point),
+            (&a.values.du, &b.values.du),
+            (&a.values.dv, &b.values.dv),
+        ] {
+            assert_eq!(x.len(), 3 * at.len());
+            assert_eq!(x.len(), y.len());
+            for (p, q) in x.iter().zip(y) {
+                let bound = F32_BOUND * size(&mesh);
+                assert!(
+                    f64::from((p - q).abs()) <= bound,
+                    "{triangulate_quads}: {p} against {q}"
+                );
+            }
+        }
+    }
+}
