@@ -117,6 +117,19 @@ pub fn available_memory() -> Option<u64> {
     .min()
 }
 
+/// Whether the process runs under an address-space or data-size limit
+/// (`ulimit -v`, `ulimit -d`: a finite soft RLIMIT_AS or RLIMIT_DATA in
+/// /proc/self/limits), read once.
+pub(crate) fn address_space_limited() -> bool {
+    static LIMITED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *LIMITED.get_or_init(|| {
+        let limits = std::fs::read_to_string("/proc/self/limits").unwrap_or_default();
+        ["Max address space", "Max data size"]
+            .iter()
+            .any(|name| rlimit_headroom(&limits, name, None).is_some())
+    })
+}
+
 /// A `Name:  1234 kB` field of a /proc file, in bytes.
 fn kib_field(text: &str, name: &str) -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with(name))?;

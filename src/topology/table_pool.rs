@@ -239,8 +239,16 @@ pub(super) fn fresh_map(bytes: usize) -> Option<MmapMut> {
     map
 }
 
-/// Keeps a dropped table's map.
+/// Keeps a dropped table's map. Under an address-space or data-size limit
+/// (`ulimit -v`, `ulimit -d`) nothing is kept: kept memory counts against
+/// the limit, and the small allocations after a large one, which Rust
+/// cannot make fallible, found no room (an abort in about 1 run in 100 at
+/// one limit of the CLI's memory-limit test).
 pub(super) fn give_map(map: MmapMut) {
+    if crate::limits::address_space_limited() {
+        unmap(map);
+        return;
+    }
     let evicted = lock(&MAPS).give(map);
     // Unmapped outside the lock.
     drop(evicted);
@@ -264,10 +272,11 @@ pub(super) fn take_vec<T: Send + 'static>(len: usize) -> Option<Vec<T>> {
     kept.vec.downcast::<Vec<T>>().ok().map(|v| *v)
 }
 
-/// Keeps a dropped table's vector (from 64 KiB of room up).
+/// Keeps a dropped table's vector (from 64 KiB of room up; nothing under an
+/// address-space limit, as [`give_map`]).
 pub(super) fn give_vec<T: Send + 'static>(vec: Vec<T>) {
     let bytes = vec.capacity().saturating_mul(size_of::<T>());
-    if bytes < SMALLEST_VEC {
+    if bytes < SMALLEST_VEC || crate::limits::address_space_limited() {
         return;
     }
     let kept = KeptVec {
