@@ -20,6 +20,8 @@ pub(super) struct Rows<T: Real> {
     pub(super) weights: Growing<T>,
     /// One more than the largest index (0 without terms).
     pub(super) base_count: usize,
+    /// The most terms in a row (0 without rows).
+    pub(super) widest: usize,
 }
 
 /// [`Rows`] as slices, read through their tables once (for the loops that
@@ -29,6 +31,8 @@ pub(super) struct RowsView<'a, T> {
     pub(super) offsets: &'a [u32],
     pub(super) indices: &'a [u32],
     pub(super) weights: &'a [T],
+    /// The most terms in a row (0 without rows).
+    pub(super) widest: usize,
 }
 
 impl<'a, T> RowsView<'a, T> {
@@ -61,6 +65,7 @@ impl<T: Real> Rows<T> {
             indices: Growing::with_capacity(0),
             weights: Growing::with_capacity(0),
             base_count: 0,
+            widest: 0,
         }
     }
 
@@ -71,6 +76,7 @@ impl<T: Real> Rows<T> {
             offsets: self.offsets.as_slice(),
             indices: self.indices.as_slice(),
             weights: self.weights.as_slice(),
+            widest: self.widest,
         }
     }
 
@@ -89,6 +95,7 @@ impl<T: Real> Rows<T> {
         self.indices.extend_from_slice(indices);
         self.weights.extend_from_slice(weights);
         self.offsets.push(self.indices.len() as u32);
+        self.widest = self.widest.max(indices.len());
     }
 
     /// Number of rows.
@@ -122,6 +129,7 @@ impl<T: Real> Rows<T> {
         self.indices.extend_from_slice(other.indices.as_slice());
         self.weights.extend_from_slice(other.weights.as_slice());
         self.base_count = self.base_count.max(other.base_count);
+        self.widest = self.widest.max(other.widest);
     }
 
     /// The rows of `parts` one after the other, copied in parallel.
@@ -163,6 +171,7 @@ impl<T: Real> Rows<T> {
                 .map(|p| p.borrow().base_count)
                 .max()
                 .unwrap_or(0),
+            widest: parts.iter().map(|p| p.borrow().widest).max().unwrap_or(0),
         }
     }
 }
@@ -202,18 +211,34 @@ impl Rows<f64> {
 /// does: each weight is `0 + x * w` for its first term and `+= x * w` for
 /// the next ones, in the row's precision.
 ///
-/// A row is merged in a buffer of the builder's (which stays in cache) and
-/// then appended whole. Every term is written with the same steps whether
-/// its vertex is new to the row or not (the compiler may still branch on
-/// it: a select with the weight read either way measured the same).
+/// A row is merged in place at the end of the builder's own buffers (which
+/// stay in cache), where finished rows wait to be appended to the table in
+/// one copy per block of rows ([`RowBuilder::flush`]): appending each short
+/// row to the table on its own cost more than merging it. Every term is
+/// written with the same steps whether its vertex is new to the row or not
+/// (the compiler may still branch on it: a select with the weight read
+/// either way measured the same).
 pub(super) struct RowBuilder<T> {
-    /// Position in the current row of each base vertex, or [`ABSENT`].
+    /// Position in the open row of each base vertex, or [`ABSENT`].
     slot: Vec<u32>,
-    /// The current row: its first `len` entries.
+    /// The finished rows not yet appended (their first `filled` entries),
+    /// then the open row (its first `len` entries after them), then room.
     indices: Vec<u32>,
     weights: Vec<T>,
+    filled: usize,
     len: usize,
+    /// Where each finished row not yet appended ends in the buffers.
+    ends: Vec<u32>,
+    /// One more than the largest index of those rows (0 without terms).
+    base_count: usize,
+    /// The most terms in one of those rows.
+    widest: usize,
 }
+
+/// Terms of finished rows after which [`RowBuilder::end_pending`]'s callers
+/// append them to their table (128 KiB of indices: a cache-sized block,
+/// many rows per copy).
+const PENDING_TERMS: usize = 1 << 15;
 
 impl<T: Real> RowBuilder<T> {
     /// A builder for rows over `base` base vertices (every slot absent).
@@ -222,49 +247,74 @@ impl<T: Real> RowBuilder<T> {
             slot: vec![ABSENT; base],
             indices: Vec::new(),
             weights: Vec::new(),
+            filled: 0,
             len: 0,
+            ends: Vec::new(),
+            base_count: 0,
+            widest: 0,
         }
     }
 
-    /// Starts a row of at most `bound` terms. Unwinds to
-    /// [`crate::alloc::guard`] when the buffer cannot hold it.
+    /// Starts a row of at most `bound` terms (a bound beyond the base
+    /// vertices is taken as their number: a row has each at most once).
+    /// Unwinds to [`crate::alloc::guard`] when the buffer cannot hold it.
     #[inline]
     pub(super) fn open(&mut self, bound: usize) {
-        if self.indices.len() < bound {
-            self.grow(bound);
+        let needed = self.filled + bound.min(self.slot.len());
+        if self.indices.len() < needed {
+            self.grow(needed);
         }
         self.len = 0;
     }
 
-    /// Makes the buffer `bound` terms long (the first row that long, once),
-    /// unwinding when memory runs out.
+    /// Makes the buffers at least `needed` terms long (twice as long as
+    /// they were, so that growing is rare), unwinding when memory runs
+    /// out.
     #[cold]
     #[inline(never)]
-    fn grow(&mut self, bound: usize) {
-        let more = bound - self.indices.len();
+    fn grow(&mut self, needed: usize) {
+        let target = needed.max(2 * self.indices.len()).max(256);
+        let more = target - self.indices.len();
         if self.indices.try_reserve(more).is_err() || self.weights.try_reserve(more).is_err() {
-            crate::alloc::fail(bound.saturating_mul(size_of::<u32>() + size_of::<T>()));
+            crate::alloc::fail(target.saturating_mul(size_of::<u32>() + size_of::<T>()));
         }
-        self.indices.resize(bound, 0);
-        self.weights.resize(bound, T::ZERO);
+        self.indices.resize(target, 0);
+        self.weights.resize(target, T::ZERO);
     }
 
     /// Adds `w` times a row to the open row.
     #[inline(always)]
     pub(super) fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
-        let (indices, weights) = (&mut self.indices[..], &mut self.weights[..]);
-        let mut len = self.len;
-        for (&i, &x) in row.0.iter().zip(row.1) {
-            let slot = &mut self.slot[i as usize];
-            let fresh = *slot == ABSENT;
-            let at = if fresh { len } else { *slot as usize };
-            let before = if fresh { T::ZERO } else { weights[at] };
-            weights[at] = before + x * w;
-            indices[at] = i;
-            *slot = at as u32;
-            len += usize::from(fresh);
+        let mut open = OpenRow {
+            slot: &mut self.slot,
+            indices: &mut self.indices[self.filled..],
+            weights: &mut self.weights[self.filled..],
+            len: self.len,
+        };
+        open.add_row(row, w);
+        self.len = open.len;
+    }
+
+    /// Starts a row of at most `bound` terms, as [`RowBuilder::open`], and
+    /// gives it to be built through its own slices (no buffer sliced per
+    /// row added); [`RowBuilder::close`] ends it.
+    #[inline(always)]
+    pub(super) fn open_row(&mut self, bound: usize) -> OpenRow<'_, T> {
+        self.open(bound);
+        OpenRow {
+            slot: &mut self.slot,
+            indices: &mut self.indices[self.filled..],
+            weights: &mut self.weights[self.filled..],
+            len: 0,
         }
+    }
+
+    /// Closes a row [`RowBuilder::open_row`] gave and `len` terms long, as
+    /// [`RowBuilder::end_pending`].
+    #[inline(always)]
+    pub(super) fn close(&mut self, len: usize) -> bool {
         self.len = len;
+        self.end_pending()
     }
 
     /// Terms in the open row so far.
@@ -272,16 +322,68 @@ impl<T: Real> RowBuilder<T> {
         self.len
     }
 
-    /// Closes the open row and appends it to `out`.
-    pub(super) fn end_row(&mut self, out: &mut Rows<T>) {
-        let (indices, weights) = (&self.indices[..self.len], &self.weights[..self.len]);
-        for &i in indices {
+    /// Closes the open row, which waits in the buffers to be appended by
+    /// [`RowBuilder::flush`]; `true` when enough rows wait that it is time.
+    #[inline]
+    pub(super) fn end_pending(&mut self) -> bool {
+        let end = self.filled + self.len;
+        for &i in &self.indices[self.filled..end] {
             self.slot[i as usize] = ABSENT;
-            out.base_count = out.base_count.max(i as usize + 1);
+            self.base_count = self.base_count.max(i as usize + 1);
         }
-        out.check_terms(self.len);
-        out.indices.extend_from_slice(indices);
-        out.weights.extend_from_slice(weights);
-        out.offsets.push(out.indices.len() as u32);
+        self.widest = self.widest.max(self.len);
+        self.filled = end;
+        self.ends.push(end as u32);
+        end >= PENDING_TERMS
+    }
+
+    /// Appends the finished rows waiting in the buffers to `out`. Unwinds as
+    /// [`Rows::check_terms`] does.
+    pub(super) fn flush(&mut self, out: &mut Rows<T>) {
+        out.check_terms(self.filled);
+        let shift = out.indices.len() as u32;
+        out.indices.extend_from_slice(&self.indices[..self.filled]);
+        out.weights.extend_from_slice(&self.weights[..self.filled]);
+        out.offsets.extend_mapped(&self.ends, |e| e + shift);
+        out.base_count = out.base_count.max(self.base_count);
+        out.widest = out.widest.max(self.widest);
+        self.filled = 0;
+        self.ends.clear();
+        self.base_count = 0;
+        self.widest = 0;
+    }
+
+    /// Closes the open row and appends it (with any rows waiting) to `out`.
+    pub(super) fn end_row(&mut self, out: &mut Rows<T>) {
+        self.end_pending();
+        self.flush(out);
+    }
+}
+
+/// A row being built at the end of a [`RowBuilder`]'s buffers.
+pub(super) struct OpenRow<'b, T> {
+    slot: &'b mut [u32],
+    indices: &'b mut [u32],
+    weights: &'b mut [T],
+    /// Its terms so far.
+    pub(super) len: usize,
+}
+
+impl<T: Real> OpenRow<'_, T> {
+    /// Adds `w` times a row to this one.
+    #[inline(always)]
+    pub(super) fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
+        let mut len = self.len;
+        for (&i, &x) in row.0.iter().zip(row.1) {
+            let slot = &mut self.slot[i as usize];
+            let fresh = *slot == ABSENT;
+            let at = if fresh { len } else { *slot as usize };
+            let before = if fresh { T::ZERO } else { self.weights[at] };
+            self.weights[at] = before + x * w;
+            self.indices[at] = i;
+            *slot = at as u32;
+            len += usize::from(fresh);
+        }
+        self.len = len;
     }
 }

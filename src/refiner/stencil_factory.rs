@@ -12,10 +12,12 @@ use crate::stencil::{LimitStencilTable, StencilTable, StencilTableF32};
 use crate::topology::{Around, Growing, LevelSlices, Table};
 
 impl<T: Real> RowBuilder<T> {
-    /// Appends the row of a child vertex whose refinement terms are `terms`:
-    /// each term a row of `prev` (the parent level; `None` for the base
-    /// level, whose rows are the identity) or of `faces` (the face points of
-    /// the child level, the first of them child vertex `f0`).
+    /// Builds the row of a child vertex whose refinement terms are `terms`
+    /// (each term a row of `prev`, the parent level, `None` for the base
+    /// level, whose rows are the identity; or of `faces`, the face points of
+    /// the child level, the first of them child vertex `f0`), appended to
+    /// `out` with the rows before it once enough wait
+    /// ([`RowBuilder::flush`]).
     fn child_row(
         &mut self,
         out: &mut Rows<T>,
@@ -24,13 +26,10 @@ impl<T: Real> RowBuilder<T> {
         faces: RowsView<'_, T>,
         f0: u32,
     ) {
-        let row_of = |s: Source| match (s, prev) {
-            (Source::Parent(p), Some(prev)) => prev.get(p),
-            (Source::Parent(_), None) => (&[][..], &[][..]),
-            (Source::Child(c), _) => faces.get(c - f0),
-        };
-        let bound = terms.iter().map(|&(s, _)| row_of(s).0.len().max(1)).sum();
-        self.open(bound);
+        // At most as many terms as the rows merged have in all, bounded
+        // without reading them: the widest row of either level per term.
+        let widest = prev.map_or(1, |p| p.widest).max(faces.widest).max(1);
+        let mut row = self.open_row(terms.len().saturating_mul(widest));
         for &(source, w) in terms {
             // As OpenSubdiv's stencil builder, skip terms of zero weight
             // (crease and boundary masks have them): they add nothing, but
@@ -40,12 +39,16 @@ impl<T: Real> RowBuilder<T> {
                 continue;
             }
             match (source, prev) {
+                (Source::Parent(p), Some(prev)) => row.add_row(prev.get(p), w),
                 // The base level's row of `p` is `p` with weight one.
-                (Source::Parent(p), None) => self.add_row((&[p], &[T::ONE]), w),
-                _ => self.add_row(row_of(source), w),
+                (Source::Parent(p), None) => row.add_row((&[p], &[T::ONE]), w),
+                (Source::Child(c), _) => row.add_row(faces.get(c - f0), w),
             }
         }
-        self.end_row(out);
+        let len = row.len;
+        if self.close(len) {
+            self.flush(out);
+        }
     }
 }
 
@@ -164,7 +167,7 @@ struct Children<'a, T> {
 impl<T: Real> Children<'_, T> {
     /// Appends to `out` the rows of the child vertices of the parent
     /// elements `range` of kind `block`, reading the face points' rows in
-    /// `faces`.
+    /// `faces`: all of them by the time it returns.
     fn block(
         &self,
         block: Block,
@@ -200,6 +203,9 @@ impl<T: Real> Children<'_, T> {
                 }
             }
         }
+        // The rows still waiting: the block's rows are all in `out` when
+        // it returns.
+        builder.flush(out);
     }
 
     /// The rows of a whole block in parallel chunks, each with its own
@@ -326,6 +332,7 @@ impl Refiner {
             indices: Growing::from_table((0..base as u32).collect()),
             weights: Growing::from_table(Table::filled(T::ONE, base)),
             base_count: base,
+            widest: usize::from(base > 0),
         }
     }
 
