@@ -298,3 +298,73 @@ fn uniform_tables_match_eval_patches() {
         }
     }
 }
+
+/// The bridge's evaluations into reused outputs (`evaluate_into`,
+/// `evaluate_points_into`, as the benchmark times them) overwrite every
+/// value: outputs full of NaN, longer than needed, end up bit for bit the
+/// fresh call's values; columns not asked for are emptied; a refused call
+/// leaves its output empty.
+#[test]
+fn bridge_evaluations_overwrite_reused_outputs() {
+    let mesh = shapes::torus_mixed(6, 5);
+    let options = Options::default();
+    let po = PatchOptions::new().max_isolation(3);
+    let (native, mine, osds) = both(&mesh, &options, &po).unwrap();
+    let points = native
+        .patch_points(&mine, 3, &mesh.flat_positions::<f64>())
+        .unwrap();
+    let points32: Vec<f32> = points.iter().map(|&x| x as f32).collect();
+    let cpu = osds.cpu_patch_table().unwrap();
+    let at = locations(mine.ptex_faces, false);
+    fn stale<R: subdiv::Real>(len: usize, nan: R) -> patches::SurfaceSamples<R> {
+        let c = vec![nan; len];
+        patches::SurfaceSamples {
+            width: 5,
+            values: patches::Partials {
+                point: c.clone(),
+                du: c.clone(),
+                dv: c.clone(),
+                duu: c.clone(),
+                duv: c.clone(),
+                dvv: c,
+            },
+        }
+    }
+    let (mut out64, mut out32) = (
+        stale(at.len() * 3 + 17, f64::NAN),
+        stale(at.len() * 3 + 17, f32::NAN),
+    );
+    for derivatives in [Derivatives::First, Derivatives::None, Derivatives::Second] {
+        osds.evaluate_points_into(&points, 3, &at, derivatives, &mut out64)
+            .unwrap();
+        let fresh = osds.evaluate_points(&points, 3, &at, derivatives).unwrap();
+        assert_eq!(out64.width, 3);
+        let bits64 = |s: &patches::SurfaceSamples| {
+            let v = &s.values;
+            [&v.point, &v.du, &v.dv, &v.duu, &v.duv, &v.dvv]
+                .map(|c| c.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
+        };
+        assert_eq!(bits64(&out64), bits64(&fresh), "{derivatives:?}");
+        cpu.evaluate_into(&points32, 3, &at, derivatives, &mut out32)
+            .unwrap();
+        let fresh = cpu.evaluate(&points32, 3, &at, derivatives).unwrap();
+        let bits32 = |s: &patches::SurfaceSamples<f32>| {
+            let v = &s.values;
+            [&v.point, &v.du, &v.dv, &v.duu, &v.duv, &v.dvv]
+                .map(|c| c.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
+        };
+        assert_eq!(bits32(&out32), bits32(&fresh), "{derivatives:?}");
+        assert_eq!(out32.values.du.is_empty(), derivatives == Derivatives::None);
+    }
+    let off = [(0, 0.5, 0.5), (u32::MAX, 0.5, 0.5)];
+    assert!(
+        osds.evaluate_points_into(&points, 3, &off, Derivatives::First, &mut out64)
+            .is_err()
+    );
+    assert!(out64.values.point.is_empty() && out64.values.du.is_empty());
+    assert!(
+        cpu.evaluate_into(&points32, 3, &off, Derivatives::First, &mut out32)
+            .is_err()
+    );
+    assert!(out32.values.point.is_empty());
+}

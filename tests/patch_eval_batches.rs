@@ -293,3 +293,93 @@ fn a_batch_reports_its_first_bad(mut mesh: Mesh, face_order: bool) {
         assert!(matches!(e, Error::Location { face: 0, .. }), "{e}");
     }
 }
+
+/// Outputs reused from call to call (`evaluate_data_into`): every value
+/// is overwritten — the columns filled with NaN first, longer than
+/// needed, give the values a fresh evaluation gives, bit for bit, in
+/// given and in face order, on one and two threads; columns not asked
+/// for are emptied; a failing call leaves `out` empty.
+#[test]
+fn reused_outputs_are_overwritten_whole() {
+    for (u, v, face_order) in MESHES {
+        let mesh = shapes::torus_mixed(u, v);
+        let (adaptive, table) = setup(&mesh);
+        let map = PatchMap::new(&table);
+        let locations = scattered(&table, &map, 12_000);
+        let (base3, base4) = bases(&mesh);
+        for (width, base) in [(3, &base3), (4, &base4)] {
+            let points = adaptive.patch_points(&table, width, base).unwrap();
+            assert_eq!(in_face_order(&table, &points), face_order);
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let stale = vec![f64::NAN; 15_000 * width];
+                let mut out = patches::SurfaceSamples {
+                    width: 7,
+                    values: patches::Partials {
+                        point: stale.clone(),
+                        du: stale.clone(),
+                        dv: stale.clone(),
+                        duu: stale.clone(),
+                        duv: stale.clone(),
+                        dvv: stale,
+                    },
+                };
+                for (count, derivatives) in [
+                    (12_000, Derivatives::First),
+                    (7_000, Derivatives::Second),
+                    (9_000, Derivatives::None),
+                ] {
+                    let at = &locations[..count];
+                    pool.install(|| {
+                        patches::evaluate_data_into(
+                            patches::Evaluation::OpenSubdiv,
+                            &map,
+                            &table,
+                            PatchData::Vertex,
+                            &points,
+                            width,
+                            at,
+                            derivatives,
+                            &mut out,
+                        )
+                    })
+                    .unwrap();
+                    let fresh =
+                        patches::evaluate_with(&map, &table, &points, width, at, derivatives)
+                            .unwrap();
+                    assert_eq!(out.width, width);
+                    let bits = |s: &patches::SurfaceSamples| {
+                        let v = &s.values;
+                        [&v.point, &v.du, &v.dv, &v.duu, &v.duv, &v.dvv]
+                            .map(|c| c.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
+                    };
+                    assert_eq!(
+                        bits(&out),
+                        bits(&fresh),
+                        "width {width}, {threads} threads, {derivatives:?}"
+                    );
+                    assert_eq!(out.values.point.len(), count * width);
+                    assert_eq!(out.values.du.is_empty(), derivatives == Derivatives::None);
+                }
+                let bad = [(0, 0.5, 0.5), (0, 0.5, 1.5)];
+                let e = patches::evaluate_data_into(
+                    patches::Evaluation::OpenSubdiv,
+                    &map,
+                    &table,
+                    PatchData::Vertex,
+                    &points,
+                    width,
+                    &bad,
+                    Derivatives::First,
+                    &mut out,
+                )
+                .unwrap_err();
+                assert!(matches!(e, Error::Location { face: 0, .. }), "{e}");
+                assert!(out.values.point.is_empty() && out.values.du.is_empty());
+            }
+        }
+    }
+}

@@ -25,8 +25,9 @@ pub(super) struct AtLocations<R> {
     pub(super) us: Vec<f64>,
     /// Each location's v.
     pub(super) vs: Vec<f64>,
-    /// The values, then ∂u, ∂v, ∂uu, ∂uv, ∂vv: `width` zeros per location
-    /// for those asked for, empty for the others.
+    /// The values, then ∂u, ∂v, ∂uu, ∂uv, ∂vv: `width` values per
+    /// location for those asked for (zeros, or what an earlier evaluation
+    /// left: the shim overwrites them), empty for the others.
     columns: [Vec<R>; 6],
 }
 
@@ -34,11 +35,14 @@ impl<R: Real> AtLocations<R> {
     /// The arrays for evaluating `locations` over `points_len` values of
     /// points of `width`, with `derivatives`. Refused: `width` 0 or beyond
     /// `i32`, values not a whole number of points, outputs too large.
+    /// The output columns reuse `reuse`'s memory where it is large
+    /// enough (an earlier evaluation's values, given back).
     pub(super) fn new(
         points_len: usize,
         width: usize,
         locations: &[(u32, f64, f64)],
         derivatives: Derivatives,
+        reuse: Partials<R>,
     ) -> Result<Self> {
         if width == 0 {
             return Err(Error::ZeroWidth);
@@ -63,9 +67,15 @@ impl<R: Real> AtLocations<R> {
             us[i] = u;
             vs[i] = v;
         }
-        let mut columns: [Vec<R>; 6] = std::array::from_fn(|_| Vec::new());
-        for column in columns.iter_mut().take(derivatives.columns()) {
-            *column = try_vec(R::ZERO, len)?;
+        let mut columns = reuse.into_columns();
+        for (k, column) in columns.iter_mut().enumerate() {
+            if k >= derivatives.columns() {
+                column.clear();
+            } else if column.capacity() < len {
+                *column = try_vec(R::ZERO, len)?;
+            } else {
+                column.resize(len, R::ZERO);
+            }
         }
         Ok(AtLocations {
             width,

@@ -96,7 +96,24 @@ impl OsdCpuPatchTable<'_> {
         locations: &[(u32, f64, f64)],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples<f32>> {
-        let mut at = AtLocations::new(points.len(), width, locations, derivatives)?;
+        let mut out = SurfaceSamples::default();
+        self.evaluate_into(points, width, locations, derivatives, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Self::evaluate`] into `out`, reusing its columns' memory (as a
+    /// program calling OpenSubdiv keeps its output buffers from one call
+    /// to the next); on error `out` is left empty.
+    pub fn evaluate_into(
+        &self,
+        points: &[f32],
+        width: usize,
+        locations: &[(u32, f64, f64)],
+        derivatives: Derivatives,
+        out: &mut SurfaceSamples<f32>,
+    ) -> Result<()> {
+        let reuse = std::mem::take(&mut out.values);
+        let mut at = AtLocations::new(points.len(), width, locations, derivatives, reuse)?;
         let outs = at.outputs();
         let mut err = ErrBuf::new();
         // SAFETY: the table and the one it was made of are live; `points`
@@ -123,6 +140,7 @@ impl OsdCpuPatchTable<'_> {
                 ERR_LEN,
             )
         })?;
-        Ok(at.finish())
+        *out = at.finish();
+        Ok(())
     }
 }

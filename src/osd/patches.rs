@@ -550,7 +550,24 @@ impl OsdPatchTable {
         locations: &[(u32, f64, f64)],
         derivatives: Derivatives,
     ) -> Result<SurfaceSamples> {
-        let mut at = AtLocations::new(points.len(), width, locations, derivatives)?;
+        let mut out = SurfaceSamples::default();
+        self.evaluate_points_into(points, width, locations, derivatives, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Self::evaluate_points`] into `out`, reusing its columns' memory (as a
+    /// program calling OpenSubdiv keeps its output buffers from one call
+    /// to the next); on error `out` is left empty.
+    pub fn evaluate_points_into(
+        &self,
+        points: &[f64],
+        width: usize,
+        locations: &[(u32, f64, f64)],
+        derivatives: Derivatives,
+        out: &mut SurfaceSamples,
+    ) -> Result<()> {
+        let reuse = std::mem::take(&mut out.values);
+        let mut at = AtLocations::new(points.len(), width, locations, derivatives, reuse)?;
         let outs = at.outputs();
         let mut err = ErrBuf::new();
         // SAFETY: the table is live; `points` holds `at.points` points of
@@ -576,7 +593,8 @@ impl OsdPatchTable {
                 ERR_LEN,
             )
         })?;
-        Ok(at.finish())
+        *out = at.finish();
+        Ok(())
     }
 
     /// The limit surface at `locations` (ptex face, u, v) for vertex data of

@@ -18,7 +18,7 @@ use super::exact::exact_sharpness;
 use super::loop_poly::{LoopPolynomial, loop_points, loop_polynomials};
 use super::map::Found;
 use super::{
-    Derivatives, Evaluation, Partials, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
+    Derivatives, Evaluation, PatchHandle, PatchMap, PatchParam, PatchTable, PatchType,
     SurfaceSamples,
 };
 use crate::error::{Buffer, Error, Result};
@@ -355,44 +355,131 @@ pub fn evaluate_data_as<R: Real>(
     locations: &[(u32, f64, f64)],
     derivatives: Derivatives,
 ) -> Result<SurfaceSamples<R>> {
-    if width == 0 {
-        return Err(Error::ZeroWidth);
-    }
-    let kinds = derivatives.columns();
-    let len = locations.len().checked_mul(width).ok_or(Error::TooLarge {
-        what: "evaluated values",
-        count: usize::MAX,
-        bits: usize::BITS,
-    })?;
-    // Every location checked first, in order: an error names the first
-    // bad one, whatever order they are evaluated in.
-    for &(face, u, v) in locations {
-        check_location(table, face, u, v)?;
-    }
-    let mut outs: [Vec<R>; 6] = std::array::from_fn(|_| Vec::new());
-    for out in outs.iter_mut().take(kinds) {
-        *out = crate::alloc::try_zeroed(len)?;
-    }
-    let loop_polynomials = if width == 3 && kinds <= 3 {
-        loop_polynomials(table, data, points, locations.len())
-    } else {
-        Vec::new()
-    };
-    let evaluator = Evaluator {
+    let mut out = SurfaceSamples::default();
+    evaluate_data_into(
         evaluation,
         map,
         table,
         data,
         points,
         width,
+        locations,
         derivatives,
-        loop_polynomials,
+        &mut out,
+    )?;
+    Ok(out)
+}
+
+/// [`evaluate_data_as`] into `out`, reusing its columns' memory: what
+/// evaluating again and again needs (each frame's points, each batch of
+/// samples), as OpenSubdiv's `EvalPatches` writes into the caller's
+/// buffers. A fresh column of millions of values is fresh memory, each of
+/// its pages a kernel page fault when first written (a tenth of the time
+/// of a million locations on the benchmark's quad torus); a reused one
+/// was faulted in by the call before. Every value of `out` is
+/// overwritten: the columns asked for are resized to the locations'
+/// values, the others emptied (their memory kept).
+///
+/// On error `out` is emptied (its columns keep their memory), so a
+/// failed call never leaves values of an earlier one looking like its
+/// own.
+///
+/// ```
+/// use subdiv::patches::{self, Derivatives, Evaluation, PatchData, PatchMap, PatchOptions, SurfaceSamples};
+/// use subdiv::{refiner::Refiner, shapes, Options};
+/// let mesh = shapes::cube();
+/// let options = PatchOptions::new().max_isolation(2);
+/// let adaptive = Refiner::new(&mesh, &Options::default())?
+///     .refine_adaptive(options.refine_adaptive_options(), &[])?;
+/// let table = adaptive.patch_table(&options, &[])?;
+/// let map = PatchMap::new(&table);
+/// let mut out = SurfaceSamples::default();
+/// for scale in [1.0, 2.0] {
+///     let base: Vec<f64> = mesh.flat_positions::<f64>().iter().map(|x| x * scale).collect();
+///     let points = adaptive.patch_points(&table, 3, &base)?;
+///     patches::evaluate_data_into(Evaluation::OpenSubdiv, &map, &table, PatchData::Vertex,
+///         &points, 3, &[(0, 0.5, 0.5)], Derivatives::First, &mut out)?;
+///     assert_eq!((out.values.point.len(), out.values.du.len()), (3, 3));
+///     assert!(out.values.duu.is_empty());
+/// }
+/// // Scaled by two: the centre of face 0 twice as far along its axis.
+/// let once = patches::evaluate(&table, &adaptive.patch_points(&table, 3, &mesh.flat_positions())?,
+///     3, &[(0, 0.5, 0.5)], Derivatives::None)?;
+/// assert_eq!(out.values.point[2], 2.0 * once.values.point[2]);
+/// # Ok::<(), subdiv::Error>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn evaluate_data_into<R: Real>(
+    evaluation: Evaluation,
+    map: &PatchMap,
+    table: &PatchTable,
+    data: PatchData,
+    points: &[R],
+    width: usize,
+    locations: &[(u32, f64, f64)],
+    derivatives: Derivatives,
+    out: &mut SurfaceSamples<R>,
+) -> Result<()> {
+    let mut evaluate = || -> Result<()> {
+        if width == 0 {
+            return Err(Error::ZeroWidth);
+        }
+        let kinds = derivatives.columns();
+        let len = locations.len().checked_mul(width).ok_or(Error::TooLarge {
+            what: "evaluated values",
+            count: usize::MAX,
+            bits: usize::BITS,
+        })?;
+        // Every location checked first, in order: an error names the first
+        // bad one, whatever order they are evaluated in.
+        for &(face, u, v) in locations {
+            check_location(table, face, u, v)?;
+        }
+        out.width = width;
+        let mut columns = out.values.columns_mut();
+        for (k, column) in columns.iter_mut().enumerate() {
+            if k >= kinds {
+                column.clear();
+            } else if column.capacity() < len {
+                // Fresh zeros from the allocator, faulted in as written (a
+                // fill first would write every page twice).
+                **column = crate::alloc::try_zeroed(len)?;
+            } else {
+                // Within its memory: only values past the old length are set
+                // first; every value is overwritten below.
+                column.resize(len, R::ZERO);
+            }
+        }
+        let loop_polynomials = if width == 3 && kinds <= 3 {
+            loop_polynomials(table, data, points, locations.len())
+        } else {
+            Vec::new()
+        };
+        let evaluator = Evaluator {
+            evaluation,
+            map,
+            table,
+            data,
+            points,
+            width,
+            derivatives,
+            loop_polynomials,
+        };
+        let mut asked: Vec<&mut [R]> = columns
+            .into_iter()
+            .take(kinds)
+            .map(|c| c.as_mut_slice())
+            .collect();
+        super::locations::evaluate_all(&evaluator, locations, &mut asked)
     };
-    super::locations::evaluate_all(&evaluator, locations, &mut outs[..kinds])?;
-    Ok(SurfaceSamples {
-        width,
-        values: Partials::from_columns(outs),
-    })
+    let done = evaluate();
+    if done.is_err() {
+        out.width = width;
+        for column in out.values.columns_mut() {
+            column.clear();
+        }
+    }
+    done
 }
 
 /// What evaluating locations one after another keeps between them: the

@@ -41,7 +41,7 @@ const CHUNK: usize = 8192;
 pub(super) fn evaluate_all<R: Real>(
     evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<R>],
+    columns: &mut [&mut [R]],
 ) -> Result<()> {
     if locations.len() < ORDERED_FROM
         || evaluator.data_bytes() <= CACHED_BYTES
@@ -63,7 +63,7 @@ pub(super) fn evaluate_all<R: Real>(
 fn in_given_order<R: Real>(
     evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<R>],
+    columns: &mut [&mut [R]],
 ) -> Result<()> {
     let width = evaluator.width;
     let each =
@@ -154,7 +154,7 @@ fn face_order(locations: &[(u32, f64, f64)], faces: usize) -> Result<Vec<u32>> {
 fn in_face_order<R: Real>(
     evaluator: &Evaluator<'_, R>,
     locations: &[(u32, f64, f64)],
-    columns: &mut [Vec<R>],
+    columns: &mut [&mut [R]],
 ) -> Result<()> {
     let order = face_order(locations, evaluator.ptex_faces())?;
     let width = evaluator.width;

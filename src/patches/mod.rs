@@ -41,7 +41,9 @@ mod triangle_basis;
 use crate::stencil::StencilTable;
 
 pub use basis::{evaluate_basis, evaluate_basis_in};
-pub use eval::{PatchData, evaluate, evaluate_data, evaluate_data_as, evaluate_with};
+pub use eval::{
+    PatchData, evaluate, evaluate_data, evaluate_data_as, evaluate_data_into, evaluate_with,
+};
 pub use exact::{Evaluation, evaluate_basis_exact};
 pub use limit_stencils::{LimitStencilOptions, LocationStencils};
 pub use map::PatchMap;
@@ -530,6 +532,25 @@ impl<R> Partials<R> {
             duv,
             dvv,
         }
+    }
+
+    /// The six columns in their order, as [`Partials::from_columns`] takes
+    /// them.
+    pub(crate) fn into_columns(self) -> [Vec<R>; 6] {
+        [self.point, self.du, self.dv, self.duu, self.duv, self.dvv]
+    }
+
+    /// The six columns in their order, as in [`Partials::from_columns`],
+    /// to write into.
+    pub(crate) fn columns_mut(&mut self) -> [&mut Vec<R>; 6] {
+        [
+            &mut self.point,
+            &mut self.du,
+            &mut self.dv,
+            &mut self.duu,
+            &mut self.duv,
+            &mut self.dvv,
+        ]
     }
 }
 

@@ -11,7 +11,7 @@ use super::timing::interleaved;
 use crate::Failure;
 use std::hint::black_box;
 use subdiv::options::{AdaptiveOptions, BoundaryInterpolation, FVarLinearInterpolation, Options};
-use subdiv::patches::{self, Derivatives, PatchMap, PatchOptions};
+use subdiv::patches::{self, Derivatives, PatchMap, PatchOptions, SurfaceSamples};
 use subdiv::refiner::{AdaptiveRefiner, Refiner};
 use subdiv::shapes::BenchShape;
 use subdiv::{Result, osd, shapes};
@@ -247,8 +247,8 @@ fn limit_rows(
             reps,
             1e-9 * size,
             &refused,
-            || patches::evaluate_with(&map, &table, &points, 3, &locations, Derivatives::First),
-            || theirs.evaluate_points(&points, 3, &locations, Derivatives::First),
+            |out| evaluate_native(&map, &table, &points, &locations, out),
+            |out| theirs.evaluate_points_into(&points, 3, &locations, Derivatives::First, out),
         )
     });
     // A basis not native (none with these options): no evaluation rows.
@@ -258,8 +258,9 @@ fn limit_rows(
     rows.push(row(task, times));
     // The same locations in f32, against OpenSubdiv's CPU evaluator
     // (`Osd::CpuEvaluator::EvalPatches`, float only): the points rounded to
-    // f32 once, not timed; each side finds its patches and allocates its
-    // outputs in the timed call.
+    // f32 once, not timed; each side finds its patches in the timed call
+    // and writes into the outputs of its call before (as `EvalPatches`
+    // writes into its caller's buffers).
     let points32: Vec<f32> = points.iter().map(|&x| x as f32).collect();
     let cpu = theirs.cpu_patch_table()?;
     let task = format!(
@@ -271,8 +272,8 @@ fn limit_rows(
             reps,
             F32_AGREEMENT * size,
             &refused,
-            || patches::evaluate_with(&map, &table, &points32, 3, &locations, Derivatives::First),
-            || cpu.evaluate(&points32, 3, &locations, Derivatives::First),
+            |out| evaluate_native(&map, &table, &points32, &locations, out),
+            |out| cpu.evaluate_into(&points32, 3, &locations, Derivatives::First, out),
         )
     });
     match times? {
@@ -282,24 +283,49 @@ fn limit_rows(
     Ok(rows)
 }
 
+/// The native evaluation of the benchmark's rows: positions and first
+/// derivatives at `locations`, OpenSubdiv's way, into `out`.
+fn evaluate_native<R: subdiv::Real>(
+    map: &PatchMap,
+    table: &patches::PatchTable,
+    points: &[R],
+    locations: &[(u32, f64, f64)],
+    out: &mut SurfaceSamples<R>,
+) -> Result<()> {
+    patches::evaluate_data_into(
+        patches::Evaluation::OpenSubdiv,
+        map,
+        table,
+        patches::PatchData::Vertex,
+        points,
+        3,
+        locations,
+        Derivatives::First,
+        out,
+    )
+}
+
 /// The native and OpenSubdiv times (interleaved medians of `reps`) of one
-/// limit evaluation, after checking that their values (positions and first
-/// derivatives) are at most `bound` apart; `None` when the native engine
-/// has no basis for a patch (`NotYetSupported`), `refused`'s error when the
-/// values differ.
+/// limit evaluation, each side writing into its own outputs of the call
+/// before (a program evaluating again and again keeps its buffers), after
+/// checking that their values (positions and first derivatives) are at
+/// most `bound` apart; `None` when the native engine has no basis for a
+/// patch (`NotYetSupported`), `refused`'s error when the values differ.
 fn evaluation_times<R: subdiv::Real>(
     reps: usize,
     bound: f64,
     refused: &dyn Fn(&str) -> Failure,
-    native: impl Fn() -> Result<patches::SurfaceSamples<R>>,
-    osd: impl Fn() -> Result<patches::SurfaceSamples<R>>,
+    native: impl Fn(&mut SurfaceSamples<R>) -> Result<()>,
+    osd: impl Fn(&mut SurfaceSamples<R>) -> Result<()>,
 ) -> std::result::Result<Option<(f64, f64)>, Failure> {
-    let mine = match native() {
-        Ok(m) => m,
+    let mut mine = SurfaceSamples::default();
+    match native(&mut mine) {
+        Ok(()) => {}
         Err(subdiv::Error::NotYetSupported(_)) => return Ok(None),
         Err(e) => return Err(e.into()),
-    };
-    let osds = osd()?;
+    }
+    let mut osds = SurfaceSamples::default();
+    osd(&mut osds)?;
     for (a, b) in [
         (&mine.values.point, &osds.values.point),
         (&mine.values.du, &osds.values.du),
@@ -315,8 +341,14 @@ fn evaluation_times<R: subdiv::Real>(
     }
     Ok(Some(interleaved(
         reps,
-        || drop(black_box(native().expect("native"))),
-        || drop(black_box(osd().expect("osd"))),
+        || {
+            native(&mut mine).expect("native");
+            black_box(&mine);
+        },
+        || {
+            osd(&mut osds).expect("osd");
+            black_box(&osds);
+        },
     )))
 }
 
