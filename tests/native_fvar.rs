@@ -542,9 +542,11 @@ fn check(
                 let de = expected
                     .interpolate_face_varying(c, level, channel.width, de)
                     .map_err(|e| e.to_string())?;
-                // On one thread the values that follow the vertex topology
-                // come from the vertex kernel, on several from the
-                // face-varying pass alone: both must give OpenSubdiv's.
+                // One thread and the pool (its work split differently):
+                // both must give OpenSubdiv's. (Both take the vertex
+                // kernel's path where it applies; the face-varying pass
+                // alone is compared with it in
+                // src/refiner/fvar_paths_tests.rs.)
                 let on_pool = actual
                     .interpolate_face_varying(c, level, channel.width, da)
                     .map_err(|e| e.to_string())?;
@@ -586,7 +588,7 @@ fn check(
         }
     }
     // The whole-refinement calls give the levels just checked, bit for bit,
-    // on one thread (the vertex kernel's path) and on the pool.
+    // on one thread and on the pool.
     for (c, channel) in mesh.fvar_channels.iter().enumerate() {
         let base = &channel.values;
         for pool in [false, true] {

@@ -53,7 +53,7 @@ impl Refiner {
     /// that follow the vertex topology, writing them into `dst`; returns
     /// the elements whose children are left, or `None` (nothing written)
     /// when the channel is linear (or the scheme bilinear), too wide for the
-    /// kernel, or mostly seams, and on a pool of several threads.
+    /// kernel, or mostly seams.
     pub(super) fn fvar_by_vertex_kernel<T: Real>(
         &self,
         channel: usize,
@@ -66,16 +66,13 @@ impl Refiner {
         let split = &self.refinements[level - 1];
         let pf: &ChannelLevel = &self.fvar[channel][level - 1];
         let cf: &ChannelLevel = &self.fvar[channel][level];
-        // On several threads the face-varying pass, in chunks of parents,
-        // scales better than this path's serial steps and the vertex
-        // kernel's relations (production-like mesh, level 2, two threads:
-        // 59 ms through the pass, 63 ms this way; one thread: 100 against
-        // 86 ms), so it is only taken on one.
-        if pf.is_linear()
-            || self.options.scheme == Scheme::Bilinear
-            || width > MAX_WIDTH
-            || rayon::current_num_threads() > 1
-        {
+        // Taken on several threads too: the face-varying pass in parallel
+        // chunks was slower there (2026-12-02, two threads, level 2, best
+        // of 20: the UV tori 2.4-3.4 ms through the pass against 1.6-2.4
+        // this way, the Loop torus's 2.4 against 1.7; the production-like
+        // mesh, best of 5, 61-109 against 54-67 ms; on one thread this way
+        // 1.8-2.5 and 82-104 ms).
+        if pf.is_linear() || self.options.scheme == Scheme::Bilinear || width > MAX_WIDTH {
             return None;
         }
         let nf = parent.face_count();

@@ -270,7 +270,7 @@ impl Refiner {
     }
 
     /// One level of one channel.
-    fn interpolate_fvar_level<T: Real>(
+    pub(super) fn interpolate_fvar_level<T: Real>(
         &self,
         channel: usize,
         level: usize,

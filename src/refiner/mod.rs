@@ -28,6 +28,8 @@ use crate::topology::{
 pub mod adaptive;
 mod fvar_fast;
 pub(crate) mod fvar_interp;
+#[cfg(test)]
+mod fvar_paths_tests;
 mod queries;
 mod whole;
 use glam::{DVec3, Vec3};
