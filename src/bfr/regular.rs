@@ -55,12 +55,14 @@ pub(crate) fn shortcut_corners(level: &Level, face: usize) -> ([u32; 16], usize,
     if let Some(corners) = interior_quad_corners(level, face) {
         return (corners, 16, 0);
     }
+    if let Some(corners) = interior_triangle_corners(level, face) {
+        return (corners, 12, 0);
+    }
     let fverts = level.face_verts(face);
     let quad = fverts.len() == 4;
     let len = if quad { 16 } else { 12 };
     let mut all = [MISSING; 16];
     let p = &mut all[..len];
-    const TRI: [[usize; 4]; 3] = [[4, 3, 0, 1], [5, 2, 6, 9], [8, 11, 10, 7]];
     let n = fverts.len();
     let start = |f: u32| level.face_vertices.range(f as usize).start;
     for (i, &v) in fverts.iter().enumerate() {
@@ -128,6 +130,11 @@ pub(crate) fn shortcut_corners(level: &Level, face: usize) -> ([u32; 16], usize,
 /// face's corners, from the one at the quad's vertex on.
 const QUAD: [[usize; 4]; 4] = [[5, 4, 0, 1], [6, 2, 3, 7], [10, 11, 15, 14], [9, 13, 12, 8]];
 
+/// A box-spline patch's points at each corner of its triangle: the
+/// opposite face's three corners, from the one at the triangle's vertex
+/// on, and the far corner of the face after it.
+const TRI: [[usize; 4]; 3] = [[4, 3, 0, 1], [5, 2, 6, 9], [8, 11, 10, 7]];
+
 /// [`shortcut_corners`] of a quad whose vertices all have four faces (of a
 /// shortcut face: interior and regular), the case of nearly every face of
 /// a quad mesh: no point is missing, the mask is 0. `None` for any other
@@ -150,6 +157,45 @@ fn interior_quad_corners(level: &Level, face: usize) -> Option<[u32; 16]> {
         for (d, &slot) in slots.iter().enumerate() {
             p[slot] = (first + ((l + d) & 3)) as u32;
         }
+    }
+    Some(p)
+}
+
+/// [`shortcut_corners`] of a triangle whose vertices all have six faces
+/// (of a shortcut face: interior and regular), the case of nearly every
+/// face of a Loop mesh: no point is missing, the mask is 0 (the first 12
+/// of the array). At each corner, the opposite face's three corners from
+/// the one at the corner's vertex on, and the far corner of the face after
+/// it. `None` for any other face.
+fn interior_triangle_corners(level: &Level, face: usize) -> Option<[u32; 16]> {
+    let fverts = level.face_verts(face);
+    if fverts.len() != 3 {
+        return None;
+    }
+    // Corner `d` on from local corner `l` of a triangle (`l`, `d` below 3).
+    let wrap = |l: u16, d: usize| {
+        let i = usize::from(l) + d;
+        if i >= 3 { i - 3 } else { i }
+    };
+    let mut p = [0u32; 16];
+    for (&v, slots) in fverts.iter().zip(&TRI) {
+        let vfaces = level.vertex_faces_of(v as usize);
+        if vfaces.len() != 6 {
+            return None;
+        }
+        let locals = level.vertex_face_locals(v as usize);
+        let mine = vfaces.iter().position(|&f| f as usize == face)?;
+        let opp = if mine >= 3 { mine - 3 } else { mine + 3 };
+        let next = if opp == 5 { 0 } else { opp + 1 };
+        let (first, l) = (
+            level.face_vertices.range(vfaces[opp] as usize).start,
+            locals[opp],
+        );
+        let next_first = level.face_vertices.range(vfaces[next] as usize).start;
+        p[slots[0]] = (first + wrap(l, 0)) as u32;
+        p[slots[1]] = (first + wrap(l, 1)) as u32;
+        p[slots[2]] = (first + wrap(l, 2)) as u32;
+        p[slots[3]] = (next_first + wrap(locals[next], 2)) as u32;
     }
     Some(p)
 }
