@@ -535,7 +535,8 @@ impl<R> Partials<R> {
     }
 
     /// The six columns in their order, as [`Partials::from_columns`] takes
-    /// them.
+    /// them (the bridge's evaluations reuse them).
+    #[cfg(feature = "osd")]
     pub(crate) fn into_columns(self) -> [Vec<R>; 6] {
         [self.point, self.du, self.dv, self.duu, self.duv, self.dvv]
     }
