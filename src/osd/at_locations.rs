@@ -42,7 +42,7 @@ impl<R: Real> AtLocations<R> {
         width: usize,
         locations: &[(u32, f64, f64)],
         derivatives: Derivatives,
-        reuse: Partials<R>,
+        mut reuse: Partials<R>,
     ) -> Result<Self> {
         if width == 0 {
             return Err(Error::ZeroWidth);
@@ -67,16 +67,8 @@ impl<R: Real> AtLocations<R> {
             us[i] = u;
             vs[i] = v;
         }
-        let mut columns = reuse.into_columns();
-        for (k, column) in columns.iter_mut().enumerate() {
-            if k >= derivatives.columns() {
-                column.clear();
-            } else if column.capacity() < len {
-                *column = try_vec(R::ZERO, len)?;
-            } else {
-                column.resize(len, R::ZERO);
-            }
-        }
+        reuse.reuse_for(derivatives.columns(), len)?;
+        let columns = reuse.into_columns();
         Ok(AtLocations {
             width,
             width_i32,

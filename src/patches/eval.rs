@@ -377,9 +377,9 @@ pub fn evaluate_data_as<R: Real>(
 /// its pages a kernel page fault when first written (a million
 /// locations on the benchmark's quad torus, positions and first
 /// derivatives in `f32`: about 90 ms into fresh columns, 65 ms into
-/// reused ones); a reused one was faulted in by the call before. Every value of `out` is
-/// overwritten: the columns asked for are resized to the locations'
-/// values, the others emptied (their memory kept).
+/// reused ones); a reused one was faulted in by the call before. Every
+/// value of `out` is overwritten: the columns asked for are resized to
+/// the locations' values, the others emptied (their memory kept).
 ///
 /// On error `out` is emptied (its columns keep their memory), so a
 /// failed call never leaves values of an earlier one looking like its
@@ -437,20 +437,7 @@ pub fn evaluate_data_into<R: Real>(
             check_location(table, face, u, v)?;
         }
         out.width = width;
-        let mut columns = out.values.columns_mut();
-        for (k, column) in columns.iter_mut().enumerate() {
-            if k >= kinds {
-                column.clear();
-            } else if column.capacity() < len {
-                // Fresh zeros from the allocator, faulted in as written (a
-                // fill first would write every page twice).
-                **column = crate::alloc::try_zeroed(len)?;
-            } else {
-                // Within its memory: only values past the old length are set
-                // first; every value is overwritten below.
-                column.resize(len, R::ZERO);
-            }
-        }
+        out.values.reuse_for(kinds, len)?;
         let loop_polynomials = if width == 3 && kinds <= 3 {
             loop_polynomials(table, data, points, locations.len())
         } else {
@@ -466,7 +453,9 @@ pub fn evaluate_data_into<R: Real>(
             derivatives,
             loop_polynomials,
         };
-        let mut asked: Vec<&mut [R]> = columns
+        let mut asked: Vec<&mut [R]> = out
+            .values
+            .columns_mut()
             .into_iter()
             .take(kinds)
             .map(|c| c.as_mut_slice())

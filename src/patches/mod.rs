@@ -541,6 +541,28 @@ impl<R> Partials<R> {
         [self.point, self.du, self.dv, self.duu, self.duv, self.dvv]
     }
 
+    /// Makes the columns ready for `len` values of each of the first
+    /// `kinds` kinds, every one of which the caller then overwrites: a
+    /// column too small for them becomes fresh zeros from the allocator
+    /// (faulted in as written), one large enough keeps its memory and
+    /// values (only the values past its old length are set), the columns
+    /// not asked for are emptied (their memory kept).
+    pub(crate) fn reuse_for(&mut self, kinds: usize, len: usize) -> crate::error::Result<()>
+    where
+        R: crate::real::Real,
+    {
+        for (k, column) in self.columns_mut().into_iter().enumerate() {
+            if k >= kinds {
+                column.clear();
+            } else if column.capacity() < len {
+                *column = crate::alloc::try_zeroed(len)?;
+            } else {
+                column.resize(len, R::ZERO);
+            }
+        }
+        Ok(())
+    }
+
     /// The six columns in their order, as in [`Partials::from_columns`],
     /// to write into.
     pub(crate) fn columns_mut(&mut self) -> [&mut Vec<R>; 6] {
