@@ -676,7 +676,6 @@ fn run<T: Real, W: Width + Send + Sync>(
                 None => ps.edge_faces_of(e),
             };
             let smooth = faces.len() == 2 && (!has_sharpness || edge_sharpness[e] <= 0.0);
-            let mut acc = zero;
             let weights = if smooth {
                 cache.smooth_edge(
                     &r.rules,
@@ -688,7 +687,12 @@ fn run<T: Real, W: Width + Send + Sync>(
             } else {
                 None
             };
+            // Each branch stores its own sum: an accumulator shared with
+            // the irregular path's returned array lived on the stack, its
+            // lanes written apart and read back whole (a store-forwarding
+            // stall on every edge point).
             if let Some(w) = weights {
+                let mut acc = zero;
                 let ev = ps.edge_vertices[e];
                 add(&mut acc, src, ev[0], w.ends[0], width);
                 add(&mut acc, src, ev[1], w.ends[1], width);
@@ -703,11 +707,11 @@ fn run<T: Real, W: Width + Send + Sync>(
                         }
                     }
                 }
+                store(slot, &acc, width);
             } else {
                 r.edge_terms(Kind::Vertex, level, e, scratch);
-                acc = irregular(scratch);
+                store(slot, &irregular(scratch), width);
             }
-            store(slot, &acc, width);
         });
     }
 
@@ -722,7 +726,6 @@ fn run<T: Real, W: Width + Send + Sync>(
         None => (None, None),
     };
     par_children(vertex_points, n, |v, slot, cache, scratch| {
-        let mut acc = zero;
         if let Some((grand, gr)) = derived {
             let (mut faces, mut fars) = ([0u32; 8], [0u32; 8]);
             if let Some(count) = derive_smooth_hood(grand, gr, triangles, v, &mut faces, &mut fars)
@@ -739,6 +742,7 @@ fn run<T: Real, W: Width + Send + Sync>(
                     store(slot, &m.sum(v, f, e, src, face_points, width), width);
                     return;
                 }
+                let mut acc = zero;
                 SmoothVertex {
                     v,
                     faces: &faces[..count],
@@ -767,7 +771,9 @@ fn run<T: Real, W: Width + Send + Sync>(
             Rule::Smooth
         };
         let smooth = takes_smooth_mask(rule, faces.len(), edges.len());
+        // Each branch stores its own sum, as the edge points' do.
         if smooth {
+            let mut acc = zero;
             SmoothVertex {
                 v,
                 faces,
@@ -776,11 +782,11 @@ fn run<T: Real, W: Width + Send + Sync>(
                 mask: cache.smooth_vertex(&r.rules, faces.len()),
             }
             .sum(&mut acc, src, face_points, width);
+            store(slot, &acc, width);
         } else {
             r.vertex_terms(Kind::Vertex, level, v, scratch);
-            acc = irregular(scratch);
+            store(slot, &irregular(scratch), width);
         }
-        store(slot, &acc, width);
         if let Some(hood) = hood {
             scratch.hood = hood;
         }
