@@ -28,7 +28,8 @@ pub fn read_obj(path: &Path) -> Result<ShapeFile, ObjError> {
     let len = file.metadata().map_err(io)?.len();
     // One thread, or a file too small to share: read a block at a time.
     if rayon::current_num_threads() == 1 || len < PARALLEL_BYTES as u64 {
-        return read_streaming(&mut file, path, BLOCK);
+        let len = usize::try_from(len).unwrap_or(usize::MAX);
+        return read_streaming(&mut file, path, BLOCK, len);
     }
     let bytes = read_bytes(file, len, path).map_err(io)?;
     // Read as bytes: the fast path's lines are ASCII by construction, and
@@ -56,11 +57,15 @@ const BLOCK: usize = 1 << 18;
 /// text out of the processor's cache before the parser reads it. A line
 /// longer than the buffer grows it. A file that cannot be read is an I/O
 /// error on line 0, unless a line already read is an error: lines are
-/// judged in order, as they arrive.
+/// judged in order, as they arrive. `expected` is the source's length as
+/// far as known (0 when not): after each block the tables the lines fill
+/// get room for the rest of it at the block's rate
+/// ([`Parser::reserve_ahead`]), so that they are not copied as they grow.
 fn read_streaming(
     source: &mut impl std::io::Read,
     path: &Path,
     block: usize,
+    expected: usize,
 ) -> Result<ShapeFile, ObjError> {
     let io = |e: &dyn std::fmt::Display| error_at(path, 0, ObjErrorKind::Io(e.to_string()));
     let mut buffer = Vec::new();
@@ -72,6 +77,8 @@ fn read_streaming(
     // the first line (which may start with a byte-order mark) is still to
     // come.
     let (mut held, mut first) = (0, true);
+    // Bytes of the source parsed so far.
+    let mut parsed = 0;
     loop {
         if held == buffer.len() {
             // A line longer than the buffer.
@@ -99,15 +106,19 @@ fn read_streaming(
             lines = strip_bom(lines);
             first = false;
         }
+        let before = parser.table_lengths();
         parser
             .lines(lines, &mut line, true)
             .map_err(|(line, kind)| error_at(path, line, kind))?;
         if end_of_file {
             break;
         }
+        parsed += whole;
+        parser.reserve_ahead(before, whole, expected.saturating_sub(parsed));
         held = text.len() - whole;
         buffer.copy_within(whole..whole + held, 0);
     }
+    parser.trim_reserved();
     parser
         .finish()
         .map_err(|(line, kind)| error_at(path, line, kind))
@@ -203,7 +214,7 @@ pub fn parse_obj_chunked(text: &str, file: &Path, chunks: usize) -> Result<Shape
 /// reader is tested and fuzzed with it.
 #[doc(hidden)]
 pub fn parse_obj_streamed(bytes: &[u8], file: &Path, block: usize) -> Result<ShapeFile, ObjError> {
-    read_streaming(&mut &bytes[..], file, block)
+    read_streaming(&mut &bytes[..], file, block, bytes.len())
 }
 
 /// Files from this size are read on every thread of the pool.
@@ -476,6 +487,62 @@ impl Parser {
             message,
             ignored,
         });
+    }
+
+    /// The lengths of the tables lines fill, as [`Parser::reserve_ahead`]
+    /// takes them: positions, texture coordinates, face vertices, face
+    /// texture-coordinate indices, face offsets.
+    fn table_lengths(&self) -> [usize; 5] {
+        [
+            self.mesh.positions.len(),
+            self.uv_values.len(),
+            self.mesh.face_vertices.len(),
+            self.uv_indices.len(),
+            self.mesh.face_offsets.len(),
+        ]
+    }
+
+    /// Room in each table for the `remaining` bytes still to come, at the
+    /// rate the last `block` bytes filled it (from `before`, its
+    /// [`Parser::table_lengths`]), when it has less: reserved once, where
+    /// doubling would copy a table again and again as it grows (on the
+    /// heap, under the C allocator's map threshold, a grown vector is a
+    /// copy). An estimate — a table filled only at the start of the file
+    /// is given too much, pages never touched and handed back by
+    /// [`Parser::trim_reserved`] — and room refused is no error: the table
+    /// then grows as it would have.
+    fn reserve_ahead(&mut self, before: [usize; 5], block: usize, remaining: usize) {
+        fn ahead<T>(table: &mut Vec<T>, before: usize, block: usize, remaining: usize) {
+            let grown = table.len().saturating_sub(before) as u128;
+            let wanted = grown * remaining as u128 / block.max(1) as u128;
+            let wanted = usize::try_from(wanted).unwrap_or(usize::MAX);
+            if table.capacity() - table.len() < wanted {
+                // Refused: the table grows as it would have.
+                let _ = table.try_reserve_exact(wanted);
+            }
+        }
+        let [p, t, v, u, o] = before;
+        ahead(&mut self.mesh.positions, p, block, remaining);
+        ahead(&mut self.uv_values, t, block, remaining);
+        ahead(&mut self.mesh.face_vertices, v, block, remaining);
+        ahead(&mut self.uv_indices, u, block, remaining);
+        ahead(&mut self.mesh.face_offsets, o, block, remaining);
+    }
+
+    /// The room [`Parser::reserve_ahead`] gave beyond a quarter of what a
+    /// table holds handed back (in place: a smaller block of the same
+    /// memory, nothing copied).
+    fn trim_reserved(&mut self) {
+        fn trim<T>(table: &mut Vec<T>) {
+            if table.capacity() - table.len() > table.len() / 4 {
+                table.shrink_to_fit();
+            }
+        }
+        trim(&mut self.mesh.positions);
+        trim(&mut self.uv_values);
+        trim(&mut self.mesh.face_vertices);
+        trim(&mut self.uv_indices);
+        trim(&mut self.mesh.face_offsets);
     }
 
     /// Reads one line by the fast path ([`fast`]) if it can — `text` is the
@@ -1231,7 +1298,7 @@ mod read_tests {
             for block in [1, 2, 3, 5, 8, 13, 64] {
                 for most in [1, 4, usize::MAX] {
                     let mut source = Trickle { text: &text, most };
-                    let got = read_streaming(&mut source, file, block);
+                    let got = read_streaming(&mut source, file, block, text.len() * (most % 2));
                     assert_eq!(got, want, "block {block}, reads of {most}: {lossy:?}");
                 }
             }
