@@ -483,34 +483,52 @@ impl Mesh {
                 self.face_vertices.len()
             )));
         }
-        for (vertex, p) in self.positions.iter().enumerate() {
-            if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
-                return Err(MeshError::NonFiniteCoordinate { vertex, value });
+        // Each check first as one pass without an early exit (vectorised:
+        // on a valid mesh, all there is), then, only when it fails, the
+        // search for the first offender, whose error is the one reported.
+        let finite = self.positions.iter().fold(true, |ok, p| ok & p.is_finite());
+        if !finite {
+            for (vertex, p) in self.positions.iter().enumerate() {
+                if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
+                    return Err(MeshError::NonFiniteCoordinate { vertex, value });
+                }
             }
         }
         self.validate_offsets()?;
-        for (face, verts) in self.faces().enumerate() {
-            if verts.len() < 3 {
-                return Err(MeshError::FaceTooSmall {
-                    face,
-                    size: verts.len(),
+        let (smallest, largest) =
+            self.face_offsets
+                .windows(2)
+                .fold((u32::MAX, 0), |(lo, hi), w| {
+                    let size = w[1] - w[0];
+                    (lo.min(size), hi.max(size))
                 });
-            }
-            if verts.len() > MAX_VALENCE {
-                return Err(MeshError::FaceTooLarge {
-                    face,
-                    size: verts.len(),
-                });
-            }
-            if let Some((corner, &index)) =
-                verts.iter().enumerate().find(|&(_, &v)| v as usize >= nv)
-            {
-                return Err(MeshError::VertexOutOfRange {
-                    face,
-                    corner,
-                    index,
-                    count: nv,
-                });
+        let top = self.face_vertices.iter().fold(0, |m, &v| m.max(v));
+        let faces_valid = (self.face_vertices.is_empty() || (top as usize) < nv)
+            && (self.face_offsets.len() < 2 || (smallest >= 3 && largest as usize <= MAX_VALENCE));
+        if !faces_valid {
+            for (face, verts) in self.faces().enumerate() {
+                if verts.len() < 3 {
+                    return Err(MeshError::FaceTooSmall {
+                        face,
+                        size: verts.len(),
+                    });
+                }
+                if verts.len() > MAX_VALENCE {
+                    return Err(MeshError::FaceTooLarge {
+                        face,
+                        size: verts.len(),
+                    });
+                }
+                if let Some((corner, &index)) =
+                    verts.iter().enumerate().find(|&(_, &v)| v as usize >= nv)
+                {
+                    return Err(MeshError::VertexOutOfRange {
+                        face,
+                        corner,
+                        index,
+                        count: nv,
+                    });
+                }
             }
         }
         for (i, c) in self.creases.iter().enumerate() {
@@ -613,7 +631,10 @@ impl Mesh {
                 self.face_vertices.len()
             )));
         }
-        if let Some(i) = ch.values.iter().position(|v| !v.is_finite()) {
+        // As in `validate`: one vectorised pass each, the search for the
+        // first offender only when it fails.
+        let finite = ch.values.iter().fold(true, |ok, v| ok & v.is_finite());
+        if !finite && let Some(i) = ch.values.iter().position(|v| !v.is_finite()) {
             return Err(bad(format!(
                 "value {} has a non-finite component ({})",
                 i / ch.width,
@@ -621,13 +642,17 @@ impl Mesh {
             )));
         }
         let count = ch.value_count();
-        for (face, w) in self.face_offsets.windows(2).enumerate() {
-            for corner in 0..(w[1] - w[0]) as usize {
-                let index = ch.indices[w[0] as usize + corner];
-                if index as usize >= count {
-                    return Err(bad(format!(
-                        "face {face} corner {corner}: value index {index} is out of range (the channel has {count} values)"
-                    )));
+        let top = ch.indices.iter().fold(0, |m, &x| m.max(x));
+        let in_range = ch.indices.is_empty() || (top as usize) < count;
+        if !in_range {
+            for (face, w) in self.face_offsets.windows(2).enumerate() {
+                for corner in 0..(w[1] - w[0]) as usize {
+                    let index = ch.indices[w[0] as usize + corner];
+                    if index as usize >= count {
+                        return Err(bad(format!(
+                            "face {face} corner {corner}: value index {index} is out of range (the channel has {count} values)"
+                        )));
+                    }
                 }
             }
         }
@@ -763,6 +788,65 @@ mod tests {
             m.validate(),
             Err(MeshError::BadFVarChannel { channel: 0, .. })
         ));
+    }
+
+    /// With several bad faces the first in face order is reported,
+    /// whichever check it fails, and in a channel the first bad value and
+    /// the first corner out of range: the whole-mesh passes that find a
+    /// mesh valid leave the reporting to the face-by-face search.
+    #[test]
+    fn the_first_offender_is_reported() {
+        let mut m = quad();
+        m.add_face(&[0, 1, 9]);
+        m.add_face(&[0, 1]);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::VertexOutOfRange {
+                face: 1,
+                corner: 2,
+                index: 9,
+                count: 4
+            })
+        );
+        let mut m = quad();
+        m.add_face(&[0, 1]);
+        m.add_face(&[0, 1, 9]);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::FaceTooSmall { face: 1, size: 2 })
+        );
+        let mut m = quad();
+        let large: Vec<u32> = (0..=MAX_VALENCE as u32).map(|i| i % 4).collect();
+        m.add_face(&[0, 1, 2]);
+        m.add_face(&large);
+        m.add_face(&[0, 9, 1]);
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::FaceTooLarge {
+                face: 2,
+                size: MAX_VALENCE + 1
+            })
+        );
+        let problem = |m: &Mesh| match m.validate() {
+            Err(MeshError::BadFVarChannel {
+                channel: 0,
+                problem,
+            }) => problem,
+            other => panic!("{other:?}"),
+        };
+        let mut m = quad();
+        m.fvar_channels.push(FVarChannel {
+            width: 2,
+            values: vec![0.0, 0.0, f64::INFINITY, 0.0, f64::NAN, 0.0],
+            indices: vec![0, 1, 2, 0],
+        });
+        assert_eq!(problem(&m), "value 1 has a non-finite component (inf)");
+        m.fvar_channels[0].values = vec![0.0; 6];
+        m.fvar_channels[0].indices = vec![0, 3, 4, 1];
+        assert_eq!(
+            problem(&m),
+            "face 0 corner 1: value index 3 is out of range (the channel has 3 values)"
+        );
     }
 
     #[test]
