@@ -488,11 +488,7 @@ impl Mesh {
         // search for the first offender, whose error is the one reported.
         let finite = self.positions.iter().fold(true, |ok, p| ok & p.is_finite());
         if !finite {
-            for (vertex, p) in self.positions.iter().enumerate() {
-                if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
-                    return Err(MeshError::NonFiniteCoordinate { vertex, value });
-                }
-            }
+            self.first_non_finite_position()?;
         }
         self.validate_offsets()?;
         let (smallest, largest) =
@@ -506,30 +502,7 @@ impl Mesh {
         let faces_valid = (self.face_vertices.is_empty() || (top as usize) < nv)
             && (self.face_offsets.len() < 2 || (smallest >= 3 && largest as usize <= MAX_VALENCE));
         if !faces_valid {
-            for (face, verts) in self.faces().enumerate() {
-                if verts.len() < 3 {
-                    return Err(MeshError::FaceTooSmall {
-                        face,
-                        size: verts.len(),
-                    });
-                }
-                if verts.len() > MAX_VALENCE {
-                    return Err(MeshError::FaceTooLarge {
-                        face,
-                        size: verts.len(),
-                    });
-                }
-                if let Some((corner, &index)) =
-                    verts.iter().enumerate().find(|&(_, &v)| v as usize >= nv)
-                {
-                    return Err(MeshError::VertexOutOfRange {
-                        face,
-                        corner,
-                        index,
-                        count: nv,
-                    });
-                }
-            }
+            self.first_bad_face()?;
         }
         for (i, c) in self.creases.iter().enumerate() {
             if let Some(&vertex) = c.vertices.iter().find(|&&v| v as usize >= nv) {
@@ -608,6 +581,49 @@ impl Mesh {
                 "the last offset is {last} but there are {} face vertices",
                 self.face_vertices.len()
             )));
+        }
+        Ok(())
+    }
+
+    /// The error of the first vertex with a coordinate that is not finite
+    /// (the search `validate` runs once its whole-table pass found one).
+    fn first_non_finite_position(&self) -> Result<(), MeshError> {
+        for (vertex, p) in self.positions.iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|c| !c.is_finite()) {
+                return Err(MeshError::NonFiniteCoordinate { vertex, value });
+            }
+        }
+        Ok(())
+    }
+
+    /// The error of the first face, in face order, that is too small, too
+    /// large or has a vertex out of range (the search `validate` runs once
+    /// its whole-table passes found one).
+    fn first_bad_face(&self) -> Result<(), MeshError> {
+        let nv = self.positions.len();
+        for (face, verts) in self.faces().enumerate() {
+            if verts.len() < 3 {
+                return Err(MeshError::FaceTooSmall {
+                    face,
+                    size: verts.len(),
+                });
+            }
+            if verts.len() > MAX_VALENCE {
+                return Err(MeshError::FaceTooLarge {
+                    face,
+                    size: verts.len(),
+                });
+            }
+            if let Some((corner, &index)) =
+                verts.iter().enumerate().find(|&(_, &v)| v as usize >= nv)
+            {
+                return Err(MeshError::VertexOutOfRange {
+                    face,
+                    corner,
+                    index,
+                    count: nv,
+                });
+            }
         }
         Ok(())
     }

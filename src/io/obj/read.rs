@@ -510,7 +510,10 @@ impl Parser {
     /// copy). An estimate — a table filled only at the start of the file
     /// is given too much, pages never touched and handed back by
     /// [`Parser::trim_reserved`] — and room refused is no error: the table
-    /// then grows as it would have.
+    /// then grows as it would have. Asked through
+    /// [`crate::alloc::reserve`], which gives the room back when it would
+    /// leave too little address space for the small allocations after it
+    /// (an over-estimate must not turn a limit into an abort).
     fn reserve_ahead(&mut self, before: [usize; 5], block: usize, remaining: usize) {
         fn ahead<T>(table: &mut Vec<T>, before: usize, block: usize, remaining: usize) {
             let grown = table.len().saturating_sub(before) as u128;
@@ -518,7 +521,7 @@ impl Parser {
             let wanted = usize::try_from(wanted).unwrap_or(usize::MAX);
             if table.capacity() - table.len() < wanted {
                 // Refused: the table grows as it would have.
-                let _ = table.try_reserve_exact(wanted);
+                let _ = crate::alloc::reserve(table, wanted);
             }
         }
         let [p, t, v, u, o] = before;
