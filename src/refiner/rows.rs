@@ -7,9 +7,6 @@ use crate::real::Real;
 use crate::stencil::StencilTable;
 use crate::topology::{Growing, Table};
 
-/// Marks a base vertex without a term in the row being built.
-pub(super) const ABSENT: u32 = u32::MAX;
-
 /// Stencil rows in vertex order: row `v` is `offsets[v]..offsets[v + 1]` of
 /// `indices` (base vertices) and `weights`, appended into tables
 /// ([`Growing`]): a level's rows are tens to hundreds of megabytes, on huge
@@ -211,16 +208,21 @@ impl Rows<f64> {
 /// does: each weight is `0 + x * w` for its first term and `+= x * w` for
 /// the next ones, in the row's precision.
 ///
-/// A row is merged in place at the end of the builder's own buffers (which
-/// stay in cache), where finished rows wait to be appended to the table in
-/// one copy per block of rows ([`RowBuilder::flush`]): appending each short
-/// row to the table on its own cost more than merging it. Every term is
-/// written with the same steps whether its vertex is new to the row or not
-/// (the compiler may still branch on it: a select with the weight read
-/// either way measured the same).
+/// A row's weights are summed in a dense accumulator, one per base vertex
+/// (zero outside the open row), and its vertices listed in order of first
+/// contribution at the end of the builder's own buffers (which stay in
+/// cache); closing the row moves its sums beside them and zeroes them
+/// again. Each term then takes the same branch-free steps, new to the row
+/// or not, and its sum is addressed by its vertex, not through a position
+/// looked up first (a chain of two dependent loads per term, which bound
+/// the merge when the row's position was kept per vertex instead). The
+/// sums are the same: `0 + x * w` for a first term, `+= x * w` after.
+/// Finished rows wait in the buffers to be appended to the table in one
+/// copy per block of rows ([`RowBuilder::flush`]): appending each short
+/// row to the table on its own cost more than merging it.
 pub(super) struct RowBuilder<T> {
-    /// Position in the open row of each base vertex, or [`ABSENT`].
-    slot: Vec<u32>,
+    /// Each base vertex's sum in the open row and whether it is in it.
+    acc: Vec<Sum<T>>,
     /// The finished rows not yet appended (their first `filled` entries),
     /// then the open row (its first `len` entries after them), then room.
     indices: Vec<u32>,
@@ -241,10 +243,11 @@ pub(super) struct RowBuilder<T> {
 const PENDING_TERMS: usize = 1 << 15;
 
 impl<T: Real> RowBuilder<T> {
-    /// A builder for rows over `base` base vertices (every slot absent).
+    /// A builder for rows over `base` base vertices (none in a row).
+    /// Unwinds to [`crate::alloc::guard`] when memory runs out.
     pub(super) fn new(base: usize) -> Self {
         RowBuilder {
-            slot: vec![ABSENT; base],
+            acc: crate::alloc::vec_or_unwind(Sum::EMPTY, base),
             indices: Vec::new(),
             weights: Vec::new(),
             filled: 0,
@@ -260,7 +263,9 @@ impl<T: Real> RowBuilder<T> {
     /// Unwinds to [`crate::alloc::guard`] when the buffer cannot hold it.
     #[inline]
     pub(super) fn open(&mut self, bound: usize) {
-        let needed = self.filled + bound.min(self.slot.len());
+        // One more than the row can hold: each term writes its vertex one
+        // past the row's end before it is known to be new.
+        let needed = self.filled + bound.min(self.acc.len()) + 1;
         if self.indices.len() < needed {
             self.grow(needed);
         }
@@ -286,9 +291,8 @@ impl<T: Real> RowBuilder<T> {
     #[inline(always)]
     pub(super) fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
         let mut open = OpenRow {
-            slot: &mut self.slot,
+            acc: &mut self.acc,
             indices: &mut self.indices[self.filled..],
-            weights: &mut self.weights[self.filled..],
             len: self.len,
         };
         open.add_row(row, w);
@@ -302,9 +306,8 @@ impl<T: Real> RowBuilder<T> {
     pub(super) fn open_row(&mut self, bound: usize) -> OpenRow<'_, T> {
         self.open(bound);
         OpenRow {
-            slot: &mut self.slot,
+            acc: &mut self.acc,
             indices: &mut self.indices[self.filled..],
-            weights: &mut self.weights[self.filled..],
             len: 0,
         }
     }
@@ -327,9 +330,13 @@ impl<T: Real> RowBuilder<T> {
     #[inline]
     pub(super) fn end_pending(&mut self) -> bool {
         let end = self.filled + self.len;
-        for &i in &self.indices[self.filled..end] {
-            self.slot[i as usize] = ABSENT;
-            self.base_count = self.base_count.max(i as usize + 1);
+        let row = self.indices[self.filled..end]
+            .iter()
+            .zip(&mut self.weights[self.filled..end]);
+        for (&i, w) in row {
+            let i = i as usize;
+            *w = std::mem::replace(&mut self.acc[i], Sum::EMPTY).sum;
+            self.base_count = self.base_count.max(i + 1);
         }
         self.widest = self.widest.max(self.len);
         self.filled = end;
@@ -360,11 +367,27 @@ impl<T: Real> RowBuilder<T> {
     }
 }
 
-/// A row being built at the end of a [`RowBuilder`]'s buffers.
+/// A base vertex's sum in the open row of a [`RowBuilder`], beside the
+/// mark of whether it is in the row (one cache line for both).
+#[derive(Clone, Copy)]
+pub(super) struct Sum<T> {
+    sum: T,
+    absent: bool,
+}
+
+impl<T: Real> Sum<T> {
+    /// Not in the row: zero, which a first term adds to.
+    const EMPTY: Sum<T> = Sum {
+        sum: T::ZERO,
+        absent: true,
+    };
+}
+
+/// A row being built at the end of a [`RowBuilder`]'s buffers: its
+/// vertices there, its sums in the builder's accumulator.
 pub(super) struct OpenRow<'b, T> {
-    slot: &'b mut [u32],
+    acc: &'b mut [Sum<T>],
     indices: &'b mut [u32],
-    weights: &'b mut [T],
     /// Its terms so far.
     pub(super) len: usize,
 }
@@ -375,14 +398,16 @@ impl<T: Real> OpenRow<'_, T> {
     pub(super) fn add_row(&mut self, row: (&[u32], &[T]), w: T) {
         let mut len = self.len;
         for (&i, &x) in row.0.iter().zip(row.1) {
-            let slot = &mut self.slot[i as usize];
-            let fresh = *slot == ABSENT;
-            let at = if fresh { len } else { *slot as usize };
-            let before = if fresh { T::ZERO } else { self.weights[at] };
-            self.weights[at] = before + x * w;
-            self.indices[at] = i;
-            *slot = at as u32;
-            len += usize::from(fresh);
+            let a = &mut self.acc[i as usize];
+            // Written whether new or not: a vertex already in the row is
+            // overwritten by the next new one (the buffer has room for
+            // one more than the row).
+            self.indices[len] = i;
+            len += usize::from(a.absent);
+            *a = Sum {
+                sum: a.sum + x * w,
+                absent: false,
+            };
         }
         self.len = len;
     }

@@ -34,9 +34,12 @@ use super::AdaptiveRefiner;
 use crate::error::{Error, Result};
 use crate::real::Real;
 use crate::refiner::fvar_interp::fvar_terms;
-use crate::refiner::rows::{ABSENT, RowBuilder, Rows};
+use crate::refiner::rows::{RowBuilder, Rows};
 use crate::refiner::{Emit, Kind, Refiner, Source};
 use crate::stencil::{StencilInterpolation, StencilOptions, StencilRows, StencilTable};
+
+/// The position of a child whose row is not built (yet).
+const NOT_BUILT: u32 = u32::MAX;
 
 /// A refinement whose levels the builder walks: its vertices, or the
 /// values of one face-varying channel ([`Channel`]); mask weights in `T`.
@@ -123,7 +126,7 @@ fn level_rows<T: Real>(
     let prev = prev.map(Rows::view);
     // Rows in the order they are built, and the position of each child's.
     let mut built = Rows::with_rows(count);
-    let mut position = vec![ABSENT; count];
+    let mut position = vec![NOT_BUILT; count];
     let mut failed = None;
     refinement.walk(kind, level, &mut |child, terms| {
         if failed.is_some() {
@@ -169,7 +172,7 @@ fn level_rows<T: Real>(
     rows.expect(built.terms() as f64);
     let view = built.view();
     for &r in &position {
-        let (indices, weights) = if r == ABSENT {
+        let (indices, weights) = if r == NOT_BUILT {
             (&[][..], &[][..])
         } else {
             view.get(r)
