@@ -238,7 +238,8 @@ fn limit_face_varying_matches_opensubdiv() {
 }
 
 /// Factorized stencils reproduce interpolation exactly, in both precisions,
-/// for every scheme and both child orders.
+/// for every scheme and both child orders, at every width (three has its
+/// own path).
 #[test]
 fn factorized_stencils_equal_interpolation() {
     for (name, mut mesh) in shapes::corpus() {
@@ -270,6 +271,21 @@ fn factorized_stencils_equal_interpolation() {
                     "{name} {scheme} f32"
                 );
                 assert!(fs.apply_into(3, &base32[1..], &mut out).is_err());
+                // The other widths take the unpadded path.
+                let fs = r.factorized_stencils::<f64>().unwrap();
+                for width in [1, 2, 4, 5] {
+                    let data: Vec<f64> = base
+                        .chunks_exact(3)
+                        .flat_map(|p| (0..width).map(move |k| p[k % 3] * (k + 1) as f64))
+                        .collect();
+                    let mut out = vec![0.0; fs.len() * width];
+                    fs.apply_into(width, &data, &mut out).unwrap();
+                    assert_eq!(
+                        out,
+                        r.interpolate_all(width, &data).unwrap().pop().unwrap(),
+                        "{name} {scheme} width {width}"
+                    );
+                }
             }
         }
     }

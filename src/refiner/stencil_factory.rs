@@ -434,13 +434,17 @@ impl Refiner {
 /// One refinement step of a [`FactorizedStencils`]: the terms of every child
 /// vertex, in OpenSubdiv's order of computation — face points, edge points,
 /// vertex points, each a contiguous block of child indices — over the parent
-/// level or (high bit set) over the face points computed before them.
+/// level or over the face points computed before them: one numbering, the
+/// parent's vertices then this step's face points.
 #[derive(Debug, Clone, PartialEq, Default)]
 struct Step<T> {
     /// `rows + 1` offsets into `source` and `weight`.
     offsets: Vec<u32>,
-    /// Source of each term: a parent vertex, or (high bit set) a child vertex.
+    /// Source of each term: parent vertex `s` below `parent_count`, else
+    /// face point `s - parent_count` (child vertex `blocks[0].0` plus that).
     source: Vec<u32>,
+    /// Number of vertices of the parent level.
+    parent_count: usize,
     /// Weight of each term.
     weight: Vec<T>,
     /// Number of vertices of the child level.
@@ -448,8 +452,6 @@ struct Step<T> {
     /// First child index and row count of the face, edge and vertex blocks.
     blocks: [(usize, usize); 3],
 }
-
-const CHILD_BIT: u32 = 1 << 31;
 
 /// The refinement to the last level as a product of sparse per-level
 /// stencils: the masks of every level recorded once, in `T`, then applied to
@@ -516,25 +518,29 @@ impl<T: crate::Real> FactorizedStencils<T> {
             out.copy_from_slice(base);
             return Ok(());
         }
-        // Two scratch levels used in turn; the first step reads `base` and
-        // the last writes `out` directly.
-        let (mut even, mut odd): (Vec<T>, Vec<T>) = (Vec::new(), Vec::new());
-        for (k, step) in self.steps.iter().enumerate() {
-            let (write, read) = if k % 2 == 0 {
-                (&mut even, &odd)
-            } else {
-                (&mut odd, &even)
-            };
-            let src: &[T] = if k == 0 { base } else { read };
-            if k + 1 == self.steps.len() {
-                apply_step(step, width, src, out);
-            } else {
-                write.clear();
-                write.resize(step.child_count * width, T::ZERO);
-                apply_step(step, width, src, write);
+        // Two scratch levels used in turn (tables from the pool: a frame
+        // applied after another faults none of their pages in again); the
+        // first step reads `base` and the last writes `out` directly. Every
+        // row of a level is written.
+        crate::alloc::guard(None, || {
+            let (mut even, mut odd) = (Table::<T>::new(), Table::<T>::new());
+            for (k, step) in self.steps.iter().enumerate() {
+                let (write, read) = if k % 2 == 0 {
+                    (&mut even, &odd)
+                } else {
+                    (&mut odd, &even)
+                };
+                let src: &[T] = if k == 0 { base } else { read };
+                if k + 1 == self.steps.len() {
+                    apply_step(step, width, src, out);
+                } else {
+                    *write = Table::new();
+                    *write = Table::for_overwrite(step.child_count * width);
+                    apply_step(step, width, src, write);
+                }
             }
-        }
-        Ok(())
+            Ok(())
+        })
     }
 }
 
@@ -559,6 +565,9 @@ fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut
         at = start + count;
     }
     let [faces, edges, verts] = parts;
+    if width == 3 {
+        return padded_step(step, src, [faces, edges, verts]);
+    }
     let phase = |first_row: usize, faces: &[T], out: &mut [T]| match width {
         1 => step_rows::<1, T>(step, first_row, src, faces, out),
         2 => step_rows::<2, T>(step, first_row, src, faces, out),
@@ -572,16 +581,13 @@ fn apply_step<T: crate::Real>(step: &Step<T>, width: usize, src: &[T], dst: &mut
     phase(nf + ne, faces, verts);
 }
 
-/// The values a step's term `s` reads: a parent vertex of `src`, or (with
-/// [`CHILD_BIT`]) a face point of this step, `faces` holding those from
-/// child vertex `f0` on.
+/// The values a step's term `s` reads: parent vertex `s` of `src`, or
+/// (from `pc`, the parent's vertex count, on) face point `s - pc` of
+/// `faces`.
 #[inline(always)]
-fn source_row<'a, T>(s: u32, src: &'a [T], faces: &'a [T], f0: usize, width: usize) -> &'a [T] {
-    let (data, i) = if s & CHILD_BIT != 0 {
-        (faces, (s & !CHILD_BIT) as usize - f0)
-    } else {
-        (src, s as usize)
-    };
+fn source_row<'a, T>(s: u32, src: &'a [T], faces: &'a [T], pc: usize, width: usize) -> &'a [T] {
+    let s = s as usize;
+    let (data, i) = if s < pc { (src, s) } else { (faces, s - pc) };
     &data[i * width..i * width + width]
 }
 
@@ -594,14 +600,14 @@ fn step_rows<const W: usize, T: crate::Real>(
     faces: &[T],
     out: &mut [T],
 ) {
-    let f0 = step.blocks[0].0;
+    let pc = step.parent_count;
     let rows = |first: usize, out: &mut [T]| {
         for (r, o) in out.chunks_exact_mut(W).enumerate() {
             let r = first + r;
             let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
             let mut acc = [T::ZERO; W];
             for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
-                for (x, &v) in acc.iter_mut().zip(source_row(s, src, faces, f0, W)) {
+                for (x, &v) in acc.iter_mut().zip(source_row(s, src, faces, pc, W)) {
                     *x += v * w;
                 }
             }
@@ -609,6 +615,56 @@ fn step_rows<const W: usize, T: crate::Real>(
         }
     };
     in_chunks(out, W, first_row, rows);
+}
+
+/// [`apply_step`] for three components: the parent's values and then the
+/// face points, each padded to four lanes, in one table the terms index
+/// directly (one load of a whole vertex per term, no choice between two
+/// arrays); the sums are those of [`step_rows`], component by component in
+/// the same order. `out` is the child level's face, edge and vertex blocks.
+fn padded_step<T: crate::Real>(step: &Step<T>, src: &[T], out: [&mut [T]; 3]) {
+    let [faces, edges, verts] = out;
+    let pc = step.parent_count;
+    let nf = step.blocks[0].1;
+    let mut values = Table::<[T; 4]>::for_overwrite(pc + nf);
+    for (v, x) in values[..pc].iter_mut().zip(src.chunks_exact(3)) {
+        *v = [x[0], x[1], x[2], T::ZERO];
+    }
+    let row = |values: &[[T; 4]], r: usize| {
+        let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
+        let mut acc = [T::ZERO; 4];
+        for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
+            let v = values[s as usize];
+            for k in 0..4 {
+                acc[k] += v[k] * w;
+            }
+        }
+        acc
+    };
+    // Face points (over parents only) into their padded rows...
+    {
+        let (parents, points) = values.split_at_mut(pc);
+        let parents: &[[T; 4]] = parents;
+        let points: &mut [T] = bytemuck::cast_slice_mut(points);
+        in_chunks(points, 4, 0, |first, chunk| {
+            let chunk: &mut [[T; 4]] = bytemuck::cast_slice_mut(chunk);
+            for (r, o) in chunk.iter_mut().enumerate() {
+                *o = row(parents, first + r);
+            }
+        });
+    }
+    // ... and out; then edge and vertex points over both.
+    for (o, v) in faces.chunks_exact_mut(3).zip(&values[pc..]) {
+        o.copy_from_slice(&v[..3]);
+    }
+    let values: &[[T; 4]] = &values;
+    for (first_row, out) in [(nf, edges), (nf + step.blocks[1].1, verts)] {
+        in_chunks(out, 3, first_row, |first, chunk| {
+            for (r, o) in chunk.chunks_exact_mut(3).enumerate() {
+                o.copy_from_slice(&row(values, first + r)[..3]);
+            }
+        });
+    }
 }
 
 /// As [`step_rows`] for any width.
@@ -620,14 +676,14 @@ fn step_rows_any<T: crate::Real>(
     faces: &[T],
     out: &mut [T],
 ) {
-    let f0 = step.blocks[0].0;
+    let pc = step.parent_count;
     let rows = |first: usize, out: &mut [T]| {
         for (r, o) in out.chunks_exact_mut(width).enumerate() {
             let r = first + r;
             o.fill(T::ZERO);
             let (a, b) = (step.offsets[r] as usize, step.offsets[r + 1] as usize);
             for (&s, &w) in step.source[a..b].iter().zip(&step.weight[a..b]) {
-                for (x, &v) in o.iter_mut().zip(source_row(s, src, faces, f0, width)) {
+                for (x, &v) in o.iter_mut().zip(source_row(s, src, faces, pc, width)) {
                     *x += v * w;
                 }
             }
@@ -669,7 +725,9 @@ impl Refiner {
                 } else {
                     0
                 };
+                let (pc, f0) = (parent.vertex_count as u32, r.first_vertex_from_faces);
                 let mut step = Step {
+                    parent_count: parent.vertex_count,
                     child_count: self.levels[level].vertex_count,
                     blocks: [
                         (r.first_vertex_from_faces as usize, nf),
@@ -683,7 +741,8 @@ impl Refiner {
                     for &(source, w) in terms {
                         step.source.push(match source {
                             Source::Parent(i) => i,
-                            Source::Child(i) => i | CHILD_BIT,
+                            // Only face points are read as children.
+                            Source::Child(i) => pc + (i - f0),
                         });
                         step.weight.push(w);
                     }
