@@ -534,6 +534,8 @@ impl<T: crate::Real> FactorizedStencils<T> {
                 if k + 1 == self.steps.len() {
                     apply_step(step, width, src, out);
                 } else {
+                    // The level before last dropped first, so that its
+                    // map can be the new one's.
                     *write = Table::new();
                     *write = Table::for_overwrite(step.child_count * width);
                     apply_step(step, width, src, write);
