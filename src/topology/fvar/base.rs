@@ -55,13 +55,14 @@ pub fn build_base(
         mode,
         value_count,
         face_values: Table::from(crate::alloc::copied(indices)),
-        edge_tags: crate::alloc::vec_or_unwind(FVarEdgeTag::default(), level.edge_count()),
-        value_offsets: crate::alloc::with_capacity(nv + 1),
-        face_siblings: crate::alloc::vec_or_unwind(0, level.vertex_faces.members.len()),
-        value_indices: Vec::new(),
-        value_tags: Vec::new(),
-        crease_ends: Vec::new(),
+        edge_tags: Table::zeroed(level.edge_count()),
+        value_offsets: Table::new(),
+        face_siblings: Table::zeroed(level.vertex_faces.members.len()),
+        value_indices: Table::new(),
+        value_tags: Table::new(),
+        crease_ends: Table::new(),
     };
+    let mut value_offsets: Vec<u32> = crate::alloc::with_capacity(nv + 1);
 
     let fvar_mode = options.fvar;
     let corners_sharp = fvar_mode != FVarLinearInterpolation::None;
@@ -188,20 +189,21 @@ pub fn build_base(
         if tag.non_manifold() && !mismatch[v] {
             mismatch[v] = unique.len() > 1;
         }
-        fvar.value_offsets.push(total);
+        value_offsets.push(total);
         total += unique.len() as u32;
         if unique.len() > 1 {
             fvar.face_siblings[ls.vertex_faces.range(v)].copy_from_slice(&siblings[..faces.len()]);
         }
     }
-    fvar.value_offsets.push(total);
+    value_offsets.push(total);
+    fvar.value_offsets = value_offsets.into();
 
     // Second pass: the value of each sibling, and the tags of mismatched values.
     let total = total as usize;
-    fvar.value_indices = crate::alloc::vec_or_unwind(0, total);
-    fvar.value_tags = crate::alloc::vec_or_unwind(ValueTag::default(), total);
+    fvar.value_indices = Table::zeroed(total);
+    fvar.value_tags = Table::zeroed(total);
     if mode.has_crease_ends() {
-        fvar.crease_ends = crate::alloc::vec_or_unwind([0, 0], total);
+        fvar.crease_ends = Table::zeroed(total);
     }
     let mut spans: Vec<Span> = Vec::with_capacity(level.max_valence);
     for (v, &mismatched) in mismatch.iter().enumerate() {

@@ -2,7 +2,7 @@
 //! topology rather than analysing it again — OpenSubdiv's
 //! `Vtr::FVarRefinement` (`vtr/fvarRefinement.cpp`).
 
-use super::{ChannelLevel, FVarEdgeTag, ValueTag};
+use super::{ChannelLevel, ValueTag};
 use crate::options::{CreasingMethod, Options, Scheme};
 use crate::output::INVALID_INDEX;
 use crate::rules::crease;
@@ -231,7 +231,7 @@ fn split_channel<R: Children>(
     // parent had when mismatched.
     // Each child's count is written at `value_offsets[c + 1]`, then summed
     // in place into the offsets (a child not created counts 0).
-    let mut value_offsets = crate::alloc::vec_or_unwind(0u32, ncv + 1);
+    let mut value_offsets = Table::<u32>::zeroed(ncv + 1);
     if r.has_face_points() {
         for f in 0..nf {
             let c = r.face_child(f);
@@ -286,22 +286,22 @@ fn split_channel<R: Children>(
         value_count: total,
         face_values: Table::new(),
         edge_tags: if last {
-            Vec::new()
+            Table::new()
         } else {
-            crate::alloc::vec_or_unwind(FVarEdgeTag::default(), child.edge_count())
+            Table::zeroed(child.edge_count())
         },
         value_offsets,
         face_siblings: if with_siblings {
-            crate::alloc::vec_or_unwind(0, child.vertex_faces.members.len())
+            Table::zeroed(child.vertex_faces.members.len())
         } else {
-            Vec::new()
+            Table::new()
         },
-        value_indices: Vec::new(),
-        value_tags: crate::alloc::vec_or_unwind(ValueTag::default(), total),
+        value_indices: Table::new(),
+        value_tags: Table::zeroed(total),
         crease_ends: if mode.has_crease_ends() && !last {
-            crate::alloc::vec_or_unwind([0, 0], total)
+            Table::zeroed(total)
         } else {
-            Vec::new()
+            Table::new()
         },
     };
 
