@@ -272,6 +272,20 @@ pub(super) fn take_vec<T: Send + 'static>(len: usize) -> Option<Vec<T>> {
     kept.vec.downcast::<Vec<T>>().ok().map(|v| *v)
 }
 
+/// An empty vector with room for at least `capacity` values to be pushed:
+/// a dropped table's vector when one of about that size is kept (its
+/// memory already faulted in), else a new one (unwinding as
+/// [`crate::alloc::with_capacity`] does when memory runs out).
+pub(super) fn vec_with_capacity<T: Send + 'static>(capacity: usize) -> Vec<T> {
+    match take_vec::<T>(capacity) {
+        Some(mut vec) => {
+            vec.clear();
+            vec
+        }
+        None => crate::alloc::with_capacity(capacity),
+    }
+}
+
 /// Keeps a dropped table's vector (from 64 KiB of room up; nothing under an
 /// address-space limit, as [`give_map`]).
 pub(super) fn give_vec<T: Send + 'static>(vec: Vec<T>) {

@@ -75,7 +75,7 @@ pub(super) fn refine_quads(
             // halves join the edge point to an end vertex's child.
             // Both kinds are pushed in the order of their indices (corners
             // of faces, then two halves per parent edge).
-            let mut edge_vertices = crate::alloc::with_capacity(child_edges);
+            let mut edge_vertices = crate::topology::table_pool::vec_with_capacity(child_edges);
             for f in 0..nf {
                 let fc = r.face_child(f);
                 edge_vertices.extend(
